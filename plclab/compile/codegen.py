@@ -1,0 +1,1044 @@
+"""The compiler: a checked :class:`~plclab.lang.check.Project` -> Python source -> code object.
+
+Design rules (DESIGN.md, principle 2):
+
+* every POU becomes a plain Python class or function; a scan calls ``_body()`` methods;
+* user text reaches the generated code only as upper-cased identifiers (``[A-Z0-9_]``, which
+  can never be a Python keyword or builtin) or as ``repr()`` literals;
+* each generated line remembers the source location it came from, so a runtime fault can be
+  reported at ``file:line:col`` of the ST source.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import Location
+from ..lang import ast as A
+from ..lang import types as T
+from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
+from ..runtime.rt import _f32
+
+_IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
+_SIMPLE = (A.Name, A.Member, A.Index, A.Literal)
+
+
+def ident(name: str) -> str:
+    """The Python spelling of an ST identifier: upper case, checked to be a plain identifier."""
+    up = name.upper()
+    if not _IDENT.match(up):
+        raise ValueError(f"not an identifier: {name!r}")
+    return up
+
+
+@dataclass
+class Compiled:
+    source: str
+    code: Any
+    filename: str
+    line_where: list[int]  # generated line (1-based index - 1) -> index into locations
+    locations: list[Location | None]
+    project: Project
+    natives: dict[str, str]
+    tests: list[tuple[str, str, Location]] = field(default_factory=list)  # (title, fn, loc)
+    assert_texts: dict[int, str] = field(default_factory=dict)
+
+    def location_of_line(self, lineno: int) -> Location | None:
+        if 1 <= lineno <= len(self.line_where):
+            return self.locations[self.line_where[lineno - 1]]
+        return None
+
+
+class Codegen:
+    def __init__(self, project: Project, filename: str = "<plclab>") -> None:
+        self.p = project
+        self.filename = filename
+        self.lines: list[str] = []
+        self.line_where: list[int] = []
+        self.locations: list[Location | None] = [None]
+        self._loc_index: dict[Location, int] = {}
+        self.where_now = 0
+        self.ind = 0
+        self.tmp = 0
+        self.pre: list[str] = []
+        self.natives: dict[str, str] = {}
+        self.pou: A.Pou | None = None
+        self.loops: list[tuple[str, A.Expr | None]] = []
+        self.safe: dict[str, tuple[int, int]] = {}  # loop var code -> (min, max) known range
+        self.struct_names: dict[int, str] = {}
+        self.assert_texts: dict[int, str] = {}
+        self.tests: list[tuple[str, str, Location]] = []
+
+    # -- emission -----------------------------------------------------------------------------
+    def where(self, loc: Location | None) -> int:
+        if loc is None:
+            return 0
+        i = self._loc_index.get(loc)
+        if i is None:
+            i = len(self.locations)
+            self.locations.append(loc)
+            self._loc_index[loc] = i
+        return i
+
+    def emit(self, line: str) -> None:
+        self.lines.append("    " * self.ind + line)
+        self.line_where.append(self.where_now)
+
+    def flush_pre(self) -> None:
+        pre, self.pre = self.pre, []
+        for line in pre:
+            self.emit(line)
+
+    def new_tmp(self, stem: str = "_t") -> str:
+        self.tmp += 1
+        return f"{stem}{self.tmp}"
+
+    # -- driver -------------------------------------------------------------------------------
+    def generate(self) -> Compiled:
+        for name, t in self.p.types.items():
+            rt = t
+            if isinstance(rt, T.StructType):
+                self.struct_class(name, rt)
+        # anonymous structs are not supported as separate classes: they are named by TYPE
+        for pou in self.p.pous.values():
+            if pou.kind == "FUNCTION":
+                if pou.native:
+                    self.natives[f"F_{ident(pou.name)}"] = pou.native
+                else:
+                    self.function(pou)
+            elif pou.native:
+                self.natives[f"P_{ident(pou.name)}"] = pou.native
+            else:
+                self.block_class(pou)
+        self.globals_class()
+        self.programs_class()
+        self.sync_functions()
+        for i, t in enumerate(self.p.tests):
+            self.test_function(i, t)
+        src = "\n".join(self.lines) + "\n"
+        code = compile(src, self.filename, "exec")
+        return Compiled(src, code, self.filename, self.line_where, self.locations, self.p,
+                        self.natives, self.tests, self.assert_texts)
+
+    # -- defaults and initial values ----------------------------------------------------------
+    def default_code(self, ty: T.Type) -> str:
+        t = T.resolve(ty)
+        if isinstance(t, T.ArrayType):
+            d = self.default_code(t.elem)
+            if T.resolve(t.elem).is_aggregate:
+                return f"[{d} for _ in range({t.size})]"
+            return f"[{d}] * {t.size}"
+        if isinstance(t, T.StructType):
+            return f"S_{ident(t.name)}()"
+        if isinstance(t, T.FBType):
+            if t.pou.native:
+                return f"P_{ident(t.name)}(_CTX)"
+            return f"P_{ident(t.name)}()"
+        return repr(T.default_value(t))
+
+    def init_code(self, e: A.Expr | None, ty: T.Type) -> str:
+        if e is None:
+            return self.default_code(ty)
+        t = T.resolve(ty)
+        if isinstance(e, A.ArrayInit) and isinstance(t, T.ArrayType):
+            vals: list[str] = []
+            for rep, val in e.items:
+                n = 1 if rep is None else int(rep.value)
+                if isinstance(val, A.Literal) and val.kind == "DEFAULT":
+                    code = self.default_code(t.elem)
+                else:
+                    code = self.init_code(val, t.elem)
+                vals.extend([code] * n)
+            vals = vals[: t.size]
+            if len(vals) < t.size:
+                d = self.default_code(t.elem)
+                if T.resolve(t.elem).is_aggregate:
+                    return "[" + ", ".join(vals) + f"] + [{d} for _ in range({t.size - len(vals)})]"
+                return "[" + ", ".join(vals) + f"] + [{d}] * {t.size - len(vals)}"
+            return "[" + ", ".join(vals) + "]"
+        if isinstance(e, A.StructInit):
+            fields = t.fields if isinstance(t, T.StructType) else {
+                d.name: d for d in t.pou.decls}
+            kv = ", ".join(
+                f"{ident(n)}={self.init_code(v, fields[n].ty)}" for n, v, _ in e.fields
+                if n in fields
+            )
+            return f"_setattrs({self.default_code(t)}, {kv})" if kv else self.default_code(t)
+        return self.coerce(self.ex(e), e.ty, ty, e)
+
+    # -- classes ------------------------------------------------------------------------------
+    def struct_class(self, name: str, st: T.StructType) -> None:
+        cls = f"S_{ident(name)}"
+        fields = list(st.fields.values())
+        self.emit(f"class {cls}:")
+        self.ind += 1
+        self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in fields) + ")")
+        self.emit("def __init__(self):")
+        self.ind += 1
+        for d in fields:
+            self.where_now = self.where(d.loc)
+            self.emit(f"self.{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+        if not fields:
+            self.emit("pass")
+        self.ind -= 1
+        self.emit("def _copy(self):")
+        self.ind += 1
+        self.emit(f"n = {cls}.__new__({cls})")
+        for d in fields:
+            self.emit(f"n.{ident(d.name)} = " + self.copy_code(f"self.{ident(d.name)}", d.ty))
+        self.emit("return n")
+        self.ind -= 2
+        self.emit("")
+
+    def copy_code(self, code: str, ty: T.Type) -> str:
+        t = T.resolve(ty)
+        if isinstance(t, T.ArrayType):
+            if T.resolve(t.elem).is_aggregate:
+                return f"[_e._copy() for _e in {code}]"
+            return f"list({code})"
+        if isinstance(t, T.StructType | T.FBType):
+            return f"{code}._copy()"
+        return code
+
+    def member_decls(self, pou: A.Pou) -> list[A.VarDecl]:
+        return [d for d in pou.decls if d.section not in ("VAR_TEMP", "VAR_EXTERNAL")]
+
+    def block_class(self, pou: A.Pou) -> None:
+        cls = f"P_{ident(pou.name)}"
+        self.pou = pou
+        members = self.member_decls(pou)
+        self.where_now = self.where(pou.loc)
+        self.emit(f"class {cls}:")
+        self.ind += 1
+        self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
+        self.emit("def __init__(self):")
+        self.ind += 1
+        for d in members:
+            self.where_now = self.where(d.loc)
+            self.emit(f"self.{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+        self.emit("pass")
+        self.ind -= 1
+        self.emit("def _copy(self):")
+        self.ind += 1
+        self.emit(f"n = {cls}.__new__({cls})")
+        for d in members:
+            self.emit(f"n.{ident(d.name)} = " + self.copy_code(f"self.{ident(d.name)}", d.ty))
+        self.emit("return n")
+        self.ind -= 1
+        self.emit("def _body(self):")
+        self.ind += 1
+        self.where_now = self.where(pou.loc)
+        for d in pou.decls:
+            if d.section == "VAR_TEMP":
+                self.emit(f"v_{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+        self.block(pou.body)
+        self.emit("return")
+        self.ind -= 2
+        self.emit("")
+        self.pou = None
+
+    def function(self, pou: A.Pou) -> None:
+        self.pou = pou
+        params = [d for d in pou.decls if d.section in ("VAR_INPUT", "VAR_IN_OUT")]
+        self.where_now = self.where(pou.loc)
+        self.emit(f"def F_{ident(pou.name)}(" + ", ".join(f"v_{ident(d.name)}" for d in params)
+                  + "):")
+        self.ind += 1
+        rd = pou.return_decl  # type: ignore[attr-defined]
+        if rd.ty is not T.VOID:
+            self.emit(f"v_{ident(pou.name)} = {self.default_code(rd.ty)}")
+        for d in pou.decls:
+            if d.section in ("VAR", "VAR_TEMP", "VAR_OUTPUT"):
+                self.where_now = self.where(d.loc)
+                self.emit(f"v_{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+        self.block(pou.body)
+        self.emit(self.function_return(pou))
+        self.ind -= 1
+        self.emit("")
+        self.pou = None
+
+    def function_return(self, pou: A.Pou) -> str:
+        rd = pou.return_decl  # type: ignore[attr-defined]
+        res = f"v_{ident(pou.name)}" if rd.ty is not T.VOID else "None"
+        outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
+        if not outs:
+            return f"return {res}"
+        return "return (" + res + ", " + ", ".join(f"v_{ident(d.name)}" for d in outs) + ")"
+
+    def globals_class(self) -> None:
+        self.emit("class _Globals:")
+        self.ind += 1
+        gl = list(self.p.globals.values())
+        self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in gl) + ")")
+        self.emit("def __init__(self):")
+        self.ind += 1
+        for d in gl:
+            self.where_now = self.where(d.loc)
+            self.emit(f"self.{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+        self.emit("pass")
+        self.ind -= 2
+        self.emit("")
+
+    def programs_class(self) -> None:
+        self.emit("class _Programs:")
+        self.ind += 1
+        names = [n for n, _, _ in self.p.programs]
+        self.emit("__slots__ = (" + "".join(f"{ident(n)!r}, " for n in names) + ")")
+        self.emit("def __init__(self):")
+        self.ind += 1
+        for n, pou, _ in self.p.programs:
+            self.emit(f"self.{ident(n)} = P_{ident(pou.name)}()")
+        self.emit("pass")
+        self.ind -= 2
+        self.emit("")
+
+    def sync_functions(self) -> None:
+        """_sync_in copies frozen inputs (and %M) into located variables; _sync_out the reverse."""
+        ins: list[str] = []
+        outs: list[str] = []
+        for d, path in self.located():
+            area = d.address[1]
+            rd = self.addr_read(d.address, d.ty)
+            if area in ("I", "M"):
+                ins.append(f"{path} = {rd}")
+            if area in ("Q", "M"):
+                outs.append(self.addr_write(d.address, path, d.ty))
+        for name, body in (("_sync_in", ins), ("_sync_out", outs)):
+            self.emit(f"def {name}():")
+            self.ind += 1
+            for line in body:
+                self.emit(line)
+            self.emit("pass")
+            self.ind -= 1
+        self.emit("")
+
+    def located(self):
+        for d in self.p.globals.values():
+            if d.address and not d.address.endswith("*"):
+                yield d, f"_G.{ident(d.name)}"
+        for n, pou, _ in self.p.programs:
+            for d in pou.decls:
+                if d.address and not d.address.endswith("*") and d.section != "VAR_EXTERNAL":
+                    yield d, f"_P.{ident(n)}.{ident(d.name)}"
+
+    # -- process image access -----------------------------------------------------------------
+    @staticmethod
+    def parse_addr(addr: str) -> tuple[str, str, int, int]:
+        area = addr[1]
+        size = addr[2] if addr[2].isalpha() else "X"
+        rest = addr[3:] if addr[2].isalpha() else addr[2:]
+        parts = rest.split(".")
+        return area, size, int(parts[0]), int(parts[1]) if len(parts) > 1 else 0
+
+    def addr_read(self, addr: str, ty: T.Type | None = None) -> str:
+        area, size, byte, bit = self.parse_addr(addr)
+        buf = f"_{area}"
+        if size == "X":
+            return f"({buf}[{byte}] >> {bit} & 1 != 0)"
+        n = {"B": 1, "W": 2, "D": 4, "L": 8}[size]
+        t = T.base_of(ty) if ty is not None else None
+        if t is not None and t.kind == "real":
+            fmt = ">f" if n == 4 else ">d"
+            return f"_unpack_from({fmt!r}, {buf}, {byte})[0]"
+        signed = bool(t is not None and getattr(t, "signed", False) and t.kind in ("int", "time"))
+        if n == 1 and not signed:
+            return f"{buf}[{byte}]"
+        return f"int.from_bytes({buf}[{byte}:{byte + n}], 'big', signed={signed})"
+
+    def addr_write(self, addr: str, value: str, ty: T.Type | None = None) -> str:
+        area, size, byte, bit = self.parse_addr(addr)
+        buf = f"_{area}"
+        if size == "X":
+            return (f"{buf}[{byte}] = ({buf}[{byte}] | {1 << bit}) if {value} else "
+                    f"({buf}[{byte}] & {0xFF ^ (1 << bit)})")
+        n = {"B": 1, "W": 2, "D": 4, "L": 8}[size]
+        t = T.base_of(ty) if ty is not None else None
+        if t is not None and t.kind == "real":
+            fmt = ">f" if n == 4 else ">d"
+            return f"_pack_into({fmt!r}, {buf}, {byte}, {value})"
+        mask = (1 << (8 * n)) - 1
+        return f"{buf}[{byte}:{byte + n}] = (({value}) & {mask}).to_bytes({n}, 'big')"
+
+    # -- tests --------------------------------------------------------------------------------
+    def test_function(self, i: int, t: A.TestBlock) -> None:
+        fn = f"_test_{i}"
+        self.tests.append((t.title, fn, t.loc))
+        self.where_now = self.where(t.loc)
+        self.emit(f"def {fn}():")
+        self.ind += 1
+        for d in t.decls:
+            self.where_now = self.where(d.loc)
+            self.emit(f"v_{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+        self.block(t.body)
+        self.emit("return")
+        self.ind -= 1
+        self.emit("")
+
+    # -- statements ---------------------------------------------------------------------------
+    def block(self, stmts: list[A.Stmt]) -> None:
+        n = len(self.lines)
+        for s in stmts:
+            self.stmt(s)
+        if len(self.lines) == n:
+            self.emit("pass")
+
+    def stmt(self, s: A.Stmt) -> None:
+        self.where_now = self.where(s.loc)
+        m = getattr(self, "s_" + type(s).__name__)
+        m(s)
+
+    def s_Empty(self, s: A.Empty) -> None:
+        pass
+
+    def s_Assign(self, s: A.Assign) -> None:
+        tt = s.target.ty
+        if s.op in ("S=", "R="):
+            val = self.ex(s.value)
+            self.flush_pre()
+            self.emit(f"if {val}:")
+            self.ind += 1
+            self.assign_to(s.target, "True" if s.op == "S=" else "False")
+            self.ind -= 1
+            return
+        val = self.coerce(self.ex(s.value), s.value.ty, tt, s.value)
+        if T.resolve(tt).is_aggregate and not isinstance(s.value, A.Call):
+            val = self.copy_code(val, tt)
+        self.flush_pre()
+        self.assign_to(s.target, val)
+
+    def assign_to(self, target: A.Expr, val: str) -> None:
+        if isinstance(target, A.Member) and target.field_name.startswith("%"):
+            bit = int(target.field_name[1:])
+            obj = self.ex(target.obj)
+            self.flush_pre()
+            self.emit(f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})")
+            return
+        if isinstance(target, A.DirectAddr):
+            self.emit(self.addr_write(target.address, val))
+            return
+        lv = self.ex(target)
+        self.flush_pre()
+        self.emit(f"{lv} = {val}")
+
+    def s_CallStmt(self, s: A.CallStmt) -> None:
+        c = s.call
+        info: CallInfo | None = c.target
+        if info is None:
+            return
+        if info.kind in ("fb", "program"):
+            self.fb_call(c, info)
+            return
+        if info.kind == "builtin" and info.callee.statement_only:
+            self.test_builtin(c, info)
+            return
+        code = self.ex(c)
+        self.flush_pre()
+        self.emit(code)
+
+    def fb_call(self, c: A.Call, info: CallInfo) -> None:
+        if info.kind == "program":
+            inst = f"_P.{ident(c.func.name)}"  # type: ignore[union-attr]
+        else:
+            inst = self.ex(c.func)
+        fb = inst
+        if not (info.inputs or info.outputs or info.inouts) and "[" not in inst:
+            self.flush_pre()
+            self.emit(f"{inst}._body()")
+            return
+        if "." in inst or "[" in inst:
+            fb = "_fb"
+        vals = [(ident(d.name), self.coerce(self.ex(e), e.ty, d.ty, e)) for d, e in info.inputs]
+        inouts = [(d, self.ex(e), e) for d, e in info.inouts]
+        self.flush_pre()
+        if fb != inst:
+            self.emit(f"{fb} = {inst}")
+        for n, v in vals:
+            self.emit(f"{fb}.{n} = {v}")
+        for d, code, _ in inouts:
+            self.emit(f"{fb}.{ident(d.name)} = {code}")
+        self.emit(f"{fb}._body()")
+        for d, code, e in inouts:
+            if not T.resolve(d.ty).is_aggregate:
+                self.assign_to(e, f"{fb}.{ident(d.name)}")
+        for d, target, neg in info.outputs:
+            v = f"{fb}.{ident(d.name)}"
+            if neg:
+                v = f"(not {v})"
+            self.assign_to(target, self.coerce(v, d.ty, target.ty, None))
+
+    def test_builtin(self, c: A.Call, info: CallInfo) -> None:
+        name = info.callee.name
+        args = [self.ex(e) for _, e in info.inputs]
+        self.flush_pre()
+        w = self.where(c.loc)
+        if name == "ADVANCE_TIME":
+            e = info.inputs[0][1]
+            scale = 1 if T.resolve(e.ty) is T.TIME else None
+            if scale is None:
+                self.emit(f"_CTX.advance_ns({args[0]})")
+            else:
+                self.emit(f"_CTX.advance_ns({args[0]} * 1000000)")
+            return
+        texts = [_expr_text(e) for _, e in info.inputs]
+        self.assert_texts[w] = ", ".join(texts)
+        kinds = [_kind_name(e.ty) for _, e in info.inputs]
+        if name in ("ASSERT_EQ", "ASSERT_NE"):
+            k = kinds[0] if kinds[0] != "int?" else kinds[1]
+            self.emit(f"_assert_cmp({args[0]}, {args[1]}, {name == 'ASSERT_EQ'}, {w}, {k!r})")
+        elif name in ("ASSERT_TRUE", "ASSERT_FALSE"):
+            self.emit(f"_assert_bool({args[0]}, {name == 'ASSERT_TRUE'}, {w})")
+        elif name == "ASSERT_NEAR":
+            self.emit(f"_assert_near({args[0]}, {args[1]}, {args[2]}, {w})")
+
+    def s_If(self, s: A.If) -> None:
+        first = True
+        depth = 0
+        for cond, body in s.branches:
+            code = self.ex(cond)
+            if first:
+                self.flush_pre()
+                self.emit(f"if {code}:")
+            elif self.pre:
+                self.emit("else:")
+                self.ind += 1
+                depth += 1
+                self.flush_pre()
+                self.emit(f"if {code}:")
+            else:
+                self.emit(f"elif {code}:")
+            first = False
+            self.ind += 1
+            self.block(body)
+            self.ind -= 1
+            self.where_now = self.where(s.loc)
+        if s.orelse:
+            self.emit("else:")
+            self.ind += 1
+            self.block(s.orelse)
+            self.ind -= 1
+        self.ind -= depth
+
+    def s_Case(self, s: A.Case) -> None:
+        sel = self.ex(s.selector)
+        self.flush_pre()
+        tmp = self.new_tmp("_c")
+        self.emit(f"{tmp} = {sel}")
+        kw = "if"
+        for b in s.branches:
+            tests = []
+            for lab in b.labels:
+                if isinstance(lab, tuple):
+                    tests.append(f"{self.ex(lab[0])} <= {tmp} <= {self.ex(lab[1])}")
+                else:
+                    tests.append(f"{tmp} == {self.ex(lab)}")
+            self.emit(f"{kw} " + " or ".join(tests) + ":")
+            kw = "elif"
+            self.ind += 1
+            self.block(b.body)
+            self.ind -= 1
+        if s.orelse:
+            if kw == "if":
+                self.block(s.orelse)
+            else:
+                self.emit("else:")
+                self.ind += 1
+                self.block(s.orelse)
+                self.ind -= 1
+
+    def _watchdog(self, loc: Location) -> None:
+        w = self.where(loc)
+        self.emit("_B.left -= 1")
+        self.emit(f"if _B.left < 0: _wd({w})")
+
+    def s_While(self, s: A.While) -> None:
+        cond = self.ex(s.cond)
+        if self.pre:
+            pre, self.pre = self.pre, []
+            self.emit("while True:")
+            self.ind += 1
+            self._watchdog(s.loc)
+            for line in pre:
+                self.emit(line)
+            self.emit(f"if not {cond}: break")
+        else:
+            self.emit(f"while {cond}:")
+            self.ind += 1
+            self._watchdog(s.loc)
+        self.loops.append(("while", None))
+        self.block(s.body)
+        self.loops.pop()
+        self.ind -= 1
+
+    def s_Repeat(self, s: A.Repeat) -> None:
+        self.emit("while True:")
+        self.ind += 1
+        self._watchdog(s.loc)
+        self.loops.append(("repeat", s.cond))
+        self.block(s.body)
+        self.loops.pop()
+        self.where_now = self.where(s.cond.loc)
+        cond = self.ex(s.cond)
+        self.flush_pre()
+        self.emit(f"if {cond}: break")
+        self.ind -= 1
+
+    def s_Exit(self, s: A.Exit) -> None:
+        self.emit("break")
+
+    def s_Continue(self, s: A.Continue) -> None:
+        kind, cond = self.loops[-1] if self.loops else ("while", None)
+        if kind == "repeat" and cond is not None:
+            c = self.ex(cond)
+            self.flush_pre()
+            self.emit(f"if {c}: break")
+        self.emit("continue")
+
+    def s_Return(self, s: A.Return) -> None:
+        if self.pou is not None and self.pou.kind == "FUNCTION":
+            self.emit(self.function_return(self.pou))
+        else:
+            self.emit("return")
+
+    def s_For(self, s: A.For) -> None:
+        var = self.ex(s.var)
+        start = self.coerce(self.ex(s.start), s.start.ty, s.var.ty, s.start)
+        end = self.coerce(self.ex(s.end), s.end.ty, s.var.ty, s.end)
+        self.flush_pre()
+        w = self.where(s.loc)
+        step_v = None
+        if s.step is None:
+            step_v = 1
+        elif isinstance(s.step, A.Literal) and isinstance(s.step.value, int):
+            step_v = s.step.value
+        rng = self.new_tmp("_r")
+        if step_v is not None and step_v != 0:
+            stop = f"{end} + 1" if step_v > 0 else f"{end} - 1"
+            if step_v == 1:
+                self.emit(f"{rng} = range({start}, {stop})")
+            else:
+                self.emit(f"{rng} = range({start}, {stop}, {step_v})")
+        else:
+            step = self.ex(s.step) if s.step is not None else "1"
+            self.flush_pre()
+            self.emit(f"{rng} = _frange({start}, {end}, {step}, {w})")
+        has_exit = any(isinstance(x, A.Exit | A.Return) for x in A.walk_stmts(s.body))
+        if not has_exit:
+            self.emit(f"_B.left -= len({rng})")
+            self.emit(f"if _B.left < 0: _wd({w})")
+        # a known range for the loop variable lets array indexing skip its bounds check
+        lo_c = _const_int(s.start)
+        hi_c = _const_int(s.end)
+        saved = self.safe.get(var)
+        if lo_c is not None and hi_c is not None and step_v is not None and step_v != 0:
+            self.safe[var] = (min(lo_c, hi_c), max(lo_c, hi_c))
+        else:
+            self.safe.pop(var, None)
+        self.emit(f"for {var} in {rng}:")
+        self.ind += 1
+        if has_exit:
+            self._watchdog(s.loc)
+        self.loops.append(("for", None))
+        self.block(s.body)
+        self.loops.pop()
+        self.ind -= 1
+        self.emit("else:")
+        self.ind += 1
+        self.emit(f"{var} = {rng}.start + len({rng}) * {rng}.step")
+        self.ind -= 1
+        if saved is not None:
+            self.safe[var] = saved
+        else:
+            self.safe.pop(var, None)
+
+    # -- coercion on store --------------------------------------------------------------------
+    def coerce(self, code: str, src: T.Type | None, dst: T.Type | None, e: A.Expr | None) -> str:
+        if dst is None or src is None:
+            return code
+        d = T.resolve(dst)
+        s = T.resolve(src)
+        if d is T.ANY or s is T.ANY:
+            return code
+        simple = isinstance(e, _SIMPLE) or (isinstance(e, A.Call) and e.target is not None and
+                                            e.target.kind == "function")
+        if isinstance(d, T.Subrange):
+            if isinstance(e, A.Literal) and isinstance(e.value, int):
+                return code
+            if isinstance(s, T.Subrange) and d.lo <= s.lo and s.hi <= d.hi:
+                return code
+            return f"_subr({code}, {d.lo}, {d.hi}, {self.where_now})"
+        if isinstance(d, T.Elementary):
+            k = d.kind
+            if k in ("int", "bits", "time", "date", "tod", "dt"):
+                if isinstance(e, A.Literal) and isinstance(e.value, int) and not isinstance(
+                        e.value, bool):
+                    return code
+                sb = T.base_of(s)
+                if s is T.BOOL or sb is T.BOOL:
+                    return f"int({code})"
+                if k == "time" and d is T.LTIME and sb is T.TIME:
+                    return f"({code} * 1000000)"
+                if simple and (sb is d or (T.can_widen(sb, d) and sb.kind in ("int", "bits"))):
+                    return code
+                if isinstance(s, T.EnumType):
+                    return code
+                if sb.kind == "real":
+                    return self.wrap(f"_round({code})", d)
+                return self.wrap(code, d)
+            if d is T.REAL:
+                if isinstance(e, A.Literal) and isinstance(e.value, int | float) and not \
+                        isinstance(e.value, bool):
+                    return repr(_f32(float(e.value)))
+                if T.base_of(s) is T.REAL and simple:
+                    return code
+                return f"_f32({code})"
+            if d is T.LREAL:
+                if isinstance(e, A.Literal) and isinstance(e.value, int | float):
+                    return repr(float(e.value))
+                if T.base_of(s).kind == "real":
+                    return code
+                return f"float({code})"
+            return code
+        if isinstance(d, T.StringType):
+            if isinstance(s, T.StringType) and s.length <= d.length:
+                return code
+            return f"{code}[:{d.length}]"
+        return code
+
+    @staticmethod
+    def wrap(code: str, t: T.Elementary) -> str:
+        bits = t.bits
+        mask = (1 << bits) - 1
+        if t.signed:
+            half = 1 << (bits - 1)
+            return f"((({code}) + {half}) & {mask}) - {half}"
+        return f"(({code}) & {mask})"
+
+    # -- expressions --------------------------------------------------------------------------
+    def ex(self, e: A.Expr) -> str:
+        return getattr(self, "e_" + type(e).__name__)(e)
+
+    def e_Literal(self, e: A.Literal) -> str:
+        v = e.value
+        k = e.kind
+        if k == "BOOL":
+            return "True" if v else "False"
+        if k == "TIME":
+            t = T.resolve(e.ty) if e.ty is not None else T.TIME
+            if t is T.LTIME:
+                return repr(int(v))
+            q = abs(v) // 1_000_000
+            return repr(-q if v < 0 else q)
+        if k == "ENUM":
+            return repr(getattr(e, "enum_value", 0))
+        if k == "REAL":
+            if T.resolve(e.ty) is T.REAL:
+                return repr(_f32(float(v)))
+            return repr(float(v))
+        if k == "INT" and e.ty is not None and T.resolve(e.ty).kind == "real":
+            return repr(float(v))
+        return repr(v)
+
+    def e_Name(self, e: A.Name) -> str:
+        sym = e.sym
+        if isinstance(sym, VarSym):
+            if sym.storage == "global":
+                return f"_G.{ident(sym.decl.name)}"
+            if sym.storage == "self":
+                return f"self.{ident(sym.decl.name)}"
+            return f"v_{ident(sym.decl.name)}"
+        if isinstance(sym, EnumSym):
+            return repr(sym.value)
+        if isinstance(sym, ProgSym):
+            return f"_P.{ident(sym.instance)}"
+        return "None"
+
+    def e_DirectAddr(self, e: A.DirectAddr) -> str:
+        return self.addr_read(e.address)
+
+    def e_Member(self, e: A.Member) -> str:
+        obj = self.ex(e.obj)
+        if e.field_name.startswith("%"):
+            return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"
+        return f"{obj}.{ident(e.field_name)}"
+
+    def e_Index(self, e: A.Index) -> str:
+        obj = self.ex(e.obj)
+        at = T.resolve(e.obj.ty)
+        if not isinstance(at, T.ArrayType):
+            return f"{obj}[0]"
+        parts = []
+        stride = 1
+        strides = []
+        for lo, hi in reversed(at.dims):
+            strides.append(stride)
+            stride *= hi - lo + 1
+        strides.reverse()
+        for ix, (lo, hi), st in zip(e.indices, at.dims, strides, strict=True):
+            parts.append((self.index_code(ix, lo, hi), st))
+        flat = " + ".join(p if st == 1 else f"({p}) * {st}" for p, st in parts)
+        return f"{obj}[{flat}]"
+
+    def index_code(self, ix: A.Expr, lo: int, hi: int) -> str:
+        code = self.ex(ix)
+        c = _const_int(ix)
+        off = f" - {lo}" if lo > 0 else (f" + {-lo}" if lo < 0 else "")
+        if c is not None:
+            return str(c - lo)
+        rng = self.safe.get(code)
+        if rng is not None and lo <= rng[0] and rng[1] <= hi:
+            return f"{code}{off}"
+        w = self.where(ix.loc)
+        if isinstance(ix, A.Name | A.Member):
+            return f"({code}{off} if {lo} <= {code} <= {hi} else _oob({code}, {lo}, {hi}, {w}))"
+        t = self.new_tmp()
+        return f"({t}{off} if {lo} <= ({t} := {code}) <= {hi} else _oob({t}, {lo}, {hi}, {w}))"
+
+    def e_Unary(self, e: A.Unary) -> str:
+        x = self.ex(e.operand)
+        t = T.base_of(e.ty) if e.ty is not None else T.ANY
+        if e.op == "NOT":
+            if t is T.BOOL:
+                return f"(not {x})"
+            if isinstance(t, T.Elementary) and not t.signed:
+                return f"({x} ^ {(1 << t.bits) - 1})"
+            return f"(~{x})"
+        return f"(-{x})"
+
+    def e_Binary(self, e: A.Binary) -> str:
+        op = e.op
+        left, right = self.ex(e.left), self.ex(e.right)
+        t = T.base_of(e.ty) if e.ty is not None else T.ANY
+        lt = T.base_of(e.left.ty) if e.left.ty is not None else T.ANY
+        rt = T.base_of(e.right.ty) if e.right.ty is not None else T.ANY
+        if op in ("AND", "OR", "XOR"):
+            return f"({left} {dict(AND='&', OR='|', XOR='^')[op]} {right})"
+        if op in ("=", "<>", "<", "<=", ">", ">="):
+            if lt is T.LTIME and rt is T.TIME:
+                right = f"({right} * 1000000)"
+            elif rt is T.LTIME and lt is T.TIME:
+                left = f"({left} * 1000000)"
+            pyop = {"=": "==", "<>": "!="}.get(op, op)
+            return f"({left} {pyop} {right})"
+        if t.kind == "time" and t is T.LTIME:
+            if lt is T.TIME:
+                left = f"({left} * 1000000)"
+            if rt is T.TIME:
+                right = f"({right} * 1000000)"
+        if op == "/":
+            if t.kind in ("int", "bits") or (t.kind == "time" and rt.kind in ("int", "bits")):
+                return f"_idiv({left}, {right})"
+            if t.kind == "time":
+                return f"_round(_rdiv({left}, {right}))"
+            return f"_rdiv({left}, {right})"
+        if op == "MOD":
+            return f"_imod({left}, {right})"
+        if op == "**":
+            return f"_expt({left}, {right})"
+        if op == "*" and t.kind == "time" and (lt.kind == "real" or rt.kind == "real"):
+            return f"_round({left} * {right})"
+        return f"({left} {op} {right})"
+
+    def e_Call(self, e: A.Call) -> str:
+        info: CallInfo | None = e.target
+        if info is None:
+            return "None"
+        if info.kind == "conv":
+            return self.conversion(info, e)
+        if info.kind == "builtin":
+            return self.builtin(info.callee.name, [x for _, x in info.inputs], e)
+        if info.kind == "function":
+            return self.user_function(info)
+        return "None"
+
+    def user_function(self, info: CallInfo) -> str:
+        pou: A.Pou = info.callee
+        given = {d.name: x for d, x in info.inputs}
+        given_io = {d.name: x for d, x in info.inouts}
+        args = []
+        for d in pou.decls:
+            if d.section == "VAR_INPUT":
+                x = given.get(d.name)
+                if x is None:
+                    args.append(self.init_code(d.init, d.ty))
+                else:
+                    code = self.coerce(self.ex(x), x.ty, d.ty, x)
+                    if T.resolve(d.ty).is_aggregate:
+                        code = self.copy_code(code, d.ty)
+                    args.append(code)
+            elif d.section == "VAR_IN_OUT":
+                x = given_io.get(d.name)
+                args.append(self.ex(x) if x is not None else "None")
+        call = f"F_{ident(pou.name)}({', '.join(args)})"
+        outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
+        if not outs:
+            return call
+        tmp = self.new_tmp("_f")
+        self.pre.append(f"{tmp} = {call}")
+        bound = {d.name: (tgt, neg) for d, tgt, neg in info.outputs}
+        for d, x in info.inouts:
+            if not T.resolve(d.ty).is_aggregate:
+                bound[d.name] = (x, False)
+        for i, d in enumerate(outs, start=1):
+            if d.name in bound:
+                tgt, neg = bound[d.name]
+                v = f"{tmp}[{i}]"
+                if neg:
+                    v = f"(not {v})"
+                lv = self.ex(tgt)
+                self.pre.append(f"{lv} = {self.coerce(v, d.ty, tgt.ty, None)}")
+        return f"{tmp}[0]"
+
+    def conversion(self, info: CallInfo, e: A.Call) -> str:
+        src_name, dst = info.callee
+        x = info.inputs[0][1]
+        code = self.ex(x)
+        s = T.base_of(x.ty)
+        d = T.resolve(dst)
+        if src_name == "__TRUNC__":
+            return self.wrap(f"_trunc({code})", d) if d.kind in ("int", "bits") else code
+        if isinstance(d, T.StringType):
+            kind = ("bool" if s is T.BOOL else "real32" if s is T.REAL else
+                    "real" if s.kind == "real" else "time" if s is T.TIME else
+                    "ltime" if s is T.LTIME else "str" if isinstance(s, T.StringType) else "int")
+            return f"_to_string({code}, {kind!r})"
+        if isinstance(s, T.StringType):
+            if d is T.BOOL:
+                return f"_str_to_bool({code})"
+            if d.kind == "real":
+                return f"_str_to_real({code})" if d is T.LREAL else f"_f32(_str_to_real({code}))"
+            if d.kind == "time":
+                return f"_str_to_time({code})"
+            return self.wrap(f"_str_to_int({code})", d)
+        if d is T.BOOL:
+            return f"({code} != 0)"
+        if d.kind == "real":
+            if d is T.REAL:
+                return f"_f32({code})"
+            return f"float({code})"
+        if d.kind in ("int", "bits", "time", "date", "tod", "dt"):
+            if s.kind == "real":
+                return self.wrap(f"_round({code})", d)
+            if s is T.LTIME and d is T.TIME:
+                return self.wrap(f"_idiv({code}, 1000000)", d)
+            if s is T.TIME and d is T.LTIME:
+                return f"({code} * 1000000)"
+            if s is T.BOOL:
+                return f"int({code})"
+            if isinstance(s, T.Elementary) and s.kind in ("int", "bits", "time", "date", "tod",
+                                                          "dt") and T.can_widen(s, d):
+                return code
+            return self.wrap(code, d)
+        return code
+
+    def builtin(self, name: str, args: list[A.Expr], e: A.Call) -> str:
+        codes = [self.ex(a) for a in args]
+        t = T.base_of(e.ty) if e.ty is not None else T.ANY
+        w = self.where(e.loc)
+        simple = {"SQRT": "_sqrt", "LN": "_ln", "LOG": "_log", "EXP": "_exp", "SIN": "_math.sin",
+                  "COS": "_math.cos", "TAN": "_math.tan", "ASIN": "_asin", "ACOS": "_acos",
+                  "ATAN": "_math.atan"}
+        if name in simple:
+            r = f"{simple[name]}({codes[0]})"
+            return f"_f32({r})" if t is T.REAL else r
+        if name == "ABS":
+            return f"abs({codes[0]})"
+        if name == "NEG":
+            return f"(-{codes[0]})"
+        if name == "ATAN2":
+            return f"_math.atan2({codes[0]}, {codes[1]})"
+        if name == "TRUNC":
+            return f"_trunc({codes[0]})"
+        if name == "ROUND":
+            return f"_round({codes[0]})"
+        if name == "MOVE":
+            return self.copy_code(codes[0], args[0].ty)
+        if name == "EXPT":
+            return f"_expt({codes[0]}, {codes[1]})"
+        if name in ("ADD", "MUL"):
+            return "(" + f" {'+' if name == 'ADD' else '*'} ".join(codes) + ")"
+        if name == "SUB":
+            return f"({codes[0]} - {codes[1]})"
+        if name == "DIV":
+            fn = "_idiv" if t.kind in ("int", "bits") else "_rdiv"
+            return f"{fn}({codes[0]}, {codes[1]})"
+        if name == "MOD":
+            return f"_imod({codes[0]}, {codes[1]})"
+        if name in ("MIN", "MAX"):
+            if len(codes) == 1:
+                return codes[0]
+            return f"{name.lower()}({', '.join(codes)})"
+        if name == "LIMIT":
+            return f"_limit({codes[0]}, {codes[1]}, {codes[2]})"
+        if name == "SEL":
+            return f"({codes[2]} if {codes[0]} else {codes[1]})"
+        if name == "MUX":
+            return f"_mux({codes[0]}, ({', '.join(codes[1:])},), {w})"
+        if name in ("SHL", "SHR", "ROL", "ROR"):
+            bits = getattr(t, "bits", 32) or 32
+            mask = (1 << bits) - 1
+            if name == "SHL":
+                return f"(({codes[0]} << {codes[1]}) & {mask})"
+            if name == "SHR":
+                return f"(({codes[0]} & {mask}) >> {codes[1]})"
+            return f"_{name.lower()}({codes[0]} & {mask}, {codes[1]}, {bits})"
+        if name in ("GT", "GE", "EQ", "LE", "LT", "NE"):
+            pyop = {"GT": ">", "GE": ">=", "EQ": "==", "LE": "<=", "LT": "<", "NE": "!="}[name]
+            return "(" + f" {pyop} ".join(codes) + ")"
+        if name == "LEN":
+            return f"len({codes[0]})"
+        if name == "CONCAT":
+            return "(" + " + ".join(codes) + ")[:" + str(getattr(t, "length", 80)) + "]"
+        fn = {"LEFT": "_left", "RIGHT": "_right", "MID": "_mid", "INSERT": "_insert",
+              "DELETE": "_delete", "REPLACE": "_replace", "FIND": "_find"}[name]
+        return f"{fn}({', '.join(codes)})"
+
+
+def _const_int(e: A.Expr | None) -> int | None:
+    if isinstance(e, A.Literal) and isinstance(e.value, int) and not isinstance(e.value, bool) \
+            and e.kind == "INT":
+        return e.value
+    return None
+
+
+def _kind_name(t: T.Type | None) -> str:
+    if t is None:
+        return "int?"
+    r = T.resolve(t)
+    if r is T.ANY_INT_LIT:
+        return "int?"
+    if isinstance(r, T.EnumType):
+        return "enum:" + ",".join(f"{v}={k}" for k, v in r.members.items())
+    if r is T.REAL:
+        return "real32"
+    if isinstance(r, T.Subrange):
+        return "int"
+    return r.kind if r.name not in ("LTIME",) else "ltime"
+
+
+def _expr_text(e: A.Expr) -> str:
+    """A short readable rendering of an expression for assertion messages."""
+    if isinstance(e, A.Literal):
+        return e.text or repr(e.value)
+    if isinstance(e, A.Name):
+        return e.name
+    if isinstance(e, A.Member):
+        f = e.field_name
+        return f"{_expr_text(e.obj)}.{f[1:] if f.startswith('%') else f}"
+    if isinstance(e, A.Index):
+        return f"{_expr_text(e.obj)}[{', '.join(_expr_text(i) for i in e.indices)}]"
+    if isinstance(e, A.Unary):
+        sep = " " if e.op == "NOT" else ""
+        return f"{e.op}{sep}{_expr_text(e.operand)}"
+    if isinstance(e, A.Binary):
+        return f"{_expr_text(e.left)} {e.op} {_expr_text(e.right)}"
+    if isinstance(e, A.Call):
+        return f"{_expr_text(e.func)}(...)"
+    if isinstance(e, A.DirectAddr):
+        return e.address
+    return "?"
+
+
+def generate(project: Project, filename: str = "<plclab>") -> Compiled:
+    return Codegen(project, filename).generate()

@@ -1,0 +1,72 @@
+"""Errors and diagnostics.
+
+Every error a user can cause is a :class:`PlcError` with a stable code (``PLCnnnn``),
+a message that says what to do, and a location where there is one.
+
+>>> e = PlcError("PLC0001", "unexpected character '@'", Location("a.st", 3, 7))
+>>> str(e)
+"a.st:3:7: error PLC0001: unexpected character '@'"
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class Location:
+    """A place in a source file (1-based line and column)."""
+
+    file: str = "<input>"
+    line: int = 0
+    col: int = 0
+
+    def __str__(self) -> str:
+        if self.line <= 0:
+            return self.file
+        return f"{self.file}:{self.line}:{self.col}"
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnostic:
+    """One message of the checker: an error or a warning."""
+
+    code: str
+    message: str
+    location: Location | None = None
+    severity: str = "error"  # "error" | "warning"
+
+    def __str__(self) -> str:
+        where = f"{self.location}: " if self.location else ""
+        return f"{where}{self.severity} {self.code}: {self.message}"
+
+
+class PlcError(Exception):
+    """An error a user can cause: bad source, a runtime fault, a bad lab file...
+
+    ``diagnostics`` holds every diagnostic when a whole file was checked (all errors
+    are reported, not only the first).
+    """
+
+    def __init__(
+        self,
+        code: str,
+        message: str,
+        location: Location | None = None,
+        diagnostics: list[Diagnostic] | None = None,
+    ) -> None:
+        self.code = code
+        self.message = message
+        self.location = location
+        self.diagnostics = diagnostics or [Diagnostic(code, message, location)]
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        if len(self.diagnostics) > 1:
+            return "\n".join(str(d) for d in self.diagnostics)
+        where = f"{self.location}: " if self.location else ""
+        return f"{where}error {self.code}: {self.message}"
+
+
+class PlcRuntimeFault(PlcError):
+    """A fault raised while the PLC scans (watchdog, division by zero, index out of range)."""

@@ -1,0 +1,346 @@
+"""The one abstract syntax tree that every front end (ST, IL, LD, SFC, PLCopen XML) produces.
+
+The checker annotates expressions with ``ty`` (a :mod:`plclab.lang.types` type) and names with
+``sym`` (the declaration they refer to); the compiler reads those annotations and never asks
+which language a POU came from.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import Location
+
+# ---------------------------------------------------------------------------------------------
+# Type expressions as written in source
+
+
+@dataclass(eq=False)
+class TypeRef:
+    loc: Location
+
+
+@dataclass(eq=False)
+class NamedTypeRef(TypeRef):
+    name: str
+
+
+@dataclass(eq=False)
+class StringTypeRef(TypeRef):
+    wide: bool
+    length: Expr | None = None
+
+
+@dataclass(eq=False)
+class ArrayTypeRef(TypeRef):
+    ranges: list[tuple[Expr, Expr]]
+    elem: TypeRef
+
+
+@dataclass(eq=False)
+class SubrangeTypeRef(TypeRef):
+    base: TypeRef
+    lo: Expr
+    hi: Expr
+
+
+@dataclass(eq=False)
+class EnumTypeRef(TypeRef):
+    members: list[tuple[str, Expr | None, Location]]
+    base: TypeRef | None = None
+
+
+@dataclass(eq=False)
+class StructTypeRef(TypeRef):
+    fields: list[VarDecl]
+
+
+# ---------------------------------------------------------------------------------------------
+# Expressions
+
+
+@dataclass(eq=False)
+class Expr:
+    loc: Location
+    ty: Any = field(default=None, init=False, repr=False)
+
+
+@dataclass(eq=False)
+class Literal(Expr):
+    value: Any
+    kind: str  # INT REAL BOOL STRING WSTRING TIME DATE TOD DT ENUM
+    prefix: str | None = None  # INT#5 -> "INT"
+    text: str = ""
+
+
+@dataclass(eq=False)
+class Name(Expr):
+    name: str
+    sym: Any = field(default=None, init=False, repr=False)
+
+
+@dataclass(eq=False)
+class DirectAddr(Expr):
+    address: str  # %IX0.0
+
+
+@dataclass(eq=False)
+class Member(Expr):
+    obj: Expr
+    field_name: str
+    sym: Any = field(default=None, init=False, repr=False)
+
+
+@dataclass(eq=False)
+class Index(Expr):
+    obj: Expr
+    indices: list[Expr]
+
+
+@dataclass(eq=False)
+class Unary(Expr):
+    op: str  # "-", "+", "NOT"
+    operand: Expr
+
+
+@dataclass(eq=False)
+class Binary(Expr):
+    op: str  # + - * / MOD ** = <> < <= > >= AND OR XOR
+    left: Expr
+    right: Expr
+
+
+@dataclass(eq=False)
+class Arg:
+    loc: Location
+    name: str | None  # None for positional
+    value: Expr | None  # None for an unconnected output `Q =>`
+    output: bool = False  # `name => var`
+    negated: bool = False  # `NOT Q => x`
+
+
+@dataclass(eq=False)
+class Call(Expr):
+    func: Expr  # Name of a function / FB instance expression
+    args: list[Arg]
+    target: Any = field(default=None, init=False, repr=False)  # resolved callee
+
+
+@dataclass(eq=False)
+class ArrayInit(Expr):
+    """``[1, 2, 3(0)]`` for arrays; items are (repeat, value)."""
+
+    items: list[tuple[Expr | None, Expr]]
+
+
+@dataclass(eq=False)
+class StructInit(Expr):
+    """``(a := 1, b := 2)`` for structures."""
+
+    fields: list[tuple[str, Expr, Location]]
+
+
+# ---------------------------------------------------------------------------------------------
+# Statements
+
+
+@dataclass(eq=False)
+class Stmt:
+    loc: Location
+
+
+@dataclass(eq=False)
+class Assign(Stmt):
+    target: Expr
+    value: Expr
+    op: str = ":="  # ":=", "S=" (set), "R=" (reset) -- used by LD coils
+
+
+@dataclass(eq=False)
+class CallStmt(Stmt):
+    call: Call
+
+
+@dataclass(eq=False)
+class If(Stmt):
+    branches: list[tuple[Expr, list[Stmt]]]
+    orelse: list[Stmt] | None = None
+
+
+@dataclass(eq=False)
+class CaseBranch:
+    loc: Location
+    labels: list[Expr | tuple[Expr, Expr]]  # single values or (lo, hi) ranges
+    body: list[Stmt]
+
+
+@dataclass(eq=False)
+class Case(Stmt):
+    selector: Expr
+    branches: list[CaseBranch]
+    orelse: list[Stmt] | None = None
+
+
+@dataclass(eq=False)
+class For(Stmt):
+    var: Name
+    start: Expr
+    end: Expr
+    step: Expr | None
+    body: list[Stmt]
+
+
+@dataclass(eq=False)
+class While(Stmt):
+    cond: Expr
+    body: list[Stmt]
+
+
+@dataclass(eq=False)
+class Repeat(Stmt):
+    body: list[Stmt]
+    cond: Expr
+
+
+@dataclass(eq=False)
+class Exit(Stmt):
+    pass
+
+
+@dataclass(eq=False)
+class Continue(Stmt):
+    pass
+
+
+@dataclass(eq=False)
+class Return(Stmt):
+    pass
+
+
+@dataclass(eq=False)
+class Empty(Stmt):
+    pass
+
+
+@dataclass(eq=False)
+class Label(Stmt):
+    """A jump target (IL labels; compiled as a state machine)."""
+
+    name: str
+
+
+@dataclass(eq=False)
+class Jump(Stmt):
+    label: str
+    cond: Expr | None = None
+
+
+# ---------------------------------------------------------------------------------------------
+# Declarations
+
+
+@dataclass(eq=False)
+class VarDecl:
+    loc: Location
+    name: str  # upper-case
+    type: TypeRef
+    init: Expr | None = None
+    address: str | None = None  # "%IX0.0"
+    section: str = "VAR"  # VAR VAR_INPUT VAR_OUTPUT VAR_IN_OUT VAR_GLOBAL VAR_EXTERNAL VAR_TEMP
+    constant: bool = False
+    retain: bool = False
+    spelling: str = ""  # the name as written
+    used: bool = False  # set by the checker
+    ty: Any = field(default=None, init=False, repr=False)
+
+
+@dataclass(eq=False)
+class Pou:
+    loc: Location
+    kind: str  # PROGRAM FUNCTION FUNCTION_BLOCK
+    name: str
+    decls: list[VarDecl]
+    body: list[Stmt]
+    return_type: TypeRef | None = None
+    spelling: str = ""
+    language: str = "ST"
+    native: str | None = None  # "module:Class" for a block implemented in Python
+    end_loc: Location | None = None
+
+
+@dataclass(eq=False)
+class TypeDecl:
+    loc: Location
+    name: str
+    type: TypeRef
+    init: Expr | None = None
+    spelling: str = ""
+
+
+@dataclass(eq=False)
+class GlobalVars:
+    loc: Location
+    decls: list[VarDecl]
+
+
+@dataclass(eq=False)
+class TaskDecl:
+    loc: Location
+    name: str
+    interval: Expr | None
+    priority: Expr | None
+    single: Expr | None = None
+
+
+@dataclass(eq=False)
+class ProgramInstance:
+    loc: Location
+    name: str
+    task: str | None
+    program: str
+
+
+@dataclass(eq=False)
+class Configuration:
+    loc: Location
+    name: str
+    globals: list[VarDecl]
+    tasks: list[TaskDecl]
+    instances: list[ProgramInstance]
+
+
+@dataclass(eq=False)
+class TestBlock:
+    loc: Location
+    title: str
+    decls: list[VarDecl]
+    body: list[Stmt]
+
+
+@dataclass(eq=False)
+class SourceFile:
+    file: str
+    types: list[TypeDecl] = field(default_factory=list)
+    pous: list[Pou] = field(default_factory=list)
+    globals: list[GlobalVars] = field(default_factory=list)
+    configs: list[Configuration] = field(default_factory=list)
+    tests: list[TestBlock] = field(default_factory=list)
+
+
+def walk_stmts(stmts: list[Stmt]):
+    """Yield every statement of a body, nested ones included (pre-order)."""
+    for s in stmts:
+        yield s
+        if isinstance(s, If):
+            for _, body in s.branches:
+                yield from walk_stmts(body)
+            if s.orelse:
+                yield from walk_stmts(s.orelse)
+        elif isinstance(s, Case):
+            for b in s.branches:
+                yield from walk_stmts(b.body)
+            if s.orelse:
+                yield from walk_stmts(s.orelse)
+        elif isinstance(s, (For, While, Repeat)):
+            yield from walk_stmts(s.body)

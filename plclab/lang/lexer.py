@@ -1,0 +1,383 @@
+"""The lexer: source text -> tokens.
+
+Identifiers and keywords are case-insensitive (IEC 61131-3 6.1.2): every identifier is
+folded to upper case in ``Token.value`` while ``Token.text`` keeps the spelling.
+
+>>> [t.kind for t in tokenize("x := 16#FF; (* c *)")]
+['IDENT', ':=', 'INT', ';', 'EOF']
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from ..errors import Diagnostic, Location
+
+KEYWORDS = frozenset(
+    """
+    PROGRAM END_PROGRAM FUNCTION END_FUNCTION FUNCTION_BLOCK END_FUNCTION_BLOCK
+    VAR VAR_INPUT VAR_OUTPUT VAR_IN_OUT VAR_GLOBAL VAR_EXTERNAL VAR_TEMP VAR_ACCESS VAR_CONFIG END_VAR
+    CONSTANT RETAIN NON_RETAIN PERSISTENT AT
+    TYPE END_TYPE STRUCT END_STRUCT ARRAY OF STRING WSTRING
+    IF THEN ELSIF ELSE END_IF CASE END_CASE FOR TO BY DO END_FOR WHILE END_WHILE
+    REPEAT UNTIL END_REPEAT EXIT CONTINUE RETURN
+    AND OR XOR NOT MOD TRUE FALSE
+    CONFIGURATION END_CONFIGURATION RESOURCE END_RESOURCE ON TASK WITH
+    TEST END_TEST
+    """.split()
+)
+
+# Typed-literal prefixes that introduce a time or date literal.
+TIME_PREFIXES = {"T": "TIME", "TIME": "TIME", "LT": "LTIME", "LTIME": "LTIME"}
+DATE_PREFIXES = {"D": "DATE", "DATE": "DATE", "LD": "LDATE", "LDATE": "LDATE"}
+TOD_PREFIXES = {"TOD": "TOD", "TIME_OF_DAY": "TOD", "LTOD": "LTOD", "LTIME_OF_DAY": "LTOD"}
+DT_PREFIXES = {"DT": "DT", "DATE_AND_TIME": "DT", "LDT": "LDT", "LDATE_AND_TIME": "LDT"}
+
+
+@dataclass(slots=True)
+class Token:
+    kind: str  # IDENT, KEYWORD name, INT, REAL, STRING, WSTRING, TIME, DATE, TOD, DT, ADDR, op, EOF
+    value: object
+    text: str
+    line: int
+    col: int
+    prefix: str | None = None  # type prefix of a typed literal: INT#5 -> "INT"
+
+    def loc(self, file: str) -> Location:
+        return Location(file, self.line, self.col)
+
+
+_OPERATORS = [
+    ":=", "=>", "<>", "<=", ">=", "**", "..", "==", "!=",
+    "+", "-", "*", "/", "<", ">", "=", "(", ")", "[", "]", ",", ";", ":", ".", "&", "^", "#",
+]
+_TOKEN_RE = re.compile(
+    r"""
+    (?P<ws>[ \t\r\f\v]+)
+  | (?P<nl>\n)
+  | (?P<lcomment>//[^\n]*)
+  | (?P<bcomment>\(\*)
+  | (?P<ccomment>/\*)
+  | (?P<pragma>\{)
+  | (?P<typed>[A-Za-z_][A-Za-z0-9_]*\#)
+  | (?P<based>(?:2|8|16)\#[0-9A-Fa-f_]+)
+  | (?P<real>[0-9][0-9_]*\.[0-9][0-9_]*(?:[eE][+-]?[0-9]+)?|[0-9][0-9_]*[eE][+-]?[0-9]+)
+  | (?P<int>[0-9][0-9_]*)
+  | (?P<ident>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<addr>%[IQM][XBWDL]?[0-9]+(?:\.[0-9]+)*|%[IQM]\*)
+  | (?P<sstring>')
+  | (?P<dstring>")
+  | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|[-+*/<>=()\[\],;:.&^\#])
+    """,
+    re.VERBOSE,
+)
+
+_DURATION_RE = re.compile(r"([0-9][0-9_]*(?:\.[0-9_]+)?)(d|h|ms|m|s|us|ns)", re.IGNORECASE)
+_UNIT_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
+            "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
+_ESCAPES = {"$": "$", "'": "'", '"': '"', "L": "\n", "N": "\n", "P": "\f", "R": "\r", "T": "\t"}
+
+
+class Lexer:
+    """Turns one source file into a token list, collecting diagnostics on the way."""
+
+    def __init__(self, text: str, file: str = "<input>") -> None:
+        self.text = text
+        self.file = file
+        self.diagnostics: list[Diagnostic] = []
+        self.pragmas: list[tuple[int, str]] = []
+
+    def error(self, code: str, msg: str, line: int, col: int) -> None:
+        self.diagnostics.append(Diagnostic(code, msg, Location(self.file, line, col)))
+
+    def tokens(self) -> list[Token]:
+        text, pos, line, line_start = self.text, 0, 1, 0
+        out: list[Token] = []
+        n = len(text)
+        match = _TOKEN_RE.match
+        while pos < n:
+            m = match(text, pos)
+            col = pos - line_start + 1
+            if m is None:
+                ch = text[pos]
+                self.error("PLC0001", f"unexpected character {ch!r}; remove it (ST uses only ASCII "
+                           "letters, digits, operators and quotes outside comments and strings)",
+                           line, col)
+                pos += 1
+                continue
+            kind = m.lastgroup
+            s = m.group()
+            if kind == "ws":
+                pos = m.end()
+                continue
+            if kind == "nl":
+                pos = m.end()
+                line += 1
+                line_start = pos
+                continue
+            if kind == "lcomment":
+                pos = m.end()
+                continue
+            if kind in ("bcomment", "ccomment"):
+                end_pos, line, line_start = self._skip_comment(pos, line, line_start, kind)
+                pos = end_pos
+                continue
+            if kind == "pragma":
+                end = text.find("}", pos)
+                if end < 0:
+                    self.error("PLC0002", "pragma '{' is never closed with '}'", line, col)
+                    pos = n
+                    continue
+                body = text[pos + 1:end]
+                self.pragmas.append((line, body.strip()))
+                nl = body.count("\n")
+                if nl:
+                    line += nl
+                    line_start = pos + 1 + body.rfind("\n") + 1
+                pos = end + 1
+                continue
+            if kind in ("sstring", "dstring"):
+                tok, pos, ok = self._string(pos, line, col, kind == "dstring")
+                if tok is not None:
+                    out.append(tok)
+                continue
+            if kind == "typed":
+                prefix = s[:-1].upper()
+                tok, newpos = self._typed(prefix, m.end(), line, col, s)
+                if tok is not None:
+                    out.append(tok)
+                    pos = newpos
+                    continue
+                # Not a literal prefix: emit identifier and '#'
+                out.append(Token("IDENT", prefix, s[:-1], line, col))
+                out.append(Token("#", "#", "#", line, col + len(s) - 1))
+                pos = m.end()
+                continue
+            pos = m.end()
+            if kind == "ident":
+                up = s.upper()
+                out.append(Token(up if up in KEYWORDS else "IDENT", up, s, line, col))
+            elif kind == "int":
+                out.append(Token("INT", int(s.replace("_", "")), s, line, col))
+            elif kind == "based":
+                base, digits = s.split("#", 1)
+                out.append(self._based(int(base), digits, s, line, col))
+            elif kind == "real":
+                out.append(Token("REAL", float(s.replace("_", "")), s, line, col))
+            elif kind == "addr":
+                out.append(Token("ADDR", s.upper(), s, line, col))
+            else:
+                out.append(Token(s, s, s, line, col))
+        out.append(Token("EOF", None, "", line, pos - line_start + 1))
+        return out
+
+    # -- pieces -------------------------------------------------------------------------
+    def _skip_comment(self, pos: int, line: int, line_start: int, kind: str) -> tuple[int, int, int]:
+        text = self.text
+        start_line, start_col = line, pos - line_start + 1
+        if kind == "ccomment":
+            end = text.find("*/", pos + 2)
+            if end < 0:
+                self.error("PLC0002", "comment '/*' is never closed; add '*/'", start_line, start_col)
+                return len(text), line, line_start
+            seg = text[pos:end + 2]
+        else:
+            depth, i = 0, pos
+            n = len(text)
+            while i < n:
+                if text.startswith("(*", i):
+                    depth += 1
+                    i += 2
+                elif text.startswith("*)", i):
+                    depth -= 1
+                    i += 2
+                    if depth == 0:
+                        break
+                else:
+                    i += 1
+            if depth:
+                self.error("PLC0002", "comment '(*' is never closed; add '*)' (comments nest, so "
+                           "each '(*' needs its own '*)')", start_line, start_col)
+                i = n
+            seg = text[pos:i]
+            end = i - 2
+        nl = seg.count("\n")
+        if nl:
+            line += nl
+            line_start = pos + seg.rfind("\n") + 1
+        return pos + len(seg), line, line_start
+
+    def _string(self, pos: int, line: int, col: int, wide: bool) -> tuple[Token | None, int, bool]:
+        text, quote = self.text, self.text[pos]
+        i, n, buf = pos + 1, len(self.text), []
+        while i < n:
+            c = text[i]
+            if c == quote:
+                s = "".join(buf)
+                kind = "WSTRING" if wide else "STRING"
+                return Token(kind, s, text[pos:i + 1], line, col), i + 1, True
+            if c == "\n":
+                break
+            if c == "$":
+                nxt = text[i + 1:i + 2]
+                if nxt.upper() in _ESCAPES:
+                    buf.append(_ESCAPES[nxt.upper()])
+                    i += 2
+                    continue
+                width = 4 if wide else 2
+                hexs = text[i + 1:i + 1 + width]
+                if len(hexs) == width and all(h in "0123456789abcdefABCDEF" for h in hexs):
+                    buf.append(chr(int(hexs, 16)))
+                    i += 1 + width
+                    continue
+                self.error("PLC0003", f"unknown escape '${nxt}' in string; use $$ for a dollar sign, "
+                           "$' for a quote, $N/$L newline, $R, $T, $P or $hh", line, col + i - pos)
+                i += 1
+                continue
+            buf.append(c)
+            i += 1
+        self.error("PLC0003", f"string is never closed; add the closing {quote} on the same line",
+                   line, col)
+        return None, i, False
+
+    def _based(self, base: int, digits: str, s: str, line: int, col: int, prefix=None) -> Token:
+        clean = digits.replace("_", "")
+        try:
+            value = int(clean, base)
+        except ValueError:
+            self.error("PLC0004", f"'{s}' is not a valid base-{base} number", line, col)
+            value = 0
+        return Token("INT", value, s, line, col, prefix)
+
+    def _typed(self, prefix: str, pos: int, line: int, col: int, head: str):
+        """A literal with a type prefix: INT#5, T#5s, D#2024-01-31, BOOL#TRUE, Color#Red..."""
+        text = self.text
+        if prefix in TIME_PREFIXES:
+            m = re.compile(r"[-+]?[0-9A-Za-z_.]+").match(text, pos)
+            if not m:
+                self.error("PLC0005", f"'{head}' must be followed by a duration such as T#1s500ms",
+                           line, col)
+                return Token("TIME", 0, head, line, col, TIME_PREFIXES[prefix]), pos
+            s = m.group()
+            ns = parse_duration(s)
+            if ns is None:
+                self.error("PLC0005", f"'{head}{s}' is not a valid duration; write e.g. T#1h2m3s4ms, "
+                           "T#2s_200ms or T#-5s (units d, h, m, s, ms, us, ns)", line, col)
+                ns = 0
+            return Token("TIME", ns, head + s, line, col, TIME_PREFIXES[prefix]), m.end()
+        for table, kind, pattern in (
+            (DATE_PREFIXES, "DATE", r"[0-9]{4}-[0-9]{1,2}-[0-9]{1,2}"),
+            (TOD_PREFIXES, "TOD", r"[0-9]{1,2}:[0-9]{1,2}(?::[0-9]{1,2}(?:\.[0-9]+)?)?"),
+            (DT_PREFIXES, "DT",
+             r"[0-9]{4}-[0-9]{1,2}-[0-9]{1,2}-[0-9]{1,2}:[0-9]{1,2}(?::[0-9]{1,2}(?:\.[0-9]+)?)?"),
+        ):
+            if prefix in table:
+                m = re.compile(pattern).match(text, pos)
+                if not m:
+                    examples = {"DATE": "D#2024-01-31", "TOD": "TOD#14:32:07.77",
+                                "DT": "DT#2024-01-31-14:32:07"}
+                    self.error("PLC0005", f"bad {kind} literal after '{head}'; write e.g. "
+                               f"{examples[kind]}", line, col)
+                    return Token(kind, 0, head, line, col, table[prefix]), pos
+                s = m.group()
+                try:
+                    value = parse_datetime_literal(kind, s)
+                except ValueError:
+                    self.error("PLC0005", f"'{head}{s}' is not a valid calendar value", line, col)
+                    value = 0
+                return Token(kind, value, head + s, line, col, table[prefix]), m.end()
+        # numeric or boolean or enum with a type prefix
+        m = _TOKEN_RE.match(text, pos)
+        if m and m.lastgroup in ("int", "real", "based"):
+            s = m.group()
+            if m.lastgroup == "int":
+                tok = Token("INT", int(s.replace("_", "")), head + s, line, col, prefix)
+            elif m.lastgroup == "real":
+                tok = Token("REAL", float(s.replace("_", "")), head + s, line, col, prefix)
+            else:
+                b, d = s.split("#", 1)
+                tok = self._based(int(b), d, head + s, line, col, prefix)
+            return tok, m.end()
+        if m and m.lastgroup == "op" and m.group() in "+-":
+            m2 = _TOKEN_RE.match(text, m.end())
+            if m2 and m2.lastgroup in ("int", "real"):
+                s = m2.group().replace("_", "")
+                v = int(s) if m2.lastgroup == "int" else float(s)
+                if m.group() == "-":
+                    v = -v
+                kind = "INT" if m2.lastgroup == "int" else "REAL"
+                return Token(kind, v, head + m.group() + m2.group(), line, col, prefix), m2.end()
+        if m and m.lastgroup == "ident":
+            up = m.group().upper()
+            if up in ("TRUE", "FALSE"):
+                return Token("INT", 1 if up == "TRUE" else 0, head + m.group(), line, col,
+                             prefix), m.end()
+            # Enum#Value : a qualified enumeration value
+            return Token("ENUMVAL", (prefix, up), head + m.group(), line, col, prefix), m.end()
+        if m and m.lastgroup == "sstring" or (m and m.lastgroup == "dstring"):
+            tok, newpos, ok = self._string(m.start(), line, col, m.lastgroup == "dstring")
+            if tok is not None:
+                tok.prefix = prefix
+            return tok, newpos
+        return None, pos
+
+
+def parse_duration(s: str) -> int | None:
+    """Parse the body of a duration literal to nanoseconds.
+
+    >>> parse_duration("1h2m3s4ms") // 1_000_000
+    3723004
+    >>> parse_duration("-5s") // 1_000_000_000
+    -5
+    >>> parse_duration("2s_200ms") // 1_000_000
+    2200
+    """
+    neg = s.startswith("-")
+    body = s.lstrip("+-").replace("_", "")
+    if not body:
+        return None
+    total, pos = 0, 0
+    for m in _DURATION_RE.finditer(body):
+        if m.start() != pos:
+            return None
+        num, unit = m.group(1), m.group(2).lower()
+        total += round(float(num) * _UNIT_NS[unit]) if "." in num else int(num) * _UNIT_NS[unit]
+        pos = m.end()
+    if pos != len(body) or pos == 0:
+        return None
+    return -total if neg else total
+
+
+def parse_datetime_literal(kind: str, s: str) -> int:
+    """DATE -> seconds since 1970-01-01; TOD -> ms since midnight; DT -> seconds since epoch
+    (milliseconds kept as a fraction are dropped to whole ms for TOD only).
+
+    >>> parse_datetime_literal("TOD", "14:32:07.77")
+    52327770
+    """
+    import datetime as _dt
+
+    if kind == "DATE":
+        y, mo, d = (int(x) for x in s.split("-"))
+        return int((_dt.date(y, mo, d) - _dt.date(1970, 1, 1)).total_seconds())
+    if kind == "TOD":
+        return _tod_ms(s)
+    y, mo, d, rest = s.split("-", 3)
+    day = _dt.date(int(y), int(mo), int(d))
+    ms = _tod_ms(rest)
+    return int((day - _dt.date(1970, 1, 1)).total_seconds()) * 1000 + ms
+
+
+def _tod_ms(s: str) -> int:
+    parts = s.split(":")
+    h, m = int(parts[0]), int(parts[1])
+    sec = float(parts[2]) if len(parts) > 2 else 0.0
+    if not (0 <= h < 24 and 0 <= m < 60 and 0 <= sec < 60):
+        raise ValueError(s)
+    return h * 3_600_000 + m * 60_000 + round(sec * 1000)
+
+
+def tokenize(text: str, file: str = "<input>") -> list[Token]:
+    """Tokenize ``text``; raises nothing, diagnostics are dropped (use :class:`Lexer`)."""
+    return Lexer(text, file).tokens()

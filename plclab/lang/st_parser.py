@@ -1,0 +1,830 @@
+"""Structured Text front end: tokens -> :mod:`plclab.lang.ast`.
+
+A recursive-descent parser that recovers at statement and declaration boundaries so that
+one run reports every syntax error in a file.
+
+>>> f = parse_st("PROGRAM P VAR x : INT; END_VAR x := x + 1; END_PROGRAM", "p.st")
+>>> f.pous[0].name, type(f.pous[0].body[0]).__name__
+('P', 'Assign')
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+
+from ..errors import Diagnostic, Location, PlcError
+from . import ast as A
+from .lexer import KEYWORDS, Lexer, Token
+
+_END_OF = {
+    "IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE",
+    "REPEAT": "END_REPEAT", "PROGRAM": "END_PROGRAM", "FUNCTION": "END_FUNCTION",
+    "FUNCTION_BLOCK": "END_FUNCTION_BLOCK", "TYPE": "END_TYPE", "STRUCT": "END_STRUCT",
+    "TEST": "END_TEST",
+}
+_VAR_SECTIONS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "VAR_EXTERNAL",
+                 "VAR_TEMP")
+_STMT_END = {"END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNTIL",
+             "END_REPEAT", "END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_TEST", "EOF"}
+_POU_START = {"PROGRAM", "FUNCTION", "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION",
+              "TEST"}
+_CMP = {"=": "=", "<>": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+_NATIVE_RE = re.compile(r"^native\s+'([A-Za-z0-9_.]+:[A-Za-z0-9_]+)'$")
+
+
+class _Bail(Exception):
+    """Internal: abandon the current statement/declaration after an error."""
+
+
+class Parser:
+    def __init__(self, text: str, file: str = "<input>") -> None:
+        lexer = Lexer(text, file)
+        self.toks: list[Token] = lexer.tokens()
+        self.diagnostics: list[Diagnostic] = lexer.diagnostics
+        self.pragmas = lexer.pragmas
+        self.file = file
+        self.i = 0
+
+    # -- token helpers ------------------------------------------------------------------------
+    @property
+    def tok(self) -> Token:
+        return self.toks[self.i]
+
+    def peek(self, k: int = 1) -> Token:
+        j = min(self.i + k, len(self.toks) - 1)
+        return self.toks[j]
+
+    def loc(self, tok: Token | None = None) -> Location:
+        t = tok or self.tok
+        return Location(self.file, t.line, t.col)
+
+    def advance(self) -> Token:
+        t = self.toks[self.i]
+        if self.i < len(self.toks) - 1:
+            self.i += 1
+        return t
+
+    def at(self, *kinds: str) -> bool:
+        return self.tok.kind in kinds
+
+    def accept(self, kind: str) -> Token | None:
+        if self.tok.kind == kind:
+            return self.advance()
+        return None
+
+    def error(self, code: str, msg: str, tok: Token | None = None) -> None:
+        self.diagnostics.append(Diagnostic(code, msg, self.loc(tok)))
+
+    def expect(self, kind: str, what: str | None = None) -> Token:
+        if self.tok.kind == kind:
+            return self.advance()
+        self.fail_expected(what or _describe(kind))
+        raise AssertionError  # unreachable
+
+    def fail_expected(self, what: str) -> None:
+        t = self.tok
+        found = _found(t)
+        if t.kind == "IDENT":
+            close = difflib.get_close_matches(t.value, KEYWORDS, n=1, cutoff=0.75)
+            if close:
+                self.error("PLC0011", f"expected {what}, found '{t.text}'; did you mean the "
+                           f"keyword {close[0]}?")
+                raise _Bail
+        if t.kind == "==":
+            self.error("PLC0012", "'==' is not an ST operator; compare with '=' (and assign "
+                       "with ':=')")
+            raise _Bail
+        self.error("PLC0010", f"expected {what}, found {found}")
+        raise _Bail
+
+    def sync(self, stops: set[str]) -> None:
+        """Skip tokens until after a ';' or before one of ``stops``."""
+        while not self.at("EOF"):
+            if self.tok.kind in stops:
+                return
+            if self.tok.kind == ";":
+                self.advance()
+                return
+            self.advance()
+
+    # -- file level ---------------------------------------------------------------------------
+    def parse_file(self) -> A.SourceFile:
+        out = A.SourceFile(self.file)
+        while not self.at("EOF"):
+            start = self.i
+            try:
+                k = self.tok.kind
+                if k in ("PROGRAM", "FUNCTION", "FUNCTION_BLOCK"):
+                    out.pous.append(self.pou())
+                elif k == "TYPE":
+                    out.types.extend(self.type_block())
+                elif k == "VAR_GLOBAL":
+                    loc = self.loc()
+                    out.globals.append(A.GlobalVars(loc, self.var_section()))
+                elif k == "CONFIGURATION":
+                    out.configs.append(self.configuration())
+                elif k == "TEST":
+                    out.tests.append(self.test_block())
+                else:
+                    t = self.tok
+                    close = (difflib.get_close_matches(t.value, _POU_START, n=1, cutoff=0.7)
+                             if t.kind == "IDENT" else [])
+                    hint = f"; did you mean {close[0]}?" if close else ""
+                    code = "PLC0011" if close else "PLC0010"
+                    self.error(code, f"expected PROGRAM, FUNCTION, FUNCTION_BLOCK, TYPE, "
+                               f"VAR_GLOBAL, CONFIGURATION or TEST, found {_found(t)}{hint}")
+                    raise _Bail
+            except _Bail:
+                if self.i == start:
+                    self.advance()
+                while not self.at("EOF") and self.tok.kind not in _POU_START:
+                    self.advance()
+        return out
+
+    def _native_for(self, line: int) -> str | None:
+        for pl, body in self.pragmas:
+            if pl in (line - 1, line):
+                m = _NATIVE_RE.match(body)
+                if m:
+                    return m.group(1)
+        return None
+
+    def pou(self) -> A.Pou:
+        head = self.advance()
+        kind = head.kind
+        name_tok = self.expect("IDENT", f"a name for the {kind}")
+        ret = None
+        if kind == "FUNCTION":
+            if self.accept(":"):
+                ret = self.type_ref()
+        end_kw = _END_OF[kind]
+        decls: list[A.VarDecl] = []
+        while self.tok.kind in _VAR_SECTIONS:
+            try:
+                decls.extend(self.var_section())
+            except _Bail:
+                self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
+                self.accept("END_VAR")
+        body = self.stmt_list({end_kw})
+        end_loc = self.loc()
+        if not self.accept(end_kw):
+            self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
+        return A.Pou(self.loc(head), kind, name_tok.value, decls, body, ret, name_tok.text,
+                     native=self._native_for(head.line), end_loc=end_loc)
+
+    def test_block(self) -> A.TestBlock:
+        head = self.advance()
+        title_tok = self.tok
+        if self.at("STRING", "WSTRING"):
+            title = self.advance().value
+        elif self.at("IDENT"):
+            title = self.advance().text
+        else:
+            self.fail_expected("a test name in quotes, e.g. TEST 'TON fires at PT'")
+            title = ""
+        del title_tok
+        decls: list[A.VarDecl] = []
+        while self.tok.kind in _VAR_SECTIONS:
+            decls.extend(self.var_section())
+        body = self.stmt_list({"END_TEST"})
+        if not self.accept("END_TEST"):
+            self.fail_expected("END_TEST")
+        return A.TestBlock(self.loc(head), str(title), decls, body)
+
+    def configuration(self) -> A.Configuration:
+        head = self.advance()
+        name = self.expect("IDENT", "a configuration name").value
+        cfg = A.Configuration(self.loc(head), name, [], [], [])
+        while not self.at("END_CONFIGURATION", "EOF"):
+            if self.at("VAR_GLOBAL"):
+                cfg.globals.extend(self.var_section())
+            elif self.accept("RESOURCE"):
+                self.expect("IDENT", "a resource name")
+                if self.accept("ON"):
+                    self.expect("IDENT", "a processor type")
+                while not self.at("END_RESOURCE", "EOF"):
+                    if self.at("VAR_GLOBAL"):
+                        cfg.globals.extend(self.var_section())
+                    elif self.at("TASK"):
+                        cfg.tasks.append(self.task_decl())
+                    elif self.at("PROGRAM"):
+                        cfg.instances.append(self.program_instance())
+                    else:
+                        self.fail_expected("TASK, PROGRAM or END_RESOURCE")
+                self.expect("END_RESOURCE")
+                self.accept(";")
+            elif self.at("TASK"):
+                cfg.tasks.append(self.task_decl())
+            elif self.at("PROGRAM"):
+                cfg.instances.append(self.program_instance())
+            else:
+                self.fail_expected("RESOURCE, TASK, PROGRAM, VAR_GLOBAL or END_CONFIGURATION")
+        self.expect("END_CONFIGURATION")
+        return cfg
+
+    def task_decl(self) -> A.TaskDecl:
+        head = self.advance()
+        name = self.expect("IDENT", "a task name").value
+        task = A.TaskDecl(self.loc(head), name, None, None)
+        self.expect("(")
+        while not self.at(")"):
+            key = self.expect("IDENT", "INTERVAL, PRIORITY or SINGLE").value
+            self.expect(":=")
+            val = self.expr()
+            if key == "INTERVAL":
+                task.interval = val
+            elif key == "PRIORITY":
+                task.priority = val
+            elif key == "SINGLE":
+                task.single = val
+            else:
+                self.error("PLC0010", f"unknown task property {key}; use INTERVAL, PRIORITY "
+                           "or SINGLE")
+            if not self.accept(","):
+                break
+        self.expect(")")
+        self.expect(";")
+        return task
+
+    def program_instance(self) -> A.ProgramInstance:
+        head = self.advance()
+        name = self.expect("IDENT", "a program instance name").value
+        task = None
+        if self.accept("WITH"):
+            task = self.expect("IDENT", "a task name").value
+        self.expect(":")
+        prog = self.expect("IDENT", "a program type name").value
+        if self.accept("("):  # connections: ignore values but parse them
+            depth = 1
+            while depth and not self.at("EOF"):
+                t = self.advance()
+                depth += t.kind == "("
+                depth -= t.kind == ")"
+        self.expect(";")
+        return A.ProgramInstance(self.loc(head), name, task, prog)
+
+    # -- declarations -------------------------------------------------------------------------
+    def var_section(self) -> list[A.VarDecl]:
+        sec_tok = self.advance()
+        section = sec_tok.kind
+        constant = retain = False
+        while self.at("CONSTANT", "RETAIN", "NON_RETAIN", "PERSISTENT"):
+            k = self.advance().kind
+            constant |= k == "CONSTANT"
+            retain |= k in ("RETAIN", "PERSISTENT")
+        out: list[A.VarDecl] = []
+        while not self.at("END_VAR"):
+            if self.at("EOF") or self.tok.kind in _POU_START - {"VAR_GLOBAL"} or (
+                self.tok.kind in _STMT_END
+            ):
+                self.fail_expected("END_VAR")
+            try:
+                out.extend(self.var_decl(section, constant, retain))
+            except _Bail:
+                self.sync({"END_VAR"} | _POU_START)
+        self.expect("END_VAR")
+        return out
+
+    def var_decl(self, section: str, constant: bool, retain: bool) -> list[A.VarDecl]:
+        names: list[Token] = [self.expect("IDENT", "a variable name")]
+        while self.accept(","):
+            names.append(self.expect("IDENT", "a variable name"))
+        address = None
+        if self.accept("AT"):
+            address = self.expect("ADDR", "a direct address such as %IX0.0").value
+        if self.at(":="):
+            self.error("PLC0010", "a declaration needs a type before the initial value: "
+                       "write  name : TYPE := value;")
+            raise _Bail
+        self.expect(":", "':' and a type")
+        tref = self.type_ref()
+        init = None
+        if self.accept(":="):
+            init = self.initializer()
+        if not self.accept(";"):
+            self.fail_expected("';' after the declaration")
+        return [
+            A.VarDecl(self.loc(n), n.value, tref, init, address, section, constant, retain, n.text)
+            for n in names
+        ]
+
+    def initializer(self) -> A.Expr:
+        if self.at("["):
+            return self.array_init()
+        if self.at("(") and self.peek().kind == "IDENT" and self.peek(2).kind == ":=":
+            return self.struct_init()
+        return self.expr()
+
+    def array_init(self) -> A.ArrayInit:
+        start = self.advance()
+        items: list[tuple[A.Expr | None, A.Expr]] = []
+        while not self.at("]"):
+            if self.at("INT") and self.peek().kind == "(":
+                rep = A.Literal(self.loc(), self.advance().value, "INT")
+                self.advance()
+                val = self.initializer() if not self.at(")") else None
+                self.expect(")")
+                items.append((rep, val if val is not None else A.Literal(rep.loc, None, "DEFAULT")))
+            else:
+                items.append((None, self.initializer()))
+            if not self.accept(","):
+                break
+        self.expect("]", "']' to close the array initial value")
+        return A.ArrayInit(self.loc(start), items)
+
+    def struct_init(self) -> A.StructInit:
+        start = self.advance()
+        fields = []
+        while not self.at(")"):
+            n = self.expect("IDENT", "a field name")
+            self.expect(":=")
+            fields.append((n.value, self.initializer(), self.loc(n)))
+            if not self.accept(","):
+                break
+        self.expect(")")
+        return A.StructInit(self.loc(start), fields)
+
+    def type_block(self) -> list[A.TypeDecl]:
+        self.advance()
+        out = []
+        while not self.at("END_TYPE"):
+            if self.at("EOF") or self.tok.kind in _POU_START:
+                self.fail_expected("END_TYPE")
+            try:
+                n = self.expect("IDENT", "a type name")
+                self.expect(":")
+                tref = self.type_ref(allow_decl=True)
+                init = None
+                if self.accept(":="):
+                    init = self.initializer()
+                self.expect(";")
+                out.append(A.TypeDecl(self.loc(n), n.value, tref, init, n.text))
+            except _Bail:
+                self.sync({"END_TYPE"} | _POU_START)
+        self.expect("END_TYPE")
+        return out
+
+    def type_ref(self, allow_decl: bool = True) -> A.TypeRef:
+        t = self.tok
+        loc = self.loc()
+        if t.kind in ("STRING", "WSTRING"):
+            self.advance()
+            length = None
+            if self.accept("[") or self.accept("("):
+                length = self.expr()
+                if not (self.accept("]") or self.accept(")")):
+                    self.fail_expected("']' after the string length")
+            return A.StringTypeRef(loc, t.kind == "WSTRING", length)
+        if t.kind == "ARRAY":
+            self.advance()
+            self.expect("[", "'[' and the index ranges, e.g. ARRAY[1..10] OF INT")
+            ranges = []
+            while True:
+                lo = self.expr()
+                self.expect("..", "'..' between the lower and upper bound")
+                hi = self.expr()
+                ranges.append((lo, hi))
+                if not self.accept(","):
+                    break
+            self.expect("]")
+            self.expect("OF", "OF and the element type")
+            return A.ArrayTypeRef(loc, ranges, self.type_ref())
+        if t.kind == "STRUCT":
+            self.advance()
+            fields: list[A.VarDecl] = []
+            while not self.at("END_STRUCT"):
+                if self.at("EOF", "END_TYPE"):
+                    self.fail_expected("END_STRUCT")
+                fields.extend(self.var_decl("STRUCT", False, False))
+            self.expect("END_STRUCT")
+            return A.StructTypeRef(loc, fields)
+        if t.kind == "(":
+            self.advance()
+            members = []
+            while True:
+                n = self.expect("IDENT", "an enumeration value name")
+                val = None
+                if self.accept(":="):
+                    val = self.expr()
+                members.append((n.value, val, self.loc(n)))
+                if not self.accept(","):
+                    break
+            self.expect(")", "')' to close the enumeration")
+            base = None
+            if self.at("IDENT") and not self.at(";"):
+                base = A.NamedTypeRef(self.loc(), self.advance().value)
+            return A.EnumTypeRef(loc, members, base)
+        if t.kind == "IDENT":
+            self.advance()
+            base = A.NamedTypeRef(loc, t.value)
+            if self.at("(") and self.peek().kind != "IDENT" or (
+                self.at("(") and self.peek(2).kind == ".."
+            ):
+                self.advance()
+                lo = self.expr()
+                self.expect("..", "'..' in the subrange")
+                hi = self.expr()
+                self.expect(")")
+                return A.SubrangeTypeRef(loc, base, lo, hi)
+            if self.at("(") and self.peek().kind == "IDENT":
+                # typed enumeration: INT (A, B)  -- rare; treat as enum with base
+                enum = self.type_ref()
+                assert isinstance(enum, A.EnumTypeRef)
+                enum.base = base
+                return enum
+            return base
+        self.fail_expected("a type name")
+        raise AssertionError
+
+    # -- statements ---------------------------------------------------------------------------
+    def stmt_list(self, stops: set[str]) -> list[A.Stmt]:
+        out: list[A.Stmt] = []
+        stop = stops | _STMT_END
+        while self.tok.kind not in stop:
+            if self.tok.kind in _POU_START and self.tok.kind != "TYPE":
+                break
+            start = self.i
+            try:
+                s = self.statement()
+                if s is not None:
+                    out.append(s)
+            except _Bail:
+                if self.i == start:
+                    self.advance()
+                self.sync(stop)
+        return out
+
+    def statement(self) -> A.Stmt | None:
+        t = self.tok
+        k = t.kind
+        loc = self.loc()
+        if k == ";":
+            self.advance()
+            return A.Empty(loc)
+        if k == "IF":
+            return self.if_stmt()
+        if k == "CASE":
+            return self.case_stmt()
+        if k == "FOR":
+            return self.for_stmt()
+        if k == "WHILE":
+            self.advance()
+            cond = self.condition("WHILE")
+            self.expect("DO", "DO after the WHILE condition")
+            body = self.stmt_list({"END_WHILE"})
+            self.end("END_WHILE", "WHILE", t)
+            return A.While(loc, cond, body)
+        if k == "REPEAT":
+            self.advance()
+            body = self.stmt_list({"UNTIL"})
+            self.expect("UNTIL", "UNTIL and a condition to end the REPEAT loop")
+            cond = self.condition("UNTIL")
+            self.end("END_REPEAT", "REPEAT", t)
+            return A.Repeat(loc, body, cond)
+        if k in ("EXIT", "CONTINUE", "RETURN"):
+            self.advance()
+            self.semicolon()
+            return {"EXIT": A.Exit, "CONTINUE": A.Continue, "RETURN": A.Return}[k](loc)
+        if k in ("IDENT", "ADDR"):
+            target = self.postfix(self.primary())
+            if self.accept(":="):
+                value = self.expr()
+                self.semicolon()
+                return A.Assign(loc, target, value)
+            if isinstance(target, A.Call):
+                self.semicolon()
+                return A.CallStmt(loc, target)
+            if self.at("="):
+                self.error("PLC0013", "'=' compares; to assign a value write ':=' "
+                           f"(e.g. {t.text} := ...;)")
+                raise _Bail
+            if self.at("=="):
+                self.error("PLC0012", "'==' is not an ST operator; assign with ':='")
+                raise _Bail
+            if t.kind == "IDENT" and isinstance(target, A.Name):
+                close = difflib.get_close_matches(t.value, KEYWORDS, n=1, cutoff=0.75)
+                if close:
+                    self.error("PLC0011", f"'{t.text}' is not a keyword or a statement; did you "
+                               f"mean {close[0]}?", t)
+                    # read it as the keyword it resembles, so the structure around recovers
+                    self.i -= 1
+                    self.toks[self.i] = Token(close[0], close[0], t.text, t.line, t.col)
+                    return None
+            self.fail_expected("':=' or '(' after the name (a statement is an assignment or a "
+                               "call)")
+        close = []
+        if k.startswith("END_") or k in ("ELSE", "ELSIF", "UNTIL", "THEN", "DO"):
+            self.error("PLC0010", f"unexpected {t.text}: there is no open statement it could "
+                       "close here; check the structure above")
+            raise _Bail
+        self.fail_expected("a statement")
+        del close
+        return None
+
+    def semicolon(self) -> None:
+        if not self.accept(";"):
+            self.fail_expected("';' at the end of the statement")
+
+    def end(self, kw: str, opener: str, open_tok: Token) -> None:
+        if self.accept(kw):
+            self.accept(";")
+            return
+        t = self.tok
+        if t.kind == "IDENT":
+            close = difflib.get_close_matches(t.value, [kw], n=1, cutoff=0.6)
+            if close:
+                self.error("PLC0011", f"'{t.text}' is misspelled; did you mean {kw}?")
+                self.advance()
+                self.accept(";")
+                return
+        self.error("PLC0010", f"expected {kw} to close the {opener} at line {open_tok.line}, "
+                   f"found {_found(t)}")
+        raise _Bail
+
+    def condition(self, where: str) -> A.Expr:
+        cond = self.expr()
+        if self.at(":="):
+            self.error("PLC0014", f"':=' assigns; in a {where} condition compare with '='")
+            self.advance()
+            self.expr()
+        return cond
+
+    def if_stmt(self) -> A.If:
+        t = self.advance()
+        branches = []
+        cond = self.condition("IF")
+        self.expect("THEN", "THEN after the IF condition")
+        branches.append((cond, self.stmt_list({"ELSIF", "ELSE", "END_IF"})))
+        orelse = None
+        while True:
+            if self.accept("ELSIF"):
+                c = self.condition("ELSIF")
+                self.expect("THEN", "THEN after the ELSIF condition")
+                branches.append((c, self.stmt_list({"ELSIF", "ELSE", "END_IF"})))
+            elif self.at("IDENT") and self.tok.value in ("ELSEIF", "ELIF", "ELSE_IF"):
+                self.error("PLC0011", f"'{self.tok.text}' is not ST; did you mean ELSIF?")
+                self.advance()
+                c = self.condition("ELSIF")
+                self.expect("THEN")
+                branches.append((c, self.stmt_list({"ELSIF", "ELSE", "END_IF"})))
+            elif self.accept("ELSE"):
+                orelse = self.stmt_list({"END_IF"})
+            else:
+                break
+        self.end("END_IF", "IF", t)
+        return A.If(self.loc(t), branches, orelse)
+
+    def case_stmt(self) -> A.Case:
+        t = self.advance()
+        sel = self.expr()
+        self.expect("OF", "OF after the CASE selector")
+        branches: list[A.CaseBranch] = []
+        orelse = None
+        while not self.at("END_CASE", "EOF"):
+            if self.accept("ELSE"):
+                orelse = self.stmt_list({"END_CASE"})
+                break
+            loc = self.loc()
+            labels: list = []
+            while True:
+                lo = self.case_label()
+                if self.accept(".."):
+                    labels.append((lo, self.case_label()))
+                else:
+                    labels.append(lo)
+                if not self.accept(","):
+                    break
+            self.expect(":", "':' after the CASE label(s)")
+            body = self.case_body()
+            branches.append(A.CaseBranch(loc, labels, body))
+        self.end("END_CASE", "CASE", t)
+        return A.Case(self.loc(t), sel, branches, orelse)
+
+    def case_label(self) -> A.Expr:
+        return self.unary()
+
+    def case_body(self) -> list[A.Stmt]:
+        out: list[A.Stmt] = []
+        while not self.at("END_CASE", "ELSE", "EOF"):
+            # a new label starts: literal/name followed by ':' ',' or '..'
+            if self._at_case_label():
+                break
+            start = self.i
+            try:
+                s = self.statement()
+                if s is not None:
+                    out.append(s)
+            except _Bail:
+                if self.i == start:
+                    self.advance()
+                self.sync({"END_CASE", "ELSE"})
+        return out
+
+    def _at_case_label(self) -> bool:
+        j = self.i
+        toks = self.toks
+        if toks[j].kind == "-":
+            j += 1
+        if toks[j].kind in ("INT", "ENUMVAL"):
+            return toks[j + 1].kind in (":", ",", "..")
+        if toks[j].kind == "IDENT":
+            nk = toks[j + 1].kind
+            if nk == ":" or nk == ",":
+                return True
+            if nk == ".." :
+                return True
+            if nk == "." and toks[j + 2].kind == "IDENT" and toks[j + 3].kind in (":", ",", ".."):
+                return False
+        return False
+
+    def for_stmt(self) -> A.For:
+        t = self.advance()
+        vt = self.expect("IDENT", "the loop variable")
+        var = A.Name(self.loc(vt), vt.value)
+        if not self.accept(":="):
+            self.fail_expected("':=' and the start value (FOR i := 1 TO 10 DO)")
+        start = self.expr()
+        self.expect("TO", "TO and the end value")
+        end = self.expr()
+        step = None
+        if self.accept("BY"):
+            step = self.expr()
+        self.expect("DO", "DO after the FOR range")
+        body = self.stmt_list({"END_FOR"})
+        self.end("END_FOR", "FOR", t)
+        return A.For(self.loc(t), var, start, end, step, body)
+
+    # -- expressions (IEC 61131-3 precedence, lowest first) -----------------------------------
+    def expr(self) -> A.Expr:
+        return self.or_expr()
+
+    def _binary(self, sub, ops: dict[str, str]) -> A.Expr:
+        left = sub()
+        while self.tok.kind in ops:
+            t = self.advance()
+            right = sub()
+            left = A.Binary(self.loc(t), ops[t.kind], left, right)
+        return left
+
+    def or_expr(self) -> A.Expr:
+        return self._binary(self.xor_expr, {"OR": "OR"})
+
+    def xor_expr(self) -> A.Expr:
+        return self._binary(self.and_expr, {"XOR": "XOR"})
+
+    def and_expr(self) -> A.Expr:
+        return self._binary(self.eq_expr, {"AND": "AND", "&": "AND"})
+
+    def eq_expr(self) -> A.Expr:
+        left = self.cmp_expr()
+        while self.tok.kind in ("=", "<>", "==", "!="):
+            t = self.advance()
+            if t.kind == "==":
+                self.error("PLC0012", "'==' is not an ST operator; compare with '='", t)
+            if t.kind == "!=":
+                self.error("PLC0012", "'!=' is not an ST operator; write '<>'", t)
+            op = "=" if t.kind in ("=", "==") else "<>"
+            left = A.Binary(self.loc(t), op, left, self.cmp_expr())
+        return left
+
+    def cmp_expr(self) -> A.Expr:
+        return self._binary(self.add_expr, {"<": "<", "<=": "<=", ">": ">", ">=": ">="})
+
+    def add_expr(self) -> A.Expr:
+        return self._binary(self.mul_expr, {"+": "+", "-": "-"})
+
+    def mul_expr(self) -> A.Expr:
+        return self._binary(self.pow_expr, {"*": "*", "/": "/", "MOD": "MOD"})
+
+    def pow_expr(self) -> A.Expr:
+        return self._binary(self.unary, {"**": "**"})
+
+    def unary(self) -> A.Expr:
+        t = self.tok
+        if t.kind in ("-", "+", "NOT"):
+            self.advance()
+            operand = self.unary()
+            if t.kind == "-" and isinstance(operand, A.Literal) and operand.kind in ("INT", "REAL",
+                                                                                     "TIME"):
+                operand.value = -operand.value
+                operand.loc = self.loc(t)
+                operand.text = "-" + operand.text
+                return operand
+            if t.kind == "+":
+                return operand
+            return A.Unary(self.loc(t), t.kind, operand)
+        return self.postfix(self.primary())
+
+    def primary(self) -> A.Expr:
+        t = self.tok
+        loc = self.loc()
+        k = t.kind
+        if k == "INT":
+            self.advance()
+            if t.prefix == "BOOL":
+                return A.Literal(loc, bool(t.value), "BOOL", None, t.text)
+            return A.Literal(loc, t.value, "INT", t.prefix, t.text)
+        if k == "REAL":
+            self.advance()
+            return A.Literal(loc, t.value, "REAL", t.prefix, t.text)
+        if k in ("TRUE", "FALSE"):
+            self.advance()
+            return A.Literal(loc, k == "TRUE", "BOOL", None, t.text)
+        if k in ("STRING", "WSTRING", "TIME", "DATE", "TOD", "DT"):
+            self.advance()
+            return A.Literal(loc, t.value, k, t.prefix, t.text)
+        if k == "ENUMVAL":
+            self.advance()
+            return A.Literal(loc, t.value, "ENUM", t.prefix, t.text)
+        if k == "ADDR":
+            self.advance()
+            return A.DirectAddr(loc, t.value)
+        if k == "IDENT":
+            self.advance()
+            return A.Name(loc, t.value)
+        if k == "(":
+            self.advance()
+            e = self.expr()
+            self.expect(")", "')' to close the parenthesis")
+            return e
+        if k in ("NOT",):
+            return self.unary()
+        # functions named like keywords (AND(...), MOD(...)) are not supported as calls
+        self.fail_expected("an expression")
+        raise AssertionError
+
+    def postfix(self, e: A.Expr) -> A.Expr:
+        while True:
+            if self.at("."):
+                dot = self.advance()
+                if self.at("INT"):  # bit access x.3
+                    bit = self.advance()
+                    e = A.Member(self.loc(dot), e, f"%{bit.value}")
+                    continue
+                n = self.expect("IDENT", "a member name after '.'")
+                e = A.Member(self.loc(n), e, n.value)
+            elif self.at("["):
+                b = self.advance()
+                idx = [self.expr()]
+                while self.accept(","):
+                    idx.append(self.expr())
+                self.expect("]", "']' to close the index")
+                e = A.Index(self.loc(b), e, idx)
+            elif self.at("("):
+                p = self.advance()
+                e = A.Call(e.loc if e.loc else self.loc(p), e, self.call_args())
+            else:
+                return e
+
+    def call_args(self) -> list[A.Arg]:
+        args: list[A.Arg] = []
+        while not self.at(")"):
+            loc = self.loc()
+            negated = False
+            if self.at("NOT") and self.peek().kind == "IDENT" and self.peek(2).kind == "=>":
+                self.advance()
+                negated = True
+            if self.at("IDENT") and self.peek().kind in (":=", "=>"):
+                name = self.advance().value
+                op = self.advance().kind
+                if op == "=>":
+                    val = None if self.at(",", ")") else self.expr()
+                    args.append(A.Arg(loc, name, val, True, negated))
+                else:
+                    args.append(A.Arg(loc, name, self.expr()))
+            else:
+                args.append(A.Arg(loc, None, self.expr()))
+            if not self.accept(","):
+                break
+        self.expect(")", "')' to close the argument list")
+        return args
+
+
+def _describe(kind: str) -> str:
+    return {"IDENT": "a name", "INT": "an integer", "EOF": "the end of the file"}.get(
+        kind, f"'{kind}'" if not kind.isalpha() else kind
+    )
+
+
+def _found(t: Token) -> str:
+    if t.kind == "EOF":
+        return "the end of the file"
+    return f"'{t.text}'"
+
+
+def parse_st(text: str, file: str = "<input>") -> A.SourceFile:
+    """Parse ST source; raise :class:`PlcError` with every syntax diagnostic if any."""
+    p = Parser(text, file)
+    out = p.parse_file()
+    if p.diagnostics:
+        raise PlcError(p.diagnostics[0].code, p.diagnostics[0].message,
+                       p.diagnostics[0].location, diagnostics=p.diagnostics)
+    return out
+
+
+def parse_st_collect(text: str, file: str = "<input>") -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Parse ST source and return the tree plus the diagnostics (no exception)."""
+    p = Parser(text, file)
+    out = p.parse_file()
+    return out, p.diagnostics

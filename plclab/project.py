@@ -1,0 +1,115 @@
+"""Loading: source files -> front ends -> checker -> compiler -> :class:`Plc`.
+
+>>> import plclab
+>>> plc = plclab.loads("PROGRAM P VAR n : INT; END_VAR n := n + 1; END_PROGRAM")
+>>> plc.scan(3); plc["n"]
+3
+"""
+
+from __future__ import annotations
+
+import os
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from .errors import Diagnostic, PlcError
+from .lang import ast as A
+
+STDLIB_FILES = ("stdlib.st",)
+
+
+@lru_cache(maxsize=None)
+def _stdlib_text(name: str) -> str:
+    return (Path(__file__).parent / "runtime" / name).read_text(encoding="utf-8")
+
+
+def _frontend(path: str):
+    ext = os.path.splitext(path)[1].lower()
+    if ext in (".st", ".iecst", ".txt", ""):
+        from .lang.st_parser import parse_st_collect
+
+        return parse_st_collect
+    raise PlcError("PLC3003", f"{path}: unknown source type '{ext}'; plclab reads .st files "
+                   "(IL, LD and PLCopen XML come with their front ends)")
+
+
+def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], list[Diagnostic]]:
+    """Parse (text, filename) pairs plus the standard library; collect every diagnostic."""
+    files: list[A.SourceFile] = []
+    diags: list[Diagnostic] = []
+    for name in STDLIB_FILES:
+        from .lang.st_parser import parse_st_collect
+
+        f, d = parse_st_collect(_stdlib_text(name), f"<plclab>/{name}")
+        assert not d, d
+        files.append(f)
+    for text, filename in sources:
+        f, d = _frontend(filename)(text, filename)
+        files.append(f)
+        diags.extend(d)
+    return files, diags
+
+
+def check_sources(sources: list[tuple[str, str]]):
+    """Parse and check; return (project or None, diagnostics). Never raises for user errors."""
+    from .lang.check import Checker
+
+    files, diags = parse_sources(sources)
+    ck = Checker(files)
+    project = ck.run()
+    all_diags = diags + ck.diags
+    if any(d.severity == "error" for d in diags):
+        # a syntax error leaves half-parsed POUs: drop the checker's follow-up noise there
+        bad = {d.location.file for d in diags if d.location is not None}
+        all_diags = diags + [d for d in ck.diags
+                             if d.location is None or d.location.file not in bad]
+    has_err = any(d.severity == "error" for d in all_diags)
+    return (None if has_err else project), all_diags
+
+
+def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>"):
+    """Parse, check and compile; raise one PlcError carrying every diagnostic on error."""
+    from .compile.codegen import generate
+
+    project, diags = check_sources(sources)
+    if project is None:
+        errors = [d for d in diags if d.severity == "error"]
+        raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
+    compiled = generate(project, filename)
+    compiled.diagnostics = diags  # type: ignore[attr-defined]
+    return compiled
+
+
+def read_sources(paths: list[str | os.PathLike]) -> list[tuple[str, str]]:
+    out = []
+    for p in paths:
+        p = str(p)
+        try:
+            with open(p, encoding="utf-8-sig") as fh:
+                out.append((fh.read(), p))
+        except FileNotFoundError:
+            raise PlcError("PLC3003", f"{p}: no such file; check the path") from None
+        except IsADirectoryError:
+            raise PlcError("PLC3003", f"{p} is a folder; give the source files in it") from None
+        except UnicodeDecodeError:
+            raise PlcError("PLC3003", f"{p} is not UTF-8 text; save it as UTF-8") from None
+    return out
+
+
+def load(*paths: str | os.PathLike, **options: Any):
+    """Load PLC source files into a ready-to-scan :class:`~plclab.runtime.plc.Plc`.
+
+    ``options`` go to :class:`Plc` (``cycle_time="10ms"``, ``watchdog=...``).
+    """
+    from .runtime.plc import Plc
+
+    compiled = compile_sources(read_sources(list(paths)))
+    return Plc(compiled, **options)
+
+
+def loads(text: str, filename: str = "<string>.st", **options: Any):
+    """Like :func:`load`, from a string."""
+    from .runtime.plc import Plc
+
+    return Plc(compile_sources([(text, filename)]), **options)

@@ -1,0 +1,652 @@
+"""The virtual PLC: process image, tasks, scan cycle, virtual clock, forcing, restarts.
+
+>>> import plclab
+>>> plc = plclab.loads('''
+... PROGRAM Tank
+... VAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL; M AT %QX0.0 : BOOL; END_VAR
+... M := ((NOT LS1) OR M) AND (NOT LS2);
+... END_PROGRAM''')
+>>> plc.scan(); plc["M"]
+True
+>>> plc["LS2"] = True; plc.scan(); plc["%QX0.0"]
+False
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import importlib
+import math
+import re
+import sys
+from dataclasses import dataclass
+from typing import Any
+
+from ..compile.codegen import Compiled, _kind_name
+from ..errors import Location, PlcError, PlcRuntimeFault
+from ..lang import types as T
+from ..lang.lexer import parse_duration
+from .rt import HELPERS, AssertFailure, Budget, Fault, format_value
+
+_PATH_RE = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
+
+
+class Context:
+    """What running code sees of the PLC: the clock (sampled once per scan) and the cycle."""
+
+    __slots__ = ("now", "now_ns", "cycle_ms", "cycle_ns", "first_scan", "scan_count")
+
+    def __init__(self, cycle_ns: int) -> None:
+        self.now = 0  # TIME (ms) of the current scan
+        self.now_ns = 0
+        self.cycle_ns = cycle_ns
+        self.cycle_ms = cycle_ns / 1e6
+        self.first_scan = True
+        self.scan_count = 0
+
+    def advance_ns(self, ns: int) -> None:
+        """Move the clock (used by ADVANCE_TIME in TEST blocks)."""
+        if ns < 0:
+            raise Fault("PLC2010", "ADVANCE_TIME needs a positive duration")
+        self.now_ns += ns
+        self.now = self.now_ns // 1_000_000
+
+
+@dataclass
+class Task:
+    name: str
+    interval_ns: int
+    priority: int
+    programs: list[str]  # instance names
+
+
+@dataclass
+class Var:
+    """A resolved variable path: how to read and write it and what type it has."""
+
+    path: str
+    type: T.Type
+    get: Any
+    set: Any
+    address: str | None = None
+
+
+def to_ns(value: Any) -> int:
+    """Accept 0.01 (seconds), '10ms', 'T#10ms' or a timedelta and return nanoseconds."""
+    if isinstance(value, _dt.timedelta):
+        return round(value.total_seconds() * 1e9)
+    if isinstance(value, int | float):
+        return round(value * 1e9)
+    if isinstance(value, str):
+        s = value.strip()
+        for p in ("TIME#", "T#", "LTIME#", "LT#", "time#", "t#"):
+            if s.upper().startswith(p.upper()):
+                s = s[len(p):]
+                break
+        ns = parse_duration(s.lower())
+        if ns is None:
+            raise PlcError("PLC3002", f"'{value}' is not a duration; write e.g. 10ms, 1.5s or "
+                           "T#1m30s")
+        return ns
+    raise PlcError("PLC3002", f"{value!r} is not a duration")
+
+
+class Plc:
+    """A virtual PLC running a compiled project.
+
+    Parameters
+    ----------
+    compiled : Compiled
+        The output of :func:`plclab.compile_files`.
+    cycle_time : str | float
+        The default cyclic task's period (``"10ms"``, ``0.01``).
+    watchdog : int
+        Loop iterations allowed per scan before a scan-overrun fault (deterministic).
+    """
+
+    def __init__(self, compiled: Compiled, cycle_time: Any = "10ms",
+                 watchdog: int = 2_000_000, image_size: int = 1024) -> None:
+        self.compiled = compiled
+        self.project = compiled.project
+        self.cycle_ns = to_ns(cycle_time)
+        if self.cycle_ns <= 0:
+            raise PlcError("PLC3002", "the cycle time must be positive")
+        self.watchdog = watchdog
+        self.image_size = image_size
+        self.inputs = bytearray(image_size)  # the physical input terminals
+        self.outputs = bytearray(image_size)  # the physical output terminals
+        self.forced: dict[str, Any] = {}
+        self.state = "RUN"
+        self.fault: PlcRuntimeFault | None = None
+        self._natives = {k: _import(v) for k, v in compiled.natives.items()}
+        self._var_cache: dict[str, Var] = {}
+        self.tasks = self._make_tasks()
+        self._tick_ns = _gcd_all([t.interval_ns for t in self.tasks] or [self.cycle_ns])
+        self.cold_restart()
+
+    # -- set-up -------------------------------------------------------------------------------
+    def _make_tasks(self) -> list[Task]:
+        tasks: dict[str, Task] = {}
+        for td in self.project.tasks:
+            iv = self.cycle_ns
+            if td.interval is not None:
+                v = getattr(td.interval, "value", None)
+                if isinstance(v, int):
+                    iv = v  # TIME literal value is in ns
+            prio = getattr(td.priority, "value", 0) if td.priority is not None else 0
+            tasks[td.name] = Task(td.name, iv, int(prio or 0), [])
+        default = Task("__default__", self.cycle_ns, 0, [])
+        for inst, _, task in self.project.programs:
+            (tasks[task] if task in tasks else default).programs.append(inst)
+        out = sorted(tasks.values(), key=lambda t: t.priority)
+        if default.programs or not out:
+            out.append(default)
+        return out
+
+    def _new_namespace(self) -> dict[str, Any]:
+        ns: dict[str, Any] = dict(HELPERS)
+        ns.update(self._natives)
+        self.ctx = Context(self.cycle_ns)
+        self.budget = Budget(self.watchdog)
+        self.image_in = bytearray(self.image_size)
+        self.image_out = bytearray(self.image_size)
+        self.memory = bytearray(self.image_size)
+        ns.update(_CTX=self.ctx, _B=self.budget, _I=self.image_in, _Q=self.image_out,
+                  _M=self.memory, __name__="plclab_program")
+        exec(self.compiled.code, ns)
+        ns["_G"] = ns["_Globals"]()
+        ns["_P"] = ns["_Programs"]()
+        return ns
+
+    def cold_restart(self) -> None:
+        """All variables back to their initial values, clock to zero (a cold restart)."""
+        self.ns = self._guard(self._new_namespace)
+        self._bind()
+        self.state = "RUN"
+        self.fault = None
+
+    def warm_restart(self) -> None:
+        """Restart keeping RETAIN variables (as after a power cycle with a battery)."""
+        keep = {}
+        for path, var in self._retain_vars():
+            keep[path] = var.get()
+        now_ns = self.ctx.now_ns
+        mem = bytes(self.memory)
+        self.cold_restart()
+        self.ctx.now_ns = now_ns
+        self.ctx.now = now_ns // 1_000_000
+        self.memory[:] = mem
+        for path, val in keep.items():
+            self._var_cache.pop(path.upper(), None)
+            self.var(path).set(val)
+
+    def _retain_vars(self):
+        for d in self.project.globals.values():
+            if d.retain:
+                yield d.name, self.var(d.name)
+        for inst, pou, _ in self.project.programs:
+            for d in pou.decls:
+                if d.retain and d.section != "VAR_EXTERNAL":
+                    yield f"{inst}.{d.name}", self.var(f"{inst}.{d.name}")
+
+    def _bind(self) -> None:
+        ns = self.ns
+        self._var_cache.clear()
+        self._sync_in = ns["_sync_in"]
+        self._sync_out = ns["_sync_out"]
+        progs = ns["_P"]
+        self._task_bodies = [
+            (t.interval_ns, [getattr(progs, n.upper())._body for n in t.programs])
+            for t in self.tasks
+        ]
+
+    # -- the scan cycle -----------------------------------------------------------------------
+    @property
+    def time(self) -> float:
+        """Virtual time in seconds."""
+        return self.ctx.now_ns / 1e9
+
+    @property
+    def scan_count(self) -> int:
+        return self.ctx.scan_count
+
+    def scan(self, n: int = 1) -> None:
+        """Run ``n`` scan cycles: freeze inputs, run due tasks, write outputs, advance clock."""
+        for _ in range(n):
+            self._scan_once()
+
+    def _scan_once(self) -> None:
+        ctx = self.ctx
+        if self.state != "RUN":
+            self.outputs[:] = bytes(self.image_size)
+            ctx.now_ns += self._tick_ns
+            ctx.now = ctx.now_ns // 1_000_000
+            return
+        self.budget.left = self.budget.limit
+        self.image_in[:] = self.inputs
+        if self.forced:
+            self._apply_forced_inputs()
+        try:
+            self._sync_in()
+            now = ctx.now_ns
+            for interval, bodies in self._task_bodies:
+                if now % interval == 0:
+                    for body in bodies:
+                        body()
+            self._sync_out()
+        except BaseException as exc:  # noqa: BLE001 - every fault becomes a PlcRuntimeFault
+            self._to_stop(exc)
+        if self.forced:
+            self._apply_forced_outputs()
+        self.outputs[:] = self.image_out
+        ctx.first_scan = False
+        ctx.scan_count += 1
+        ctx.now_ns += self._tick_ns
+        ctx.now = ctx.now_ns // 1_000_000
+
+    def run(self, seconds: float | str | None = None, cycles: int | None = None) -> None:
+        """Run for a duration of virtual time (``plc.run(seconds=5)``) or a number of scans."""
+        if cycles is None:
+            if seconds is None:
+                raise PlcError("PLC3002", "run() needs seconds= or cycles=")
+            ns = to_ns(seconds)
+            cycles = math.ceil(ns / self._tick_ns)
+        for _ in range(cycles):
+            self._scan_once()
+
+    def advance(self, duration: Any) -> None:
+        """Run scans for ``duration`` of virtual time (``plc.advance('T#2s')``)."""
+        self.run(seconds=duration)
+
+    def stop(self) -> None:
+        """Go to STOP: programs do not run and all outputs are switched off."""
+        self.state = "STOP"
+
+    def start(self) -> None:
+        """Back to RUN after STOP (a fault must be cleared with a restart)."""
+        if self.fault is not None:
+            raise PlcError("PLC3004", "the PLC stopped on a fault; call cold_restart() or "
+                           "warm_restart() after fixing the program", self.fault.location)
+        self.state = "RUN"
+
+    def _guard(self, fn):
+        try:
+            return fn()
+        except PlcError:
+            raise
+        except BaseException as exc:  # noqa: BLE001
+            raise self._translate(exc) from None
+
+    def _to_stop(self, exc: BaseException) -> None:
+        fault = self._translate(exc)
+        self.state = "STOP"
+        self.fault = fault
+        self.image_out[:] = bytes(self.image_size)
+        raise fault from None
+
+    def _translate(self, exc: BaseException) -> PlcError:
+        if isinstance(exc, KeyboardInterrupt):
+            raise exc
+        if isinstance(exc, PlcError):
+            return exc
+        loc = self._location_of(exc)
+        if isinstance(exc, Fault):
+            if exc.where:
+                loc = self.compiled.locations[exc.where] or loc
+            return PlcRuntimeFault(exc.code, exc.message, loc)
+        if isinstance(exc, AssertFailure):
+            return PlcRuntimeFault("PLC2010", exc.message,
+                                   self.compiled.locations[exc.where] or loc)
+        if isinstance(exc, ZeroDivisionError):
+            return PlcRuntimeFault("PLC2001", "division by zero; check the divisor before "
+                                   "dividing", loc)
+        if isinstance(exc, RecursionError):
+            return PlcRuntimeFault("PLC2007", "calls are nested too deeply", loc)
+        if isinstance(exc, OverflowError):
+            return PlcRuntimeFault("PLC2008", f"numeric overflow ({exc})", loc)
+        if isinstance(exc, MemoryError):
+            return PlcRuntimeFault("PLC2009", "out of memory", loc)
+        return PlcRuntimeFault("PLC9999", f"internal error ({type(exc).__name__}: {exc}); "
+                               "please report it with your program", loc)
+
+    def _location_of(self, exc: BaseException) -> Location | None:
+        tb = exc.__traceback__
+        loc = None
+        while tb is not None:
+            if tb.tb_frame.f_code.co_filename == self.compiled.filename:
+                loc = self.compiled.location_of_line(tb.tb_lineno) or loc
+            tb = tb.tb_next
+        return loc
+
+    # -- variables ----------------------------------------------------------------------------
+    def var(self, path: str) -> Var:
+        """Resolve ``"Main.t1.ET"``, ``"LS1"``, ``"arr[3]"`` or ``"%QX0.0"``."""
+        key = path.strip().upper()
+        v = self._var_cache.get(key)
+        if v is None:
+            v = self._resolve(path.strip())
+            self._var_cache[key] = v
+        return v
+
+    def __getitem__(self, path: str) -> Any:
+        return self.var(path).get()
+
+    def __setitem__(self, path: str, value: Any) -> None:
+        v = self.var(path)
+        v.set(convert_in(value, v.type, path))
+
+    def get(self, path: str, iec: bool = False) -> Any:
+        v = self.var(path)
+        val = v.get()
+        return format_value(val, _kind_name(v.type)) if iec else val
+
+    def format(self, path: str) -> str:
+        """The value as an IEC literal (``T#1s``, ``TRUE``, ``7.8``)."""
+        return self.get(path, iec=True)
+
+    def _resolve(self, path: str) -> Var:
+        if path.startswith("%"):
+            return self._address_var(path)
+        parts = _split_path(path)
+        if not parts:
+            raise PlcError("PLC3001", f"'{path}' is not a variable path")
+        ns = self.ns
+        head, idx = parts[0]
+        head_u = head.upper()
+        progs = {n.upper(): pou for n, pou, _ in self.project.programs}
+        # 1. program instance name 2. global 3. unique program variable
+        if head_u in progs and (len(parts) > 1 or idx):
+            pou = progs[head_u]
+            obj_get = (lambda n=head_u: getattr(self.ns["_P"], n))
+            ty: T.Type = T.FBType(pou.name, pou)
+            rest = parts[1:]
+            if idx:
+                raise PlcError("PLC3001", f"{head} is a program, not an array")
+            return self._walk(path, obj_get, ty, rest)
+        g = self.project.globals.get(head_u)
+        if g is not None:
+            root_get = (lambda n=head_u: self.ns["_G"]), T.FBType("_G", None)
+            return self._walk(path, root_get[0], _GlobalsType(self.project), parts)
+        owners = [(n, pou) for n, pou, _ in self.project.programs
+                  if any(d.name == head_u for d in pou.decls)]
+        if len(owners) == 1:
+            n, pou = owners[0]
+            return self._walk(path, lambda n=n.upper(): getattr(self.ns["_P"], n),
+                              T.FBType(pou.name, pou), parts)
+        if len(owners) > 1:
+            raise PlcError("PLC3001", f"{head} exists in several programs ("
+                           + ", ".join(n for n, _ in owners) + f"); write e.g. "
+                           f"{owners[0][0]}.{head}")
+        del ns
+        import difflib
+
+        cands = [d.name for _, pou, _ in self.project.programs for d in pou.decls]
+        cands += list(self.project.globals) + [n for n, _, _ in self.project.programs]
+        close = difflib.get_close_matches(head_u, cands, n=1, cutoff=0.7)
+        hint = f"; did you mean {close[0]}?" if close else ""
+        raise PlcError("PLC3001", f"no variable named {path}{hint}")
+
+    def _walk(self, path: str, get_obj, ty: T.Type, parts) -> Var:
+        """Build getter/setter closures walking members and indices from a root object."""
+        steps: list[tuple[str, Any]] = []
+        cur = ty
+        address = None
+        for name, idx in parts:
+            cur = T.resolve(cur)
+            nu = name.upper()
+            if isinstance(cur, _GlobalsType):
+                d = cur.project.globals.get(nu)
+                address = d.address if d is not None else None
+            elif isinstance(cur, T.FBType) and cur.pou is not None:
+                d = next((x for x in cur.pou.decls if x.name == nu and
+                          x.section not in ("VAR_TEMP",)), None)
+                if d is not None and d.section == "VAR_EXTERNAL":
+                    g = self.project.globals.get(nu)
+                    return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project),
+                                      [(name, idx)] + parts[parts.index((name, idx)) + 1:])
+                address = d.address if d is not None else None
+            elif isinstance(cur, T.StructType):
+                d = cur.fields.get(nu)
+            else:
+                d = None
+            if d is None:
+                raise PlcError("PLC3001", f"{path}: {cur} has no member {name}")
+            steps.append(("attr", nu))
+            cur = d.ty
+            for ixs in idx:
+                at = T.resolve(cur)
+                if not isinstance(at, T.ArrayType) or len(ixs) != len(at.dims):
+                    raise PlcError("PLC3001", f"{path}: wrong index for {at}")
+                flat, stride = 0, 1
+                for i, (lo, hi) in reversed(list(zip(ixs, at.dims, strict=True))):
+                    if not lo <= i <= hi:
+                        raise PlcError("PLC3001", f"{path}: index {i} is outside {lo}..{hi}")
+                    flat += (i - lo) * stride
+                    stride *= hi - lo + 1
+                steps.append(("item", flat))
+                cur = at.elem
+        final_t = cur
+
+        def walk_to_parent():
+            o = get_obj()
+            for kind, key in steps[:-1]:
+                o = getattr(o, key) if kind == "attr" else o[key]
+            return o
+
+        last_kind, last_key = steps[-1]
+        if last_kind == "attr":
+            def getter():
+                return getattr(walk_to_parent(), last_key)
+
+            def setter(v):
+                setattr(walk_to_parent(), last_key, v)
+                if address and address.startswith("%I"):
+                    self._write_address(address, v, final_t, physical=True)
+        else:
+            def getter():
+                return walk_to_parent()[last_key]
+
+            def setter(v):
+                walk_to_parent()[last_key] = v
+        return Var(path, final_t, getter, setter, address)
+
+    def _address_var(self, addr: str) -> Var:
+        a = addr.upper()
+        m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", a)
+        if not m:
+            raise PlcError("PLC3001", f"{addr} is not a direct address (e.g. %IX0.0, %QW2, %MD4)")
+        area, size, byte, bit = m.group(1), m.group(2) or "X", int(m.group(3)), m.group(4)
+        if size == "X" and bit is None:
+            raise PlcError("PLC3001", f"{addr}: a bit address needs byte.bit, e.g. %IX0.3")
+        n = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}[size]
+        if byte + n > self.image_size:
+            raise PlcError("PLC3001", f"{addr} is beyond the process image ({self.image_size} "
+                           "bytes)")
+        ty = {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
+        # reading %I gives the input terminals, %Q the output terminals, %M the memory
+        buf = {"I": lambda: self.inputs, "Q": lambda: self.outputs, "M": lambda: self.memory}[area]
+
+        def getter():
+            b = buf()
+            if size == "X":
+                return bool(b[byte] >> int(bit) & 1)
+            return int.from_bytes(b[byte:byte + n], "big")
+
+        def setter(v):
+            if area == "Q":
+                self._write_bytes(self.image_out, size, byte, bit, v)
+            self._write_bytes(buf(), size, byte, bit, v)
+
+        return Var(addr, ty, getter, setter, a)
+
+    @staticmethod
+    def _write_bytes(b: bytearray, size: str, byte: int, bit, v) -> None:
+        if size == "X":
+            if v:
+                b[byte] |= 1 << int(bit)
+            else:
+                b[byte] &= 0xFF ^ (1 << int(bit))
+        else:
+            n = {"B": 1, "W": 2, "D": 4, "L": 8}[size]
+            b[byte:byte + n] = (int(v) & ((1 << (8 * n)) - 1)).to_bytes(n, "big")
+
+    def _write_address(self, address: str, value: Any, ty: T.Type, physical: bool) -> None:
+        import struct as _struct
+
+        m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", address)
+        if not m:
+            return
+        size = m.group(2) or "X"
+        byte, bit = int(m.group(3)), m.group(4)
+        tgt = self.inputs if physical else self.image_in
+        t = T.base_of(ty)
+        if t.kind == "real":
+            fmt = ">f" if size == "D" else ">d"
+            _struct.pack_into(fmt, tgt, byte, float(value))
+        else:
+            self._write_bytes(tgt, size, byte, bit, value)
+
+    # -- forcing ------------------------------------------------------------------------------
+    def force(self, path: str, value: Any) -> None:
+        """Force a variable or address: it keeps ``value`` whatever the program or input does."""
+        v = self.var(path)
+        self.forced[path.upper()] = (v, convert_in(value, v.type, path))
+
+    def unforce(self, path: str | None = None) -> None:
+        if path is None:
+            self.forced.clear()
+        else:
+            self.forced.pop(path.upper(), None)
+
+    def _apply_forced_inputs(self) -> None:
+        for key, (v, val) in self.forced.items():
+            if key.startswith("%I"):
+                self._write_bytes(self.image_in, *self._addr_parts(key), val)
+            elif v.address and v.address.startswith("%I"):
+                self._write_address(v.address, val, v.type, physical=False)
+            elif not key.startswith("%"):
+                v.set(val)
+
+    def _apply_forced_outputs(self) -> None:
+        for key, (v, val) in self.forced.items():
+            if key.startswith("%Q"):
+                self._write_bytes(self.image_out, *self._addr_parts(key), val)
+            elif not key.startswith("%"):
+                v.set(val)
+                if v.address and v.address.startswith("%Q"):
+                    area_size = self._addr_parts(v.address)
+                    self._write_bytes(self.image_out, *area_size, val)
+
+    @staticmethod
+    def _addr_parts(addr: str):
+        m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", addr.upper())
+        assert m
+        return m.group(2) or "X", int(m.group(3)), m.group(4)
+
+    # -- listing ------------------------------------------------------------------------------
+    def variables(self) -> list[str]:
+        """Every top-level variable path (program variables and globals)."""
+        out = [d.name for d in self.project.globals.values()]
+        for inst, pou, _ in self.project.programs:
+            out += [f"{inst}.{d.name}" for d in pou.decls if d.section != "VAR_TEMP"]
+        return out
+
+
+class _GlobalsType(T.Type):
+    kind = "globals"
+    name = "globals"
+
+    def __init__(self, project) -> None:
+        self.project = project
+
+
+def _split_path(path: str) -> list[tuple[str, list[list[int]]]]:
+    out = []
+    for seg in _split_dots(path):
+        m = _PATH_RE.fullmatch(seg.strip())
+        if not m:
+            raise PlcError("PLC3001", f"'{path}' is not a variable path (e.g. Main.t1.Q, "
+                           "arr[2], %QX0.0)")
+        idx = []
+        for grp in re.findall(r"\[([^\]]*)\]", m.group(2)):
+            try:
+                idx.append([int(x) for x in grp.split(",")])
+            except ValueError:
+                raise PlcError("PLC3001", f"'{path}': indices must be integers") from None
+        out.append((m.group(1), idx))
+    return out
+
+
+def _split_dots(path: str) -> list[str]:
+    parts, depth, cur = [], 0, ""
+    for ch in path:
+        if ch == "[":
+            depth += 1
+        elif ch == "]":
+            depth -= 1
+        if ch == "." and depth == 0:
+            parts.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    parts.append(cur)
+    return parts
+
+
+def convert_in(value: Any, ty: T.Type, path: str = "") -> Any:
+    """Convert a Python value or an IEC literal string to the run-time form of ``ty``."""
+    t = T.resolve(ty)
+    if isinstance(value, str) and not isinstance(t, T.StringType):
+        from .literals import parse_literal
+
+        return parse_literal(value, t, path)
+    if t is T.BOOL:
+        if isinstance(value, bool | int):
+            return bool(value)
+    elif isinstance(t, T.EnumType):
+        if isinstance(value, int):
+            return value
+    elif t.kind in ("int", "bits"):
+        if isinstance(value, bool):
+            return int(value)
+        if isinstance(value, int):
+            lo, hi = (t.lo, t.hi) if isinstance(t, T.Elementary | T.Subrange) else (None, None)
+            if lo is not None and not lo <= value <= hi:
+                raise PlcError("PLC3002", f"{path}: {value} does not fit {t} ({lo}..{hi})")
+            return value
+    elif t.kind == "real":
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            from .rt import _f32
+
+            return _f32(float(value)) if t is T.REAL else float(value)
+    elif t.kind == "time":
+        if isinstance(value, _dt.timedelta):
+            ns = round(value.total_seconds() * 1e9)
+            return ns if t is T.LTIME else ns // 1_000_000
+        if isinstance(value, int) and not isinstance(value, bool):
+            return value
+    elif isinstance(t, T.StringType):
+        if isinstance(value, str):
+            return value[: t.length]
+    elif t.kind in ("date", "tod", "dt") and isinstance(value, int):
+        return value
+    elif t is T.ANY:
+        return value
+    raise PlcError("PLC3002", f"{path}: cannot store {value!r} in a {t} variable")
+
+
+def _import(spec: str):
+    mod, _, name = spec.partition(":")
+    if not mod.startswith("plclab."):
+        raise PlcError("PLC0130", f"native blocks must live in the plclab package, not {mod}")
+    return getattr(importlib.import_module(mod), name)
+
+
+def _gcd_all(values: list[int]) -> int:
+    g = 0
+    for v in values:
+        g = math.gcd(g, v)
+    return g or 10_000_000
+
+
+del sys

@@ -1,0 +1,361 @@
+"""Helpers that generated code calls (the namespace every compiled program starts from).
+
+Kept small and fast: generated code inlines what it can and calls these for the rest.
+Runtime faults raise :class:`Fault`; the PLC turns them into located
+:class:`~plclab.errors.PlcRuntimeFault` using the generated code's line map.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+
+_F32 = struct.Struct("<f")
+_F32_MAX = 3.4028234663852886e38
+
+
+class Fault(Exception):
+    """A PLC runtime fault raised by generated code: code, message, location index."""
+
+    def __init__(self, code: str, message: str, where: int | None = None) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+        self.where = where
+
+
+class AssertFailure(Exception):
+    def __init__(self, message: str, where: int) -> None:
+        super().__init__(message)
+        self.message = message
+        self.where = where
+
+
+class Budget:
+    """The watchdog: loop iterations left in this scan (deterministic, unlike wall time)."""
+
+    __slots__ = ("left", "limit")
+
+    def __init__(self, limit: int = 1_000_000) -> None:
+        self.limit = limit
+        self.left = limit
+
+
+def _f32(x):
+    """Round to IEEE single precision (REAL); out of range gives +-inf like the FPU."""
+    try:
+        return _F32.unpack(_F32.pack(x))[0]
+    except OverflowError:
+        return math.copysign(math.inf, x)
+
+
+def _idiv(a: int, b: int) -> int:
+    """Integer division truncating toward zero (IEC, C), unlike Python's floor division."""
+    if b == 0:
+        raise Fault("PLC2001", "integer division by zero; check the divisor before dividing")
+    q = a // b
+    if q < 0 and q * b != a:
+        q += 1
+    return q
+
+
+def _imod(a: int, b: int) -> int:
+    """MOD with the sign of the dividend (IEC, C); x MOD 0 is a fault."""
+    if b == 0:
+        raise Fault("PLC2001", "MOD by zero; check the divisor first")
+    return a - b * _idiv(a, b)
+
+
+def _rdiv(a, b):
+    if b == 0:
+        raise Fault("PLC2001", "division by zero; check the divisor before dividing")
+    return a / b
+
+
+def _oob(i: int, lo: int, hi: int, where: int):
+    raise Fault("PLC2002", f"array index {i} is outside the bounds {lo}..{hi}", where)
+
+
+def _wd(where: int):
+    raise Fault("PLC2003", "watchdog: the scan did not finish within its budget; this loop "
+                "runs too long or never ends (inputs do not change during a scan, so waiting "
+                "for one in a loop never ends: use IF and let the next scan check again)", where)
+
+
+def _subr(x: int, lo: int, hi: int, where: int) -> int:
+    if lo <= x <= hi:
+        return x
+    raise Fault("PLC2004", f"value {x} is outside the subrange {lo}..{hi}", where)
+
+
+def _frange(s: int, e: int, st: int, where: int) -> range:
+    if st == 0:
+        raise Fault("PLC2005", "FOR ... BY 0 never ends; use a step other than 0", where)
+    return range(s, e + (1 if st > 0 else -1), st)
+
+
+def _round(x: float) -> int:
+    """REAL -> integer conversion: round half away from zero (as CODESYS)."""
+    if x != x or x in (math.inf, -math.inf):
+        raise Fault("PLC2006", f"cannot convert {x} to an integer")
+    return int(math.floor(x + 0.5)) if x >= 0 else -int(math.floor(-x + 0.5))
+
+
+def _trunc(x: float) -> int:
+    if x != x or x in (math.inf, -math.inf):
+        raise Fault("PLC2006", f"cannot convert {x} to an integer")
+    return int(x)
+
+
+def _expt(a, b):
+    try:
+        r = a ** b
+    except ZeroDivisionError:
+        return math.inf
+    except OverflowError:
+        return math.inf
+    if isinstance(r, complex):
+        return math.nan
+    return float(r)
+
+
+def _sqrt(x):
+    return math.sqrt(x) if x >= 0 else math.nan
+
+
+def _ln(x):
+    return math.log(x) if x > 0 else (-math.inf if x == 0 else math.nan)
+
+
+def _log(x):
+    return math.log10(x) if x > 0 else (-math.inf if x == 0 else math.nan)
+
+
+def _exp(x):
+    try:
+        return math.exp(x)
+    except OverflowError:
+        return math.inf
+
+
+def _asin(x):
+    return math.asin(x) if -1 <= x <= 1 else math.nan
+
+
+def _acos(x):
+    return math.acos(x) if -1 <= x <= 1 else math.nan
+
+
+def _limit(mn, x, mx):
+    return mn if x < mn else mx if x > mx else x
+
+
+def _mux(k, items, where):
+    if 0 <= k < len(items):
+        return items[k]
+    raise Fault("PLC2002", f"MUX selector K = {k} is outside 0..{len(items) - 1}", where)
+
+
+def _rol(x: int, n: int, bits: int) -> int:
+    n %= bits
+    m = (1 << bits) - 1
+    return ((x << n) | (x >> (bits - n))) & m
+
+
+def _ror(x: int, n: int, bits: int) -> int:
+    n %= bits
+    m = (1 << bits) - 1
+    return ((x >> n) | (x << (bits - n))) & m
+
+
+# -- strings (IEC positions are 1-based) -----------------------------------------------------
+def _left(s: str, n: int) -> str:
+    return s[: max(n, 0)]
+
+
+def _right(s: str, n: int) -> str:
+    return s[len(s) - n:] if 0 < n else ""
+
+
+def _mid(s: str, n: int, p: int) -> str:
+    if p < 1:
+        return ""
+    return s[p - 1: p - 1 + max(n, 0)]
+
+
+def _insert(s1: str, s2: str, p: int) -> str:
+    p = max(0, min(p, len(s1)))
+    return s1[:p] + s2 + s1[p:]
+
+
+def _delete(s: str, n: int, p: int) -> str:
+    if p < 1:
+        return s
+    return s[: p - 1] + s[p - 1 + max(n, 0):]
+
+
+def _replace(s1: str, s2: str, n: int, p: int) -> str:
+    if p < 1:
+        p = 1
+    return s1[: p - 1] + s2 + s1[p - 1 + max(n, 0):]
+
+
+def _find(s1: str, s2: str) -> int:
+    return s1.find(s2) + 1 if s2 else 0
+
+
+# -- formatting (IEC literal forms) ---------------------------------------------------------
+def fmt_duration(value: int, unit_ns: int, prefix: str = "T#") -> str:
+    """Format a duration as an IEC literal: ``fmt_duration(1500, 10**6)`` -> ``'T#1s500ms'``."""
+    ns = value * unit_ns
+    neg = ns < 0
+    ns = abs(ns)
+    parts = []
+    for unit, size in (("d", 86_400_000_000_000), ("h", 3_600_000_000_000),
+                       ("m", 60_000_000_000), ("s", 1_000_000_000), ("ms", 1_000_000),
+                       ("us", 1_000), ("ns", 1)):
+        q, ns = divmod(ns, size)
+        if q:
+            parts.append(f"{q}{unit}")
+    body = "".join(parts) or ("0ms" if unit_ns >= 1_000_000 else "0ns")
+    return f"{prefix}{'-' if neg else ''}{body}"
+
+
+def fmt_real(x: float, single: bool) -> str:
+    if x != x:
+        return "NaN"
+    if x in (math.inf, -math.inf):
+        return "+INF" if x > 0 else "-INF"
+    if single:
+        s = f"{x:.7g}"
+        if float(s) != _f32(float(s)) or _f32(float(s)) != x:
+            s = repr(x)
+        # shortest string that rounds back to the same single
+        for digits in range(1, 10):
+            cand = f"{x:.{digits}g}"
+            if _f32(float(cand)) == x:
+                s = cand
+                break
+    else:
+        s = repr(x)
+    if "e" in s or "E" in s:
+        mant, _, exp = s.lower().partition("e")
+        if "." not in mant:
+            mant += ".0"
+        return f"{mant}E{int(exp)}"
+    if "." not in s and "inf" not in s and "nan" not in s:
+        s += ".0"
+    return s
+
+
+def _to_string(x, kind: str) -> str:
+    if kind == "bool":
+        return "TRUE" if x else "FALSE"
+    if kind == "real":
+        return fmt_real(x, False)
+    if kind == "real32":
+        return fmt_real(x, True)
+    if kind == "time":
+        return fmt_duration(x, 1_000_000)
+    if kind == "ltime":
+        return fmt_duration(x, 1, "LTIME#")
+    return str(x)
+
+
+def _str_to_int(s: str) -> int:
+    t = s.strip().replace("_", "")
+    try:
+        if "#" in t:
+            base, _, digits = t.partition("#")
+            return int(digits, int(base))
+        return int(float(t)) if "." in t else int(t)
+    except ValueError:
+        return 0
+
+
+def _str_to_real(s: str) -> float:
+    try:
+        return float(s.strip().replace("_", ""))
+    except ValueError:
+        return 0.0
+
+
+def _str_to_bool(s: str) -> bool:
+    return s.strip().upper() in ("TRUE", "1")
+
+
+def _str_to_time(s: str) -> int:
+    from ..lang.lexer import parse_duration
+
+    t = s.strip().upper()
+    for p in ("TIME#", "T#", "LTIME#", "LT#"):
+        if t.startswith(p):
+            t = t[len(p):]
+            break
+    ns = parse_duration(t.lower())
+    return (ns or 0) // 1_000_000
+
+
+HELPERS = {
+    name: obj for name, obj in globals().items()
+    if name.startswith("_") and not name.startswith("__") and callable(obj)
+}
+HELPERS["_math"] = math
+
+
+# -- misc used by generated code --------------------------------------------------------------
+def _setattrs(obj, **kw):
+    for k, v in kw.items():
+        setattr(obj, k, v)
+    return obj
+
+
+def _assert_cmp(a, b, want_equal: bool, where: int, kind: str) -> None:
+    equal = a == b
+    if equal != want_equal:
+        rel = "==" if not want_equal else "<>"
+        raise AssertFailure(f"expected {'' if want_equal else 'not '}equal, but "
+                            f"{format_value(a, kind)} {rel} {format_value(b, kind)}", where)
+
+
+def _assert_bool(a, want: bool, where: int) -> None:
+    if bool(a) != want:
+        raise AssertFailure(f"expected {'TRUE' if want else 'FALSE'}, got "
+                            f"{'TRUE' if a else 'FALSE'}", where)
+
+
+def _assert_near(a, b, tol, where: int) -> None:
+    if not abs(a - b) <= tol:
+        raise AssertFailure(f"expected {b} +- {tol}, got {a} (off by {abs(a - b):.6g})", where)
+
+
+def format_value(v, kind: str) -> str:
+    """Format a run-time value as an IEC literal, given a kind from the type system."""
+    if kind.startswith("enum:"):
+        for pair in kind[5:].split(","):
+            num, _, name = pair.partition("=")
+            if num and int(num) == v:
+                return name
+        return str(v)
+    if kind == "bool" or isinstance(v, bool):
+        return "TRUE" if v else "FALSE"
+    if kind == "time":
+        return fmt_duration(v, 1_000_000)
+    if kind == "ltime":
+        return fmt_duration(v, 1, "LTIME#")
+    if kind == "real32":
+        return fmt_real(v, True)
+    if kind == "real" or isinstance(v, float):
+        return fmt_real(v, False)
+    if isinstance(v, str):
+        return "'" + v.replace("$", "$$").replace("'", "$'").replace("\n", "$N") + "'"
+    return str(v)
+
+
+_unpack_from = struct.unpack_from
+_pack_into = struct.pack_into
+
+HELPERS.update({
+    "_setattrs": _setattrs, "_assert_cmp": _assert_cmp, "_assert_bool": _assert_bool,
+    "_assert_near": _assert_near, "_unpack_from": _unpack_from, "_pack_into": _pack_into,
+})

@@ -1,0 +1,322 @@
+"""The IEC 61131-3 standard function blocks, implemented natively for speed.
+
+Their interfaces are declared in ``stdlib.st`` (the checker reads that file like any other),
+each bound here with a ``{native 'plclab.runtime.stdfb:NAME'}`` pragma. Time is read once per
+call from ``ctx.now`` (TIME, milliseconds), which the PLC samples once per scan, so every timer
+in a scan sees the same time. Behaviour follows the IEC timing diagrams and Table 11 of
+``001_c648febd3bbd6efb.txt`` (lines 3272-3314).
+
+A native block is a class whose attributes are the upper-case names of its ST declaration,
+created as ``Cls(ctx)`` and run with ``inst._body()``; new blocks (PID, HYST, ...) follow
+the same pattern.
+"""
+
+from __future__ import annotations
+
+
+class NativeBlock:
+    """Base class: subclasses set their inputs/outputs in ``__init__`` and define ``_body``."""
+
+    __slots__ = ("_ctx",)
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+
+    def _copy(self):
+        new = object.__new__(type(self))
+        for cls in type(self).__mro__:
+            for s in getattr(cls, "__slots__", ()):
+                if hasattr(self, s):
+                    setattr(new, s, getattr(self, s))
+        return new
+
+
+class TP(NativeBlock):
+    """Pulse: a rising edge of IN starts a pulse of length PT; IN and PT are ignored while it runs."""
+
+    __slots__ = ("IN", "PT", "Q", "ET", "_prev", "_start", "_pt", "_running")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.IN = False
+        self.PT = 0
+        self.Q = False
+        self.ET = 0
+        self._prev = False
+        self._start = 0
+        self._pt = 0
+        self._running = False
+
+    def _body(self) -> None:
+        now = self._ctx.now
+        inp = self.IN
+        if self._running:
+            et = now - self._start
+            if et >= self._pt:
+                self.ET = self._pt
+                self.Q = False
+                self._running = False
+            else:
+                self.ET = et
+        if not self._running:
+            if inp and not self._prev and not self.Q:
+                self._start = now
+                self._pt = self.PT
+                if self._pt > 0:
+                    self._running = True
+                    self.Q = True
+                self.ET = 0
+            elif not inp:
+                self.ET = 0
+        self._prev = inp
+
+
+class TON(NativeBlock):
+    """On-delay: Q becomes TRUE when IN has been TRUE for PT; IN FALSE resets Q and ET."""
+
+    __slots__ = ("IN", "PT", "Q", "ET", "_start", "_timing")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.IN = False
+        self.PT = 0
+        self.Q = False
+        self.ET = 0
+        self._start = 0
+        self._timing = False
+
+    def _body(self) -> None:
+        if self.IN:
+            now = self._ctx.now
+            if not self._timing:
+                self._timing = True
+                self._start = now
+            et = now - self._start
+            pt = self.PT
+            if et >= pt:
+                self.Q = True
+                self.ET = pt
+            else:
+                self.Q = False
+                self.ET = et
+        else:
+            self._timing = False
+            self.Q = False
+            self.ET = 0
+
+
+class TOF(NativeBlock):
+    """Off-delay: Q follows IN up at once and falls PT after IN falls; IN TRUE restarts it."""
+
+    __slots__ = ("IN", "PT", "Q", "ET", "_prev", "_start", "_timing")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.IN = False
+        self.PT = 0
+        self.Q = False
+        self.ET = 0
+        self._prev = False
+        self._start = 0
+        self._timing = False
+
+    def _body(self) -> None:
+        if self.IN:
+            self.Q = True
+            self.ET = 0
+            self._timing = False
+        else:
+            if self._prev:
+                self._start = self._ctx.now
+                self._timing = True
+            if self._timing:
+                et = self._ctx.now - self._start
+                if et >= self.PT:
+                    self.ET = self.PT
+                    self.Q = False
+                    self._timing = False
+                else:
+                    self.ET = et
+                    self.Q = True
+        self._prev = self.IN
+
+
+class TONR(NativeBlock):
+    """Retentive on-delay (S7 TONR): ET accumulates while IN is TRUE, holds while it is FALSE,
+    Q = ET >= PT; R resets ET and Q."""
+
+    __slots__ = ("IN", "R", "PT", "Q", "ET", "_prev", "_last")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.IN = False
+        self.R = False
+        self.PT = 0
+        self.Q = False
+        self.ET = 0
+        self._prev = False
+        self._last = 0
+
+    def _body(self) -> None:
+        now = self._ctx.now
+        if self.R:
+            self.ET = 0
+            self.Q = False
+        elif self.IN:
+            if self._prev:
+                self.ET = min(self.ET + (now - self._last), self.PT)
+            self.Q = self.ET >= self.PT
+        else:
+            self.Q = self.ET >= self.PT and self.ET > 0
+        self._prev = self.IN and not self.R
+        self._last = now
+
+
+class CTU(NativeBlock):
+    """Up counter: CV counts rising edges of CU (up to 32767); R resets; Q = CV >= PV."""
+
+    __slots__ = ("CU", "R", "PV", "Q", "CV", "_prev")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.CU = False
+        self.R = False
+        self.PV = 0
+        self.Q = False
+        self.CV = 0
+        self._prev = False
+
+    def _body(self) -> None:
+        cu = self.CU
+        if self.R:
+            self.CV = 0
+        elif cu and not self._prev and self.CV < 32767:
+            self.CV += 1
+        self._prev = cu
+        self.Q = self.CV >= self.PV
+
+
+class CTD(NativeBlock):
+    """Down counter: LD loads PV; rising edges of CD count down (to -32768); Q = CV <= 0."""
+
+    __slots__ = ("CD", "LD", "PV", "Q", "CV", "_prev")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.CD = False
+        self.LD = False
+        self.PV = 0
+        self.Q = False
+        self.CV = 0
+        self._prev = False
+
+    def _body(self) -> None:
+        cd = self.CD
+        if self.LD:
+            self.CV = self.PV
+        elif cd and not self._prev and self.CV > -32768:
+            self.CV -= 1
+        self._prev = cd
+        self.Q = self.CV <= 0
+
+
+class CTUD(NativeBlock):
+    """Up/down counter: R resets, LD loads PV, else rising CU counts up and rising CD down."""
+
+    __slots__ = ("CU", "CD", "R", "LD", "PV", "QU", "QD", "CV", "_pu", "_pd")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.CU = False
+        self.CD = False
+        self.R = False
+        self.LD = False
+        self.PV = 0
+        self.QU = False
+        self.QD = False
+        self.CV = 0
+        self._pu = False
+        self._pd = False
+
+    def _body(self) -> None:
+        cu, cd = self.CU, self.CD
+        up = cu and not self._pu
+        down = cd and not self._pd
+        if self.R:
+            self.CV = 0
+        elif self.LD:
+            self.CV = self.PV
+        elif up and not down:
+            if self.CV < 32767:
+                self.CV += 1
+        elif down and not up:
+            if self.CV > -32768:
+                self.CV -= 1
+        self._pu, self._pd = cu, cd
+        self.QU = self.CV >= self.PV
+        self.QD = self.CV <= 0
+
+
+class R_TRIG(NativeBlock):
+    """Rising edge: Q is TRUE for one call when CLK goes from FALSE to TRUE."""
+
+    __slots__ = ("CLK", "Q", "_m")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.CLK = False
+        self.Q = False
+        self._m = False
+
+    def _body(self) -> None:
+        clk = self.CLK
+        self.Q = clk and not self._m
+        self._m = clk
+
+
+class F_TRIG(NativeBlock):
+    """Falling edge: Q is TRUE for one call when CLK goes from TRUE to FALSE (no pulse on the
+    first call with CLK FALSE, as CODESYS and TIA behave)."""
+
+    __slots__ = ("CLK", "Q", "_m")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.CLK = False
+        self.Q = False
+        self._m = False
+
+    def _body(self) -> None:
+        clk = self.CLK
+        self.Q = self._m and not clk
+        self._m = clk
+
+
+class SR(NativeBlock):
+    """Set-dominant bistable: Q1 := S1 OR (NOT R AND Q1)."""
+
+    __slots__ = ("S1", "R", "Q1")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.S1 = False
+        self.R = False
+        self.Q1 = False
+
+    def _body(self) -> None:
+        self.Q1 = self.S1 or (not self.R and self.Q1)
+
+
+class RS(NativeBlock):
+    """Reset-dominant bistable: Q1 := NOT R1 AND (S OR Q1)."""
+
+    __slots__ = ("S", "R1", "Q1")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.S = False
+        self.R1 = False
+        self.Q1 = False
+
+    def _body(self) -> None:
+        self.Q1 = not self.R1 and (self.S or self.Q1)
