@@ -26,8 +26,10 @@ Piston speed follows the valve command with a first-order lag ``valve_tau``: ``+
 for ``DOWN``, ``-v_up`` for ``UP``. The dosed volume is ``piston_area * travel down``. Heat:
 ``C dT/dt = P * HEATER - UA (T - T_amb)`` integrated exactly per step.
 
-Events: ``moved_without_two_hands`` (moving down while not both hands are on their buttons),
-``curtain_violation`` (moving while the curtain is broken), ``crash`` (driven into a mechanical
+Events: ``moved_without_two_hands`` (the DOWN solenoid drives the piston down while not both
+hands are on their buttons), ``curtain_violation`` (moving while the curtain is broken); both
+only after the condition lasted longer than ``reaction_time`` (50 ms), so a PLC that reacts
+within a few scans is not blamed for the valve's lag; ``crash`` (driven into a mechanical
 stop), ``cold_extrusion`` (extruding below ``t_melt``), ``overheat`` (above ``t_degrade``),
 ``valve_conflict`` (both solenoids on).
 """
@@ -73,6 +75,10 @@ class Press(Plant):
         Lowest temperature for extrusion and the temperature where the plastic degrades, degC.
     estop_hardwired : bool
         A pressed E_STOP cuts the solenoids in hardware.
+    reaction_time : float
+        Allowance before a safety violation is reported: the piston may move on for this long
+        after a hand left its button or the curtain was broken (the PLC needs a scan or two and
+        the valve needs to close), s.
     max_dt : float
         Largest integration step, s.
     """
@@ -104,6 +110,7 @@ class Press(Plant):
         t_melt: float = 180.0,
         t_degrade: float = 260.0,
         estop_hardwired: bool = True,
+        reaction_time: float = 0.05,
         max_dt: float = 0.002,
     ) -> None:
         if stroke <= 2 * end_switch_margin or v_down <= 0 or v_up <= 0 or pulses_per_mm <= 0:
@@ -125,6 +132,7 @@ class Press(Plant):
         self.t_melt = float(t_melt)
         self.t_degrade = float(t_degrade)
         self.estop_hardwired = bool(estop_hardwired)
+        self.reaction_time = float(reaction_time)
         self.max_dt = float(max_dt)
         super().__init__(
             [
@@ -166,6 +174,8 @@ class Press(Plant):
         }
         self.crashes = 0
         self.violations = 0
+        self._hands_t = 0.0
+        self._curtain_t = 0.0
 
     def _faults_changed(self) -> None:
         f = self._faults
@@ -225,25 +235,32 @@ class Press(Plant):
             self._stroke_start = None
         self.position = pos
         self.velocity = v
+        # safety supervision: a violation lasting longer than the reaction allowance
         moving = v > 0.5 or v < -0.5
-        if v > 0.5 and not (io["HAND_L"] and io["HAND_R"]):
-            if not ev["hands"]:
+        both = io["HAND_L"] and io["HAND_R"]
+        grace = self.reaction_time
+        if down and v > 0.5 and not both:
+            self._hands_t += h
+            if self._hands_t > grace and not ev["hands"]:
                 ev["hands"] = True
                 self.violations += 1
                 self._emit(
                     "moved_without_two_hands",
                     "the piston moves down while not both hands are on their buttons",
                 )
-        elif ev["hands"] and (not moving or (io["HAND_L"] and io["HAND_R"])):
+        else:
+            self._hands_t = 0.0
             ev["hands"] = False
         if moving and not io["LIGHT_CURTAIN"]:
-            if not ev["curtain"]:
+            self._curtain_t += h
+            if self._curtain_t > grace and not ev["curtain"]:
                 ev["curtain"] = True
                 self.violations += 1
                 self._emit(
                     "curtain_violation", "the piston moves while the light curtain is broken"
                 )
-        elif ev["curtain"] and (not moving or io["LIGHT_CURTAIN"]):
+        else:
+            self._curtain_t = 0.0
             ev["curtain"] = False
         # temperature
         p = self.heater_power if io["HEATER"] and self._heater_ok else 0.0

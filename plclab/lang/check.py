@@ -400,6 +400,8 @@ class Checker:
 
     def check_pou_decls(self, p: A.Pou) -> None:
         seen: dict[str, A.VarDecl] = {}
+        # constants of the POU may size its arrays: make them visible while types resolve
+        self.scope = {d.name: VarSym(d, "self", p) for d in p.decls if d.constant}
         for d in p.decls:
             if d.name in seen:
                 self.err("PLC0101", f"variable {d.name} is declared twice in {p.name} (first at "
@@ -1058,6 +1060,8 @@ class Checker:
         if isinstance(f, A.Name):
             fname = f.name
             local = self.lookup(fname)
+            if isinstance(local, VarSym) and local.decl.section == "RETURN":
+                local = None  # F(...) inside F is a (recursive) call, not the result variable
             if local is None:
                 pou = self.pous.get(fname)
                 if pou is not None and pou.kind == "FUNCTION":
@@ -1275,7 +1279,7 @@ class Checker:
             return common(bs) if all(b.kind == "real" for b in bs) else T.LREAL
         if name in ("TRUNC", "ROUND"):
             need(bs[0].kind == "real", "a REAL or LREAL")
-            return T.DINT if bs[0] is T.REAL else T.LINT if name == "TRUNC" else T.DINT
+            return T.DINT  # as CODESYS: TRUNC and ROUND give DINT
         if name == "MOVE":
             return ts[0]
         if name == "EXPT":

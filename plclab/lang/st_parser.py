@@ -17,6 +17,11 @@ from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
 from .lexer import KEYWORDS, Lexer, Token
 
+# words worth suggesting in "did you mean": keywords plus those of later language extensions
+SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
+                      "END_INTERFACE", "PROPERTY", "END_PROPERTY", "THIS", "SUPER"}
+_OOP_WORDS = {"EXTENDS", "IMPLEMENTS"}
+
 _END_OF = {
     "IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE",
     "REPEAT": "END_REPEAT", "PROGRAM": "END_PROGRAM", "FUNCTION": "END_FUNCTION",
@@ -86,7 +91,7 @@ class Parser:
         t = self.tok
         found = _found(t)
         if t.kind == "IDENT":
-            close = difflib.get_close_matches(t.value, KEYWORDS, n=1, cutoff=0.75)
+            close = difflib.get_close_matches(t.value, SUGGEST, n=1, cutoff=0.75)
             if close:
                 self.error("PLC0011", f"expected {what}, found '{t.text}'; did you mean the "
                            f"keyword {close[0]}?")
@@ -159,6 +164,18 @@ class Parser:
             if self.accept(":"):
                 ret = self.type_ref()
         end_kw = _END_OF[kind]
+        if kind == "FUNCTION_BLOCK" and self.at("IDENT"):
+            t = self.tok
+            close = difflib.get_close_matches(t.value, _OOP_WORDS, n=1, cutoff=0.7)
+            if t.value in _OOP_WORDS:
+                self.error("PLC0010", f"{t.text} (object-oriented extension) is not supported "
+                           "yet; write a plain FUNCTION_BLOCK")
+            elif close:
+                self.error("PLC0011", f"'{t.text}' is not a keyword; did you mean {close[0]}?")
+            if t.value in _OOP_WORDS or close:
+                self.advance()
+                while self.at("IDENT") or self.at(","):
+                    self.advance()
         decls: list[A.VarDecl] = []
         while self.tok.kind in _VAR_SECTIONS:
             try:
@@ -503,7 +520,7 @@ class Parser:
                 self.error("PLC0012", "'==' is not an ST operator; assign with ':='")
                 raise _Bail
             if t.kind == "IDENT" and isinstance(target, A.Name):
-                close = difflib.get_close_matches(t.value, KEYWORDS, n=1, cutoff=0.75)
+                close = difflib.get_close_matches(t.value, SUGGEST, n=1, cutoff=0.75)
                 if close:
                     self.error("PLC0011", f"'{t.text}' is not a keyword or a statement; did you "
                                f"mean {close[0]}?", t)

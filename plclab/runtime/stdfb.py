@@ -72,9 +72,10 @@ class TP(NativeBlock):
 
 
 class TON(NativeBlock):
-    """On-delay: Q becomes TRUE when IN has been TRUE for PT; IN FALSE resets Q and ET."""
+    """On-delay: Q becomes TRUE when IN has been TRUE for PT; IN FALSE resets Q and ET.
+    PT is taken when timing starts (a change while it runs has no effect, Table 11)."""
 
-    __slots__ = ("IN", "PT", "Q", "ET", "_start", "_timing")
+    __slots__ = ("IN", "PT", "Q", "ET", "_start", "_timing", "_pt")
 
     def __init__(self, ctx) -> None:
         self._ctx = ctx
@@ -84,6 +85,7 @@ class TON(NativeBlock):
         self.ET = 0
         self._start = 0
         self._timing = False
+        self._pt = 0
 
     def _body(self) -> None:
         if self.IN:
@@ -91,8 +93,9 @@ class TON(NativeBlock):
             if not self._timing:
                 self._timing = True
                 self._start = now
+                self._pt = self.PT
             et = now - self._start
-            pt = self.PT
+            pt = self._pt
             if et >= pt:
                 self.Q = True
                 self.ET = pt
@@ -106,9 +109,10 @@ class TON(NativeBlock):
 
 
 class TOF(NativeBlock):
-    """Off-delay: Q follows IN up at once and falls PT after IN falls; IN TRUE restarts it."""
+    """Off-delay: Q follows IN up at once and falls PT after IN falls; IN TRUE restarts it.
+    PT is taken when IN falls (a change during the delay has no effect, Table 11)."""
 
-    __slots__ = ("IN", "PT", "Q", "ET", "_prev", "_start", "_timing")
+    __slots__ = ("IN", "PT", "Q", "ET", "_prev", "_start", "_timing", "_pt")
 
     def __init__(self, ctx) -> None:
         self._ctx = ctx
@@ -119,6 +123,7 @@ class TOF(NativeBlock):
         self._prev = False
         self._start = 0
         self._timing = False
+        self._pt = 0
 
     def _body(self) -> None:
         if self.IN:
@@ -129,10 +134,11 @@ class TOF(NativeBlock):
             if self._prev:
                 self._start = self._ctx.now
                 self._timing = True
+                self._pt = self.PT
             if self._timing:
                 et = self._ctx.now - self._start
-                if et >= self.PT:
-                    self.ET = self.PT
+                if et >= self._pt:
+                    self.ET = self._pt
                     self.Q = False
                     self._timing = False
                 else:
@@ -143,9 +149,9 @@ class TOF(NativeBlock):
 
 class TONR(NativeBlock):
     """Retentive on-delay (S7 TONR): ET accumulates while IN is TRUE, holds while it is FALSE,
-    Q = ET >= PT; R resets ET and Q."""
+    Q = ET >= PT; R resets ET and Q. PT is taken when the timer starts or resumes."""
 
-    __slots__ = ("IN", "R", "PT", "Q", "ET", "_prev", "_last")
+    __slots__ = ("IN", "R", "PT", "Q", "ET", "_prev", "_last", "_pt")
 
     def __init__(self, ctx) -> None:
         self._ctx = ctx
@@ -156,6 +162,7 @@ class TONR(NativeBlock):
         self.ET = 0
         self._prev = False
         self._last = 0
+        self._pt = 0
 
     def _body(self) -> None:
         now = self._ctx.now
@@ -164,10 +171,12 @@ class TONR(NativeBlock):
             self.Q = False
         elif self.IN:
             if self._prev:
-                self.ET = min(self.ET + (now - self._last), self.PT)
-            self.Q = self.ET >= self.PT
+                self.ET = min(self.ET + (now - self._last), self._pt)
+            else:
+                self._pt = self.PT
+            self.Q = self.ET >= self._pt
         else:
-            self.Q = self.ET >= self.PT and self.ET > 0
+            self.Q = self.ET >= self._pt and self.ET > 0
         self._prev = self.IN and not self.R
         self._last = now
 

@@ -1,0 +1,108 @@
+"""The catalogue of diagnostic codes: every code plclab can report, with what it means.
+
+Codes are stable: a code is never reused for another problem. ``plclab explain CODE`` prints
+an entry. PLC0xxx are compile-time diagnostics, PLC02xx warnings, PLC2xxx run-time faults,
+PLC3xxx API/command-line misuse, PLC9xxx configuration of I/O modules and internal errors.
+"""
+
+from __future__ import annotations
+
+PROBLEMS: dict[str, tuple[str, str]] = {
+    "PLC0001": ("unexpected character", "A character that is not part of ST appeared outside a "
+                "comment or string. Remove it."),
+    "PLC0002": ("unclosed comment or pragma", "A '(*', '/*' or '{' is never closed. Comments "
+                "nest in ST, so every '(*' needs its own '*)'."),
+    "PLC0003": ("bad string", "A string is not closed on its line or has an unknown '$' escape."),
+    "PLC0004": ("bad number", "A based literal has digits its base does not allow (2#102)."),
+    "PLC0005": ("bad time or date literal", "Write durations as T#1h2m3s4ms and dates as "
+                "D#2024-01-31, TOD#14:32:07, DT#2024-01-31-14:32:07."),
+    "PLC0010": ("syntax error", "The parser expected something else here; the message says what."),
+    "PLC0011": ("misspelled keyword", "A word looks like a keyword (END_WHILLE, ELSEIF); the "
+                "message suggests the right spelling."),
+    "PLC0012": ("'==' or '!=' used", "ST compares with '=' and '<>'; ':=' assigns."),
+    "PLC0013": ("'=' used to assign", "In ST, '=' compares. Assign with ':='."),
+    "PLC0014": ("':=' in a condition", "A condition compares with '='; ':=' assigns."),
+    "PLC0100": ("undeclared name", "Declare the variable in a VAR section (or fix its spelling)."),
+    "PLC0101": ("declared twice", "Two declarations have the same name in one scope."),
+    "PLC0102": ("unknown type", "The type name is not elementary, declared with TYPE, or a "
+                "function block."),
+    "PLC0103": ("type mismatch", "The value's type cannot be stored in the target."),
+    "PLC0104": ("operator not defined for these types", "E.g. '+' on strings, AND on INT and "
+                "BOOL, or comparing a TIME with an INT."),
+    "PLC0105": ("cannot be written", "Constants, physical inputs (%I) and FB outputs seen from "
+                "outside cannot be assigned."),
+    "PLC0106": ("not callable", "Only functions, function block instances and (in tests) "
+                "programs can be called."),
+    "PLC0107": ("wrong arguments", "Unknown parameter name, too many arguments, an output passed "
+                "with ':=' or an input with '=>', or a VAR_IN_OUT left unconnected."),
+    "PLC0108": ("condition is not BOOL", "IF, WHILE and UNTIL need a BOOL condition."),
+    "PLC0109": ("constant needed or out of range", "Array bounds, string lengths and subranges "
+                "need constant integer expressions."),
+    "PLC0110": ("recursion", "IEC 61131-3 forbids a POU calling itself, directly or not."),
+    "PLC0111": ("literal out of range", "The literal does not fit the target type (INT is "
+                "-32768..32767)."),
+    "PLC0112": ("constant index out of bounds", "A constant array index is outside the declared "
+                "range."),
+    "PLC0113": ("bad FOR loop", "The FOR variable must be an integer not assigned in the body; "
+                "the step must not be 0."),
+    "PLC0114": ("EXIT or CONTINUE outside a loop", "They only make sense inside FOR, WHILE or "
+                "REPEAT."),
+    "PLC0115": ("bad CASE", "The selector must be an integer or enumeration; labels must be "
+                "constants of its type and may not repeat."),
+    "PLC0116": ("no such member", "The structure, function block or enumeration has no member "
+                "with this name, or bit access is out of range."),
+    "PLC0117": ("bad indexing", "Only arrays are indexed, with one integer index per dimension."),
+    "PLC0118": ("narrowing conversion", "Storing a wider type in a narrower one needs an explicit "
+                "*_TO_* conversion (e.g. DINT_TO_INT)."),
+    "PLC0119": ("function result never assigned", "A function returns the value assigned to its "
+                "name; without one it returns the default (0, FALSE, '')."),
+    "PLC0120": ("bad located variable", "The AT address does not match the variable's size, or "
+                "the variable is not in a PROGRAM or VAR_GLOBAL."),
+    "PLC0121": ("internal variable of a function block", "From outside, only inputs and outputs "
+                "of an instance are visible."),
+    "PLC0130": ("bad native block", "A {native ...} pragma must name a class inside plclab."),
+    "PLC0200": ("unused variable", "A declared variable is never used (warning)."),
+    "PLC0201": ("unreachable code", "Statements after RETURN, EXIT or CONTINUE never run "
+                "(warning)."),
+    "PLC0202": ("precision loss", "DINT/UDINT/LINT to REAL keeps only 24 bits (warning)."),
+    "PLC0203": ("input written inside its block", "The caller overwrites inputs on every call "
+                "(warning)."),
+    "PLC0204": ("negating an unsigned value", "-x on USINT/UINT/... wraps around (warning)."),
+    "PLC2001": ("division by zero", "Run time: check the divisor before dividing."),
+    "PLC2002": ("index out of range", "Run time: an array index or MUX selector is outside the "
+                "declared range."),
+    "PLC2003": ("watchdog: scan overrun", "Run time: loops in one scan ran longer than the budget "
+                "(like S7's 150 ms cycle limit). Inputs never change inside a scan, so a loop "
+                "waiting for one never ends."),
+    "PLC2004": ("subrange violation", "Run time: a value left its declared subrange."),
+    "PLC2005": ("FOR step is zero", "Run time: FOR ... BY 0 never ends."),
+    "PLC2006": ("invalid conversion", "Run time: NaN or infinity converted to an integer."),
+    "PLC2007": ("calls nested too deeply", "Run time: the call depth exceeded the limit."),
+    "PLC2008": ("numeric overflow", "Run time: a value became too large to represent."),
+    "PLC2009": ("out of memory", "Run time: the program allocated too much memory."),
+    "PLC2010": ("test assertion failed", "An ASSERT_* in a TEST block did not hold."),
+    "PLC3001": ("unknown variable path", "The name, member or index does not exist in the "
+                "loaded program."),
+    "PLC3002": ("bad value", "A value given from Python or the command line does not fit the "
+                "variable's type."),
+    "PLC3003": ("file problem", "A source file is missing, not UTF-8, or of an unknown kind."),
+    "PLC3004": ("PLC in fault", "The PLC stopped on a fault; restart it."),
+    "PLC9101": ("unknown signal range", "I/O module: use 0-10V, +-10V, 0-20mA, 4-20mA or 1-5V."),
+    "PLC9102": ("unknown count convention", "I/O module: use book, full, s7 or logo."),
+    "PLC9103": ("bad bit width", "I/O module: the ADC bit width is outside what the convention allows."),
+    "PLC9104": ("bad measuring range", "I/O module: the engineering range is empty."),
+    "PLC9105": ("negative parameter", "I/O module: times, noise and delays must be >= 0."),
+    "PLC9106": ("unknown fault", "I/O module: the fault name is not one the module knows."),
+    "PLC9107": ("unknown output kind", "I/O module: a digital output is 'transistor' or 'relay'."),
+    "PLC9108": ("transmitter mismatch", "I/O module: the transmitter's signal differs from the input's range."),
+    "PLC9109": ("time went backwards", "I/O module: sample times must not decrease."),
+    "PLC9999": ("internal error", "A bug in plclab: please report it with the program."),
+}
+
+
+def explain(code: str) -> str:
+    code = code.upper()
+    if code not in PROBLEMS:
+        raise KeyError(code)
+    title, text = PROBLEMS[code]
+    return f"{code}: {title}\n\n{text}"
