@@ -5,7 +5,7 @@ belt from the feeder to the end, ``y`` is up, the belt surface is ``y = 0``.
 
 Stations along the belt (defaults)::
 
-    x = 0.15  feeder: releases a bottle every ``feed_interval`` s when its spot is clear
+    x = 0.15  feeder: releases a bottle each ``feed_pitch`` m of belt travel (spot clear)
     x = 1.20  photo-eyes X1 (neck height, 0.20 m) and X2 (body height, 0.04 m)
     x = 1.25  reject cylinder (REJECT) with end switches CYL_EXTENDED / CYL_RETRACTED
     x = 2.20  filling nozzle (FILL_VALVE), FILL_LEVEL; bottle-in-position eye FILL_EYE just before
@@ -42,8 +42,9 @@ a standing bottle without tipping it; an abrupt start or stop at the default 0.4
 ``belt_accel``/``belt_decel`` large) tips it over (at 0.3 m/s and below it only slides: the
 rotation it picks up while the friction brakes it is too small to pass the tipping point). Some
 bottles are released already lying (probability ``topple_rate``), some get knocked over on the
-way (probability ``knock_rate``, at a seeded place before the eyes). A bottle counts as *fallen*
-when it is tilted more than 60 degrees.
+way (probability ``knock_rate``, at a seeded place at least 0.5 m before the eyes, so that the
+bottle lies flat when it reaches them). A bottle counts as *fallen* when it is tilted more than
+60 degrees.
 
 At the end of the belt a bottle is classified: ``good`` (standing and at least 95 % full),
 ``unfilled_passed`` (standing, not full) or ``fallen_passed``. Bottles occupy one of
@@ -66,6 +67,7 @@ __all__ = ["Conveyor"]
 NAN = float("nan")
 COS_FALLEN = 0.5  # |cos(angle)| below this: fallen (tilted more than 60 degrees)
 COS_UPRIGHT = 0.95  # |cos(angle)| above this: upright enough to be filled
+KNOCK_LEAD = 0.5  # m: knocks happen at least this far before the eyes (a fall takes ~0.3 m)
 
 
 class _Bottle:
@@ -147,8 +149,13 @@ class Conveyor(Plant):
     friction : float
         Friction coefficient bottle-belt (pymunk multiplies the two shapes' values; this is the
         product).
-    feed_interval : float or None
-        Seconds between releases (``None``: no automatic feeder, use :meth:`release_bottle`).
+    feed_pitch : float or None
+        Belt travel between two releases, m: the feeder is geared to the belt like a star
+        wheel, so it releases ``belt_speed / feed_pitch`` bottles per second while the belt runs
+        and none while it stands (``None``: no feeder, use :meth:`release_bottle`). The first
+        bottle is released at once after reset.
+    feed_jitter : float
+        Seeded random variation of the pitch, as a fraction (0 = regular).
     feed_limit : int or None
         Stop feeding after this many bottles.
     x_feed, x_eye, x_reject, x_fill : float
@@ -182,7 +189,8 @@ class Conveyor(Plant):
     name = "conveyor"
     title = "Bottle conveyor: fallen-bottle reject, filling station (pymunk)"
     FAULTS = {
-        "knock": "knocks over the next standing bottle before the eyes (param count, default 1)",
+        "knock": "knocks over the next standing bottle 0.5 m before the eyes (param count, "
+        "default 1)",
         "topple_rate": "bottles arrive fallen with probability param rate (default 0.5)",
         "cylinder_stuck": "the reject cylinder does not move",
         "eye_x1_blocked": "dirt on X1: the high beam reads broken (TRUE) all the time",
@@ -200,7 +208,8 @@ class Conveyor(Plant):
         bottle_mass: float = 0.4,
         bottle_capacity: float = 0.5,
         friction: float = 0.6,
-        feed_interval: float | None = 1.5,
+        feed_pitch: float | None = 0.6,
+        feed_jitter: float = 0.0,
         feed_limit: int | None = None,
         x_feed: float = 0.15,
         x_eye: float = 1.2,
@@ -235,7 +244,8 @@ class Conveyor(Plant):
         self.bottle_mass = float(bottle_mass)
         self.bottle_capacity = float(bottle_capacity)
         self.friction = float(friction)
-        self.feed_interval = None if feed_interval is None else float(feed_interval)
+        self.feed_pitch = None if feed_pitch is None else float(feed_pitch)
+        self.feed_jitter = float(feed_jitter)
         self.feed_limit = feed_limit
         self.x_feed = float(x_feed)
         self.x_eye = float(x_eye)
@@ -305,7 +315,8 @@ class Conveyor(Plant):
         self._bottles: list[_Bottle] = []
         self._free = list(range(self.max_bottles - 1, -1, -1))  # pop() gives the lowest
         self._next_id = 0
-        self._next_feed = 0.0
+        self._travel = 0.0
+        self._pitch = self.feed_pitch if self.feed_pitch is not None else math.inf
         self._spilling = False
         self.counts = {
             "released": 0,
@@ -365,7 +376,8 @@ class Conveyor(Plant):
         self._next_id += 1
         b.fallen = fallen
         if not fallen and self.rng.random() < self.knock_rate:
-            b.knock_x = self.rng.uniform(xx + 0.1, max(xx + 0.1, self.x_eye - 0.15))
+            # knocked early enough to be lying flat when it reaches the eyes
+            b.knock_x = self.rng.uniform(xx + 0.1, max(xx + 0.1, self.x_eye - KNOCK_LEAD))
         b.sync()
         self._bottles.append(b)
         self.counts["released"] += 1
@@ -412,8 +424,8 @@ class Conveyor(Plant):
                     v = max(target, v - self.belt_decel * hs)
                 belt.surface_velocity = (v, 0.0)
             space.step(hs)
+            self._travel += v * hs
         self.v_belt = v
-        t_end = self.time + h
         # cylinder
         if not self._cyl_stuck:
             e = self.cyl
@@ -430,8 +442,7 @@ class Conveyor(Plant):
         half_plate = self.plate_width / 2.0
         for b in self._bottles:
             b.sync()
-            fallen_now = abs(b.cos) < COS_FALLEN
-            if fallen_now and not b.fallen:
+            if not b.fallen and not b.passed and abs(b.cos) < COS_FALLEN:
                 b.fallen = True
                 self.counts["toppled"] += 1
                 self._emit(
@@ -447,7 +458,7 @@ class Conveyor(Plant):
                 self._knocks_left > 0
                 and not b.fallen
                 and not b.knocked
-                and self.x_eye - 0.35 <= b.x <= self.x_eye - 0.12
+                and self.x_eye - KNOCK_LEAD - 0.2 <= b.x <= self.x_eye - KNOCK_LEAD
             ):
                 self._knock(b)
                 self._knocks_left -= 1
@@ -498,11 +509,15 @@ class Conveyor(Plant):
         else:
             self._spilling = False
         # feeder
-        if self.feed_interval is not None and t_end >= self._next_feed:
+        if self._travel >= self._pitch:
             if self.feed_limit is None or self.counts["released"] < self.feed_limit:
                 if self._feed_spot_clear() and self._free:
                     self.release_bottle(fallen=self.rng.random() < self._topple)
-                    self._next_feed = t_end + self.feed_interval
+                    self._travel = 0.0
+                    pitch = self.feed_pitch or 0.0
+                    if self.feed_jitter:
+                        pitch *= 1.0 + self.feed_jitter * (2.0 * self.rng.random() - 1.0)
+                    self._pitch = pitch
 
     def _knock(self, b: _Bottle) -> None:
         b.knocked = True
