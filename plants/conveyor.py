@@ -315,8 +315,8 @@ class Conveyor(Plant):
         self._bottles: list[_Bottle] = []
         self._free = list(range(self.max_bottles - 1, -1, -1))  # pop() gives the lowest
         self._next_id = 0
-        self._travel = 0.0
         self._pitch = self.feed_pitch if self.feed_pitch is not None else math.inf
+        self._travel = self.feed_pitch or 0.0  # the first bottle comes at once
         self._spilling = False
         self.counts = {
             "released": 0,

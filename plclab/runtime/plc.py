@@ -382,7 +382,7 @@ class Plc:
 
         cands = [d.name for _, pou, _ in self.project.programs for d in pou.decls]
         cands += list(self.project.globals) + [n for n, _, _ in self.project.programs]
-        close = difflib.get_close_matches(head_u, cands, n=1, cutoff=0.7)
+        close = difflib.get_close_matches(head_u, cands, n=1, cutoff=0.6)
         hint = f"; did you mean {close[0]}?" if close else ""
         raise PlcError("PLC3001", f"no variable named {path}{hint}")
 
@@ -531,7 +531,7 @@ class Plc:
         for key, (v, val) in self.forced.items():
             if key.startswith("%Q"):
                 self._write_bytes(self.image_out, *self._addr_parts(key), val)
-            elif not key.startswith("%"):
+            elif not key.startswith("%") and not (v.address and v.address.startswith("%I")):
                 v.set(val)
                 if v.address and v.address.startswith("%Q"):
                     area_size = self._addr_parts(v.address)
@@ -546,9 +546,11 @@ class Plc:
     # -- listing ------------------------------------------------------------------------------
     def variables(self) -> list[str]:
         """Every top-level variable path (program variables and globals)."""
-        out = [d.name for d in self.project.globals.values()]
+        out = [d.spelling or d.name for d in self.project.globals.values()]
         for inst, pou, _ in self.project.programs:
-            out += [f"{inst}.{d.name}" for d in pou.decls if d.section != "VAR_TEMP"]
+            label = pou.spelling if inst == pou.name else inst
+            out += [f"{label}.{d.spelling or d.name}" for d in pou.decls
+                    if d.section != "VAR_TEMP"]
         return out
 
 

@@ -6,7 +6,6 @@ import pytest
 
 from plants import Press
 
-
 SAFETY = {"moved_without_two_hands", "curtain_violation", "crash"}
 
 

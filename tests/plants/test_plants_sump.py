@@ -80,9 +80,7 @@ def test_textbook_program_keeps_the_sump_below_emergency() -> None:
     s = p.snapshot()
     assert s["pump1_seconds"] > 0.0
     # several pumping cycles: level went up to WY and back to NY more than once
-    starts = sum(
-        1 for a, b in zip(levels, levels[1:], strict=False) if a < p.heights[0] <= b
-    )
+    starts = sum(1 for a, b in zip(levels, levels[1:], strict=False) if a < p.heights[0] <= b)
     assert starts >= 2
 
 
