@@ -248,6 +248,9 @@ class Plant:
         Human-readable title (class attribute).
     FAULTS : dict
         Fault name -> description (class attribute).
+    EVENTS : dict
+        Event kind -> description (class attribute); every plant may also emit
+        ``fault_injected`` and ``fault_cleared``.
     max_dt : float
         Largest time step in seconds after which the outputs still mean something; larger
         steps given to :meth:`step` are split into sub-steps of at most ``max_dt``.
@@ -260,6 +263,7 @@ class Plant:
     name: ClassVar[str] = ""
     title: ClassVar[str] = ""
     FAULTS: ClassVar[dict[str, str]] = {}
+    EVENTS: ClassVar[dict[str, str]] = {}
     max_dt: float = 0.01
 
     def __init__(self, signals: Iterable[Signal]) -> None:
@@ -292,6 +296,14 @@ class Plant:
     def faults(self) -> dict[str, str]:
         """Fault name -> one-line description."""
         return dict(self.FAULTS)
+
+    @property
+    def events(self) -> dict[str, str]:
+        """Event kinds this plant emits -> description (plus the two fault events)."""
+        out = dict(self.EVENTS)
+        out["fault_injected"] = "a fault was injected (data: fault and its numeric params)"
+        out["fault_cleared"] = "a fault was cleared"
+        return out
 
     @property
     def active_faults(self) -> dict[str, dict[str, Any]]:

@@ -188,6 +188,13 @@ class Conveyor(Plant):
 
     name = "conveyor"
     title = "Bottle conveyor: fallen-bottle reject, filling station (pymunk)"
+    EVENTS = {
+        "bottle_released": "the feeder put a bottle on the belt",
+        "bottle_toppled": "a standing bottle fell over",
+        "bottle_rejected": "the cylinder pushed a bottle into the reject bin",
+        "bottle_binned": "a bottle left the end of the belt (data: result good/unfilled/fallen)",
+        "spill": "the filling valve ran with no bottle under it, or a bottle overflowed",
+    }
     FAULTS = {
         "knock": "knocks over the next standing bottle 0.5 m before the eyes (param count, "
         "default 1)",

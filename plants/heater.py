@@ -55,7 +55,7 @@ def pt100_ohm(t: float) -> float:
     Examples
     --------
     >>> round(pt100_ohm(0.0), 3), round(pt100_ohm(100.0), 3)
-    (100.0, 138.506)
+    (100.0, 138.505)
     """
     r = 1.0 + PT_A * t + PT_B * t * t
     if t < 0.0:
@@ -104,6 +104,11 @@ class Heater(Plant):
 
     name = "heater"
     title = "Water heater (boiler) with element, steam coil, fill/drain and Pt100"
+    EVENTS = {
+        "dry_heating": "the element is on but not covered by water",
+        "boiling": "the water reached 100 degC and boils",
+        "overflow": "the boiler overflowed",
+    }
     FAULTS = {
         "sensor_open": "Pt100 wire broken: TEMP_RTD_OHM reads 1 MOhm (over range)",
         "sensor_short": "Pt100 shorted: TEMP_RTD_OHM reads 0 Ohm",

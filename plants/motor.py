@@ -20,9 +20,10 @@ While energised the speed runs up linearly to the loaded speed in ``spin_up_time
 torque-speed curve is steep near synchronism, so the approach is quick); it coasts down
 exponentially with ``coast_tau`` otherwise and stops within a few tens of ms when jammed. The
 line current is the locked-rotor value ``I_lr`` up to 75 % of the loaded speed ``n_run`` and then
-falls linearly to the running value: ``I = I_run + (I_lr - I_run) * clip(4 (1 - n/n_run), 0, 1)``. The overload relay integrates
-``d(theta)/dt = ((I/I_set)^2 - theta) / ol_tau`` and trips when ``theta >= ol_trip_ratio^2``
-(an I^2 t characteristic: a locked rotor at 6 x I_set trips in about 10 s with the defaults).
+falls linearly to the running value: ``I = I_run + (I_lr - I_run) * clip(4 (1 - n/n_run), 0, 1)``.
+The overload relay integrates ``d(theta)/dt = ((I/I_set)^2 - theta) / ol_tau`` and trips when
+``theta >= ol_trip_ratio^2`` (an I^2 t characteristic: a locked rotor at 6 x I_set trips in
+about 11 s from cold and about 3 s from running at rated load, with the defaults).
 
 Events: ``motor_started``, ``motor_stopped`` (main contacts), ``overload_trip``,
 ``overload_reset``.
@@ -78,10 +79,16 @@ class Motor(Plant):
 
     name = "motor"
     title = "Motor with contactor, thermal overload relay and start/stop station"
+    EVENTS = {
+        "motor_started": "the main contacts of K1 closed",
+        "motor_stopped": "the main contacts of K1 opened",
+        "overload_trip": "the thermal overload relay tripped",
+        "overload_reset": "the overload relay was reset",
+    }
     FAULTS = {
         "overload": "the overload relay trips now (as after a long overcurrent)",
         "contactor_stuck": "main contacts weld: once closed they stay closed, RUN stays TRUE",
-        "jam": "the driven machine jams: locked rotor, starting current flows until the relay trips",
+        "jam": "the driven machine jams: locked rotor, starting current until the relay trips",
     }
 
     def __init__(

@@ -85,6 +85,14 @@ class Press(Plant):
 
     name = "press"
     title = "Plastic press: heater, hydraulic piston with encoder, two-hand and light curtain"
+    EVENTS = {
+        "moved_without_two_hands": "the piston was driven down without both hands on the buttons",
+        "curtain_violation": "the piston moved while the light curtain was broken",
+        "crash": "the piston was driven into a mechanical end stop",
+        "cold_extrusion": "extruding below the melt temperature",
+        "overheat": "the plastic was heated above the degradation temperature",
+        "valve_conflict": "DOWN and UP were both on",
+    }
     FAULTS = {
         "encoder_fail": "the encoder output freezes: no more pulses",
         "heater_fail": "the heater is burnt out",

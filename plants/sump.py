@@ -95,6 +95,13 @@ class Sump(Plant):
 
     name = "sump"
     title = "Mine dewatering station: sump, priming pump and three main pumps"
+    EVENTS = {
+        "primed": "the priming pump filled the system: DAWL closes",
+        "lost_prime": "the system lost its prime (air sucked in or idle too long)",
+        "pump_dry_run": "a main pump was started without prime",
+        "emergency_level": "the water reached the emergency level AWY",
+        "flooded": "the sump overflowed into the mine workings",
+    }
     FAULTS = {
         "pump1_fail": "main pump 1 runs but delivers nothing (broken impeller)",
         "pump2_fail": "main pump 2 runs but delivers nothing (broken impeller)",

@@ -75,6 +75,10 @@ class Tank(Plant):
 
     name = "tank"
     title = "Hydro-accumulator tank with pump, outlet and level switches"
+    EVENTS = {
+        "overflow": "the level reached the rim; the excess is lost (volume_overflow)",
+        "dry_run": "the outlet or the consumers drew from an empty tank",
+    }
     FAULTS = {
         "leak": "a hole in the tank wall drains extra water (param area, m2, default 2e-4)",
         "ls1_stuck_off": "low level switch LS1 always reads FALSE",

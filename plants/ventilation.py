@@ -84,6 +84,10 @@ class Ventilation(Plant):
 
     name = "ventilation"
     title = "Livestock building ventilation: three fans, two must run"
+    EVENTS = {
+        "overheat": "the inside temperature reached t_alarm",
+        "fans_stopped": "all fans stopped: no forced air exchange",
+    }
     FAULTS = {
         "fan1_fail": "fan 1 motor protection trips: FAULT1 TRUE, the fan stops",
         "fan2_fail": "fan 2 motor protection trips: FAULT2 TRUE, the fan stops",

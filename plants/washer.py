@@ -69,6 +69,12 @@ class Washer(Plant):
 
     name = "washer"
     title = "Washing machine for the SFC lab"
+    EVENTS = {
+        "overflow": "water ran over the tub",
+        "dry_heating": "the heater is on but not covered by water",
+        "boiling": "the water boils",
+        "drum_dry": "the drum turned without water for more than 10 s",
+    }
     FAULTS = {
         "heater_fail": "the heater is burnt out",
         "drain_blocked": "the drain is blocked: no water leaves",

@@ -60,10 +60,12 @@ def check_sources(sources: list[tuple[str, str]]):
     project = ck.run()
     all_diags = diags + ck.diags
     if any(d.severity == "error" for d in diags):
-        # a syntax error leaves half-parsed POUs: drop the checker's follow-up noise there
-        bad = {d.location.file for d in diags if d.location is not None}
-        all_diags = diags + [d for d in ck.diags
-                             if d.location is None or d.location.file not in bad]
+        # a statement with a syntax error was dropped: skip the checker's follow-ups on its line
+        bad = {(d.location.file, d.location.line) for d in diags if d.location is not None}
+        all_diags = diags + [d for d in ck.diags if d.location is None or
+                             (d.location.file, d.location.line) not in bad]
+        all_diags.sort(key=lambda d: (d.location.file, d.location.line, d.location.col)
+                       if d.location else ("", 0, 0))
     has_err = any(d.severity == "error" for d in all_diags)
     return (None if has_err else project), all_diags
 

@@ -214,3 +214,16 @@ def test_step_profile() -> None:
 def test_signal_table_markdown() -> None:
     md = plants.signal_table("tank")
     assert "| `LS1` | sensor | bool |" in md
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_every_emitted_event_kind_is_declared(name: str) -> None:
+    import inspect
+    import re
+
+    cls = PLANTS[name]
+    src = inspect.getsource(inspect.getmodule(cls))
+    emitted = set(re.findall(r'_emit\(\s*"([a-z_]+)"', src))
+    declared = set(get_plant(name).events)
+    assert emitted <= declared, emitted - declared
+    assert set(cls.EVENTS) <= emitted  # nothing declared that never happens
