@@ -293,7 +293,7 @@ class Conveyor(Plant):
                 bool_signal("X2", "sensor", "low photo-eye (body height), TRUE = beam broken"),
                 bool_signal("CYL_EXTENDED", "sensor", "cylinder end switch: fully out"),
                 bool_signal("CYL_RETRACTED", "sensor", "cylinder end switch: fully in"),
-                bool_signal("FILL_EYE", "sensor", "bottle in position under the nozzle"),
+                bool_signal("FILL_EYE", "sensor", "bottle-in-position eye just before the nozzle"),
                 real_signal(
                     "FILL_LEVEL", "sensor", "%", 0, 100, "fill of the bottle under the nozzle"
                 ),

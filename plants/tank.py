@@ -128,7 +128,7 @@ class Tank(Plant):
         self._vmax = self.area * self.height
         self._inv_area = 1.0 / self.area
         self._k_out = self.cd * self.outlet_area * math.sqrt(2.0 * self.g) * 0.01  # per % open
-        qmax = self.pump_flow * 1.5 + 1e-6
+        qmax = self.pump_flow
         super().__init__(
             [
                 bool_signal("PUMP", "actuator", "pump motor contactor, TRUE = run"),

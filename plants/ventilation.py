@@ -136,7 +136,7 @@ class Ventilation(Plant):
         self.max_dt = float(max_dt)
         i_max = self.fan_current * self.start_ratio * 1.05
         sigs = [
-            bool_signal("MS", "panel", "main switch, TRUE = on"),
+            bool_signal("MS", "panel", "main switch, TRUE = on (off after reset)"),
             bool_signal("START", "panel", "start button, NO: TRUE while pressed"),
             bool_signal("STOP", "panel", "stop button, NC: TRUE while NOT pressed", initial=True),
             bool_signal("MAIN_POWER", "actuator", "main power contactor of the fan circuit"),

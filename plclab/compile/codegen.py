@@ -44,6 +44,7 @@ class Compiled:
     natives: dict[str, str]
     tests: list[tuple[str, str, Location]] = field(default_factory=list)  # (title, fn, loc)
     assert_texts: dict[int, str] = field(default_factory=dict)
+    located: list[str] = field(default_factory=list)  # addresses of located variables
 
     def location_of_line(self, lineno: int) -> Location | None:
         if 1 <= lineno <= len(self.line_where):
@@ -120,7 +121,8 @@ class Codegen:
         src = "\n".join(self.lines) + "\n"
         code = compile(src, self.filename, "exec")
         return Compiled(src, code, self.filename, self.line_where, self.locations, self.p,
-                        self.natives, self.tests, self.assert_texts)
+                        self.natives, self.tests, self.assert_texts,
+                        [a for d, _ in self.located() for a in [d.address]])
 
     # -- defaults and initial values ----------------------------------------------------------
     def default_code(self, ty: T.Type) -> str:
@@ -628,11 +630,11 @@ class Codegen:
             self.emit(f"_B.left -= len({rng})")
             self.emit(f"if _B.left < 0: _wd({w})")
         # a known range for the loop variable lets array indexing skip its bounds check
-        lo_c = _const_int(s.start)
-        hi_c = _const_int(s.end)
+        r_start, r_end = self.interval(s.start), self.interval(s.end)
         saved = self.safe.get(var)
-        if lo_c is not None and hi_c is not None and step_v is not None and step_v != 0:
-            self.safe[var] = (min(lo_c, hi_c), max(lo_c, hi_c))
+        if r_start is not None and r_end is not None and step_v is not None and step_v != 0:
+            # inside the body the variable lies between start and end, whatever the step
+            self.safe[var] = (min(r_start[0], r_end[0]), max(r_start[1], r_end[1]))
         else:
             self.safe.pop(var, None)
         self.emit(f"for {var} in {rng}:")
@@ -661,7 +663,8 @@ class Codegen:
         if d is T.ANY or s is T.ANY:
             return code
         simple = isinstance(e, _SIMPLE) or (isinstance(e, A.Call) and e.target is not None and
-                                            e.target.kind == "function")
+                                            (e.target.kind == "function" or
+                                             _in_range_builtin(e)))
         if isinstance(d, T.Subrange):
             if isinstance(e, A.Literal) and isinstance(e.value, int):
                 return code
@@ -786,14 +789,31 @@ class Codegen:
         off = f" - {lo}" if lo > 0 else (f" + {-lo}" if lo < 0 else "")
         if c is not None:
             return str(c - lo)
-        rng = self.safe.get(code)
+        rng = self.interval(ix)
         if rng is not None and lo <= rng[0] and rng[1] <= hi:
-            return f"{code}{off}"
+            return f"({code}){off}" if off else code
         w = self.where(ix.loc)
         if isinstance(ix, A.Name | A.Member):
             return f"({code}{off} if {lo} <= {code} <= {hi} else _oob({code}, {lo}, {hi}, {w}))"
         t = self.new_tmp()
         return f"({t}{off} if {lo} <= ({t} := {code}) <= {hi} else _oob({t}, {lo}, {hi}, {w}))"
+
+    def interval(self, e: A.Expr) -> tuple[int, int] | None:
+        """The range an integer expression surely lies in (literals, FOR variables with known
+        bounds, + and - of those), or None: lets indexing skip its bounds check."""
+        c = _const_int(e)
+        if c is not None:
+            return (c, c)
+        if isinstance(e, A.Name):
+            return self.safe.get(self.e_Name(e))
+        if isinstance(e, A.Binary) and e.op in ("+", "-"):
+            a, b = self.interval(e.left), self.interval(e.right)
+            if a is None or b is None:
+                return None
+            if e.op == "+":
+                return (a[0] + b[0], a[1] + b[1])
+            return (a[0] - b[1], a[1] - b[0])
+        return None
 
     def e_Unary(self, e: A.Unary) -> str:
         x = self.ex(e.operand)
@@ -993,6 +1013,21 @@ class Codegen:
         fn = {"LEFT": "_left", "RIGHT": "_right", "MID": "_mid", "INSERT": "_insert",
               "DELETE": "_delete", "REPLACE": "_replace", "FIND": "_find"}[name]
         return f"{fn}({', '.join(codes)})"
+
+
+def _in_range_builtin(e: A.Call) -> bool:
+    """Builtins whose result never leaves its type's range when their inputs are stored values
+    (so a store needs no wrap-around code)."""
+    info = e.target
+    if info.kind != "builtin":
+        return False
+    name = info.callee.name
+    args = [x for _, x in info.inputs]
+    if name in ("LEN", "FIND"):
+        return all(getattr(T.resolve(x.ty), "length", 99999) <= 32767 for x in args)
+    if name in ("MIN", "MAX", "LIMIT", "MOVE", "SEL"):
+        return all(isinstance(x, _SIMPLE) for x in args)
+    return False
 
 
 def _const_int(e: A.Expr | None) -> int | None:

@@ -192,13 +192,17 @@ class Plc:
     def _bind(self) -> None:
         ns = self.ns
         self._var_cache.clear()
-        self._sync_in = ns["_sync_in"]
-        self._sync_out = ns["_sync_out"]
+        located = any(True for _ in self.compiled.located)
+        self._sync_in = ns["_sync_in"] if located else None
+        self._sync_out = ns["_sync_out"] if located else None
         progs = ns["_P"]
         self._task_bodies = [
             (t.interval_ns, [getattr(progs, n.upper())._body for n in t.programs])
             for t in self.tasks
         ]
+        # one task running at the base tick: no need to check which tasks are due
+        self._single = (self._task_bodies[0][1] if len(self._task_bodies) == 1 and
+                        self._task_bodies[0][0] == self._tick_ns else None)
 
     # -- the scan cycle -----------------------------------------------------------------------
     @property
@@ -212,8 +216,33 @@ class Plc:
 
     def scan(self, n: int = 1) -> None:
         """Run ``n`` scan cycles: freeze inputs, run due tasks, write outputs, advance clock."""
-        for _ in range(n):
-            self._scan_once()
+        if self.state != "RUN" or self.forced or self._single is None or n < 1:
+            for _ in range(n):
+                self._scan_once()
+            return
+        # the common case (RUN, nothing forced, one cyclic task): the same steps as
+        # _scan_once with everything held in locals
+        ctx, budget, limit = self.ctx, self.budget, self.budget.limit
+        img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
+        sync_in, sync_out, bodies, tick = self._sync_in, self._sync_out, self._single, self._tick_ns
+        try:
+            for _ in range(n):
+                budget.left = limit
+                img_in[:] = inputs
+                if sync_in is not None:
+                    sync_in()
+                for body in bodies:
+                    body()
+                if sync_out is not None:
+                    sync_out()
+                outputs[:] = img_out
+                ctx.first_scan = False
+                ctx.scan_count += 1
+                t = ctx.now_ns + tick
+                ctx.now_ns = t
+                ctx.now = t // 1_000_000
+        except BaseException as exc:  # noqa: BLE001
+            self._to_stop(exc)
 
     def _scan_once(self) -> None:
         ctx = self.ctx
@@ -227,13 +256,19 @@ class Plc:
         if self.forced:
             self._apply_forced_inputs()
         try:
-            self._sync_in()
-            now = ctx.now_ns
-            for interval, bodies in self._task_bodies:
-                if now % interval == 0:
-                    for body in bodies:
-                        body()
-            self._sync_out()
+            if self._sync_in is not None:
+                self._sync_in()
+            if self._single is not None:
+                for body in self._single:
+                    body()
+            else:
+                now = ctx.now_ns
+                for interval, bodies in self._task_bodies:
+                    if now % interval == 0:
+                        for body in bodies:
+                            body()
+            if self._sync_out is not None:
+                self._sync_out()
         except BaseException as exc:  # noqa: BLE001 - every fault becomes a PlcRuntimeFault
             self._to_stop(exc)
         if self.forced:
@@ -241,8 +276,9 @@ class Plc:
         self.outputs[:] = self.image_out
         ctx.first_scan = False
         ctx.scan_count += 1
-        ctx.now_ns += self._tick_ns
-        ctx.now = ctx.now_ns // 1_000_000
+        ns = ctx.now_ns + self._tick_ns
+        ctx.now_ns = ns
+        ctx.now = ns // 1_000_000
 
     def run(self, seconds: float | str | None = None, cycles: int | None = None) -> None:
         """Run for a duration of virtual time (``plc.run(seconds=5)``) or a number of scans."""

@@ -227,3 +227,11 @@ def test_every_emitted_event_kind_is_declared(name: str) -> None:
     declared = set(get_plant(name).events)
     assert emitted <= declared, emitted - declared
     assert set(cls.EVENTS) <= emitted  # nothing declared that never happens
+
+
+def test_readme_tables_match_the_code() -> None:
+    import pathlib
+
+    readme = (pathlib.Path(plants.__file__).parent / "README.md").read_text(encoding="utf-8")
+    for name in ALL:
+        assert plants.signal_table(name) in readme, f"plants/README.md: {name} table is stale"
