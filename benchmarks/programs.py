@@ -255,7 +255,7 @@ class Bubble:
             a[self.i - 1] = w16(_imod(self.seed, 1000))
         self.i = 101
         for self.i in range(1, 100):
-            for self.j in range(1, 100 - self.i + 1):
+            for self.j in range(1, 100 - self.i + 1):  # noqa: B020 (ST semantics)
                 j = self.j
                 if not 1 <= j + 1 <= 100:
                     raise IndexError

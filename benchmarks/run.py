@@ -13,8 +13,9 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-import plclab  # noqa: E402
 from programs import PROGRAMS, Clock  # noqa: E402
+
+import plclab  # noqa: E402
 
 
 def best_of(fn, repeat: int = 5) -> float:

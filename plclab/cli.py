@@ -130,7 +130,41 @@ def split_names(text: str) -> list[str]:
     return [n.strip() for n in out if n.strip()]
 
 
+# Modules that register more sub-commands with @command when imported. Each is optional: a
+# module whose extra dependencies are missing still registers its commands, and reports the
+# missing dependency only when the command runs.
+COMMAND_MODULES = ["plclab.sim.commands", "plclab.viz.commands", "plclab.grade.commands",
+                   "plclab.modbus.commands"]
+
+
+def _load_command_modules() -> None:
+    import importlib
+    import importlib.util
+
+    for mod in COMMAND_MODULES:
+        if importlib.util.find_spec(mod.rsplit(".", 1)[0]) is None:
+            continue
+        try:
+            importlib.import_module(mod)
+        except ModuleNotFoundError as e:
+            if e.name != mod:
+                raise
+
+
+@command("explain", "explain a diagnostic code, e.g. plclab explain PLC0113")
+@arg("code", help="a code such as PLC0100")
+def cmd_explain(ns: argparse.Namespace) -> int:
+    from .problems import explain
+
+    try:
+        print(explain(ns.code))
+    except KeyError:
+        raise PlcError("PLC3002", f"{ns.code} is not a plclab diagnostic code") from None
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
+    _load_command_modules()
     p = argparse.ArgumentParser(prog="plclab", description="plclab: a virtual PLC lab for "
                                 "IEC 61131-3 (ST) with physics plants and an autograder.")
     p.add_argument("--version", action="version", version=f"plclab {__version__}")

@@ -9,7 +9,7 @@
 from __future__ import annotations
 
 import os
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +19,7 @@ from .lang import ast as A
 STDLIB_FILES = ("stdlib.st",)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _stdlib_text(name: str) -> str:
     return (Path(__file__).parent / "runtime" / name).read_text(encoding="utf-8")
 

@@ -461,7 +461,7 @@ class Codegen:
         for d, code, _ in inouts:
             self.emit(f"{fb}.{ident(d.name)} = {code}")
         self.emit(f"{fb}._body()")
-        for d, code, e in inouts:
+        for d, _code, e in inouts:
             if not T.resolve(d.ty).is_aggregate:
                 self.assign_to(e, f"{fb}.{ident(d.name)}")
         for d, target, neg in info.outputs:

@@ -386,34 +386,30 @@ class Plc:
         parts = _split_path(path)
         if not parts:
             raise PlcError("PLC3001", f"'{path}' is not a variable path")
-        ns = self.ns
         head, idx = parts[0]
         head_u = head.upper()
         progs = {n.upper(): pou for n, pou, _ in self.project.programs}
-        # 1. program instance name 2. global 3. unique program variable
+
+        def program(name: str):
+            return lambda: getattr(self.ns["_P"], name)
+
+        # 1. a program instance name 2. a global 3. a variable of exactly one program
         if head_u in progs and (len(parts) > 1 or idx):
-            pou = progs[head_u]
-            obj_get = (lambda n=head_u: getattr(self.ns["_P"], n))
-            ty: T.Type = T.FBType(pou.name, pou)
-            rest = parts[1:]
             if idx:
                 raise PlcError("PLC3001", f"{head} is a program, not an array")
-            return self._walk(path, obj_get, ty, rest)
-        g = self.project.globals.get(head_u)
-        if g is not None:
-            root_get = (lambda n=head_u: self.ns["_G"]), T.FBType("_G", None)
-            return self._walk(path, root_get[0], _GlobalsType(self.project), parts)
+            pou = progs[head_u]
+            return self._walk(path, program(head_u), T.FBType(pou.name, pou), parts[1:])
+        if head_u in self.project.globals:
+            return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project), parts)
         owners = [(n, pou) for n, pou, _ in self.project.programs
                   if any(d.name == head_u for d in pou.decls)]
         if len(owners) == 1:
             n, pou = owners[0]
-            return self._walk(path, lambda n=n.upper(): getattr(self.ns["_P"], n),
-                              T.FBType(pou.name, pou), parts)
+            return self._walk(path, program(n.upper()), T.FBType(pou.name, pou), parts)
         if len(owners) > 1:
             raise PlcError("PLC3001", f"{head} exists in several programs ("
                            + ", ".join(n for n, _ in owners) + f"); write e.g. "
                            f"{owners[0][0]}.{head}")
-        del ns
         import difflib
 
         cands = [d.name for _, pou, _ in self.project.programs for d in pou.decls]
@@ -437,7 +433,6 @@ class Plc:
                 d = next((x for x in cur.pou.decls if x.name == nu and
                           x.section not in ("VAR_TEMP",)), None)
                 if d is not None and d.section == "VAR_EXTERNAL":
-                    g = self.project.globals.get(nu)
                     return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project),
                                       [(name, idx)] + parts[parts.index((name, idx)) + 1:])
                 address = d.address if d is not None else None

@@ -55,9 +55,9 @@ CASES = {
 def test_each_diagnostic_code(code):
     src = CASES[code]
     if code == "PLC0130":
+        import plclab
         from plclab.errors import PlcError
         from plclab.project import load  # noqa: F401
-        import plclab
 
         with pytest.raises(PlcError) as ei:
             plclab.loads(src)
