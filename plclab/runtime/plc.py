@@ -105,7 +105,9 @@ class Plc:
     """
 
     def __init__(self, compiled: Compiled, cycle_time: Any = "10ms",
-                 watchdog: int = 2_000_000, image_size: int = 1024) -> None:
+                 watchdog: int = 2_000_000, image_size: int = 1024,
+                 system_memory_byte: int | None = None,
+                 clock_memory_byte: int | None = None) -> None:
         self.compiled = compiled
         self.project = compiled.project
         self.cycle_ns = to_ns(cycle_time)
@@ -113,6 +115,9 @@ class Plc:
             raise PlcError("PLC3002", "the cycle time must be positive")
         self.watchdog = watchdog
         self.image_size = image_size
+        # S7-style system and clock memory bytes (001 lines 2494-2540), off unless asked for
+        self.system_memory_byte = system_memory_byte
+        self.clock_memory_byte = clock_memory_byte
         self.inputs = bytearray(image_size)  # the physical input terminals
         self.outputs = bytearray(image_size)  # the physical output terminals
         self.forced: dict[str, Any] = {}
@@ -216,7 +221,8 @@ class Plc:
 
     def scan(self, n: int = 1) -> None:
         """Run ``n`` scan cycles: freeze inputs, run due tasks, write outputs, advance clock."""
-        if self.state != "RUN" or self.forced or self._single is None or n < 1:
+        if (self.state != "RUN" or self.forced or self._single is None or n < 1
+                or self._system_bytes):
             for _ in range(n):
                 self._scan_once()
             return
@@ -253,6 +259,8 @@ class Plc:
             return
         self.budget.left = self.budget.limit
         self.image_in[:] = self.inputs
+        if self._system_bytes:
+            self._update_system_memory()
         if self.forced:
             self._apply_forced_inputs()
         try:
@@ -279,6 +287,27 @@ class Plc:
         ns = ctx.now_ns + self._tick_ns
         ctx.now_ns = ns
         ctx.now = ns // 1_000_000
+
+    @property
+    def _system_bytes(self) -> bool:
+        return self.system_memory_byte is not None or self.clock_memory_byte is not None
+
+    # clock memory bits 0..7: 10, 5, 2.5, 2, 1.25, 1, 0.625, 0.5 Hz (periods in ms)
+    CLOCK_PERIODS_MS = (100, 200, 400, 500, 800, 1000, 1600, 2000)
+
+    def _update_system_memory(self) -> None:
+        """S7 system memory byte: bit 0 FirstScan, bit 1 DiagStatusUpdate (FALSE here),
+        bit 2 AlwaysTRUE, bit 3 AlwaysFALSE. Clock memory byte: square waves, 50 % duty,
+        TRUE in the second half of each period."""
+        if self.system_memory_byte is not None:
+            self.memory[self.system_memory_byte] = (1 if self.ctx.first_scan else 0) | 0b100
+        if self.clock_memory_byte is not None:
+            now = self.ctx.now
+            v = 0
+            for bit, period in enumerate(self.CLOCK_PERIODS_MS):
+                if now % period >= period // 2:
+                    v |= 1 << bit
+            self.memory[self.clock_memory_byte] = v
 
     def run(self, seconds: float | str | None = None, cycles: int | None = None) -> None:
         """Run for a duration of virtual time (``plc.run(seconds=5)``) or a number of scans."""
