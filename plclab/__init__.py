@@ -7,7 +7,7 @@
 ... t(IN := NOT t.Q, PT := T#500ms);
 ... IF t.Q THEN lamp := NOT lamp; END_IF
 ... END_PROGRAM''')
->>> plc.run(seconds=1.2); plc["lamp"]
+>>> plc.run(seconds=0.6); plc["lamp"]
 True
 """
 

@@ -364,27 +364,31 @@ class HYST(NativeBlock):
 _CFG_ERR = "error"
 
 
+def _scaling():
+    """plclab.io.scaling, imported on first use (the runtime core stays light)."""
+    from ..io import scaling
+
+    return scaling
+
+
 def _live_range(rng):
     """The live-zero version of a 0-based range: 20 % offset (0-20 mA -> 4-20 mA, 0-10 V ->
     2-10 V, 0-5 V -> 1-5 V) with the NE43 ratios of 4-20 mA (wire break <= 90 % of the live
     zero, saturation 95 %, high fault >= 105 % of the top)."""
-    from ..io.scaling import SignalRange
-
     if rng.live_zero or rng.bipolar:
         return rng
     lz = rng.lo + 0.2 * rng.span
-    return SignalRange(f"{lz:g}-{rng.hi:g}{rng.unit}", lz, rng.hi, rng.unit, 0.95 * lz,
+    return _scaling().SignalRange(f"{lz:g}-{rng.hi:g}{rng.unit}", lz, rng.hi, rng.unit, 0.95 * lz,
                        rng.sat_hi, 0.9 * lz, 1.05 * rng.hi)
 
 
 def _config(rng_name, convention, bits, live):
     """(module range, effective range, count format) or _CFG_ERR; never raises."""
     try:
-        from ..io.scaling import count_format, signal_range
-
-        rng = signal_range(str(rng_name))
+        sc = _scaling()
+        rng = sc.signal_range(str(rng_name))
         b = int(bits)
-        fmt = count_format(str(convention), b if b > 0 else None, rng.bipolar)
+        fmt = sc.count_format(str(convention), b if b > 0 else None, rng.bipolar)
         eff = _live_range(rng) if live else rng
         return rng, eff, fmt
     except Exception:  # noqa: BLE001 - a bad configuration is reported on ERROR
@@ -456,26 +460,24 @@ class AI_SCALE(_Scaler):
             self.WIRE_BREAK = self.OVERRANGE = self.UNDERRANGE = False
             self.ERROR = True
             return
-        from ..io.scaling import counts_status, counts_to_eng, counts_to_signal, signal_status
-        from ..io.scaling import signal_to_eng
-
+        sc = _scaling()
         rng, eff, fmt = cfg
         try:
             n = int(self.IN)
             lo, hi = _real(self.LO), _real(self.HI)
-            st = counts_status(n, convention=fmt, live_zero=eff.live_zero)
+            st = sc.counts_status(n, convention=fmt, live_zero=eff.live_zero)
             if st.overflow or st.underflow or st.wire_break:
                 self.WIRE_BREAK = st.wire_break
                 self.OVERRANGE = st.overflow
                 self.UNDERRANGE = st.underflow
                 self.ERROR = True
                 return
-            sig = counts_to_signal(n, rng, convention=fmt)
-            ss = signal_status(sig, eff)
+            sig = sc.counts_to_signal(n, rng, convention=fmt)
+            ss = sc.signal_status(sig, eff)
             if eff is rng:
-                v = counts_to_eng(n, lo, hi, convention=fmt)
+                v = sc.counts_to_eng(n, lo, hi, convention=fmt)
             else:
-                v = signal_to_eng(sig, lo, hi, eff)
+                v = sc.signal_to_eng(sig, lo, hi, eff)
         except Exception:  # noqa: BLE001 - never raise into the PLC program
             self.ERROR = True
             return
@@ -525,16 +527,15 @@ class AO_SCALE(_Scaler):
         if cfg is _CFG_ERR or v != v or not (_isfinite(lo) and _isfinite(hi)) or lo == hi:
             self.ERROR = True
             return
-        from ..io.scaling import eng_to_counts, eng_to_signal
-
+        sc = _scaling()
         rng, eff, fmt = cfg
         try:
             frac = (v - lo) / (hi - lo)
             if eff is rng:
-                c = eng_to_counts(v, lo, hi, convention=fmt, limit=True)
+                c = sc.eng_to_counts(v, lo, hi, convention=fmt, limit=True)
             else:
-                sig = eng_to_signal(min(max(frac, 0.0), 1.0), 0.0, 1.0, eff)
-                c = eng_to_counts(sig, rng.lo, rng.hi, convention=fmt, limit=True)
+                sig = sc.eng_to_signal(min(max(frac, 0.0), 1.0), 0.0, 1.0, eff)
+                c = sc.eng_to_counts(sig, rng.lo, rng.hi, convention=fmt, limit=True)
         except Exception:  # noqa: BLE001 - never raise into the PLC program
             self.ERROR = True
             return
@@ -637,9 +638,7 @@ class RAMP(_Timed):
         else:
             step = rate * T
             d = x - y
-            y = y + (step if d > step else -step if d < -step else d)
-            if abs(x - y) <= 1e-12 * max(1.0, abs(x)):
-                y = x
+            y = y + step if d > step else y - step if d < -step else x
         if not _isfinite(y):
             return
         self._y = y
