@@ -16,7 +16,7 @@ from typing import Any
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
 
-STDLIB_FILES = ("stdlib.st",)
+STDLIB_FILES = ("stdlib.st", "ctrllib.st")
 
 
 @cache

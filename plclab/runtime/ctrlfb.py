@@ -1,4 +1,4 @@
-"""Control and signal function blocks: PID, PID_INC, HYST, AI_SCALE, AO_SCALE, DEBOUNCE, BLINK,
+"""Control and signal function blocks: PID, PID_INC, HYST, AI_SCALE, AO_SCALE, DEBOUNCE, BLINKER,
 RAMP, PT1, MOVING_AVG and LIMIT_ALARM, implemented natively.
 
 Their interfaces are declared in ``ctrllib.st`` (read by the checker like any other source),
@@ -43,7 +43,7 @@ import math
 from .rt import _f32
 from .stdfb import NativeBlock
 
-__all__ = ["PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE", "BLINK", "RAMP", "PT1",
+__all__ = ["PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE", "BLINKER", "RAMP", "PT1",
            "MOVING_AVG", "LIMIT_ALARM"]
 
 _isfinite = math.isfinite
@@ -573,7 +573,7 @@ class DEBOUNCE(NativeBlock):
             self._start = None
 
 
-class BLINK(NativeBlock):
+class BLINKER(NativeBlock):
     """Pulse generator: while ENABLE is TRUE, Q is TRUE for T_ON and FALSE for T_OFF, starting
     with TRUE at the call where ENABLE rose. ``Q = (now - start) MOD (T_ON + T_OFF) < T_ON``,
     computed from the clock, so the period is exact and never drifts (T#100ms / T#100ms at 10 ms
@@ -629,7 +629,9 @@ class RAMP(_Timed):
     def _body(self) -> None:
         T = self._step_s()
         x = _real(self.IN)
-        if not _isfinite(x) and x == x:
+        if x != x:
+            return  # NaN: hold
+        if not _isfinite(x):
             x = math.copysign(3.4028234663852886e38, x)
         rate = _real(self.RATE)
         y = self._y
@@ -638,7 +640,10 @@ class RAMP(_Timed):
         else:
             step = rate * T
             d = x - y
-            y = y + step if d > step else y - step if d < -step else x
+            if abs(d) <= step * (1.0 + 1e-9):  # within one step (and rounding): arrived
+                y = x
+            else:
+                y = y + step if d > 0.0 else y - step
         if not _isfinite(y):
             return
         self._y = y
@@ -734,8 +739,10 @@ class MOVING_AVG(NativeBlock):
         if n == 0:
             return
         buf, pos, size = self._buf, self._pos, self.SIZE
-        total = math.fsum(buf[(pos - k) % size] for k in range(1, n + 1))
-        avg = total / n
+        try:
+            avg = math.fsum(buf[(pos - k) % size] for k in range(1, n + 1)) / n
+        except OverflowError:
+            return
         if _isfinite(avg):
             self.AVG = avg if self._dbl else _f32(avg)
 

@@ -1,0 +1,127 @@
+"""Durations for humans: ``10ms``, ``1.5s``, ``90s``, ``10min``, ``1h30m``, ``2d``, ``T#1m30s``.
+
+Everything the simulation layer takes as a time (scan, dt, durations, scenario times) goes
+through :func:`parse_ns`, so the same spellings work in Python, TOML and on the command line.
+Numbers are seconds.
+
+>>> parse_ns("10min"), parse_ns("T#1m30s") // 10**9, parse_ns(0.01), parse_ns("1 h")
+(600000000000, 90, 10000000, 3600000000000)
+>>> format_duration(5400), format_duration(0.25), format_duration(86400 * 2)
+('1h30min', '250ms', '2d')
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+import re
+from typing import Any
+
+from .errors import sim_error
+
+_UNITS = {
+    "d": 86_400_000_000_000, "day": 86_400_000_000_000, "days": 86_400_000_000_000,
+    "h": 3_600_000_000_000, "hr": 3_600_000_000_000, "hrs": 3_600_000_000_000,
+    "hour": 3_600_000_000_000, "hours": 3_600_000_000_000,
+    "m": 60_000_000_000, "min": 60_000_000_000, "mins": 60_000_000_000,
+    "minute": 60_000_000_000, "minutes": 60_000_000_000,
+    "s": 1_000_000_000, "sec": 1_000_000_000, "secs": 1_000_000_000,
+    "second": 1_000_000_000, "seconds": 1_000_000_000,
+    "ms": 1_000_000, "msec": 1_000_000, "us": 1_000, "µs": 1_000, "ns": 1,
+}
+_PART = re.compile(r"([0-9][0-9_]*(?:\.[0-9_]*)?(?:e[+-]?[0-9]+)?)\s*([a-zµ]+)", re.IGNORECASE)
+_NUMBER = re.compile(r"[+]?[0-9][0-9_]*(?:\.[0-9_]*)?(?:e[+-]?[0-9]+)?", re.IGNORECASE)
+
+
+def parse_ns(value: Any, what: str = "duration", allow_zero: bool = True) -> int:
+    """A duration in integer nanoseconds.
+
+    Parameters
+    ----------
+    value : str, int, float or datetime.timedelta
+        ``"10min"``, ``"1h30m"``, ``"T#1m"``, ``"90 s"``, a number of seconds.
+    what : str
+        Used in the error message (``"scan"``, ``"action 3: at"``...).
+    allow_zero : bool
+        Accept zero (negative durations are never accepted).
+
+    Raises
+    ------
+    PlcError
+        PLC4012 for anything that is not a duration, is negative, or is zero when
+        ``allow_zero`` is false.
+    """
+    ns = _parse(value)
+    if ns is None:
+        raise sim_error("PLC4012", f"{what}: {value!r} is not a duration; write e.g. 10ms, 1.5s, "
+                        "90s, 10min, 1h, 1h30m, T#1m30s or a number of seconds")
+    if ns < 0 or (ns == 0 and not allow_zero):
+        need = "zero or positive" if allow_zero else "positive"
+        raise sim_error("PLC4012", f"{what} must be {need}, not {value!r}")
+    return ns
+
+
+def parse_seconds(value: Any, what: str = "duration", allow_zero: bool = True) -> float:
+    """Like :func:`parse_ns`, in seconds (a float)."""
+    return parse_ns(value, what, allow_zero) / 1e9
+
+
+def _parse(value: Any) -> int | None:
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, _dt.timedelta):
+        return round(value.total_seconds() * 1e9)
+    if isinstance(value, int):
+        return value * 1_000_000_000
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return None
+        return round(value * 1e9)
+    if not isinstance(value, str):
+        return None
+    s = value.strip()
+    for prefix in ("LTIME#", "TIME#", "LT#", "T#"):
+        if s.upper().startswith(prefix):
+            s = s[len(prefix):]
+            break
+    if s.startswith("-"):
+        return None
+    s = s.lstrip("+").strip()
+    if not s:
+        return None
+    if _NUMBER.fullmatch(s):
+        return round(float(s.replace("_", "")) * 1e9)
+    total, pos = 0, 0
+    for m in _PART.finditer(s):
+        if s[pos:m.start()].strip(" _"):
+            return None
+        unit = _UNITS.get(m.group(2).lower()) or _UNITS.get(m.group(2))
+        if unit is None:
+            return None
+        num = m.group(1).replace("_", "")
+        total += round(float(num) * unit) if ("." in num or "e" in num.lower()) else int(num) * unit
+        pos = m.end()
+    if pos == 0 or s[pos:].strip():
+        return None
+    return total
+
+
+def format_duration(seconds: float) -> str:
+    """A short human form: ``1h30min``, ``250ms``, ``12.5s``."""
+    if seconds != seconds:
+        return "nan"
+    ns = round(seconds * 1e9)
+    if ns == 0:
+        return "0s"
+    if ns % 1_000_000_000:
+        if ns < 1_000_000_000:
+            ms = ns / 1e6
+            return f"{ms:g}ms"
+        return f"{ns / 1e9:g}s"
+    s = ns // 1_000_000_000
+    parts = []
+    for unit, size in (("d", 86400), ("h", 3600), ("min", 60), ("s", 1)):
+        if s >= size:
+            parts.append(f"{s // size}{unit}")
+            s %= size
+    return "".join(parts)

@@ -1,0 +1,93 @@
+"""Signals as step series: the common currency of timing diagrams, VCD, WaveDrom and chatter
+analysis. A :class:`Series` holds sample times (seconds) and values; a BOOL/integer signal is
+piecewise constant between samples (step-after), a REAL one is drawn as a line.
+
+>>> s = Series("PUMP", [0.0, 0.01, 0.02, 0.03], [False, True, True, False], "bool")
+>>> s.changes()
+[(0.0, False), (0.01, True), (0.03, False)]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+
+@dataclass
+class Series:
+    name: str
+    times: Sequence[float]
+    values: Sequence[Any]
+    kind: str = "real"  # bool | int | real | enum | string
+    unit: str = ""
+    labels: dict[int, str] = field(default_factory=dict)  # enum value -> name
+
+    def __post_init__(self) -> None:
+        if len(self.times) != len(self.values):
+            raise ValueError(f"{self.name}: {len(self.times)} times but {len(self.values)} "
+                             "values")
+
+    def changes(self) -> list[tuple[float, Any]]:
+        """(time, value) at the first sample and wherever the value changes."""
+        out: list[tuple[float, Any]] = []
+        prev = object()
+        for t, v in zip(self.times, self.values, strict=True):
+            v = _py(v)
+            if v != prev:
+                out.append((float(t), v))
+                prev = v
+        return out
+
+    def window(self, t0: float | None, t1: float | None) -> Series:
+        """The samples with t0 <= t <= t1 (the value holding at t0 is kept as a first sample)."""
+        if t0 is None and t1 is None:
+            return self
+        lo = float("-inf") if t0 is None else t0
+        hi = float("inf") if t1 is None else t1
+        ts, vs = [], []
+        before = None
+        for t, v in zip(self.times, self.values, strict=True):
+            if t < lo:
+                before = v
+                continue
+            if t > hi:
+                break
+            if not ts and before is not None and t > lo:
+                ts.append(lo)
+                vs.append(before)
+            ts.append(t)
+            vs.append(v)
+        if not ts and before is not None:
+            ts, vs = [lo], [before]
+        return Series(self.name, ts, vs, self.kind, self.unit, self.labels)
+
+    def label(self, v: Any) -> str:
+        if self.kind == "enum" and int(v) in self.labels:
+            return self.labels[int(v)]
+        if self.kind == "bool":
+            return "TRUE" if v else "FALSE"
+        if isinstance(v, float):
+            return f"{v:.4g}"
+        return str(v)
+
+
+def _py(v: Any) -> Any:
+    """NumPy scalars to plain Python (so comparisons and JSON work)."""
+    item = getattr(v, "item", None)
+    return item() if callable(item) else v
+
+
+def kind_of(values: Sequence[Any]) -> str:
+    """Guess a series kind from its values."""
+    for v in values:
+        v = _py(v)
+        if isinstance(v, bool):
+            return "bool"
+        if isinstance(v, int):
+            return "int"
+        if isinstance(v, float):
+            return "real"
+        if isinstance(v, str):
+            return "string"
+    return "real"
