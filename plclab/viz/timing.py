@@ -41,7 +41,7 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     hi = t1 if t1 is not None else max((s.times[-1] for s in series if len(s.times)), default=1)
     for ax, s in zip(axes[:, 0], series, strict=True):
         _draw(ax, s, lo, hi)
-        for t, label in markers:
+        for t, _label in markers:
             if lo <= t <= hi:
                 ax.axvline(t, color="tab:red", lw=0.8, ls="--")
         ax.set_xlim(lo, hi)
