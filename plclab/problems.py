@@ -96,6 +96,14 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC9107": ("unknown output kind", "I/O module: a digital output is 'transistor' or 'relay'."),
     "PLC9108": ("transmitter mismatch", "I/O module: the transmitter's signal differs from the input's range."),
     "PLC9109": ("time went backwards", "I/O module: sample times must not decrease."),
+    "PLC9201": ("Modbus support not installed", "pip install 'plclab[modbus]' (pymodbus 3.16+)."),
+    "PLC9202": ("cannot open the Modbus port", "Another program uses the port, or it needs "
+                "privileges (ports below 1024); pick another with --port."),
+    "PLC9203": ("bad Modbus option", "An --io URL, a host, a port or an address is malformed."),
+    "PLC9204": ("Modbus exception response", "The server refused the request (illegal address, "
+                "read-only area, illegal value)."),
+    "PLC9205": ("no Modbus connection", "The server does not answer: is it running, on this "
+                "host and port?"),
     "PLC9999": ("internal error", "A bug in plclab: please report it with the program."),
 }
 

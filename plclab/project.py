@@ -25,13 +25,27 @@ def _stdlib_text(name: str) -> str:
 
 
 def _frontend(path: str):
+    """The parser for a file, by extension: ``f(text, filename, defer=False) -> (file, diags)``.
+    ``.st`` files may hold IL POUs too (recognised by their first line)."""
     ext = os.path.splitext(path)[1].lower()
     if ext in (".st", ".iecst", ".txt", ""):
         from .lang.st_parser import parse_st_collect
 
         return parse_st_collect
-    raise PlcError("PLC3003", f"{path}: unknown source type '{ext}'; plclab reads .st files "
-                   "(IL, LD and PLCopen XML come with their front ends)")
+    if ext == ".il":
+        from .lang.il_parser import parse_il_collect
+
+        return parse_il_collect
+    if ext == ".ld":
+        from .lang.ld_parser import parse_ld_collect
+
+        return parse_ld_collect
+    if ext == ".xml":
+        from .lang.plcopen import parse_plcopen_collect
+
+        return parse_plcopen_collect
+    raise PlcError("PLC3003", f"{path}: unknown source type '{ext}'; plclab reads .st, .il, .ld "
+                   "and PLCopen .xml files")
 
 
 def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], list[Diagnostic]]:
@@ -45,9 +59,14 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
         assert not d, d
         files.append(f)
     for text, filename in sources:
-        f, d = _frontend(filename)(text, filename)
+        f, d = _frontend(filename)(text, filename, defer=True)
         files.append(f)
         diags.extend(d)
+    if any(hasattr(p, "_lower") for f in files for p in f.pous):
+        # IL bodies and ladder networks are translated once every declaration is known
+        from .lang.il_parser import lower_pending
+
+        diags.extend(lower_pending(files))
     return files, diags
 
 

@@ -71,6 +71,8 @@ class Codegen:
         self.struct_names: dict[int, str] = {}
         self.assert_texts: dict[int, str] = {}
         self.tests: list[tuple[str, str, Location]] = []
+        self.jump_labels: dict[str, int] | None = None  # label -> state while in a jump body
+        self.seg_index = 0
 
     # -- emission -----------------------------------------------------------------------------
     def where(self, loc: Location | None) -> int:
@@ -380,11 +382,63 @@ class Codegen:
 
     # -- statements ---------------------------------------------------------------------------
     def block(self, stmts: list[A.Stmt]) -> None:
+        if self.jump_labels is None and any(isinstance(s, A.Jump) for s in stmts):
+            self.jump_block(stmts)
+            return
         n = len(self.lines)
         for s in stmts:
             self.stmt(s)
         if len(self.lines) == n:
             self.emit("pass")
+
+    def jump_block(self, stmts: list[A.Stmt]) -> None:
+        """A body with jumps (IL) becomes a program-counter state machine: one ``if _pc <= k``
+        block per label, in order, so falling through needs no code; a jump sets ``_pc`` and
+        restarts the loop. Backward jumps are charged to the watchdog budget like loops."""
+        segs: list[list[A.Stmt]] = [[]]
+        labels: dict[str, int] = {}
+        for s in stmts:
+            if isinstance(s, A.Label):
+                if segs[-1] or len(segs) > 1 or labels:
+                    segs.append([])
+                labels[s.name] = len(segs) - 1
+            else:
+                segs[-1].append(s)
+        self.jump_labels = labels
+        self.emit("_pc = 0")
+        self.emit("while True:")
+        self.ind += 1
+        for k, seg in enumerate(segs):
+            self.seg_index = k
+            self.emit(f"if _pc <= {k}:")
+            self.ind += 1
+            n = len(self.lines)
+            for s in seg:
+                self.stmt(s)
+            if len(self.lines) == n:
+                self.emit("pass")
+            self.ind -= 1
+        self.emit("break")
+        self.ind -= 1
+        self.jump_labels = None
+
+    def s_Label(self, s: A.Label) -> None:
+        pass
+
+    def s_Jump(self, s: A.Jump) -> None:
+        labels = self.jump_labels or {}
+        target = labels[s.label]
+        if s.cond is not None:
+            cond = self.ex(s.cond)
+            self.flush_pre()
+            self.emit(f"if {cond}:")
+            self.ind += 1
+        if target <= self.seg_index:  # backward: may loop, so it costs watchdog budget
+            self._watchdog(s.loc)
+        self.emit(f"_pc = {target}")
+        self.emit("continue")
+        if s.cond is not None:
+            self.ind -= 1
 
     def stmt(self, s: A.Stmt) -> None:
         self.where_now = self.where(s.loc)

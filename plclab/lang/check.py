@@ -482,6 +482,7 @@ class Checker:
         self.scope = p.scope  # type: ignore[attr-defined]
         self.calls.setdefault(p.name, set())
         self.body(p.body)
+        self.check_labels(p.body)
         if p.kind == "FUNCTION" and p.native is None and p.return_type is not None:
             assigned = any(
                 isinstance(s, A.Assign) and isinstance(s.target, A.Name) and s.target.name == p.name
@@ -498,6 +499,26 @@ class Checker:
                               "used; remove it or use it", d.loc)
         self.pou = None
         self.scope = {}
+
+    def check_labels(self, body: list[A.Stmt]) -> None:
+        """Jumps and labels (IL): labels unique, targets known, both at the top of the body."""
+        labels: dict[str, A.Label] = {}
+        for s in body:
+            if isinstance(s, A.Label):
+                if s.name in labels:
+                    self.err("PLC0101", f"label {s.name} is defined twice (first at line "
+                             f"{labels[s.name].loc.line}); rename one of them", s.loc)
+                labels.setdefault(s.name, s)
+        top = {id(s) for s in body}
+        for s in A.walk_stmts(body):
+            if isinstance(s, A.Label | A.Jump) and id(s) not in top:
+                self.err("PLC0145", "jumps and labels must be at the top level of the body, "
+                         "not inside IF, CASE or a loop", s.loc)
+            elif isinstance(s, A.Jump) and s.label not in labels:
+                self.err("PLC0145", f"jump to unknown label {s.label}" +
+                         (self._suggest(s.label, labels) or
+                          (f" (labels: {', '.join(labels)})" if labels else
+                           "; define it with  " + s.label + ":  at the start of a line")), s.loc)
 
     def check_test(self, t: A.TestBlock) -> None:
         self.in_test = True
@@ -541,6 +562,8 @@ class Checker:
     def body(self, stmts: list[A.Stmt]) -> None:
         returned = None
         for s in stmts:
+            if isinstance(s, A.Label):  # a jump may land here: reachable again
+                returned = None
             if returned is not None and not isinstance(s, A.Empty):
                 self.warn("PLC0201", "this code is never executed: it follows a RETURN at line "
                           f"{returned.loc.line}; remove it or make the RETURN conditional", s.loc)
@@ -581,7 +604,7 @@ class Checker:
                 self.err("PLC0114", f"{kw} is only allowed inside FOR, WHILE or REPEAT", s.loc)
         elif isinstance(s, A.Jump):
             if s.cond is not None:
-                self.expr(s.cond, T.BOOL)
+                self.cond_type(self.expr(s.cond, T.BOOL), s.cond, "jump")
 
     def loop_body(self, body: list[A.Stmt]) -> None:
         self.loop_depth += 1

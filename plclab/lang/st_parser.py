@@ -50,6 +50,7 @@ class Parser:
         self.pragmas = lexer.pragmas
         self.file = file
         self.i = 0
+        self.il_default = file.lower().endswith(".il")  # a .il file: bodies are IL unless ST
 
     # -- token helpers ------------------------------------------------------------------------
     @property
@@ -183,12 +184,24 @@ class Parser:
             except _Bail:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
-        body = self.stmt_list({end_kw})
+        body, language, lower = self.pou_body(end_kw)
         end_loc = self.loc()
         if not self.accept(end_kw):
             self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
-        return A.Pou(self.loc(head), kind, name_tok.value, decls, body, ret, name_tok.text,
-                     native=self._native_for(head.line), end_loc=end_loc)
+        pou = A.Pou(self.loc(head), kind, name_tok.value, decls, body, ret, name_tok.text,
+                    language=language, native=self._native_for(head.line), end_loc=end_loc)
+        if lower is not None:  # IL: translated once every file is parsed (types are known)
+            pou._lower = lambda env, pou=pou: lower(pou, env)  # type: ignore[attr-defined]
+        return pou
+
+    def pou_body(self, end_kw: str):
+        """(statements, language, pending lowering) of a POU body: ST, or IL when the body
+        looks like IL (rule in :func:`plclab.lang.il_parser.is_il_body`)."""
+        from .il_parser import is_il_body, parse_il_body
+
+        if is_il_body(self, end_kw):
+            return [], "IL", parse_il_body(self, end_kw)
+        return self.stmt_list({end_kw}), "ST", None
 
     def test_block(self) -> A.TestBlock:
         head = self.advance()
@@ -832,16 +845,23 @@ def _found(t: Token) -> str:
 
 def parse_st(text: str, file: str = "<input>") -> A.SourceFile:
     """Parse ST source; raise :class:`PlcError` with every syntax diagnostic if any."""
-    p = Parser(text, file)
-    out = p.parse_file()
-    if p.diagnostics:
-        raise PlcError(p.diagnostics[0].code, p.diagnostics[0].message,
-                       p.diagnostics[0].location, diagnostics=p.diagnostics)
+    out, diags = parse_st_collect(text, file)
+    if diags:
+        raise PlcError(diags[0].code, diags[0].message, diags[0].location, diagnostics=diags)
     return out
 
 
-def parse_st_collect(text: str, file: str = "<input>") -> tuple[A.SourceFile, list[Diagnostic]]:
-    """Parse ST source and return the tree plus the diagnostics (no exception)."""
+def parse_st_collect(text: str, file: str = "<input>",
+                     defer: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Parse ST source and return the tree plus the diagnostics (no exception).
+
+    IL bodies found in the file are translated at the end; with ``defer=True`` that is left to
+    the caller (:func:`plclab.project.parse_sources` does it once all files are parsed)."""
     p = Parser(text, file)
     out = p.parse_file()
-    return out, p.diagnostics
+    diags = p.diagnostics
+    if not defer and any(hasattr(pou, "_lower") for pou in out.pous):
+        from .il_parser import lower_pending
+
+        diags = diags + lower_pending([out])
+    return out, diags

@@ -6,18 +6,6 @@ import logging
 
 from ..errors import PlcError
 
-#: error codes of the Modbus layer (see docs/modbus.md)
-PROBLEMS = {
-    "PLC9201": ("Modbus support not installed", "pip install 'plclab[modbus]' (pymodbus 3.16+)."),
-    "PLC9202": ("cannot open the Modbus port", "Another program uses the port, or it needs "
-                "privileges (ports below 1024); pick another with --port."),
-    "PLC9203": ("bad Modbus option", "An --io URL, a host, a port or an address is malformed."),
-    "PLC9204": ("Modbus exception response", "The server refused the request (illegal address, "
-                "read-only area, illegal value)."),
-    "PLC9205": ("no Modbus connection", "The server does not answer: is it running, on this "
-                "host and port?"),
-}
-
 _quiet = False
 
 

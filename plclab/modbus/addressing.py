@@ -40,7 +40,7 @@ import csv
 import io
 import json
 import re
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 #: bytes of each area that are mapped (8192 bits, 512 words)
 MAPPED_BYTES = 1024
@@ -173,6 +173,30 @@ def located_variables(plc) -> list[tuple[str, str, str]]:
     return out
 
 
+def overlaps(plc) -> list[str]:
+    """Pairs of located variables that share bits (``%QW0`` and ``%QX0.0`` do, as on S7).
+
+    >>> import plclab
+    >>> overlaps(plclab.loads("PROGRAM P VAR w AT %QW0 : INT; b AT %QX0.0 : BOOL; END_VAR "
+    ...                       "b := TRUE; END_PROGRAM"))
+    ['P.w (%QW0) and P.b (%QX0.0) share bits']
+    """
+    items = []
+    for name, address, _ in located_variables(plc):
+        area, size, byte, bit = parse_address(address)
+        if size == "X":
+            bits = {(area, byte, bit)}
+        else:
+            bits = {(area, b, i) for b in range(byte, byte + _BYTES[size]) for i in range(8)}
+        items.append((name, address, bits))
+    out = []
+    for i, (n1, a1, b1) in enumerate(items):
+        for n2, a2, b2 in items[i + 1:]:
+            if b1 & b2:
+                out.append(f"{n1} ({a1}) and {n2} ({a2}) share bits")
+    return out
+
+
 def map_rows(plc, *, allow_coil_writes: bool = False,
              read_only_inputs: bool = False) -> tuple[list[dict], list[str]]:
     """One row per located variable (see :data:`MAP_COLUMNS`) and the names left unmapped."""
@@ -216,7 +240,7 @@ def write_map(path: str, rows: list[dict]) -> None:
 
 
 def format_map(rows: list[dict], *, allow_coil_writes: bool, read_only_inputs: bool,
-               unmapped: list[str] | None = None) -> str:
+               unmapped: list[str] | None = None, shared: list[str] | None = None) -> str:
     """The address map as printed by ``plclab serve``."""
     coil_access = "read, write = force" if allow_coil_writes else "read only"
     win = "not mapped (--read-only-inputs)" if read_only_inputs else "read/write"
@@ -242,6 +266,8 @@ def format_map(rows: list[dict], *, allow_coil_writes: bool, read_only_inputs: b
                          f"{r['table']} {r['number']}{bit}{words}")
     for u in unmapped or []:
         lines.append(f"  {u}: beyond the first {MAPPED_BYTES} bytes, not mapped")
+    for o in shared or []:
+        lines.append(f"note: {o} (words are byte-addressed: %QW0 is %QX0.0..%QX1.7)")
     return "\n".join(lines)
 
 

@@ -159,6 +159,14 @@ class ModbusClient:
     def close(self) -> None:
         self._c.close()
 
+    def __del__(self) -> None:
+        c = getattr(self, "_c", None)
+        if c is not None:
+            try:
+                c.close()
+            except Exception:  # noqa: BLE001 - interpreter shutdown
+                pass
+
     def __enter__(self) -> ModbusClient:
         return self
 

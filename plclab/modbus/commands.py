@@ -118,7 +118,7 @@ def _say(text: str) -> None:
 def cmd_serve(ns: argparse.Namespace) -> int:
     from ..project import load
     from ._deps import need_pymodbus
-    from .addressing import format_map, map_rows, write_map
+    from .addressing import format_map, map_rows, overlaps, write_map
     from .server import PlcServer
 
     need_pymodbus()
@@ -150,7 +150,8 @@ def cmd_serve(ns: argparse.Namespace) -> int:
         except OSError as exc:
             raise PlcError("PLC3003", f"--map {ns.map_file}: {exc.strerror}") from None
     print(format_map(rows, allow_coil_writes=ns.allow_coil_writes,
-                     read_only_inputs=ns.read_only_inputs, unmapped=unmapped), flush=True)
+                     read_only_inputs=ns.read_only_inputs, unmapped=unmapped,
+                     shared=overlaps(plc)), flush=True)
     if plant is not None:
         from .plantmap import format_plant_map
 

@@ -42,7 +42,8 @@ class PlantServer:
         lay = self.layout
 
         def bits(n: int, base: int = 0) -> list:
-            return [SimData(base, count=max(n, 1), values=False, datatype=DataType.BITS)]
+            # values= as a list with count=1 (pymodbus' block check is quadratic in count)
+            return [SimData(base, values=[False] * max(n, 1), datatype=DataType.BITS)]
 
         def regs(n: int, base: int = 0) -> list:
             return [SimData(base, count=n, datatype=DataType.REGISTERS)] if n else []

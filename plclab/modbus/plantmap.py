@@ -8,14 +8,18 @@ kind and type.
 Modbus table        plant signals, in signal order         PLC address (remote I/O)
 ==================  =====================================  ==================================
 discrete inputs 0.  boolean sensors                        %IX0.0, %IX0.1, ... (k -> %IX k//8 . k%8)
-input registers 0.  real sensors, scaled 0..27648          %IW0, %IW2, ... (k -> %IW 2k)
+input registers 0.  real sensors, scaled 0..27648          %IW64, %IW66, ... (k -> %IW 64+2k)
 coils 0..           boolean actuators and lamps            %QX0.0, %QX0.1, ...
-holding regs 0..    real actuators and lamps, 0..27648     %QW0, %QW2, ...
+holding regs 0..    real actuators and lamps, 0..27648     %QW64, %QW66, ...
 coils 1000..        boolean panel signals (buttons)        not wired to the PLC
 holding regs 1000.  real panel signals, 0..27648           not wired to the PLC
 input regs 1000..   info: counts of the six groups above,  read by the PLC's remote-I/O client
                     then plant time in ms (hi, lo word)
 ==================  =====================================  ==================================
+
+plclab's words share bytes with its bits (``%IW0`` is ``%IX0.0..%IX1.7``), so the analog
+values start at byte 64, as the analog channels of an S7-1200 CPU do (``%IW64``): bits use
+bytes 0..63 (512 bits at most), words bytes 64..1023 (480 words at most).
 
 Reals are scaled as on an S7 analog module: the low end of the signal's range is 0, the high
 end 27648 (see :func:`plclab.modbus.addressing.to_register`).
@@ -29,7 +33,7 @@ coil's bit or the register's bytes; the others keep the plant's own value (the t
 >>> [s.name for s in lay.di], [s.name for s in lay.coils], [s.name for s in lay.hr]
 (['LS1', 'LS2'], ['PUMP'], ['PUMP_SPEED'])
 >>> plc_address("ir", 2)
-'%IW4'
+'%IW68'
 """
 
 from __future__ import annotations
@@ -41,6 +45,9 @@ from .addressing import MAPPED_BYTES, from_register, parse_address, to_register
 PANEL_BASE = 1000  # coils / holding registers of panel signals
 INFO_BASE = 1000  # input registers: n_di, n_ir, n_coils, n_hr, n_panel_coils, n_panel_hr, t_hi, t_lo
 INFO_COUNT = 8
+ANALOG_BYTE = 64  # first byte of the analog words in the PLC's image (%IW64, %QW64)
+MAX_BITS = ANALOG_BYTE * 8  # 512 digital points a direction
+MAX_WORDS = (MAPPED_BYTES - ANALOG_BYTE) // 2  # 480 analog points a direction
 
 GROUPS = ("di", "ir", "coils", "hr", "panel_coils", "panel_hr")
 GROUP_TABLE = {"di": "discrete input", "ir": "input register", "coils": "coil",
@@ -79,7 +86,7 @@ def plc_address(group: str, k: int) -> str:
     if group in ("di", "coils"):
         return f"%{'I' if group == 'di' else 'Q'}X{k // 8}.{k % 8}"
     if group in ("ir", "hr"):
-        return f"%{'I' if group == 'ir' else 'Q'}W{2 * k}"
+        return f"%{'I' if group == 'ir' else 'Q'}W{ANALOG_BYTE + 2 * k}"
     raise ValueError(f"{group} is not wired to the PLC")
 
 
@@ -122,13 +129,15 @@ def coil_covered(covered: set, k: int) -> bool:
 
 
 def register_covered(covered: set, k: int) -> bool:
-    return any((b, i) in covered for b in (2 * k, 2 * k + 1) for i in range(8))
+    b0 = ANALOG_BYTE + 2 * k
+    return any((b, i) in covered for b in (b0, b0 + 1) for i in range(8))
 
 
 # -- process-image helpers (used by local coupling and by remote I/O) ------------------------
 def set_bit(buf: bytearray, k: int, value: bool) -> None:
+    """Set bit ``k`` (``%?X k//8 . k%8``) if it lies in the digital bytes 0..63."""
     byte, bit = divmod(k, 8)
-    if byte >= min(len(buf), MAPPED_BYTES):
+    if byte >= ANALOG_BYTE:
         return
     if value:
         buf[byte] |= 1 << bit
@@ -138,16 +147,19 @@ def set_bit(buf: bytearray, k: int, value: bool) -> None:
 
 def get_bit(buf: bytes, k: int) -> bool:
     byte, bit = divmod(k, 8)
-    return bool(buf[byte] >> bit & 1) if byte < len(buf) else False
+    return bool(buf[byte] >> bit & 1) if byte < min(len(buf), ANALOG_BYTE) else False
 
 
 def set_word(buf: bytearray, k: int, value: int) -> None:
-    if 2 * k + 2 <= min(len(buf), MAPPED_BYTES):
-        buf[2 * k:2 * k + 2] = (int(value) & 0xFFFF).to_bytes(2, "big")
+    """Set analog word ``k`` (``%?W 64+2k``), big-endian."""
+    b = ANALOG_BYTE + 2 * k
+    if b + 2 <= min(len(buf), MAPPED_BYTES):
+        buf[b:b + 2] = (int(value) & 0xFFFF).to_bytes(2, "big")
 
 
 def get_word(buf: bytes, k: int) -> int:
-    return int.from_bytes(buf[2 * k:2 * k + 2], "big") if 2 * k + 2 <= len(buf) else 0
+    b = ANALOG_BYTE + 2 * k
+    return int.from_bytes(buf[b:b + 2], "big") if b + 2 <= len(buf) else 0
 
 
 class PlantCoupling:

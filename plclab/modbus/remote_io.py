@@ -1,8 +1,8 @@
 """Remote I/O: the PLC polls a plant served over Modbus TCP (``serve --io modbus://...``).
 
 Each poll (every ``period`` wall seconds) reads the discrete inputs into ``%IX0.0...`` and the
-input registers into ``%IW0, %IW2...`` (the PLC's input terminals), then writes the coils from
-``%QX0.0...`` and the holding registers from ``%QW0, %QW2...`` -- only those covered by a
+input registers into ``%IW64, %IW66...`` (the PLC's input terminals), then writes the coils from
+``%QX0.0...`` and the holding registers from ``%QW64, %QW66...`` -- only those covered by a
 located output of the program (see :mod:`plclab.modbus.plantmap`).
 
 How many of each: ``modbus://host:port?di=2&ir=3&coils=1&hr=1`` if given; otherwise the info
@@ -10,8 +10,8 @@ block of ``plclab plant-serve`` (input registers 1000..1005); otherwise (a serve
 plclab's) as many as the program's located variables reach.
 
 On a communication loss (timeout, refused connection, exception response) :attr:`ok` goes
-False at once; the input terminals keep their last values; the poller reconnects every
-``period`` (at least every 0.2 s) and :attr:`ok` is True again after the first complete poll.
+False at once; the input terminals keep their last values; the poller tries to reconnect
+every ``max(period, 0.2)`` s and :attr:`ok` is True again after the first complete poll.
 """
 
 from __future__ import annotations
@@ -21,9 +21,12 @@ from collections.abc import Callable
 from urllib.parse import parse_qs, urlsplit
 
 from ..errors import PlcError
-from .addressing import MAPPED_BITS, MAPPED_WORDS, located_variables, parse_address
+from .addressing import located_variables, parse_address
 from .plantmap import (
+    ANALOG_BYTE,
     INFO_BASE,
+    MAX_BITS,
+    MAX_WORDS,
     coil_covered,
     covered_outputs,
     get_bit,
@@ -54,7 +57,7 @@ def parse_io_url(url: str) -> tuple[str, int, dict[str, int], int]:
         except ValueError:
             raise PlcError("PLC9203", f"--io {url}: {key}= needs a whole number") from None
         if key in _COUNT_KEYS:
-            limit = MAPPED_BITS if key in ("di", "coils") else MAPPED_WORDS
+            limit = MAX_BITS if key in ("di", "coils") else MAX_WORDS
             if not 0 <= n <= limit:
                 raise PlcError("PLC9203", f"--io {url}: {key} must be 0..{limit}")
             counts[key] = n
@@ -76,13 +79,15 @@ def counts_from_program(plc) -> dict[str, int]:
         if area == "M":
             continue
         n = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}[size]
-        if size == "X":
+        if size == "X" and byte < ANALOG_BYTE:
             key, reach = ("di" if area == "I" else "coils"), byte * 8 + bit + 1
+        elif size != "X" and byte >= ANALOG_BYTE:
+            key, reach = ("ir" if area == "I" else "hr"), (byte - ANALOG_BYTE + n + 1) // 2
         else:
-            key, reach = ("ir" if area == "I" else "hr"), (byte + n + 1) // 2
+            continue
         c[key] = max(c[key], reach)
-    c["di"], c["coils"] = min(c["di"], MAPPED_BITS), min(c["coils"], MAPPED_BITS)
-    c["ir"], c["hr"] = min(c["ir"], MAPPED_WORDS), min(c["hr"], MAPPED_WORDS)
+    c["di"], c["coils"] = min(c["di"], MAX_BITS), min(c["coils"], MAX_BITS)
+    c["ir"], c["hr"] = min(c["ir"], MAX_WORDS), min(c["hr"], MAX_WORDS)
     return c
 
 
@@ -131,8 +136,8 @@ class RemoteIO:
                 info = None  # not a plclab plant server
             fallback = info or counts_from_program(self.plc)
             for k in _COUNT_KEYS:
-                counts.setdefault(k, min(fallback[k], MAPPED_BITS if k in ("di", "coils")
-                                         else MAPPED_WORDS))
+                counts.setdefault(k, min(fallback[k], MAX_BITS if k in ("di", "coils")
+                                         else MAX_WORDS))
         return counts
 
     async def _call(self, name: str, *args, **kw):
@@ -179,15 +184,20 @@ class RemoteIO:
         loop = asyncio.get_running_loop()
         while True:
             t = loop.time()
+            wait = self.period
             try:
                 await self.poll_once()
                 self._set_ok(True, "")
-                wait = self.period
-            except (ModbusException, OSError, asyncio.TimeoutError, _ExceptionResponse,
-                    ConnectionError, AttributeError) as exc:
+            except (ModbusException, OSError, TimeoutError, _ExceptionResponse) as exc:
+                failed = str(exc) or type(exc).__name__
+            except Exception as exc:  # noqa: BLE001 - a poll must never stop the PLC
+                failed = f"{type(exc).__name__}: {exc}"
+            else:
+                failed = None
+            if failed is not None:
                 self.failures += 1
                 self.close()
-                self._set_ok(False, str(exc) or type(exc).__name__)
+                self._set_ok(False, failed)
                 wait = max(self.period, 0.2)
             await asyncio.sleep(max(0.0, t + wait - loop.time()))
 

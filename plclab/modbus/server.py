@@ -17,7 +17,6 @@ True
 from __future__ import annotations
 
 import asyncio
-import sys
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -63,8 +62,9 @@ class ImageBridge:
         from pymodbus.simulator import DataType, SimData, SimDevice
 
         bits = MAPPED_BITS if self.read_only_inputs else 2 * MAPPED_BITS
-        coils = [SimData(0, count=bits, values=False, datatype=DataType.BITS)]
-        discrete = [SimData(0, count=MAPPED_BITS, values=False, datatype=DataType.BITS)]
+        # values= as a list with count=1: pymodbus' block check is quadratic in count for bits
+        coils = [SimData(0, values=[False] * bits, datatype=DataType.BITS)]
+        discrete = [SimData(0, values=[False] * MAPPED_BITS, datatype=DataType.BITS)]
         holding = [SimData(0, count=MAPPED_WORDS, datatype=DataType.REGISTERS),
                    SimData(HR_OUTPUT_BASE, count=MAPPED_WORDS, datatype=DataType.REGISTERS),
                    SimData(HR_COMMAND, count=1, datatype=DataType.REGISTERS)]
@@ -158,11 +158,8 @@ class ImageBridge:
             return ExcCodes.ILLEGAL_ADDRESS
         if not outputs and (self.read_only_inputs or end > 2 * MAPPED_BITS):
             return ExcCodes.ILLEGAL_ADDRESS
-        n_bits = self.words * 16
-        for i, v in enumerate(values):
-            k = address + i - (0 if outputs else COIL_INPUT_BASE)
-            if k >= n_bits:
-                return ExcCodes.ILLEGAL_ADDRESS
+        if end - (0 if outputs else COIL_INPUT_BASE) > self.words * 16:
+            return ExcCodes.ILLEGAL_ADDRESS
         for i, v in enumerate(values):
             k = address + i
             if outputs:
@@ -254,6 +251,8 @@ class PlcServer:
                  device_id: int = 1, on_message: Callable[[str], None] | None = None) -> None:
         if not speed > 0:
             raise PlcError("PLC3002", f"--speed must be positive, not {speed}")
+        if io_status and io is None:
+            raise PlcError("PLC3002", "--io-status goes with remote I/O (--io modbus://...)")
         if plant is not None and io is not None:
             raise PlcError("PLC3002", "give either a local plant (--plant) or remote I/O "
                            "(--io), not both")
@@ -430,13 +429,19 @@ class BackgroundServer:
     """Run a :class:`PlcServer` in a thread with its own event loop (notebooks and tests).
 
     >>> # with BackgroundServer(plc, port=5020, speed=10) as srv: ... talk Modbus ...
+    >>> # with BackgroundServer(PlantServer(get_plant("tank"), port=5021)): ...
 
     The PLC belongs to the server thread while it runs: talk to it over Modbus, and read
     ``plc[...]`` again only after the ``with`` block.
     """
 
-    def __init__(self, plc, **options: Any) -> None:
-        self.server = PlcServer(plc, **options)
+    def __init__(self, plc_or_server, **options: Any) -> None:
+        if hasattr(plc_or_server, "request_stop"):  # a PlcServer or a PlantServer
+            if options:
+                raise TypeError("give options to the server, not to BackgroundServer")
+            self.server = plc_or_server
+        else:
+            self.server = PlcServer(plc_or_server, **options)
         self._thread: threading.Thread | None = None
         self._loop: asyncio.AbstractEventLoop | None = None
         self._error: BaseException | None = None
@@ -449,6 +454,9 @@ class BackgroundServer:
                 self._loop = asyncio.get_running_loop()
                 try:
                     await self.server.start()
+                except BaseException as exc:  # noqa: BLE001 - reported to the caller
+                    self._error = exc
+                    return
                 finally:
                     started.set()
                 await self.server.run()
@@ -463,13 +471,18 @@ class BackgroundServer:
         self._thread.start()
         started.wait(timeout)
         if self._error is not None:
-            raise self._error
+            self._thread.join(timeout)
+            err, self._error = self._error, None
+            raise err
         self.server.ready.wait(timeout)
         return self
 
     def stop(self, timeout: float = 10.0) -> None:
         if self._loop is not None and self._thread is not None and self._thread.is_alive():
-            self._loop.call_soon_threadsafe(self.server.request_stop)
+            try:
+                self._loop.call_soon_threadsafe(self.server.request_stop)
+            except RuntimeError:  # the loop has just finished
+                pass
             self._thread.join(timeout)
         if self._error is not None and not isinstance(self._error, asyncio.CancelledError):
             err, self._error = self._error, None
@@ -480,7 +493,3 @@ class BackgroundServer:
 
     def __exit__(self, *exc) -> None:
         self.stop()
-
-
-def print_message(text: str) -> None:
-    print(text, file=sys.stderr, flush=True)

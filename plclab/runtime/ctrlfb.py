@@ -216,9 +216,9 @@ class PID(_Timed):
             u = y
         else:
             di = kp / tn * T * self._e1 if (tn > 0.0 and not first) else 0.0
-            u = p + i + di + d + off
+            u = p + (i + di) + d + off
             if limited and ((u > hi and di > 0.0) or (u < lo and di < 0.0)):
-                u -= di  # anti-windup: the integral stops while the output is limited
+                u = p + i + d + off  # anti-windup: the integral stops while limited
             else:
                 i += di
             y = u

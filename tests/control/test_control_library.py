@@ -3,6 +3,8 @@ Python defaults equal the ST declarations, no block raises for any input, and th
 adds no diagnostics to user programs."""
 
 import math
+import re
+from pathlib import Path
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -219,3 +221,47 @@ def test_no_block_raises_and_no_output_becomes_nan(call, cycle_ms):
                 assert isinstance(v, bool), (name, d.name, v)
             else:
                 assert isinstance(v, int) and t.lo <= v <= t.hi, (name, d.name, v)
+
+
+# ------------------------------------------------------------------ docs/blocks.md examples
+
+_DOCS = Path(__file__).resolve().parents[2] / "docs" / "blocks.md"
+
+
+def test_every_example_in_docs_blocks_md_compiles_and_runs():
+    snippets = re.findall(r"```iecst\n(.*?)```", _DOCS.read_text(encoding="utf-8"), re.S)
+    assert len(snippets) >= 14
+    for i, body in enumerate(snippets):
+        src = f"PROGRAM Doc{i}\n{body}END_PROGRAM\n"
+        project, diags = check_sources([(src, f"blocks_md_{i}.st")])
+        errors = [str(d) for d in diags if d.severity == "error"]
+        assert project is not None and not errors, (body, errors)
+        plc = plclab.loads(src)
+        plc.run(seconds=0.05)
+        assert plc.state == "RUN", body
+
+
+def test_blocks_are_callable_from_il_too():
+    plc = plclab.loads("""
+    PROGRAM Il
+    VAR pid : PID; hy : HYST; pv : REAL := 1.0; sp : REAL := 3.0; y : REAL; heat : BOOL;
+        raw : INT := 13824; frac : REAL; END_VAR
+    CAL pid(ACTUAL := pv, SETPOINT := sp, KP := 2.0)
+    LD pid.Y
+    ST y
+    CAL hy(IN := pv, SP := sp, H := 1.0)
+    LD hy.Q
+    ST heat
+    LD 0.0
+    NORM_X raw, 27648.0
+    ST frac
+    END_PROGRAM""")
+    plc.scan()
+    assert plc["Il.y"] == 4.0 and plc["Il.heat"] is True and plc["Il.frac"] == 0.5
+
+
+def test_ctrlfb_docstring_examples():
+    import doctest
+
+    result = doctest.testmod(ctrlfb)
+    assert result.attempted > 0 and result.failed == 0

@@ -1,0 +1,638 @@
+"""PLCopen XML (TC6 XML v2.01) importer: projects exported by OpenPLC Editor, Beremiz or CODESYS
+-> the shared AST.
+
+What is read:
+
+* ``types/dataTypes``: enumerations, structures, arrays, subranges, aliases (``derived``);
+* ``types/pous``: programs, function blocks and functions with their interface
+  (``inputVars`` ``outputVars`` ``inOutVars`` ``localVars`` ``tempVars`` ``externalVars``,
+  ``constant``/``retain``, addresses, initial values) and a body in
+  **ST** or **IL** (text, parsed by the ST and IL front ends, errors located in the XML file),
+  **LD** (``leftPowerRail``, ``rightPowerRail``, ``contact``, ``coil``, ``block``,
+  ``inVariable``, ``outVariable``, ``connector``/``continuation``, joined by
+  ``connection refLocalId``) or **FBD** (the same boxes and variables);
+* ``instances/configurations``: global variables, resources, tasks and program instances.
+
+Anything else (SFC bodies, jumps and labels in graphics, actions, pointers...) is reported as
+``PLC0181`` naming the element and its ``localId``. Locations are ``file.xml:line:col`` of the
+XML element (or of the line inside an ST/IL body).
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+import xml.parsers.expat as expat
+
+from ..errors import Diagnostic, Location
+from . import ast as A
+from .ld_parser import Elem, lower_network
+
+NS = "http://www.plcopen.org/xml/tc6_0201"
+_NAMESPACES = (NS, "http://www.plcopen.org/xml/tc6_0200", "http://www.plcopen.org/xml/tc6.xsd")
+_ELEMENTARY = {"BOOL", "BYTE", "WORD", "DWORD", "LWORD", "SINT", "INT", "DINT", "LINT", "USINT",
+               "UINT", "UDINT", "ULINT", "REAL", "LREAL", "TIME", "LTIME", "DATE", "DT", "TOD",
+               "LDATE", "LDT", "LTOD"}
+_SECTIONS = {"inputVars": "VAR_INPUT", "outputVars": "VAR_OUTPUT", "inOutVars": "VAR_IN_OUT",
+             "localVars": "VAR", "tempVars": "VAR_TEMP", "externalVars": "VAR_EXTERNAL",
+             "globalVars": "VAR_GLOBAL"}
+_POU_KINDS = {"program": "PROGRAM", "functionBlock": "FUNCTION_BLOCK", "function": "FUNCTION"}
+_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_IGNORED = {"documentation", "addData", "comment"}
+
+
+class _Bad(Exception):
+    """Abandon the current item (a diagnostic was recorded)."""
+
+
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def parse_xml_positions(text: str) -> tuple[ET.Element, dict[int, tuple[int, int]],
+                                             dict[int, tuple[int, int]]]:
+    """Parse XML keeping, for each element, where its start tag and its first text are
+    (1-based line and column). Raises :class:`expat.ExpatError` on malformed XML."""
+    p = expat.ParserCreate(encoding="utf-8", namespace_separator="}")
+    p.buffer_text = False
+    tb = ET.TreeBuilder()
+    starts: dict[int, tuple[int, int]] = {}
+    texts: dict[int, tuple[int, int]] = {}
+    stack: list[ET.Element] = []
+
+    def fix(tag: str) -> str:
+        return "{" + tag if "}" in tag else tag
+
+    def start(tag, attrs):
+        el = tb.start(fix(tag), attrs)
+        starts[id(el)] = (p.CurrentLineNumber, p.CurrentColumnNumber + 1)
+        stack.append(el)
+
+    def end(tag):
+        tb.end(fix(tag))
+        stack.pop()
+
+    def data(s):
+        if stack and id(stack[-1]) not in texts:
+            texts[id(stack[-1])] = (p.CurrentLineNumber, p.CurrentColumnNumber + 1)
+        tb.data(s)
+
+    p.StartElementHandler = start
+    p.EndElementHandler = end
+    p.CharacterDataHandler = data
+    p.Parse(text.encode("utf-8"), True)
+    return tb.close(), starts, texts
+
+
+class _Importer:
+    def __init__(self, text: str, file: str) -> None:
+        self.text = text
+        self.file = file
+        self.diags: list[Diagnostic] = []
+        self.out = A.SourceFile(file)
+
+    # -- helpers ----------------------------------------------------------------------------
+    def loc(self, el: ET.Element) -> Location:
+        line, col = self.starts.get(id(el), (0, 0))
+        return Location(self.file, line, col)
+
+    def err(self, code: str, msg: str, el: ET.Element | None) -> None:
+        self.diags.append(Diagnostic(code, msg, self.loc(el) if el is not None else
+                                     Location(self.file, 1, 1)))
+
+    def fail(self, code: str, msg: str, el: ET.Element | None) -> None:
+        self.err(code, msg, el)
+        raise _Bad
+
+    def kids(self, el: ET.Element, name: str | None = None) -> list[ET.Element]:
+        return [c for c in el if isinstance(c.tag, str) and (name is None or _local(c.tag) == name)]
+
+    def kid(self, el: ET.Element, name: str) -> ET.Element | None:
+        for c in el:
+            if isinstance(c.tag, str) and _local(c.tag) == name:
+                return c
+        return None
+
+    def ident(self, name: str | None, el: ET.Element, what: str) -> str:
+        if not name or not _IDENT.match(name):
+            self.fail("PLC0183", f"{what} {name!r} is not a valid IEC identifier", el)
+        return name  # type: ignore[return-value]
+
+    def describe(self, el: ET.Element) -> str:
+        lid = el.get("localId")
+        return f"<{_local(el.tag)}>" + (f" (localId {lid})" if lid is not None else "")
+
+    def text_parser(self, text: str, el: ET.Element):
+        """An ST parser over ``text`` placed where it stands in the XML file."""
+        from .st_parser import Parser
+
+        holder = el
+        for d in el.iter():
+            if id(d) in self.texts and (d.text or "").strip():
+                holder = d
+                break
+        line, col = self.texts.get(id(holder), self.starts.get(id(el), (1, 1)))
+        return Parser("\n" * (line - 1) + " " * (col - 1) + text, self.file)
+
+    def expr(self, text: str | None, el: ET.Element, what: str) -> A.Expr:
+        from .st_parser import _Bail
+
+        if text is None or not text.strip():
+            self.fail("PLC0183", f"{self.describe(el)} has no {what}", el)
+        p = self.text_parser(text or "", el)
+        n = len(self.diags)
+        try:
+            e = p.expr()
+            if not p.at("EOF"):
+                p.fail_expected(f"the end of the {what}")
+        except _Bail:
+            e = None
+        if p.diagnostics:
+            self.diags.extend(p.diagnostics)
+        if e is None or len(self.diags) > n:
+            raise _Bad
+        return e
+
+    # -- driver -----------------------------------------------------------------------------
+    def run(self) -> A.SourceFile:
+        try:
+            root, self.starts, self.texts = parse_xml_positions(self.text)
+        except expat.ExpatError as exc:
+            self.diags.append(Diagnostic("PLC0180", f"not well-formed XML: {exc}; fix the file "
+                                         "or export it again", Location(self.file, exc.lineno,
+                                                                        exc.offset + 1)))
+            return self.out
+        ns = root.tag[1:].split("}")[0] if root.tag.startswith("{") else ""
+        if _local(root.tag) != "project" or ns not in _NAMESPACES:
+            self.err("PLC0180", f"this is not a PLCopen XML project: the root element is "
+                     f"<{_local(root.tag)}> in namespace {ns or 'none'}, expected <project "
+                     f"xmlns=\"{NS}\">", root)
+            return self.out
+        types = self.kid(root, "types")
+        if types is not None:
+            dts = self.kid(types, "dataTypes")
+            for dt in self.kids(dts) if dts is not None else []:
+                try:
+                    self.data_type(dt)
+                except _Bad:
+                    pass
+            pous = self.kid(types, "pous")
+            for pel in self.kids(pous) if pous is not None else []:
+                try:
+                    self.pou(pel)
+                except _Bad:
+                    pass
+        inst = self.kid(root, "instances")
+        cfgs = self.kid(inst, "configurations") if inst is not None else None
+        for c in self.kids(cfgs) if cfgs is not None else []:
+            try:
+                self.configuration(c)
+            except _Bad:
+                pass
+        return self.out
+
+    # -- types ------------------------------------------------------------------------------
+    def data_type(self, dt: ET.Element) -> None:
+        name = self.ident(dt.get("name"), dt, "data type name")
+        base = self.kid(dt, "baseType")
+        if base is None:
+            self.fail("PLC0183", f"data type {name} has no <baseType>", dt)
+        tref = self.type_ref(base)
+        init = None
+        iv = self.kid(dt, "initialValue")
+        if iv is not None:
+            init = self.init_value(iv)
+        self.out.types.append(A.TypeDecl(self.loc(dt), name.upper(), tref, init, name))
+
+    def type_ref(self, holder: ET.Element) -> A.TypeRef:
+        """The type inside ``<type>`` / ``<baseType>``."""
+        kids = [k for k in self.kids(holder) if _local(k.tag) not in _IGNORED]
+        if not kids:
+            self.fail("PLC0183", f"<{_local(holder.tag)}> names no type", holder)
+        t = kids[0]
+        tag = _local(t.tag)
+        loc = self.loc(t)
+        if tag.upper() in _ELEMENTARY and tag not in ("string", "wstring"):
+            return A.NamedTypeRef(loc, tag.upper())
+        if tag in ("string", "wstring"):
+            length = t.get("length")
+            ln = A.Literal(loc, int(length), "INT", None, length) if length and \
+                length.isdigit() else None
+            return A.StringTypeRef(loc, tag == "wstring", ln)
+        if tag == "derived":
+            return A.NamedTypeRef(loc, self.ident(t.get("name"), t, "type name").upper())
+        if tag == "array":
+            ranges = []
+            for d in self.kids(t, "dimension"):
+                lo, hi = d.get("lower"), d.get("upper")
+                ranges.append((self.expr(lo, d, "lower bound"), self.expr(hi, d, "upper bound")))
+            bt = self.kid(t, "baseType")
+            if bt is None or not ranges:
+                self.fail("PLC0183", "<array> needs <dimension lower upper> and <baseType>", t)
+            return A.ArrayTypeRef(loc, ranges, self.type_ref(bt))
+        if tag == "enum":
+            vals = self.kid(t, "values")
+            members = []
+            for v in self.kids(vals, "value") if vals is not None else []:
+                vn = self.ident(v.get("name"), v, "enumeration value")
+                ve = self.expr(v.get("value"), v, "value") if v.get("value") else None
+                members.append((vn.upper(), ve, self.loc(v)))
+            bt = self.kid(t, "baseType")
+            return A.EnumTypeRef(loc, members, self.type_ref(bt) if bt is not None else None)
+        if tag == "struct":
+            return A.StructTypeRef(loc, [self.variable(v, "VAR") for v in self.kids(t, "variable")])
+        if tag in ("subrangeSigned", "subrangeUnsigned"):
+            rng = self.kid(t, "range")
+            bt = self.kid(t, "baseType")
+            if rng is None or bt is None:
+                self.fail("PLC0183", f"<{tag}> needs <range lower upper> and <baseType>", t)
+            return A.SubrangeTypeRef(loc, self.type_ref(bt), self.expr(rng.get("lower"), rng,
+                                     "lower bound"), self.expr(rng.get("upper"), rng,
+                                                               "upper bound"))
+        self.fail("PLC0181", f"the type <{tag}> is not supported by plclab", t)
+        raise AssertionError
+
+    def init_value(self, iv: ET.Element) -> A.Expr:
+        kids = self.kids(iv)
+        if not kids:
+            self.fail("PLC0183", "<initialValue> is empty", iv)
+        v = kids[0]
+        tag = _local(v.tag)
+        if tag == "simpleValue":
+            return self.expr(v.get("value"), v, "value")
+        if tag == "arrayValue":
+            items: list[tuple[A.Expr | None, A.Expr]] = []
+            for item in self.kids(v, "value"):
+                rep = item.get("repetitionValue")
+                rep_e = A.Literal(self.loc(item), int(rep), "INT", None, rep) if rep and \
+                    rep.isdigit() else None
+                items.append((rep_e, self.init_value(item)))
+            return A.ArrayInit(self.loc(v), items)
+        if tag == "structValue":
+            fields = []
+            for item in self.kids(v, "value"):
+                m = self.ident(item.get("member"), item, "structure member")
+                fields.append((m.upper(), self.init_value(item), self.loc(item)))
+            return A.StructInit(self.loc(v), fields)
+        self.fail("PLC0181", f"the initial value <{tag}> is not supported", v)
+        raise AssertionError
+
+    def variable(self, v: ET.Element, section: str, constant: bool = False,
+                 retain: bool = False) -> A.VarDecl:
+        name = self.ident(v.get("name"), v, "variable name")
+        t = self.kid(v, "type")
+        if t is None:
+            self.fail("PLC0183", f"variable {name} has no <type>", v)
+        tref = self.type_ref(t)
+        iv = self.kid(v, "initialValue")
+        init = self.init_value(iv) if iv is not None else None
+        addr = v.get("address")
+        if addr is not None:
+            addr = addr.strip().upper()
+            if not re.match(r"^%[IQM][XBWDL]?[0-9]+(\.[0-9]+)*$|^%[IQM]\*$", addr):
+                self.fail("PLC0183", f"variable {name}: {addr!r} is not a direct address such "
+                          "as %IX0.0", v)
+        return A.VarDecl(self.loc(v), name.upper(), tref, init, addr, section, constant, retain,
+                         name)
+
+    def var_sections(self, holder: ET.Element, allowed: set[str]) -> list[A.VarDecl]:
+        out: list[A.VarDecl] = []
+        for sec in self.kids(holder):
+            tag = _local(sec.tag)
+            if tag in _IGNORED or tag == "returnType":
+                continue
+            if tag not in _SECTIONS or _SECTIONS[tag] not in allowed:
+                self.err("PLC0181", f"the variable section <{tag}> is not supported here", sec)
+                continue
+            constant = sec.get("constant") in ("true", "1")
+            retain = sec.get("retain") in ("true", "1") or sec.get("persistent") in ("true", "1")
+            for v in self.kids(sec, "variable"):
+                try:
+                    out.append(self.variable(v, _SECTIONS[tag], constant, retain))
+                except _Bad:
+                    pass
+        return out
+
+    # -- POUs -------------------------------------------------------------------------------
+    def pou(self, pel: ET.Element) -> None:
+        if _local(pel.tag) != "pou":
+            return
+        name = self.ident(pel.get("name"), pel, "POU name")
+        kind = _POU_KINDS.get(pel.get("pouType", ""))
+        if kind is None:
+            self.fail("PLC0183", f"POU {name}: pouType {pel.get('pouType')!r} must be program, "
+                      "functionBlock or function", pel)
+        decls: list[A.VarDecl] = []
+        ret = None
+        iface = self.kid(pel, "interface")
+        if iface is not None:
+            decls = self.var_sections(iface, set(_SECTIONS.values()) - {"VAR_GLOBAL"})
+            rt = self.kid(iface, "returnType")
+            if rt is not None:
+                ret = self.type_ref(rt)
+        if kind == "FUNCTION" and ret is None:
+            self.fail("PLC0183", f"function {name} has no <returnType>", pel)
+        pou = A.Pou(self.loc(pel), kind, name.upper(), decls, [], ret, name)
+        self.out.pous.append(pou)
+        for extra in ("actions", "transitions"):
+            el = self.kid(pel, extra)
+            if el is not None and self.kids(el):
+                self.err("PLC0181", f"POU {name}: <{extra}> (SFC) are not supported", el)
+        body = self.kid(pel, "body")
+        if body is None:
+            return
+        langs = [k for k in self.kids(body) if _local(k.tag) not in _IGNORED]
+        if not langs:
+            return
+        lang = langs[0]
+        tag = _local(lang.tag)
+        if tag == "ST":
+            self.st_body(pou, lang)
+        elif tag == "IL":
+            self.il_body(pou, lang)
+        elif tag in ("LD", "FBD"):
+            pou.language = tag
+            elems = self.graphic(lang, tag)
+            if elems is not None:
+                pou._lower = (lambda env, pou=pou, elems=elems:  # type: ignore[attr-defined]
+                              lower_network(pou, elems, env, self.file))
+        else:
+            self.err("PLC0181", f"POU {name}: a <{tag}> body is not supported (plclab imports ST, "
+                     "IL, LD and FBD bodies)", lang)
+
+    def body_text(self, lang: ET.Element) -> str:
+        return "".join(lang.itertext())
+
+    def st_body(self, pou: A.Pou, lang: ET.Element) -> None:
+        p = self.text_parser(self.body_text(lang), lang)
+        pou.body = p.stmt_list(set())
+        if not p.at("EOF"):
+            p.error("PLC0010", f"unexpected '{p.tok.text}' in the ST body of {pou.spelling}")
+        self.diags.extend(p.diagnostics)
+
+    def il_body(self, pou: A.Pou, lang: ET.Element) -> None:
+        from .il_parser import parse_il_body
+
+        p = self.text_parser(self.body_text(lang), lang)
+        lower = parse_il_body(p, "EOF")
+        if not p.at("EOF"):
+            p.error("PLC0147", f"unexpected '{p.tok.text}' in the IL body of {pou.spelling}")
+        self.diags.extend(p.diagnostics)
+        pou.language = "IL"
+        pou._lower = lambda env, pou=pou: lower(pou, env)  # type: ignore[attr-defined]
+
+    # -- LD and FBD -------------------------------------------------------------------------
+    def refs(self, cpi: ET.Element | None) -> list[tuple[str, str, ET.Element]]:
+        if cpi is None:
+            return []
+        out = []
+        for c in self.kids(cpi, "connection"):
+            rid = c.get("refLocalId")
+            if rid is None:
+                self.err("PLC0182", "<connection> without refLocalId", c)
+                continue
+            out.append((rid, c.get("formalParameter") or "", c))
+        return out
+
+    def graphic(self, lang: ET.Element, tag: str) -> list[Elem] | None:
+        elems: list[Elem] = []
+        by_id: dict[str, Elem] = {}
+        pending: list[tuple[Elem, str, list[tuple[str, str, ET.Element]]]] = []
+        connectors: dict[str, Elem] = {}
+        continuations: list[tuple[Elem, str, ET.Element]] = []
+        rights: list[ET.Element] = []
+        ok = True
+
+        def new(kind: str, el: ET.Element) -> Elem:
+            pos = self.kid(el, "position")
+            x = float(pos.get("x", 0)) if pos is not None else 0.0
+            y = float(pos.get("y", 0)) if pos is not None else 0.0
+            e = Elem(len(elems), kind, self.loc(el), text=self.describe(el), geom=(x, y))
+            eo = el.get("executionOrderId")
+            e.order = (int(eo) if eo and eo.isdigit() and int(eo) > 0 else 0, y, x)
+            elems.append(e)
+            lid = el.get("localId")
+            if lid is not None:
+                if lid in by_id:
+                    self.err("PLC0182", f"localId {lid} is used twice", el)
+                by_id[lid] = e
+            return e
+
+        for el in self.kids(lang):
+            k = _local(el.tag)
+            try:
+                if k in _IGNORED:
+                    continue
+                if k == "leftPowerRail":
+                    new("left", el)
+                elif k == "rightPowerRail":
+                    rights.append(el)
+                elif k in ("contact", "coil"):
+                    if tag != "LD":
+                        self.fail("PLC0181", f"{self.describe(el)} belongs in an LD body, not "
+                                  "FBD", el)
+                    e = new(k, el)
+                    v = self.kid(el, "variable")
+                    e.var = self.expr(v.text if v is not None else None, v if v is not None
+                                      else el, "variable")
+                    neg = el.get("negated") in ("true", "1")
+                    edge = el.get("edge", "none")
+                    storage = el.get("storage", "none")
+                    e.mode = "P" if edge == "rising" else "N" if edge == "falling" else \
+                        "S" if storage == "set" else "R" if storage == "reset" else \
+                        "/" if neg else ""
+                    if k == "contact" and e.mode in ("S", "R"):
+                        self.fail("PLC0183", f"{self.describe(el)}: a contact has no storage",
+                                  el)
+                    e.text = f"{'[' if k == 'contact' else '('}{e.mode or ' '}" \
+                             f"{']' if k == 'contact' else ')'} {v.text.strip() if v is not None else ''}"
+                    pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
+                elif k == "block":
+                    self.block(el, new, pending)
+                elif k in ("inVariable", "outVariable"):
+                    e = new("invar" if k == "inVariable" else "outvar", el)
+                    x = self.kid(el, "expression")
+                    e.var = self.expr(x.text if x is not None else None,
+                                      x if x is not None else el, "expression")
+                    if el.get("negated") in ("true", "1"):
+                        e.var = A.Unary(e.loc, "NOT", e.var)
+                    if k == "outVariable":
+                        pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
+                elif k == "connector":
+                    e = new("conn", el)
+                    connectors[(el.get("name") or "").upper()] = e
+                    pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
+                elif k == "continuation":
+                    e = new("conn", el)
+                    continuations.append((e, (el.get("name") or "").upper(), el))
+                else:
+                    self.fail("PLC0181", f"{self.describe(el)} is not supported in an {tag} body "
+                              "(plclab reads rails, contacts, coils, blocks, in/out variables, "
+                              "connectors and comments)", el)
+            except _Bad:
+                ok = False
+        for e, name, el in continuations:
+            c = connectors.get(name)
+            if c is None:
+                self.err("PLC0182", f"continuation {name!r} has no connector of that name", el)
+                ok = False
+            else:
+                e.inputs[""] = [(c.id, "")]
+        for e, pin, refs in pending:
+            out = []
+            for rid, fp, cel in refs:
+                src = by_id.get(rid)
+                if src is None:
+                    self.err("PLC0182", f"{e.text} is connected to localId {rid}, which does not "
+                             "exist", cel)
+                    ok = False
+                    continue
+                out.append((src.id, "" if src.kind in ("left", "contact", "coil", "invar",
+                                                       "conn") else fp))
+            e.inputs.setdefault(pin, []).extend(out)
+        for el in rights:
+            for rid, _, cel in self.refs_all(el):
+                if rid not in by_id:
+                    self.err("PLC0182", f"the right power rail is connected to localId {rid}, "
+                             "which does not exist", cel)
+                    ok = False
+        if ok and not self.acyclic(elems):
+            self.err("PLC0182", f"the {tag} network of this POU has a feedback loop; plclab "
+                     "evaluates networks without feedback (store the value in a variable)", lang)
+            ok = False
+        return elems if ok else None
+
+    def refs_all(self, el: ET.Element):
+        out = []
+        for cpi in self.kids(el, "connectionPointIn"):
+            out.extend(self.refs(cpi))
+        return out
+
+    def block(self, el: ET.Element, new, pending) -> None:
+        tname = self.ident(el.get("typeName"), el, "block type").upper()
+        inst = el.get("instanceName")
+        e = new("fb" if inst else "func", el)
+        e.type_name = tname
+        e.text = f"[{tname}{' ' + inst if inst else ''}]"
+        if inst:
+            e.instance = self.expr(inst, el, "instance name")
+        ins = self.kid(el, "inputVariables")
+        for v in self.kids(ins, "variable") if ins is not None else []:
+            pin = (v.get("formalParameter") or "").upper()
+            if v.get("edge", "none") != "none":
+                self.fail("PLC0181", f"{self.describe(el)}: edge detection on input {pin} is not "
+                          "supported; use an R_TRIG block", v)
+            refs = self.refs(self.kid(v, "connectionPointIn"))
+            if v.get("negated") in ("true", "1"):
+                self.fail("PLC0181", f"{self.describe(el)}: negated input {pin} is not supported;"
+                          " add a NOT block", v)
+            pending.append((e, pin, refs))
+        outs = self.kid(el, "outputVariables")
+        out_pins = [(v.get("formalParameter") or "").upper()
+                    for v in self.kids(outs, "variable")] if outs is not None else []
+        for v in self.kids(outs, "variable") if outs is not None else []:
+            if v.get("negated") in ("true", "1"):
+                self.fail("PLC0181", f"{self.describe(el)}: negated output "
+                          f"{v.get('formalParameter')} is not supported; add a NOT block", v)
+        e.out_pin = next((p for p in out_pins if p != "ENO"), "OUT")
+        iov = self.kid(el, "inOutVariables")
+        if iov is not None and self.kids(iov, "variable"):
+            self.fail("PLC0181", f"{self.describe(el)}: in-out parameters of graphical blocks are "
+                      "not supported", iov)
+
+    def acyclic(self, elems: list[Elem]) -> bool:
+        state: dict[int, int] = {}
+
+        def visit(e: Elem) -> bool:
+            state[e.id] = 1
+            for refs in e.inputs.values():
+                for i, _ in refs:
+                    if i < 0:
+                        continue
+                    s = state.get(i)
+                    if s == 1 or (s is None and not visit(elems[i])):
+                        return False
+            state[e.id] = 2
+            return True
+
+        return all(state.get(e.id) == 2 or visit(e) for e in elems)
+
+    # -- configurations -------------------------------------------------------------------------
+    def configuration(self, c: ET.Element) -> None:
+        name = self.ident(c.get("name"), c, "configuration name")
+        cfg = A.Configuration(self.loc(c), name.upper(), [], [], [])
+        for gv in self.kids(c, "globalVars"):
+            cfg.globals.extend(self.var_sections(_Wrap(gv), {"VAR_GLOBAL"}))
+        for res in self.kids(c, "resource"):
+            for gv in self.kids(res, "globalVars"):
+                cfg.globals.extend(self.var_sections(_Wrap(gv), {"VAR_GLOBAL"}))
+            for t in self.kids(res, "task"):
+                try:
+                    tname = self.ident(t.get("name"), t, "task name").upper()
+                    interval = t.get("interval")
+                    iv = None
+                    if interval:
+                        iv = self.expr(_iso_duration(interval), t, "task interval")
+                    pr = t.get("priority")
+                    pe = self.expr(pr, t, "task priority") if pr else None
+                    cfg.tasks.append(A.TaskDecl(self.loc(t), tname, iv, pe))
+                    for pi in self.kids(t, "pouInstance"):
+                        cfg.instances.append(self.instance(pi, tname))
+                except _Bad:
+                    pass
+            for pi in self.kids(res, "pouInstance"):
+                try:
+                    cfg.instances.append(self.instance(pi, None))
+                except _Bad:
+                    pass
+        self.out.configs.append(cfg)
+
+    def instance(self, pi: ET.Element, task: str | None) -> A.ProgramInstance:
+        n = self.ident(pi.get("name"), pi, "program instance name")
+        t = self.ident(pi.get("typeName"), pi, "program type")
+        return A.ProgramInstance(self.loc(pi), n.upper(), task, t.upper())
+
+
+class _Wrap:
+    """Makes one ``<globalVars>`` element look like an interface holding it."""
+
+    def __init__(self, el: ET.Element) -> None:
+        self.el = el
+
+    def __iter__(self):
+        return iter([self.el])
+
+
+def _iso_duration(s: str) -> str:
+    """``PT0.02S`` (ISO 8601, some exporters) -> ``T#20ms``; IEC literals pass through."""
+    m = re.match(r"^P(?:T(?:([0-9.]+)H)?(?:([0-9.]+)M)?(?:([0-9.]+)S)?)$", s.strip())
+    if not m:
+        return s
+    h, mi, sec = (float(x) if x else 0.0 for x in m.groups())
+    ms = round(((h * 60 + mi) * 60 + sec) * 1000)
+    return f"T#{ms}ms"
+
+
+def parse_plcopen_collect(text: str, file: str = "<input>.xml",
+                          defer: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Import a PLCopen XML project; return the tree and the diagnostics (no exception)."""
+    imp = _Importer(text, file)
+    out = imp.run()
+    diags = imp.diags
+    if not defer:
+        from .il_parser import lower_pending
+
+        diags = diags + lower_pending([out])
+    return out, diags
+
+
+def parse_plcopen(text: str, file: str = "<input>.xml") -> A.SourceFile:
+    """Import a PLCopen XML project; raise :class:`PlcError` on any error."""
+    from ..errors import PlcError
+
+    out, diags = parse_plcopen_collect(text, file)
+    errors = [d for d in diags if d.severity == "error"]
+    if errors:
+        raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
+    return out
+

@@ -1,0 +1,503 @@
+"""Wiring tables: which plant signal reaches which PLC address or variable, through which module.
+
+A wiring table is a list of rows. Each row joins one PLC address (``%IX0.0``, ``%IW64``,
+``%QX0.0``, ``%QW64``) or PLC variable (``Main.SP``) to one plant signal through an I/O module
+of :mod:`plclab.io`:
+
+========  =========  ===================================================================
+module    direction  what it models
+========  =========  ===================================================================
+di        in         :class:`~plclab.io.DigitalInput`: contact bounce, input filter
+ai        in         :class:`~plclab.io.AnalogInput`: transmitter, noise, filter, ADC counts
+do        out        :class:`~plclab.io.DigitalOutput`: transistor or relay (delays, wear)
+ao        out        :class:`~plclab.io.AnalogOutput`: DAC counts -> actuator value
+direct    either     no model: the value is copied (the direction follows the address or,
+                     for a variable, the signal's kind)
+========  =========  ===================================================================
+
+In TOML (``labs/wiring/tank.toml``)::
+
+    plant = "tank"
+    description = "two level switches, the pump contactor and a level transmitter"
+    wiring = [
+      { plc = "%IX0.0", signal = "LS1", module = "di", filter_ms = 3, description = "low level" },
+      { plc = "%IW64", signal = "LEVEL", module = "ai", lo = 0, hi = 2, signal_range = "4-20mA",
+        convention = "s7", noise = 0.002, seed = 1 },
+      { plc = "%QX0.0", signal = "PUMP", module = "do", kind = "relay" },
+    ]
+
+``[[wiring]]`` tables work too. In Python the same rows are a list of dicts (or
+:class:`WireRow`): ``[{"plc": "%IX0.0", "signal": "LS1", "module": "di"}, ...]``.
+
+Rows are checked twice: the keys and parameter values when the table is read
+(:meth:`Wiring.from_rows`, :func:`load_wiring`), the plant signals, directions, addresses and
+variables when a :class:`~plclab.sim.Simulation` binds the table to a plant and a PLC. Every
+problem found is reported at once (one :class:`~plclab.errors.PlcError` with all diagnostics),
+with the file and line of the row when the table came from a file.
+
+>>> w = Wiring.from_rows([{"plc": "%IX0.0", "signal": "LS1", "module": "di", "filter_ms": 3}])
+>>> w[0].module, w[0].params
+('di', {'filter_ms': 3.0})
+>>> print(w.to_toml().splitlines()[1])
+wiring = [
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from plclab.errors import Diagnostic, Location
+
+from ._toml import key_position, read_toml, row_spans
+from .durations import parse_ns
+from .errors import did_you_mean, raise_all
+
+ADDRESS_RE = re.compile(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", re.IGNORECASE)
+ROW_KEYS = ("plc", "signal", "module", "description")
+
+
+# --------------------------------------------------------------------------- parameter types
+class _Bad(ValueError):
+    """A parameter value that does not fit (the message says what is expected)."""
+
+
+def _number(v: Any) -> float:
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise _Bad("a number")
+    return float(v)
+
+
+def _ms(v: Any) -> float:
+    """Milliseconds: a number of ms, or a duration string ('3ms', '0.5s')."""
+    if isinstance(v, str):
+        return parse_ns(v) / 1e6
+    x = _number(v)
+    if x < 0:
+        raise _Bad("zero or a positive number of milliseconds")
+    return x
+
+
+def _seconds(v: Any) -> float:
+    """Seconds: a number of s, or a duration string ('50ms')."""
+    if isinstance(v, str):
+        return parse_ns(v) / 1e9
+    x = _number(v)
+    if x < 0:
+        raise _Bad("zero or a positive number of seconds")
+    return x
+
+
+def _nonneg(v: Any) -> float:
+    x = _number(v)
+    if x < 0:
+        raise _Bad("zero or a positive number")
+    return x
+
+
+def _int(v: Any) -> int:
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise _Bad("a whole number")
+    return v
+
+
+def _bool(v: Any) -> bool:
+    if not isinstance(v, bool):
+        raise _Bad("true or false")
+    return v
+
+
+def _signal_range(v: Any) -> str:
+    from plclab.errors import PlcError
+    from plclab.io import signal_range
+
+    if not isinstance(v, str):
+        raise _Bad("a signal range name such as \"4-20mA\" or \"0-10V\"")
+    try:
+        return signal_range(v).name
+    except PlcError as e:
+        raise _Bad(e.message) from None
+
+
+def _choice(*options: str) -> Callable[[Any], str]:
+    def conv(v: Any) -> str:
+        if not isinstance(v, str) or v.lower() not in options:
+            raise _Bad("one of " + ", ".join(repr(o) for o in options))
+        return v.lower()
+
+    return conv
+
+
+def _bounces(v: Any) -> int | tuple[int, int]:
+    if isinstance(v, list | tuple):
+        if len(v) != 2 or not all(isinstance(x, int) and not isinstance(x, bool) for x in v) \
+                or not 0 <= v[0] <= v[1]:
+            raise _Bad("a whole number or [lo, hi] with 0 <= lo <= hi")
+        return (v[0], v[1])
+    n = _int(v)
+    if n < 0:
+        raise _Bad("a whole number >= 0")
+    return n
+
+
+def _threshold(v: Any) -> float | tuple[float, float]:
+    if isinstance(v, list | tuple):
+        if len(v) != 2:
+            raise _Bad("a number or [off_max, on_min]")
+        a, b = _number(v[0]), _number(v[1])
+        if a > b:
+            raise _Bad("[off_max, on_min] with off_max <= on_min")
+        return (a, b)
+    return _number(v)
+
+
+@dataclass(frozen=True)
+class ModuleSpec:
+    """What a module is and which parameters it takes (name -> (converter, help))."""
+
+    name: str
+    direction: str | None  # "in", "out" or None (direct: from the address)
+    help: str
+    params: dict[str, tuple[Callable[[Any], Any], str]]
+
+
+MODULES: dict[str, ModuleSpec] = {
+    "di": ModuleSpec("di", "in", "digital input: contact bounce and input filter", {
+        "filter_ms": (_ms, "input filter delay, ms (default 3)"),
+        "bounce_ms": (_ms, "contact bounce after each change, ms (default 0)"),
+        "bounces": (_bounces, "extra off/on pairs per bounce: n or [lo, hi] (default [1, 4])"),
+        "threshold": (_threshold, "for a REAL signal: ON at/above it, or [off_max, on_min]"),
+        "seed": (_int, "seed of the bounce generator (mixed with the simulation seed)"),
+        "invert": (_bool, "the PLC bit is the inverse of the contact (default false)"),
+    }),
+    "ai": ModuleSpec("ai", "in", "analog input: transmitter, noise, filter, ADC -> counts", {
+        "lo": (_number, "engineering value at 0 % of the signal (default: signal range low)"),
+        "hi": (_number, "engineering value at 100 % (default: signal range high)"),
+        "signal_range": (_signal_range, "electrical range, e.g. \"4-20mA\" (default), \"0-10V\""),
+        "convention": (_choice("s7", "book", "full", "logo"),
+                       "count convention: s7 (default, 0..27648), book, full, logo"),
+        "bits": (_int, "ADC resolution in bits (convention default)"),
+        "noise": (_nonneg, "standard deviation of Gaussian noise, engineering units"),
+        "tau": (_seconds, "input filter time constant, s (default 0)"),
+        "sample_period": (_seconds, "time between conversions, s (default 0: every scan)"),
+        "seed": (_int, "seed of the noise (mixed with the simulation seed)"),
+        "wire_break_diagnostic": (_bool, "S7 live-zero wire break reads 32767 (default true)"),
+    }),
+    "do": ModuleSpec("do", "out", "digital output: transistor or relay", {
+        "kind": (_choice("transistor", "relay"), "transistor (default) or relay"),
+        "close_ms": (_ms, "delay command -> contact closed, ms (relay default 10)"),
+        "open_ms": (_ms, "delay command -> contact open, ms (relay default 5)"),
+        "invert": (_bool, "the actuator gets the inverse of the output bit (default false)"),
+    }),
+    "ao": ModuleSpec("ao", "out", "analog output: counts -> DAC -> actuator value", {
+        "lo": (_number, "actuator value at 0 % of the signal (default: signal range low)"),
+        "hi": (_number, "actuator value at 100 % (default: signal range high)"),
+        "signal_range": (_signal_range, "electrical range, e.g. \"0-10V\" (default), \"4-20mA\""),
+        "convention": (_choice("s7", "book", "full", "logo"), "count convention (default s7)"),
+        "bits": (_int, "DAC resolution in bits (convention default)"),
+        "clip": (_bool, "clip the value to lo..hi (default true)"),
+    }),
+    "direct": ModuleSpec("direct", None, "no model: the value is copied", {
+        "invert": (_bool, "BOOL signals only: copy the inverse (default false)"),
+    }),
+}
+"""The I/O modules a wiring row can name."""
+
+
+# --------------------------------------------------------------------------- rows
+@dataclass
+class WireRow:
+    """One row of a wiring table.
+
+    Parameters
+    ----------
+    plc : str
+        A PLC address (``%IX0.0``, ``%IW64``, ``%QX0.0``, ``%QW64``, ``%ID8``...) or a variable
+        path (``SP``, ``Main.SP``).
+    signal : str
+        The plant signal.
+    module : str
+        ``di``, ``ai``, ``do``, ``ao`` or ``direct``.
+    params : dict
+        Module parameters (see :data:`MODULES`), already checked and converted.
+    description : str
+        What the row is, for people (shown by ``plclab sim`` and in the trace).
+    location : Location, optional
+        ``file:line`` of the row when it came from a file.
+    index : int
+        Position in the table (0-based).
+    """
+
+    plc: str
+    signal: str
+    module: str = "direct"
+    params: dict[str, Any] = field(default_factory=dict)
+    description: str = ""
+    location: Location | None = None
+    index: int = 0
+    key_locations: dict[str, Location] = field(default_factory=dict, repr=False)
+
+    @property
+    def is_address(self) -> bool:
+        """True when ``plc`` is a direct address (starts with ``%``)."""
+        return self.plc.startswith("%")
+
+    def where(self, key: str | None = None) -> Location | None:
+        """Location of the row, or of one of its keys when known."""
+        if key is not None and key in self.key_locations:
+            return self.key_locations[key]
+        return self.location
+
+    def label(self) -> str:
+        """``row 3 (%IX0.0 <- LS1)`` for messages."""
+        arrow = "->" if MODULES.get(self.module, MODULES["direct"]).direction == "out" else "<-"
+        if self.module == "direct" and self.is_address and self.plc[1:2].upper() == "Q":
+            arrow = "->"
+        return f"wiring row {self.index} ({self.plc} {arrow} {self.signal})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The row as a plain dict (the Python form of a TOML row)."""
+        d: dict[str, Any] = {"plc": self.plc, "signal": self.signal, "module": self.module}
+        d.update(self.params)
+        if self.description:
+            d["description"] = self.description
+        return d
+
+
+def _row_from(obj: Any, index: int, file: str | None, text: str | None,
+              span: tuple[int, int] | None, diags: list[Diagnostic]) -> WireRow | None:
+    if isinstance(obj, WireRow):
+        raw = obj.to_dict()
+    elif isinstance(obj, Mapping):
+        raw = dict(obj)
+    else:
+        loc = Location(file, span[0], 1) if (file and span) else None
+        diags.append(Diagnostic("PLC4005", f"wiring row {index} must be a table like "
+                                "{ plc = \"%IX0.0\", signal = \"LS1\", module = \"di\" }, not "
+                                f"{obj!r}", loc))
+        return None
+
+    def loc(key: str | None = None) -> Location | None:
+        if file is None:
+            return None
+        if text is not None and span is not None:
+            if key is None:
+                return Location(file, span[0], 1)
+            ln, col = key_position(text, span, key)
+            return Location(file, ln, col)
+        return Location(file)
+
+    def bad(code: str, key: str | None, msg: str) -> None:
+        where = f"wiring row {index}" + (f", key '{key}'" if key else "")
+        diags.append(Diagnostic(code, f"{where}: {msg}", loc(key)))
+
+    n0 = len(diags)
+    for key in ("plc", "signal"):
+        v = raw.get(key)
+        if v is None:
+            bad("PLC4005", None, f"'{key}' is missing; every row needs plc, signal and module, "
+                "e.g. { plc = \"%IX0.0\", signal = \"LS1\", module = \"di\" }")
+        elif not isinstance(v, str) or not v.strip():
+            bad("PLC4005", key, f"'{key}' must be a non-empty string, not {v!r}")
+    module = raw.get("module", "direct")
+    if not isinstance(module, str) or module.lower() not in MODULES:
+        bad("PLC4005", "module", f"unknown module {module!r}.{did_you_mean(str(module), MODULES)}"
+            f" Modules: {', '.join(MODULES)}")
+        return None
+    module = module.lower()
+    spec = MODULES[module]
+    desc = raw.get("description", "")
+    if not isinstance(desc, str):
+        bad("PLC4006", "description", "description must be a string")
+        desc = str(desc)
+    params: dict[str, Any] = {}
+    for key, value in raw.items():
+        if key in ROW_KEYS:
+            continue
+        if key not in spec.params:
+            others = [m for m, s in MODULES.items() if key in s.params]
+            hint = did_you_mean(key, list(spec.params) + list(ROW_KEYS))
+            if others and not hint:
+                hint = f" ('{key}' belongs to module {' / '.join(others)})"
+            valid = ", ".join(spec.params) or "(none)"
+            bad("PLC4005", key, f"module '{module}' has no parameter '{key}'.{hint} "
+                f"Its parameters: {valid}; every row may have a description")
+            continue
+        conv, help_text = spec.params[key]
+        try:
+            params[key] = conv(value)
+        except _Bad as e:
+            bad("PLC4006", key, f"{key} must be {e}, not {value!r} ({help_text})")
+        except Exception as e:  # noqa: BLE001 - PlcError of a duration string
+            bad("PLC4006", key, f"{key}: {getattr(e, 'message', e)} ({help_text})")
+    if len(diags) > n0:
+        return None
+    plc = raw["plc"].strip()
+    m = ADDRESS_RE.fullmatch(plc)
+    if m:
+        plc = "%" + m.group(1).upper() + (m.group(2) or "X").upper() + m.group(3) + \
+            ("." + m.group(4) if m.group(4) is not None else "")
+    elif plc.startswith("%"):
+        bad("PLC4004", "plc", f"{plc!r} is not a PLC address; write e.g. %IX0.0 (input bit), "
+            "%IW64 (input word), %QX0.0 (output bit), %QW64 (output word)")
+        return None
+    keys = {k: loc(k) for k in raw if loc(k) is not None}
+    return WireRow(plc, raw["signal"].strip(), module, params, desc, loc(), index,
+                   {k: v for k, v in keys.items() if v is not None})
+
+
+class Wiring:
+    """A checked wiring table (the rows plus where they came from).
+
+    Build one with :meth:`from_rows` (Python), :func:`load_wiring` / :meth:`load` (a TOML file)
+    or :func:`plclab.sim.default_wiring` (the default of a plant).
+
+    Attributes
+    ----------
+    rows : list of WireRow
+    plant : str or None
+        The plant the table is made for (checked against the simulated plant when given).
+    description : str
+    source : str or None
+        The file it was read from.
+    """
+
+    def __init__(self, rows: list[WireRow], plant: str | None = None, description: str = "",
+                 source: str | None = None) -> None:
+        self.rows = rows
+        self.plant = plant
+        self.description = description
+        self.source = source
+
+    # ------------------------------------------------------------------ building
+    @classmethod
+    def from_rows(cls, rows: Iterable[Any] | Wiring, plant: str | None = None,
+                  description: str = "", source: str | None = None,
+                  _text: str | None = None, _key: str = "wiring") -> Wiring:
+        """Check a list of rows (dicts or :class:`WireRow`) and build the table."""
+        if isinstance(rows, Wiring):
+            return rows
+        if isinstance(rows, Mapping) or isinstance(rows, str | bytes):
+            from .errors import sim_error
+
+            raise sim_error("PLC4005", "a wiring table is a list of rows such as "
+                            "[{\"plc\": \"%IX0.0\", \"signal\": \"LS1\", \"module\": \"di\"}] "
+                            "(or a path to a TOML file)")
+        rows = list(rows)
+        spans = row_spans(_text, _key) if _text is not None else []
+        if len(spans) != len(rows):
+            spans = []
+        diags: list[Diagnostic] = []
+        out = []
+        for i, r in enumerate(rows):
+            row = _row_from(r, i, source, _text, spans[i] if spans else None, diags)
+            if row is not None:
+                out.append(row)
+        raise_all(diags)
+        return cls(out, plant, description, source)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike) -> Wiring:
+        """Read a TOML wiring file (see the module docstring for the format)."""
+        data, text, filename = read_toml(path, "wiring")
+        return cls.from_data(data, filename, text)
+
+    @classmethod
+    def from_data(cls, data: Mapping[str, Any], filename: str | None = None,
+                  text: str | None = None) -> Wiring:
+        """Build from parsed TOML (``plant``, ``description``, ``wiring`` array)."""
+        from .errors import sim_error
+
+        unknown = [k for k in data if k not in ("plant", "description", "wiring")]
+        if unknown:
+            raise sim_error("PLC4005", f"unknown top-level key '{unknown[0]}' in the wiring file."
+                            f"{did_you_mean(unknown[0], ['plant', 'description', 'wiring'])} A "
+                            "wiring file has plant, description and a wiring array of rows",
+                            filename)
+        rows = data.get("wiring")
+        if not isinstance(rows, list):
+            raise sim_error("PLC4005", "the wiring file has no 'wiring' array; write "
+                            "wiring = [ { plc = \"%IX0.0\", signal = \"LS1\", module = \"di\" }, "
+                            "... ] or [[wiring]] tables", filename)
+        plant = data.get("plant")
+        if plant is not None and not isinstance(plant, str):
+            raise sim_error("PLC4005", "plant must be a plant name such as \"tank\"", filename)
+        desc = data.get("description", "")
+        return cls.from_rows(rows, plant, str(desc), filename, text)
+
+    # ------------------------------------------------------------------ output
+    def to_rows(self) -> list[dict[str, Any]]:
+        """The Python form: a list of plain dicts."""
+        return [r.to_dict() for r in self.rows]
+
+    def to_toml(self) -> str:
+        """The table as a TOML file (inline-table rows)."""
+        lines = []
+        if self.plant:
+            lines.append(f"plant = {_toml_value(self.plant)}")
+        if self.description:
+            lines.insert(0, f"description = {_toml_value(self.description)}")
+        lines.append("wiring = [")
+        for r in self.rows:
+            items = ", ".join(f"{k} = {_toml_value(v)}" for k, v in r.to_dict().items())
+            lines.append(f"  {{ {items} }},")
+        lines.append("]")
+        return "\n".join(lines) + "\n"
+
+    # ------------------------------------------------------------------ container
+    def __iter__(self) -> Iterator[WireRow]:
+        return iter(self.rows)
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def __getitem__(self, i: int) -> WireRow:
+        return self.rows[i]
+
+    def __repr__(self) -> str:
+        src = f" from {self.source}" if self.source else ""
+        return f"<Wiring {len(self.rows)} rows{src}>"
+
+    def table(self) -> str:
+        """A plain-text table of the rows (for the command line)."""
+        out = []
+        for r in self.rows:
+            params = ", ".join(f"{k}={v}" for k, v in r.params.items())
+            d = f"  # {r.description}" if r.description else ""
+            out.append(f"{r.plc:<10} {r.signal:<14} {r.module:<7} {params}{d}")
+        return "\n".join(out)
+
+
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return repr(v) if math.isfinite(v) else ("inf" if v > 0 else "-inf")
+    if isinstance(v, list | tuple):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    s = str(v).replace("\\", "\\\\").replace('"', '\\"')
+    return f'"{s}"'
+
+
+def load_wiring(path: str | os.PathLike) -> Wiring:
+    """Read a TOML wiring file (PLC4001 when unreadable, PLC400x for bad rows)."""
+    return Wiring.load(path)
+
+
+def as_wiring(wiring: Any, plant_name: str) -> Wiring:
+    """Accept None (the plant's default), a path, a Wiring or a list of rows."""
+    if wiring is None:
+        from .wirings import default_wiring
+
+        return default_wiring(plant_name)
+    if isinstance(wiring, Wiring):
+        return wiring
+    if isinstance(wiring, str | os.PathLike):
+        return Wiring.load(wiring)
+    return Wiring.from_rows(wiring)
