@@ -61,6 +61,43 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC0121": ("internal variable of a function block", "From outside, only inputs and outputs "
                 "of an instance are visible."),
     "PLC0130": ("bad native block", "A {native ...} pragma must name a class inside plclab."),
+    "PLC0140": ("IL current result type mismatch", "The operator cannot use the current result's "
+                "type, or the store target has another type (e.g. ADD on BOOL, JMPC on INT)."),
+    "PLC0141": ("unknown IL operator", "Not an IL operator or a function, or an ST statement "
+                "inside an IL body."),
+    "PLC0142": ("IL writes an input", "ST, S or R into a physical %I input or a VAR_INPUT of the "
+                "POU itself."),
+    "PLC0143": ("unbalanced deferred parentheses", "'AND(' never closed, ')' with nothing open, "
+                "or JMP, CAL, RET or a label inside the parentheses."),
+    "PLC0144": ("no current result", "Nothing is loaded here (at the start, or after CAL, JMP, "
+                "RET or a label). Load a value with LD."),
+    "PLC0145": ("unknown jump label", "A jump to a label that does not exist, or a jump or label "
+                "not at the top level of the body."),
+    "PLC0146": ("IL syntax", "Operand missing, extra or in parentheses; jump without a label."),
+    "PLC0147": ("current result cannot reach label", "The ways into a label that uses the "
+                "current result bring different or unknown types."),
+    "PLC0160": ("broken wire", "A gap in the wire, a wire not connected on its left, a branch "
+                "ending without a coil, or a junction that nothing feeds."),
+    "PLC0161": ("coil not at the right rail", "An element after a coil, or a coil not wired to "
+                "the drawn right rail."),
+    "PLC0162": ("branch does not close", "A vertical line without '+' at one end, or a '|' "
+                "crossing a wire."),
+    "PLC0163": ("missing or misplaced variable name", "No name over a contact or coil, a name "
+                "over nothing, or two names over one element."),
+    "PLC0164": ("unknown ladder element", "[Q] or (Z), an unclosed '[' or '(', or a stray "
+                "character on the wire."),
+    "PLC0165": ("bad box", "Not a function block or function, an instance of another type, or a "
+                "missing instance or operand."),
+    "PLC0166": ("ladder layout", "Rails misaligned, tabs, rungs outside a POU body, or rungs "
+                "mixed with ST."),
+    "PLC0180": ("not a PLCopen XML project", "Malformed XML, or the wrong root element or "
+                "namespace (TC6 XML v2.01 expected)."),
+    "PLC0181": ("unsupported PLCopen element", "The message names the element and its localId "
+                "(SFC, jumps, inOutVariable, negated or edge block pins, ...)."),
+    "PLC0182": ("broken PLCopen connection", "A refLocalId to a missing element, a duplicate "
+                "localId, a feedback loop, or a continuation without its connector."),
+    "PLC0183": ("bad value in PLCopen XML", "Not an identifier, a missing type or returnType, a "
+                "bad address or an unknown pouType."),
     "PLC0200": ("unused variable", "A declared variable is never used (warning)."),
     "PLC0201": ("unreachable code", "Statements after RETURN, EXIT or CONTINUE never run "
                 "(warning)."),
@@ -68,6 +105,8 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC0203": ("input written inside its block", "The caller overwrites inputs on every call "
                 "(warning)."),
     "PLC0204": ("negating an unsigned value", "-x on USINT/UINT/... wraps around (warning)."),
+    "PLC0205": ("a POU hides a library block", "A user POU has the name of a library block "
+                "(e.g. RAMP); the program's own POU is used (warning)."),
     "PLC2001": ("division by zero", "Run time: check the divisor before dividing."),
     "PLC2002": ("index out of range", "Run time: an array index or MUX selector is outside the "
                 "declared range."),

@@ -747,7 +747,7 @@ class Codegen:
                 if isinstance(e, A.Literal) and isinstance(e.value, int | float) and not \
                         isinstance(e.value, bool):
                     return repr(_f32(float(e.value)))
-                if T.base_of(s) is T.REAL and simple:
+                if T.base_of(s) is T.REAL and simple and not _from_native(e):
                     return code
                 return f"_f32({code})"
             if d is T.LREAL:
@@ -1067,6 +1067,17 @@ class Codegen:
         fn = {"LEFT": "_left", "RIGHT": "_right", "MID": "_mid", "INSERT": "_insert",
               "DELETE": "_delete", "REPLACE": "_replace", "FIND": "_find"}[name]
         return f"{fn}({', '.join(codes)})"
+
+
+def _from_native(e: A.Expr | None) -> bool:
+    """A value read from a native block or function: Python code that may hand back doubles,
+    so a store into a REAL rounds it like an arithmetic result."""
+    if isinstance(e, A.Member):
+        t = T.resolve(e.obj.ty) if e.obj.ty is not None else None
+        return isinstance(t, T.FBType) and t.pou is not None and t.pou.native is not None
+    if isinstance(e, A.Call) and e.target is not None and e.target.kind == "function":
+        return e.target.callee.native is not None
+    return False
 
 
 def _in_range_builtin(e: A.Call) -> bool:

@@ -106,6 +106,13 @@ class Checker:
                 if p.name in self.type_decls:
                     self.err("PLC0101", f"{p.spelling or p.name} is declared twice (as a type "
                              "and as a POU); rename one of them", p.loc)
+                prev = self.pous.get(p.name)
+                if prev is not None and prev.loc.file.startswith("<plclab>/"):
+                    # a user POU may take the name of a library block: it hides that block
+                    self.warn("PLC0205", f"{p.spelling or p.name} hides the library block of the "
+                              "same name; rename it to keep using the library one", p.loc)
+                    self.pous[p.name] = p
+                    continue
                 self._declare("POU", p.name, p.loc, self.pous, p)
         for name in self.type_decls:
             self.named_type(name, self.type_decls[name].loc)

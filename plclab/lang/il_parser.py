@@ -3,10 +3,11 @@
 IL bodies live in ordinary POUs (``PROGRAM``/``FUNCTION``/``FUNCTION_BLOCK``) whose declarations
 are parsed by the ST parser; only the body differs. A file may mix ST and IL POUs.
 
-**When is a body IL?** (:func:`is_il_body`) When its first line starts with a label (``L1:``),
-or with a word followed on the same line by an operand (``LD x``, ``CAL T1``) -- ST never puts
-a name directly after a name -- or with an IL operator alone on its line (``RET``, ``NOT``).
-In a ``.il`` file every body is IL unless it starts like ST (``x :=``, ``IF``, ``f(...)``).
+**When is a body IL?** (:func:`is_il_body`) When its first line starts with a label (``L1:``,
+alone or before an IL operator), or with an IL operator followed on the same line by its
+operand (``LD x``, ``CAL T1``) -- ST never puts an operand directly after a name -- or alone on
+its line (``RET``, ``NOT``). In a ``.il`` file every body is IL unless it starts like ST
+(``x :=``, ``IF``, ``f(...)``).
 
 **Translation.** IL works on a *current result* (CR). The translator keeps the CR as an ST
 expression and emits plain statements: ``LD x / MUL A / ADD B / ST Y`` becomes
@@ -87,11 +88,12 @@ def is_il_body(p, end_kw: str) -> bool:
         return False
     if p.il_default:
         return True
-    if t.kind == "IDENT" and same_line and nxt.kind == ":":
-        return True  # a label
-    if same_line and (nxt.kind in _OPERAND_START or (nxt.kind == "-" and name in IL_OPERATORS)):
-        return True
-    return not same_line and name in IL_OPERATORS
+    if t.kind == "IDENT" and same_line and nxt.kind == ":":  # a label, alone or before an op
+        after = p.peek(2)
+        return after.line != t.line or after.kind == "EOF" or _op_name(after) in IL_OPERATORS
+    if name not in IL_OPERATORS:  # keep ST's own diagnostics for misspelled ST (WHILLE x DO)
+        return False
+    return not same_line or nxt.kind in _OPERAND_START or nxt.kind == "-"
 
 
 @dataclass(eq=False)
@@ -201,7 +203,7 @@ def _parse_line(p, lt: list[Token], out: list[Instr]) -> None:
         rest = rest[:-1]
     if optok.kind == ")":
         if rest:
-            err("PLC0147", f"nothing may follow ')' on its line, found '{rest[0].text}'",
+            err("PLC0146", f"nothing may follow ')' on its line, found '{rest[0].text}'",
                 rest[0])
         out.append(Instr(loc(optok), ")", ")"))
         return
@@ -223,34 +225,34 @@ def _parse_line(p, lt: list[Token], out: list[Instr]) -> None:
             f"ST {optok.text}", optok)
     if name in ("JMP", "JMPC", "JMPCN"):
         if len(rest) != 1 or rest[0].kind != "IDENT":
-            err("PLC0147", f"{name} needs a label name, e.g. {name} L1", rest[0] if rest else optok)
+            err("PLC0146", f"{name} needs a label name, e.g. {name} L1", rest[0] if rest else optok)
         ins.target = str(rest[0].value)
         out.append(ins)
         return
     if name in _NO_OPERAND:
         if rest:
-            err("PLC0147", f"{name} takes no operand; remove '{rest[0].text}'", rest[0])
+            err("PLC0146", f"{name} takes no operand; remove '{rest[0].text}'", rest[0])
         out.append(ins)
         return
     if not rest:
-        if ins.deferred:
-            out.append(ins)
+        if ins.deferred or name not in IL_OPERATORS and name not in FB_INPUT_OPS:
+            out.append(ins)  # AND( ... ) or a function of the current result alone (INT_TO_REAL)
             return
-        err("PLC0147", f"{name} needs an operand, e.g. {name} x", optok)
+        err("PLC0146", f"{name} needs an operand, e.g. {name} x", optok)
     sub = _sub_parser(p, rest)
     if name in ("CAL", "CALC", "CALCN"):
         e = sub.postfix(sub.primary())
         if not isinstance(e, A.Name | A.Member | A.Index | A.Call):
-            err("PLC0147", f"{name} needs a function block instance, e.g. CAL T1(IN := x)",
+            err("PLC0146", f"{name} needs a function block instance, e.g. CAL T1(IN := x)",
                 rest[0])
         ins.args = [e]
     elif name in IL_OPERATORS or name in FB_INPUT_OPS:
         if rest[0].kind == "(":
-            err("PLC0147", f"{name} takes its operand without parentheses: {name} x", rest[0])
+            err("PLC0146", f"{name} takes its operand without parentheses: {name} x", rest[0])
         ins.args = [sub.unary()]
     else:  # a function call: the current result is the first argument
         if rest[0].kind == "(":
-            err("PLC0147", f"write the function call as  {name} arg2, arg3  (the current result "
+            err("PLC0146", f"write the function call as  {name} arg2, arg3  (the current result "
                 "is the first argument); the formal form F(...) is not supported in IL",
                 rest[0])
         ins.args = [sub.expr()]
@@ -258,7 +260,7 @@ def _parse_line(p, lt: list[Token], out: list[Instr]) -> None:
             ins.args.append(sub.expr())
     if not sub.at("EOF"):
         t = sub.tok
-        err("PLC0147", f"unexpected '{t.text}' after the operand of {name}: one operand per "
+        err("PLC0146", f"unexpected '{t.text}' after the operand of {name}: one operand per "
             "line (use a comma between function arguments)", t)
     out.append(ins)
 
@@ -283,13 +285,11 @@ def parse_il_collect(text: str, file: str = "<input>.il",
 
 
 @cache
-def _stdlib_file() -> A.SourceFile:
-    from pathlib import Path
-
+def _stdlib_files() -> tuple[A.SourceFile, ...]:
+    from ..project import STDLIB_FILES, _stdlib_text
     from .st_parser import Parser
 
-    text = (Path(__file__).parent.parent / "runtime" / "stdlib.st").read_text(encoding="utf-8")
-    return Parser(text, "<plclab>/stdlib.st").parse_file()
+    return tuple(Parser(_stdlib_text(n), f"<plclab>/{n}").parse_file() for n in STDLIB_FILES)
 
 
 class Env:
@@ -302,7 +302,7 @@ class Env:
     def __init__(self, files: list[A.SourceFile]) -> None:
         files = list(files)
         if not any(p.name == "TON" for f in files for p in f.pous):
-            files.append(_stdlib_file())
+            files.extend(_stdlib_files())
         self.types = {td.name: td for f in files for td in f.types}
         self.pous = {p.name: p for f in files for p in f.pous}
         self.globals = {d.name: d for f in files for g in f.globals for d in g.decls}
@@ -688,7 +688,7 @@ class _Lowering:
             return
         target = x.args[0]
         if not isinstance(target, A.Name | A.Member | A.Index | A.DirectAddr):
-            self.err("PLC0147", f"{x.text} needs a variable to store into, not "
+            self.err("PLC0146", f"{x.text} needs a variable to store into, not "
                      f"'{x.operand}'", x.loc)
             return
         self.check_input(target, x)
@@ -717,7 +717,7 @@ class _Lowering:
             return
         target = x.args[0]
         if not isinstance(target, A.Name | A.Member | A.Index | A.DirectAddr):
-            self.err("PLC0147", f"{x.text} needs a BOOL variable, not '{x.operand}'", x.loc)
+            self.err("PLC0146", f"{x.text} needs a BOOL variable, not '{x.operand}'", x.loc)
             return
         self.check_input(target, x)
         if category(self.cty) not in ("BOOL", None):
@@ -817,14 +817,14 @@ class _Lowering:
             return
         d = self.temp(self.cty, x.loc)
         if d is None:
-            self.err("PLC0148", f"the current result{self.cr_from()} is "
+            self.err("PLC0147", f"the current result{self.cr_from()} is "
                      f"{type_text(self.cty)} and cannot be carried to label {label}; load the "
                      f"value again with LD after {label}:", x.loc)
             return
         tname = d.name[5:]
         prev = self.label_ty.get(label)
         if prev is not None and prev[0] != tname:
-            self.err("PLC0148", f"the current result reaching label {label} is {tname} here but "
+            self.err("PLC0147", f"the current result reaching label {label} is {tname} here but "
                      f"{prev[0]} from line {prev[1].loc.line}; load the value with LD after "
                      f"{label}:", x.loc)
             return

@@ -27,6 +27,13 @@ examples in ``docs/languages.md``)::
 The 2-D text becomes a small graph (:class:`Elem`, shared with the PLCopen XML importer), and
 the graph becomes statements: coils are assignments (``S=``/``R=`` for set/reset coils), power
 flow is a BOOL expression, boxes are calls. Rungs run top to bottom, elements left to right.
+
+>>> f, diags = parse_ld_collect('''PROGRAM P VAR a, b, q : BOOL; END_VAR
+... |   a       b      q  |
+... |---[ ]-----[/]---( )-|
+... END_PROGRAM''', "p.ld")
+>>> diags, f.pous[0].language, type(f.pous[0].body[0]).__name__
+([], 'LD', 'Assign')
 """
 
 from __future__ import annotations
@@ -38,7 +45,6 @@ from typing import Any
 
 from ..errors import Diagnostic, Location
 from . import ast as A
-from . import types as T
 from .lexer import Lexer, Token
 
 # the power-flow pins of the standard function blocks: (input fed by the rung, output continuing)
@@ -89,6 +95,7 @@ class Network:
     wire: list[bool]  # per line: a wire line (else names and vertical links)
     elems: list[Elem] = field(default_factory=list)
     names: list[tuple[int, int, int, str]] = field(default_factory=list)  # (row, c0, c1, text)
+    grid: list[str] = field(default_factory=list)  # lines padded, decoration rails removed
 
 
 _WIRE_RE = re.compile(r"[-+]|\[[^\]]*\]|\([ /SRPN]\)")
@@ -101,8 +108,39 @@ def _strip_comment(line: str) -> str:
 
 
 def rail_lines(text: str) -> list[int]:
-    """0-based indexes of the lines that belong to ladder networks (they start with '|')."""
-    return [i for i, line in enumerate(text.split("\n")) if line.lstrip().startswith("|")]
+    """0-based indexes of the lines that belong to ladder networks: they start with '|' (not
+    inside a comment: a drawing in a comment stays a comment)."""
+    out = []
+    depth = 0  # nesting of (* *) comments
+    block = False  # inside /* */
+    for i, line in enumerate(text.split("\n")):
+        if depth == 0 and not block and line.lstrip().startswith("|"):
+            out.append(i)
+            continue
+        k, n = 0, len(line)
+        while k < n:
+            two = line[k:k + 2]
+            if block:
+                if two == "*/":
+                    block = False
+                    k += 1
+            elif two == "(*":
+                depth += 1
+                k += 1
+            elif two == "*)" and depth:
+                depth -= 1
+                k += 1
+            elif depth == 0:
+                if two == "//":
+                    break
+                if two == "/*":
+                    block = True
+                    k += 1
+                elif line[k] in "'\"":  # skip a string on this line
+                    end = line.find(line[k], k + 1)
+                    k = n if end < 0 else end
+            k += 1
+    return out
 
 
 class _TextLadder:
@@ -150,8 +188,8 @@ class _TextLadder:
                          t.index("|"))
                 return
         wire = [bool(_WIRE_RE.search(t[left + 1:])) for t in lines]
-        rail_at = [len(t) - 1 if wire[k] and len(t) > left + 2 and t.endswith("|") and
-                   t[-2] in "-)]+" else None for k, t in enumerate(lines)]
+        rail_at = [len(t) - 1 if wire[k] and len(t) > left + 2 and t.endswith("|") else None
+                   for k, t in enumerate(lines)]
         ends = [c for c in rail_at if c is not None]
         right = max(set(ends), key=lambda c: (ends.count(c), c)) if ends else None
         for k, c in enumerate(rail_at):
@@ -169,7 +207,12 @@ class _TextLadder:
                     if 0 <= j < len(grid)]
             if not any(near):
                 grid[k] = grid[k][:c] + " " + grid[k][c + 1:]
-        net = Network(first, lines, left, right, wire)
+        # a '|' on a wire line with no wire on either side is a branch line passing by
+        self.passing = {(k, c) for k, t in enumerate(grid) if wire[k]
+                        for c in range(left + 1, len(t) - 1)
+                        if t[c] == "|" and c != rail_at[k] and t[c - 1] == " " and
+                        t[c + 1] == " "}
+        net = Network(first, lines, left, right, wire, grid=grid)
         self.networks.append(net)
         self.grid, self.first, self.left, self.right, self.isw = grid, first, left, right, wire
         self.find = self.junctions()
@@ -195,19 +238,22 @@ class _TextLadder:
 
         h = len(grid)
         w = len(grid[0])
+        def vertical(r: int, c: int) -> bool:
+            ch = grid[r][c]
+            if self.isw[r]:
+                return ch == "+" or (r, c) in self.passing
+            return ch == "|"
+
         for c in range(left + 1, w):
             if right is not None and c == right:
                 continue
             r = 0
             while r < h:
-                ch = grid[r][c]
-                vertical = (ch == "|" and not self.isw[r]) or (ch == "+" and self.isw[r])
-                if not vertical:
+                if not vertical(r, c):
                     r += 1
                     continue
                 run = []
-                while r < h and ((grid[r][c] == "|" and not self.isw[r]) or
-                                 (grid[r][c] == "+" and self.isw[r])):
+                while r < h and vertical(r, c):
                     run.append(r)
                     r += 1
                 top, bottom = run[0], run[-1]
@@ -291,9 +337,9 @@ class _TextLadder:
                 else:
                     cur = []
                 c = k + 1
-            elif ch == " ":
+            elif ch == " " or (r, c) in self.passing:
                 k = c
-                while k < end and t[k] == " ":
+                while k < end and (t[k] == " " or (r, k) in self.passing):
                     k += 1
                 if cur:
                     self.dangling(cur, line, c, at_rail=False)
@@ -379,8 +425,7 @@ class _TextLadder:
             self.err("PLC0165", f"a box starts with its type, e.g. [TON T1 PT:=T#5s], "
                      f"[GT level 50], [MOVE 5 -> x]; found '{text}'", line, c0)
             return None
-        kind_tok = toks[0]
-        tname = str(kind_tok.value)
+        tname = str(toks[0].value)
         arrow = next((k for k, t in enumerate(toks) if t.kind == "-" and toks[k + 1].kind == ">"
                       and toks[k + 1].col == t.col + 1), None)
         p = Parser.__new__(Parser)
@@ -890,9 +935,13 @@ class _NetLowering:
         refs = e.inputs.get("", [])
         v = self.value(refs, e.loc)
         stmt: A.Stmt = A.Assign(e.loc, copy.deepcopy(e.var), v)
-        if len(refs) == 1 and refs[0][0] >= 0:
-            src = self.elems[refs[0][0]]
-            if src.kind == "func" and "EN" in src.inputs and refs[0][1] != "ENO":
+        ref = refs[0] if len(refs) == 1 else (-1, "")
+        while ref[0] >= 0 and self.elems[ref[0]].kind == "conn" and \
+                len(self.elems[ref[0]].inputs.get("", [])) == 1:
+            ref = self.elems[ref[0]].inputs[""][0]  # through connector/continuation pairs
+        if ref[0] >= 0:
+            src = self.elems[ref[0]]
+            if src.kind == "func" and "EN" in src.inputs and ref[1] != "ENO":
                 cond = self.value(src.inputs["EN"], e.loc)
                 stmt = A.If(e.loc, [(cond, [stmt])])
         self.out.append(stmt)
@@ -908,4 +957,4 @@ def lower_network(pou: A.Pou, elems: list[Elem], env, file: str) -> list[Diagnos
 
 
 __all__ = ["Elem", "Network", "parse_ld_collect", "parse_networks", "lower_network",
-           "POWER_PINS", "T"]
+           "POWER_PINS"]

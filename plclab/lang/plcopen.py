@@ -16,6 +16,15 @@ What is read:
 Anything else (SFC bodies, jumps and labels in graphics, actions, pointers...) is reported as
 ``PLC0181`` naming the element and its ``localId``. Locations are ``file.xml:line:col`` of the
 XML element (or of the line inside an ST/IL body).
+
+>>> f, diags = parse_plcopen_collect('''<project xmlns="http://www.plcopen.org/xml/tc6_0201">
+... <types><pous><pou name="P" pouType="program"><interface><localVars>
+...   <variable name="a"><type><BOOL/></type></variable></localVars></interface>
+...   <body><ST><![CDATA[a := NOT a;]]></ST></body></pou></pous></types></project>''', "p.xml")
+>>> diags, f.pous[0].name, type(f.pous[0].body[0]).__name__
+([], 'P', 'Assign')
+>>> parse_plcopen_collect("<oops>", "bad.xml")[1][0].code
+'PLC0180'
 """
 
 from __future__ import annotations
@@ -122,16 +131,20 @@ class _Importer:
         lid = el.get("localId")
         return f"<{_local(el.tag)}>" + (f" (localId {lid})" if lid is not None else "")
 
-    def text_parser(self, text: str, el: ET.Element):
-        """An ST parser over ``text`` placed where it stands in the XML file."""
+    def text_parser(self, text: str | None, el: ET.Element):
+        """An ST parser over ``text`` placed where it stands in the XML file; ``None``: the text
+        of ``el`` (of its first descendant holding text, e.g. ``<xhtml:p>`` in ``<ST>``)."""
         from .st_parser import Parser
 
-        holder = el
-        for d in el.iter():
-            if id(d) in self.texts and (d.text or "").strip():
-                holder = d
-                break
-        line, col = self.texts.get(id(holder), self.starts.get(id(el), (1, 1)))
+        if text is None:
+            holder = next((d for d in el.iter() if (d.text or "").strip()), el)
+            text = "".join(holder.itertext())
+            line, col = self.texts.get(id(holder), self.starts.get(id(el), (1, 1)))
+        elif id(el) in self.texts and (el.text or "").strip() == text.strip():
+            text = el.text or ""
+            line, col = self.texts[id(el)]
+        else:  # an attribute value: located at its element
+            line, col = self.starts.get(id(el), (1, 1))
         return Parser("\n" * (line - 1) + " " * (col - 1) + text, self.file)
 
     def expr(self, text: str | None, el: ET.Element, what: str) -> A.Expr:
@@ -360,11 +373,8 @@ class _Importer:
             self.err("PLC0181", f"POU {name}: a <{tag}> body is not supported (plclab imports ST, "
                      "IL, LD and FBD bodies)", lang)
 
-    def body_text(self, lang: ET.Element) -> str:
-        return "".join(lang.itertext())
-
     def st_body(self, pou: A.Pou, lang: ET.Element) -> None:
-        p = self.text_parser(self.body_text(lang), lang)
+        p = self.text_parser(None, lang)
         pou.body = p.stmt_list(set())
         if not p.at("EOF"):
             p.error("PLC0010", f"unexpected '{p.tok.text}' in the ST body of {pou.spelling}")
@@ -373,10 +383,10 @@ class _Importer:
     def il_body(self, pou: A.Pou, lang: ET.Element) -> None:
         from .il_parser import parse_il_body
 
-        p = self.text_parser(self.body_text(lang), lang)
+        p = self.text_parser(None, lang)
         lower = parse_il_body(p, "EOF")
         if not p.at("EOF"):
-            p.error("PLC0147", f"unexpected '{p.tok.text}' in the IL body of {pou.spelling}")
+            p.error("PLC0146", f"unexpected '{p.tok.text}' in the IL body of {pou.spelling}")
         self.diags.extend(p.diagnostics)
         pou.language = "IL"
         pou._lower = lambda env, pou=pou: lower(pou, env)  # type: ignore[attr-defined]
@@ -405,8 +415,8 @@ class _Importer:
 
         def new(kind: str, el: ET.Element) -> Elem:
             pos = self.kid(el, "position")
-            x = float(pos.get("x", 0)) if pos is not None else 0.0
-            y = float(pos.get("y", 0)) if pos is not None else 0.0
+            x = _num(pos.get("x")) if pos is not None else 0.0
+            y = _num(pos.get("y")) if pos is not None else 0.0
             e = Elem(len(elems), kind, self.loc(el), text=self.describe(el), geom=(x, y))
             eo = el.get("executionOrderId")
             e.order = (int(eo) if eo and eo.isdigit() and int(eo) > 0 else 0, y, x)
@@ -603,9 +613,18 @@ class _Wrap:
         return iter([self.el])
 
 
+def _num(s: str | None) -> float:
+    """A coordinate; a malformed one counts as 0 (positions only order and draw elements)."""
+    try:
+        return float(s or 0)
+    except ValueError:
+        return 0.0
+
+
 def _iso_duration(s: str) -> str:
     """``PT0.02S`` (ISO 8601, some exporters) -> ``T#20ms``; IEC literals pass through."""
-    m = re.match(r"^P(?:T(?:([0-9.]+)H)?(?:([0-9.]+)M)?(?:([0-9.]+)S)?)$", s.strip())
+    num = r"([0-9]+(?:\.[0-9]+)?)"
+    m = re.match(rf"^PT(?:{num}H)?(?:{num}M)?(?:{num}S)?$", s.strip())
     if not m:
         return s
     h, mi, sec = (float(x) if x else 0.0 for x in m.groups())

@@ -610,7 +610,7 @@ class Plc:
         for inst, pou, _ in self.project.programs:
             label = pou.spelling if inst == pou.name else inst
             out += [f"{label}.{d.spelling or d.name}" for d in pou.decls
-                    if d.section != "VAR_TEMP"]
+                    if d.section != "VAR_TEMP" and not d.name.startswith("__")]
         return out
 
 

@@ -147,7 +147,10 @@ def _acos(x):
 
 
 def _limit(mn, x, mx):
-    return mn if x < mn else mx if x > mx else x
+    """IEC LIMIT = MIN(MAX(IN, MN), MX), also when MN > MX."""
+    if x < mn:
+        x = mn
+    return mx if x > mx else x
 
 
 def _mux(k, items, where):

@@ -7,7 +7,7 @@
 ... M := ((NOT LS1) OR M) AND (NOT LS2);
 ... END_PROGRAM''', plant="tank", duration="1min")
 >>> tr.switchings("PUMP"), round(tr.value_at("LEVEL", 60.0), 2)
-(1, 0.32)
+(1, 0.41)
 
 The pieces: :class:`Simulation` (the loop, see :mod:`plclab.sim.simulation` for the exact
 order), :class:`Wiring` and :func:`default_wiring` (which plant signal reaches which PLC

@@ -48,19 +48,18 @@ def _param(text: str) -> tuple[str, object]:
 @arg("--snapshot", action="store_true", help="also record the plant's snapshot() extras")
 @arg("--events", action="store_true", help="print every event, not only the counts")
 def cmd_sim(ns: argparse.Namespace) -> int:
-    from .durations import format_duration
+    from .durations import format_duration, parse_ns
     from .runner import load_plc
     from .scenario import as_scenario
     from .simulation import Simulation
 
     sc = as_scenario(ns.scenario)
-    scan = ns.scan if ns.scan is not None else (sc.scan if sc.scan is not None else "10ms")
-    from .durations import parse_ns
-
-    parse_ns(scan, "--scan", allow_zero=False)
+    scan = ns.scan if ns.scan is not None else sc.scan  # None: the PLC's own cycle
+    if scan is not None:
+        parse_ns(scan, "--scan", allow_zero=False)
     if ns.duration is not None:
         parse_ns(ns.duration, "--duration", allow_zero=False)
-    plc = load_plc(ns.programs, cycle_time=scan)
+    plc = load_plc(ns.programs, cycle_time=scan if scan is not None else "10ms")
     for d in getattr(plc.compiled, "diagnostics", []):
         if d.severity != "error":
             print(str(d), file=sys.stderr)

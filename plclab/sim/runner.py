@@ -66,15 +66,16 @@ def run(program: Any, plant: Any = None, duration: Any = None, scenario: Any = N
     wiring : Wiring, list of rows or path, optional
         Default: the scenario's wiring, else the plant's default.
     scan : duration, optional
-        The PLC's cycle time (default: the scenario's, else 10 ms).
+        The PLC's cycle time (default: the scenario's, else 10 ms; a program with a
+        CONFIGURATION runs at its tasks' intervals). A loaded PLC must already have it.
     seed, watch, plant_params, dt, until, snapshot, decimate
         See :class:`~plclab.sim.Simulation` and :class:`~plclab.sim.Scenario`.
     """
     sc = as_scenario(scenario)
-    scan = scan if scan is not None else (sc.scan if sc.scan is not None else "10ms")
-    plc = load_plc(program, cycle_time=scan)
+    scan = scan if scan is not None else sc.scan  # None: the PLC's own cycle
+    plc = load_plc(program, cycle_time=scan if scan is not None else "10ms")
     plant = plant if plant is not None else (sc.plant or "tank")
-    sim = Simulation(plc, plant, wiring, None if hasattr(program, "scan") else scan, dt, seed,
+    sim = Simulation(plc, plant, wiring, scan, dt, seed,
                      scenario=sc, watch=watch, snapshot=snapshot, decimate=decimate,
                      plant_params=plant_params)
     if duration is None and sc.duration_ns is None:

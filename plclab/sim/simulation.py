@@ -39,7 +39,7 @@ import time as _time
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from plclab.errors import PlcError
+from plclab.errors import PlcError, PlcRuntimeFault
 
 from .channels import Transfer, bind
 from .durations import format_duration, parse_ns
@@ -112,6 +112,10 @@ class Simulation:
         Parameters of a plant given by name.
     wall_clock : bool
         Measure the wall time of each PLC scan (kept apart from the deterministic data).
+    stop_on_fault : bool
+        When the program faults (division by zero, watchdog...), the PLC goes to STOP with its
+        outputs off and, by default, the plant runs on (as it would) and the trace gets a
+        ``plc_fault`` event; with True the run stops and the fault is raised.
 
     Examples
     --------
@@ -130,7 +134,8 @@ class Simulation:
     def __init__(self, plc: Any, plant: Any = "tank", wiring: Any = None, scan: Any = None,
                  dt: Any = None, seed: int | None = None, *, scenario: Any = None,
                  watch: Iterable[str] = (), snapshot: bool = False, decimate: int = 1,
-                 plant_params: dict[str, Any] | None = None, wall_clock: bool = True) -> None:
+                 plant_params: dict[str, Any] | None = None, wall_clock: bool = True,
+                 stop_on_fault: bool = False) -> None:
         self.scenario: Scenario = as_scenario(scenario)
         sc = self.scenario
         if isinstance(plant, str) and sc.plant and plant != sc.plant:
@@ -190,8 +195,14 @@ class Simulation:
         self.decimate = decimate
         self.snapshot = bool(snapshot)
         self.wall_clock = bool(wall_clock)
+        self.stop_on_fault = bool(stop_on_fault)
         self.events: list[Any] = []
-        self._build_recorder(list(watch) + [x for x in sc.watch if x not in watch])
+        if isinstance(watch, str):
+            from plclab.cli import split_names
+
+            watch = split_names(watch)
+        watch = list(watch)
+        self._build_recorder(watch + [x for x in sc.watch if x not in watch])
         # -- scenario
         self._ops: list[tuple[int, int, Callable[[int], None]]] = []
         self._ramps: list[list[Any]] = []
@@ -231,13 +242,13 @@ class Simulation:
         self._g_out = rec.add("out", [c.name for c in tr.outputs],
                               [c.plc_kind for c in tr.outputs])
         # watched variables
-        wired = {c.row.plc.upper(): c.name for c in tr.channels}
+        wired = {_canonical(self.plc, c.row.plc): c.name for c in tr.channels}
         wired.update({c.name.upper(): c.name for c in tr.channels})
         getters, wnames, wkinds = [], [], []
         self.watch: list[str] = []
         for raw in watch:
             name = raw.strip()
-            if not name or name.upper() in wired:
+            if not name or name.upper() in wired or _canonical(self.plc, name) in wired:
                 continue
             try:
                 var = self.plc.var(name)
@@ -254,6 +265,7 @@ class Simulation:
                                 "structures name an element, e.g. arr[1] or s.x)")
             col = unique(name)
             wired[name.upper()] = col
+            wired[_canonical(self.plc, name)] = col
             getters.append(var.get)
             wnames.append(col)
             wkinds.append("float" if kind == "real" else kind)
@@ -283,7 +295,7 @@ class Simulation:
         raise_all(diags)
         self._ops.sort(key=lambda op: (op[0], op[1]))
 
-    def _signal(self, name: str, a: Action) -> Any:
+    def _signal(self, name: str) -> Any:
         sigs = self.plant.signals
         sig = sigs.get(name)
         if sig is None:
@@ -296,7 +308,7 @@ class Simulation:
         v = a.verb
         text = a.text()
         if v in ("press", "set", "ramp"):
-            sig = self._signal(a.target, a)
+            sig = self._signal(a.target)
             driven = {c.signal.name: c for c in self.transfer.outputs}
             if sig.kind == "sensor":
                 raise PlcError("PLC4011", f"{sig.name} is a sensor: the plant computes it. To "
@@ -520,7 +532,9 @@ class Simulation:
         else:
             d_ns = parse_ns(duration, "duration")
         n = -(-d_ns // self.scan_ns)
-        self._advance(n, self._until(until if until is not None else sc.until))
+        u = until if until is not None else sc.until
+        self._until_label = repr(u) if isinstance(u, str) else "condition"
+        self._advance(n, self._until(u))
         return self.trace
 
     def _advance(self, n: int, until: Callable[[dict[str, Any], float], bool] | None) -> None:
@@ -572,13 +586,12 @@ class Simulation:
                 v = values()
                 ins = read_in(t, v)
                 # 3. scan
-                if measure:
-                    w0 = perf()
+                w0 = perf() if measure else 0
+                try:
                     scan()
-                    w1 = perf()
-                else:
-                    scan()
-                    w0 = w1 = 0
+                except PlcRuntimeFault as fault:
+                    self._plc_fault(t_ns, fault)
+                w1 = perf() if measure else 0
                 if plc.state != self._plc_state:
                     self._plc_changed(t_ns)
                 outs = read_out()
@@ -622,8 +635,7 @@ class Simulation:
             self.wall_s += (perf() - w_start) / 1e9
 
     def _until_text(self, until: Any) -> str:
-        sc = self.scenario.until
-        return repr(sc) if isinstance(sc, str) else "condition"
+        return getattr(self, "_until_label", "condition")
 
     def _run_ops(self, t_ns: int) -> float:
         ops = self._ops
@@ -645,6 +657,16 @@ class Simulation:
                 self.plant.write(s, y0 + (y1 - y0) * (t_ns - a) / (b - a))
                 keep.append(r)
         self._ramps = keep
+
+    def _plc_fault(self, t_ns: int, fault: PlcRuntimeFault) -> None:
+        """The program faulted in this scan: the PLC is in STOP. A STOP scan finishes the cycle
+        (outputs off, clock one tick on) so that the PLC stays in step with the plant."""
+        plc = self.plc
+        if plc.ctx.now_ns == self.t0_ns + t_ns:
+            plc.scan()
+        if self.stop_on_fault:
+            self._plc_changed(t_ns)
+            raise fault
 
     def _plc_changed(self, t_ns: int) -> None:
         plc = self.plc
@@ -755,6 +777,20 @@ class Simulation:
     def __repr__(self) -> str:
         return (f"<Simulation {self.plant.name} t={self.time:g}s scan={format_duration(self.scan)}"
                 f" {len(self.wiring)} wiring rows>")
+
+
+def _canonical(plc: Any, path: str) -> str:
+    """``PROG.VAR`` for a variable given without its program (for comparing paths)."""
+    p = path.strip().upper()
+    if p.startswith("%"):
+        return p
+    head = p.split(".")[0].split("[")[0]
+    project = plc.project
+    if head in {n.upper() for n, _, _ in project.programs} or head in project.globals:
+        return p
+    owners = [n.upper() for n, pou, _ in project.programs
+              if any(d.name.upper() == head for d in pou.decls)]
+    return f"{owners[0]}.{p}" if len(owners) == 1 else p
 
 
 def _tuple_getter(getters: list[Callable[[], Any]]) -> Callable[[], tuple[Any, ...]]:

@@ -38,7 +38,7 @@ with the file and line of the row when the table came from a file.
 >>> w = Wiring.from_rows([{"plc": "%IX0.0", "signal": "LS1", "module": "di", "filter_ms": 3}])
 >>> w[0].module, w[0].params
 ('di', {'filter_ms': 3.0})
->>> print(w.to_toml().splitlines()[1])
+>>> print(w.to_toml().splitlines()[0])
 wiring = [
 """
 
@@ -175,8 +175,9 @@ MODULES: dict[str, ModuleSpec] = {
         "invert": (_bool, "the PLC bit is the inverse of the contact (default false)"),
     }),
     "ai": ModuleSpec("ai", "in", "analog input: transmitter, noise, filter, ADC -> counts", {
-        "lo": (_number, "engineering value at 0 % of the signal (default: signal range low)"),
-        "hi": (_number, "engineering value at 100 % (default: signal range high)"),
+        "lo": (_number, "engineering value at 0 % of the signal (default: the plant signal's "
+                          "range)"),
+        "hi": (_number, "engineering value at 100 % (default: the plant signal's range)"),
         "signal_range": (_signal_range, "electrical range, e.g. \"4-20mA\" (default), \"0-10V\""),
         "convention": (_choice("s7", "book", "full", "logo"),
                        "count convention: s7 (default, 0..27648), book, full, logo"),
@@ -194,8 +195,9 @@ MODULES: dict[str, ModuleSpec] = {
         "invert": (_bool, "the actuator gets the inverse of the output bit (default false)"),
     }),
     "ao": ModuleSpec("ao", "out", "analog output: counts -> DAC -> actuator value", {
-        "lo": (_number, "actuator value at 0 % of the signal (default: signal range low)"),
-        "hi": (_number, "actuator value at 100 % (default: signal range high)"),
+        "lo": (_number, "actuator value at 0 % of the signal (default: the plant signal's "
+                          "range)"),
+        "hi": (_number, "actuator value at 100 % (default: the plant signal's range)"),
         "signal_range": (_signal_range, "electrical range, e.g. \"0-10V\" (default), \"4-20mA\""),
         "convention": (_choice("s7", "book", "full", "logo"), "count convention (default s7)"),
         "bits": (_int, "DAC resolution in bits (convention default)"),

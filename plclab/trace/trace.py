@@ -322,8 +322,8 @@ class Trace:
         >>> import numpy as np
         >>> t = np.arange(0.0, 10.0, 1.0)
         >>> y = np.array([0, 5, 12, 9, 10.5, 10.1, 9.95, 10, 10, 10])
-        >>> Trace(t, {"Y": y}).settling_time("Y", band=0.5)
-        5.0
+        >>> Trace(t, {"Y": y}).settling_time("Y", band=0.5)   # |9 - 10| > 0.5 at t = 3
+        4.0
         """
         np = _np()
         t, x = self._window_xy(name, t0, t1)
@@ -388,8 +388,8 @@ class Trace:
 
         >>> import numpy as np
         >>> x = np.zeros(100, dtype=bool); x[10:20:2] = True; x[60] = True
-        >>> Trace(np.arange(100) * 0.1, {"K": x}).chatter_episodes("K", 4, 1.0)
-        [(1.0, 2.0, 10)]
+        >>> Trace(np.arange(100.0), {"K": x}).chatter_episodes("K", 4, 10.0)
+        [(10.0, 19.0, 10)]
         """
         np = _np()
         _, c = self._changes(name, t0, t1)

@@ -84,7 +84,7 @@ def render_ld(text: str, file: str = "<input>.ld", pou: str | None = None) -> Sv
 
 
 def _network(net, x0: float, y0: float, parts: list[str]) -> tuple[float, float]:
-    lines = net.lines
+    lines = net.grid or net.lines
     width = max(len(t) for t in lines) + 1
     grid = [t.ljust(width) for t in lines]
     rows = len(grid)
@@ -187,21 +187,33 @@ def _kids(el, name: str):
     return [c for c in el if isinstance(c.tag, str) and _loc(c.tag) == name]
 
 
+def _num(s) -> float:
+    try:
+        return float(s or 0)
+    except ValueError:
+        return 0.0
+
+
 def _pos(el) -> tuple[float, float]:
     p = _kid(el, "position")
-    return (float(p.get("x", 0)), float(p.get("y", 0))) if p is not None else (0.0, 0.0)
+    return (_num(p.get("x")), _num(p.get("y"))) if p is not None else (0.0, 0.0)
 
 
 def _rel(cp, base: tuple[float, float]) -> tuple[float, float]:
     r = _kid(cp, "relPosition") if cp is not None else None
     if r is None:
         return base
-    return base[0] + float(r.get("x", 0)), base[1] + float(r.get("y", 0))
+    return base[0] + _num(r.get("x")), base[1] + _num(r.get("y"))
 
 
 def render_xml(text: str, pou: str | None = None) -> Svg:
     """Draw the LD and FBD bodies of a PLCopen XML project (or only POU ``pou``)."""
-    root = ET.fromstring(text.encode("utf-8") if isinstance(text, str) else text)
+    from ..errors import PlcError
+
+    try:
+        root = ET.fromstring(text.encode("utf-8") if isinstance(text, str) else text)
+    except ET.ParseError as exc:
+        raise PlcError("PLC0180", f"not well-formed XML: {exc}") from None
     parts: list[str] = []
     y = PAD
     width = 200.0
@@ -236,15 +248,15 @@ def _graphic(net, x0: float, y0: float, parts: list[str]) -> tuple[float, float]
     def tr(pt: tuple[float, float]) -> tuple[float, float]:
         return x0 + pt[0] - minx, y0 + pt[1] - miny + 12
 
-    def out_point(src, pin: str) -> tuple[float, float]:
+    def out_point(src, pin: str, near: float = 0.0) -> tuple[float, float]:
         base = _pos(src)
         if _loc(src.tag) == "block":
             ov = _kid(src, "outputVariables")
             for v in _kids(ov, "variable") if ov is not None else []:
                 if (v.get("formalParameter") or "").upper() == pin.upper() or not pin:
                     return _rel(_kid(v, "connectionPointOut"), base)
-        cps = _kids(src, "connectionPointOut")
-        return _rel(cps[0], base) if cps else base
+        pts = [_rel(cp, base) for cp in _kids(src, "connectionPointOut")]
+        return min(pts, key=lambda q: abs(q[1] - near)) if pts else base
 
     def wires(cpi, dest_pt) -> None:
         for con in _kids(cpi, "connection") if cpi is not None else []:
@@ -253,7 +265,7 @@ def _graphic(net, x0: float, y0: float, parts: list[str]) -> tuple[float, float]
                 src = by_id.get(con.get("refLocalId"))
                 if src is None:
                     continue
-                a = out_point(src, con.get("formalParameter") or "")
+                a = out_point(src, con.get("formalParameter") or "", dest_pt[1])
                 midx = (a[0] + dest_pt[0]) / 2
                 pts = [dest_pt, (midx, dest_pt[1]), (midx, a[1]), a]
             d = " ".join(f"{tr(q)[0]:.1f},{tr(q)[1]:.1f}" for q in pts)
@@ -262,8 +274,8 @@ def _graphic(net, x0: float, y0: float, parts: list[str]) -> tuple[float, float]
     for el in elems:
         k = _loc(el.tag)
         x, y = _pos(el)
-        w = float(el.get("width", 30))
-        h = float(el.get("height", 20))
+        w = _num(el.get("width", 30))
+        h = _num(el.get("height", 20))
         maxx, maxy = max(maxx, x + w - minx), max(maxy, y + h - miny)
         X, Y = tr((x, y))
         if k in ("leftPowerRail", "rightPowerRail"):
@@ -324,7 +336,7 @@ def _graphic(net, x0: float, y0: float, parts: list[str]) -> tuple[float, float]
 
 
 def _pos_of(q) -> tuple[float, float]:
-    return float(q.get("x", 0)), float(q.get("y", 0))
+    return _num(q.get("x")), _num(q.get("y"))
 
 
 def render(source: str | os.PathLike, pou: str | None = None) -> Svg:
