@@ -49,7 +49,7 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
 
 
 @command("check", "check source files and print diagnostics (exit 1 on errors)")
-@arg("files", nargs="+", metavar="FILE", help="source files (.st)")
+@arg("files", nargs="+", metavar="FILE", help="source files (.st, .il, .ld, .xml)")
 @arg("--no-warnings", action="store_true", help="print errors only")
 def cmd_check(ns: argparse.Namespace) -> int:
     from .project import check_sources, read_sources
@@ -166,7 +166,7 @@ def cmd_explain(ns: argparse.Namespace) -> int:
 def build_parser() -> argparse.ArgumentParser:
     _load_command_modules()
     p = argparse.ArgumentParser(prog="plclab", description="plclab: a virtual PLC lab for "
-                                "IEC 61131-3 (ST) with physics plants and an autograder.")
+                                "IEC 61131-3 (ST, IL, LD) with physics plants and an autograder.")
     p.add_argument("--version", action="version", version=f"plclab {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     for name, (help_text, add_args, _) in COMMANDS.items():
