@@ -259,7 +259,10 @@ class Press(Plant):
         else:
             self._hands_t = 0.0
             ev["hands"] = False
-        if moving and not io["LIGHT_CURTAIN"]:
+        # as for the two hands: only while a valve is commanded, so the valve's own lag after
+        # a PLC that stopped at once is not blamed on the PLC
+        commanded = down or io["UP"]
+        if moving and commanded and not io["LIGHT_CURTAIN"]:
             self._curtain_t += h
             if self._curtain_t > grace and not ev["curtain"]:
                 ev["curtain"] = True

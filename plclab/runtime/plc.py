@@ -343,11 +343,24 @@ class Plc:
             raise self._translate(exc) from None
 
     def _to_stop(self, exc: BaseException) -> None:
+        """A fault ends the scan like a real CPU going to STOP: outputs off, the cycle
+        completes (the clock moves on), then the fault is raised to the caller."""
         fault = self._translate(exc)
         self.state = "STOP"
         self.fault = fault
         self.image_out[:] = bytes(self.image_size)
+        self.outputs[:] = self.image_out
+        ctx = self.ctx
+        ctx.first_scan = False
+        ctx.scan_count += 1
+        ctx.now_ns += self._tick_ns
+        ctx.now = ctx.now_ns // 1_000_000
         raise fault from None
+
+    @property
+    def tick_ns(self) -> int:
+        """The base period of the scan loop (the gcd of the task intervals), in ns."""
+        return self._tick_ns
 
     def _translate(self, exc: BaseException) -> PlcError:
         if isinstance(exc, KeyboardInterrupt):

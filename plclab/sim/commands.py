@@ -2,7 +2,8 @@
 
 ``plclab sim PLANT PROGRAM... [--wiring FILE] [--scenario FILE] [--duration 10min] [--scan 10ms]
 [--seed N] [--watch A,B] [--trace out.npz] [--csv out.csv]`` runs a simulation and prints a
-short summary; ``plclab plants [NAME]`` lists the plants and their signals.
+short summary (``--rrd/--vcd/--wavedrom/--png`` hand the trace to :mod:`plclab.viz`);
+``plclab plants [NAME]`` lists the plants and their signals.
 """
 
 from __future__ import annotations
@@ -47,6 +48,13 @@ def _param(text: str) -> tuple[str, object]:
 @arg("--decimate", type=int, default=1, help="record every n-th scan (default 1)")
 @arg("--snapshot", action="store_true", help="also record the plant's snapshot() extras")
 @arg("--events", action="store_true", help="print every event, not only the counts")
+@arg("--rrd", default=None, metavar="OUT.rrd", help="rerun timeline (needs plclab[viz])")
+@arg("--vcd", default=None, metavar="OUT.vcd", help="VCD waveform (needs plclab[viz])")
+@arg("--wavedrom", default=None, metavar="OUT.json", help="WaveDrom timing diagram (viz)")
+@arg("--png", default=None, metavar="OUT.png", help="timing diagram picture (viz)")
+@arg("--signals", default=None, metavar="A,B", help="columns for the viz exports")
+@arg("--window", default=None, metavar="T0..T1", help="time window of the viz exports, "
+     "e.g. 0s..20s")
 def cmd_sim(ns: argparse.Namespace) -> int:
     from .durations import format_duration, parse_ns
     from .runner import load_plc
@@ -97,6 +105,16 @@ def cmd_sim(ns: argparse.Namespace) -> int:
     if ns.csv:
         tr.to_csv(ns.csv)
         print(f"CSV written to {ns.csv}")
+    if ns.rrd or ns.vcd or ns.wavedrom or ns.png:
+        try:
+            from plclab.viz import export
+        except ImportError:
+            raise PlcError("PLC4020", "--rrd/--vcd/--wavedrom/--png need plclab.viz: "
+                           "pip install 'plclab[viz]'") from None
+        signals = split_names(ns.signals) if ns.signals else None
+        for line in export(tr, rrd=ns.rrd, vcd=ns.vcd, wavedrom=ns.wavedrom, png=ns.png,
+                           signals=signals, window=ns.window):
+            print(line)
     return 0
 
 

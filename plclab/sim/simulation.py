@@ -57,7 +57,7 @@ def _gcd_all(values: Iterable[int]) -> int:
 
 def plc_tick_ns(plc: Any) -> int:
     """The PLC's base tick: the period of its cyclic task(s) (their gcd), ns."""
-    return _gcd_all(t.interval_ns for t in plc.tasks) or plc.cycle_ns
+    return plc.tick_ns
 
 
 def make_plant(plant: Any, params: dict[str, Any] | None = None) -> Any:
@@ -105,7 +105,9 @@ class Simulation:
     watch : iterable of str
         PLC variables to record every scan (``"Main.M"``, ``"t1.ET"``).
     snapshot : bool
-        Also record the plant's ``snapshot()`` extras (can be expensive, e.g. 32 bottles).
+        Also record the plant's ``snapshot()`` extras (can be expensive, e.g. 32 bottles),
+        under their own keys (``volume``, ``bottle3.x``; ``snapshot:<key>`` when the name is
+        taken).
     decimate : int
         Record every n-th scan (events and edges are always complete).
     plant_params : dict, optional
@@ -144,6 +146,7 @@ class Simulation:
         params = plant_params if plant_params is not None else (
             sc.plant_params if isinstance(plant, str) else None)
         self.plant = make_plant(plant, params)
+        self.plant_params = dict(params or {})
         if sc.plant and sc.plant != self.plant.name:
             raise sim_error("PLC4008", f"the scenario is for the plant '{sc.plant}', but the "
                             f"simulation runs '{self.plant.name}'", sc.source)
@@ -684,8 +687,9 @@ class Simulation:
         if self._g_snap is None:
             keys = list(snap)
             self._snap_keys = keys
-            self._g_snap = self.recorder.add("snapshot", [f"snapshot:{k}" for k in keys],
-                                             ["float"] * len(keys))
+            taken = {n.upper() for g in self.recorder.groups.values() for n in g.names}
+            names = [k if k.upper() not in taken else f"snapshot:{k}" for k in keys]
+            self._g_snap = self.recorder.add("snapshot", names, ["float"] * len(keys))
             self._g_snap.rows.extend([(math.nan,) * len(keys)] * (len(self.recorder.index) - 1))
         keys = self._snap_keys
         assert keys is not None
@@ -717,6 +721,8 @@ class Simulation:
         events = sorted(self.events + bounce, key=lambda e: e.time)
         meta = {
             "plant": self.plant.name, "title": getattr(self.plant, "title", ""),
+            "plant_params": {k: v for k, v in self.plant_params.items()
+                             if isinstance(v, bool | int | float | str)},
             "signals": list(sigs),
             "units": {n: s.unit for n, s in sigs.items()},
             "signal_info": {n: {"kind": s.kind, "type": s.type, "unit": s.unit,

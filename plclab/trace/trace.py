@@ -7,7 +7,8 @@ A :class:`Trace` holds, for every recorded scan, the time and one NumPy array pe
   ``%IW64``, ``Main.SP``); the plant side of a row is the plant signal's column
   (``trace.io`` lists the pairs);
 * the watched PLC variables (``watch=[...]``), under the names given;
-* optionally the plant's ``snapshot()`` extras, as ``snapshot:<key>``.
+* optionally the plant's ``snapshot()`` extras under their keys (``volume``, ``bottle3.x``;
+  ``snapshot:<key>`` when the name is taken).
 
 Values are sample-and-hold: row ``i`` holds from ``time[i]`` until ``time[i+1]`` (the last row
 until :attr:`Trace.t_end`). Besides the columns a trace has the events (plant events, faults,
@@ -160,18 +161,21 @@ class Trace:
 
     def _find(self, name: str) -> str | None:
         cols = self.columns
-        for cand in (name, f"plc:{name}", f"snapshot:{name}"):
+        bare = name.split(":", 1)[1] if name.startswith(("plc:", "snapshot:")) else name
+        cands = (name, f"plc:{name}", f"snapshot:{name}", bare)
+        for cand in cands:
             if cand in cols:
                 return cand
-        low = name.lower()
-        for cand in (low, f"plc:{low}", f"snapshot:{low}"):
+        low = [c.lower() for c in cands]
+        for cand in low:
             for n in cols:
                 if n.lower() == cand:
                     return n
         return None
 
     def resolve(self, name: str) -> str:
-        """The column name for ``name`` (exact, then ``plc:``/``snapshot:``, then any case)."""
+        """The column name for ``name``: exact, then with or without a ``plc:``/``snapshot:``
+        prefix, then the same in any case."""
         found = self._find(str(name))
         if found is None:
             import difflib

@@ -89,3 +89,12 @@ def test_help_lists_the_commands():
     r = subprocess.run([sys.executable, "-m", "plclab", "--help"], capture_output=True,
                        text=True, check=True)
     assert "sim" in r.stdout and "plants" in r.stdout
+
+
+def test_sim_hands_the_trace_to_viz(prog, tmp_path, capsys):
+    pytest.importorskip("vcd")
+    out = tmp_path / "run.vcd"
+    rc = main(["sim", "tank", str(prog), "--duration", "1min", "--vcd", str(out),
+               "--signals", "LS1,PUMP,%QX0.0", "--window", "0s..30s"])
+    assert rc == 0, capsys.readouterr().err
+    assert out.exists() and "$var" in out.read_text()

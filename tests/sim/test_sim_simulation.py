@@ -119,7 +119,7 @@ def test_decimate_snapshot_and_watch():
     assert tr.meta["period"] == pytest.approx(0.1) and tr.t_end == 1.0
     assert list(tr["n"][:2]) == [1, 11]
     assert tr.kind("Main.t_plc") == "int" and tr["Main.t_plc"][0] == 0
-    assert "snapshot:volume" in tr.names and tr["volume"][0] == pytest.approx(0.2)
+    assert "volume" in tr.names and tr["snapshot:volume"][0] == pytest.approx(0.2)
     assert tr["M"].dtype == bool
     assert "%IX0.0" in tr.names and tr.names.count("%IX0.0") == 1
     with pytest.raises(PlcError) as e:
