@@ -180,6 +180,8 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC4021": ("unknown trace column or bad trace file",
                 "The trace has no column of that name (trace.names lists them), or the file is "
                 "not a trace saved by plclab."),
+    "PLC3005": ("optional part not installed", "The feature needs an extra: pip install "
+                "'plclab[viz]' (rerun, matplotlib), 'plclab[modbus]' or 'plclab[sim]'."),
     "PLC9101": ("unknown signal range", "I/O module: use 0-10V, +-10V, 0-20mA, 4-20mA or 1-5V."),
     "PLC9102": ("unknown count convention", "I/O module: use book, full, s7 or logo."),
     "PLC9103": ("bad bit width", "I/O module: the ADC bit width is outside what the convention allows."),

@@ -48,7 +48,7 @@ def edges(series: Series) -> list[tuple[float, bool]]:
 
 
 def chatter_episodes(times: list[float], min_toggles: int = 4,
-                     window: float = 1.0) -> list[tuple[float, float, int]]:
+                     window: float = 10.0) -> list[tuple[float, float, int]]:
     """Maximal runs in which every ``min_toggles`` consecutive changes fit in ``window`` s."""
     out: list[tuple[float, float, int]] = []
     n = len(times)
@@ -66,7 +66,7 @@ def chatter_episodes(times: list[float], min_toggles: int = 4,
 
 
 def output_stats(series: Series, duration: float | None = None, min_toggles: int = 4,
-                 window: float = 1.0) -> OutputStats:
+                 window: float = 10.0) -> OutputStats:
     """Switching statistics of one digital output."""
     e = edges(series)
     times = [t for t, _ in e]

@@ -54,7 +54,7 @@ def parse_window(text: str | None) -> tuple[float | None, float | None]:
     return t0, t1
 
 
-def chatter_events(trace, min_toggles: int = 4, window: float = 1.0) -> list[Event]:
+def chatter_events(trace, min_toggles: int = 4, window: float = 10.0) -> list[Event]:
     """A warning event at each chatter episode of a digital output (actuators, %Q columns)."""
     evs = []
     info = trace.meta.get("signal_info", {})

@@ -1,0 +1,341 @@
+"""Grading one submission: compile, run every scenario, evaluate the criteria.
+
+:func:`grade_sources` is the whole job for one student, in this process; the autograder runs it
+in a child process per submission (:mod:`plclab.grade.worker`), ``plclab lab check`` and
+:func:`plclab.grade.check` run it directly.
+
+The outcome is a :class:`Result`: one :class:`TestResult` per (scenario, criterion) pair with
+its points, a message, the time of the failure and the timing diagram drawn around it.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from plclab.errors import PlcError
+
+from .errors import grade_error
+from .lab import SOURCE_EXTS, Lab, ScenarioSpec
+
+STATUSES = ("ok", "compile_error", "no_source", "language", "timeout", "memory", "crash")
+
+
+@dataclass
+class TestResult:
+    """One test: a criterion evaluated on the trace of one scenario."""
+
+    name: str
+    scenario: str
+    criterion: str
+    score: float
+    max_score: float
+    passed: bool
+    message: str
+    detail: str = ""
+    t_fail: float | None = None
+    visible: bool = True
+    hint: str = ""
+    diagram: str | None = None
+    number: str = ""
+
+    def to_json(self) -> dict[str, Any]:
+        return asdict(self)
+
+    @classmethod
+    def from_json(cls, d: dict[str, Any]) -> TestResult:
+        return cls(**d)
+
+
+@dataclass
+class ScenarioRun:
+    """What happened in one scenario (apart from the tests)."""
+
+    name: str
+    description: str = ""
+    visible: bool = True
+    ran: bool = False
+    error: str = ""
+    notes: list[str] = field(default_factory=list)
+    duration: float = 0.0
+    wall_s: float = 0.0
+    rrd: str | None = None
+    rrd_note: str = ""
+
+    def to_json(self) -> dict[str, Any]:
+        return asdict(self)
+
+    @classmethod
+    def from_json(cls, d: dict[str, Any]) -> ScenarioRun:
+        return cls(**d)
+
+
+@dataclass
+class Result:
+    """The grade of one submission.
+
+    ``score``/``max_score``, ``tests`` (one per scenario and criterion), ``scenarios``,
+    ``status`` (``ok``, ``compile_error``, ``no_source``, ``language``, ``timeout``,
+    ``memory``, ``crash``), ``diagnostics`` (compiler messages), ``message`` (a word on the
+    whole submission), ``traces`` (scenario name -> Trace, in-process runs only) and
+    :attr:`feedback_markdown`. In Jupyter the result shows itself as Markdown.
+    """
+
+    lab_id: str
+    student: str = ""
+    tests: list[TestResult] = field(default_factory=list)
+    scenarios: list[ScenarioRun] = field(default_factory=list)
+    status: str = "ok"
+    message: str = ""
+    diagnostics: list[str] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    execution_time: float = 0.0
+    lab_title: str = ""
+    submission_hash: str = ""
+    lab_hash: str = ""
+    traces: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @property
+    def score(self) -> float:
+        return float(sum(t.score for t in self.tests))
+
+    @property
+    def max_score(self) -> float:
+        return float(sum(t.max_score for t in self.tests))
+
+    @property
+    def feedback_markdown(self) -> str:
+        from .feedback import render_feedback
+
+        return render_feedback(self)
+
+    def _repr_markdown_(self) -> str:
+        return self.feedback_markdown
+
+    def __repr__(self) -> str:
+        return (f"<Result {self.lab_id} {self.student or ''}: {self.score:g}/{self.max_score:g} "
+                f"{self.status}>")
+
+    def to_json(self) -> dict[str, Any]:
+        d = {k: v for k, v in asdict(self).items() if k != "traces"}
+        d["tests"] = [t.to_json() for t in self.tests]
+        d["scenarios"] = [s.to_json() for s in self.scenarios]
+        d["score"] = self.score
+        d["max_score"] = self.max_score
+        return d
+
+    @classmethod
+    def from_json(cls, d: dict[str, Any]) -> Result:
+        d = dict(d)
+        d.pop("score", None)
+        d.pop("max_score", None)
+        d["tests"] = [TestResult.from_json(t) for t in d.get("tests", [])]
+        d["scenarios"] = [ScenarioRun.from_json(s) for s in d.get("scenarios", [])]
+        return cls(**d)
+
+
+# ---------------------------------------------------------------------------- submissions
+
+
+def language_of(filename: str) -> str | None:
+    """``st``/``il``/``ld``/``xml`` by extension (None for other files)."""
+    return SOURCE_EXTS.get(os.path.splitext(filename)[1].lower())
+
+
+def guess_language(text: str) -> str:
+    """The language of program text given without a file name."""
+    s = text.lstrip()
+    if s.startswith("<?xml") or s.startswith("<project"):
+        return "xml"
+    if any(ln.lstrip().startswith("|") and ("[" in ln or "(" in ln) for ln in text.splitlines()):
+        return "ld"
+    return "st"
+
+
+def read_submission(path: str | os.PathLike) -> tuple[list[tuple[str, str]], list[str]]:
+    """Source files of a submission (a file or a folder): ``[(text, display name)]`` and the
+    other files found (ignored). Display names are relative to the submission's parent."""
+    p = Path(path)
+    base = p.parent
+    files = [p] if p.is_file() else sorted(
+        f for f in p.rglob("*") if f.is_file() and not any(
+            part.startswith(".") or part == "__MACOSX" for part in f.relative_to(p).parts))
+    sources, ignored = [], []
+    for f in files:
+        rel = f.relative_to(base).as_posix()
+        if language_of(f.name) is None:
+            ignored.append(rel)
+            continue
+        try:
+            text = f.read_bytes().decode("utf-8-sig")
+        except UnicodeDecodeError:
+            text = f.read_bytes().decode("latin-1")
+        sources.append((text, rel))
+    return sources, ignored
+
+
+# ---------------------------------------------------------------------------- grading
+
+
+def _tests_failed(lab: Lab, sc: ScenarioSpec, message: str, first: int) -> list[TestResult]:
+    out = []
+    for j, c in enumerate(lab.criteria_for(sc.name)):
+        out.append(TestResult(f"{sc.name}: {c.name}", sc.name, c.name, 0.0, c.points, False,
+                              message, message, None, sc.visible, c.hint,
+                              number=f"{first}.{j + 1}"))
+    return out
+
+
+def failed_result(lab: Lab, status: str, message: str, scenarios: Iterable[ScenarioSpec],
+                  diagnostics: Iterable[str] = ()) -> Result:
+    """A result in which every test of ``scenarios`` failed with ``message``."""
+    res = Result(lab.id, status=status, message=message, diagnostics=list(diagnostics),
+                 lab_title=lab.title, lab_hash=lab.hash)
+    for i, sc in enumerate(scenarios, 1):
+        res.scenarios.append(ScenarioRun(sc.name, sc.description, sc.visible, False, message))
+        res.tests += _tests_failed(lab, sc, message, i)
+    return res
+
+
+def compile_submission(lab: Lab, sources: list[tuple[str, str]]) -> tuple[Any, list[str], str]:
+    """(compiled or None, diagnostics as text, status)."""
+    from plclab.project import compile_sources
+
+    if not sources:
+        return None, [], "no_source"
+    bad = [n for _, n in sources if language_of(n) not in lab.languages]
+    if bad:
+        allowed = ", ".join(lab.languages)
+        return None, [f"error PLC5022: {n}: this lab accepts {allowed} programs" for n in bad], \
+            "language"
+    try:
+        compiled = compile_sources(sources)
+    except PlcError as e:
+        return None, [str(d) for d in e.diagnostics], "compile_error"
+    diags = [str(d) for d in getattr(compiled, "diagnostics", [])]
+    return compiled, diags, "ok"
+
+
+def grade_sources(lab: Lab, sources: list[tuple[str, str]], *, student: str = "",
+                  scenarios: Iterable[str] | None = None, include_hidden: bool = True,
+                  media_dir: str | os.PathLike | None = None, rrd: bool = True,
+                  keep_traces: bool = False,
+                  on_scenario: Callable[[ScenarioRun, list[TestResult]], None] | None = None,
+                  on_compiled: Callable[[list[str]], None] | None = None) -> Result:
+    """Grade program sources ``[(text, name)]`` against a lab.
+
+    Parameters
+    ----------
+    scenarios : names, optional
+        Only these scenarios (default: all, or the visible ones with ``include_hidden=False``).
+    media_dir : path, optional
+        Where the timing diagrams (PNG) of failed criteria and the ``.rrd`` recordings of
+        scenarios with a failure go. None: no pictures.
+    rrd : bool
+        Write rerun recordings (when rerun is installed).
+    keep_traces : bool
+        Keep every scenario's Trace in ``Result.traces``.
+    on_scenario : callable, optional
+        Called after each scenario with its run and tests (the worker streams them).
+    """
+    t_start = time.perf_counter()
+    specs = [s for s in lab.scenarios if include_hidden or s.visible]
+    if scenarios is not None:
+        wanted = list(scenarios)
+        specs = [lab.scenario(n) for n in wanted]
+    compiled, diags, status = compile_submission(lab, sources)
+    if on_compiled is not None:
+        on_compiled(diags)
+    if compiled is None:
+        msg = {"no_source": "no source file (.st, .il, .ld, .xml) in the submission (PLC5021)",
+               "language": "this lab does not accept that language (PLC5022)",
+               "compile_error": "the program does not compile: fix the errors below"}[status]
+        res = failed_result(lab, status, msg, specs, diags)
+        res.student = student
+        res.files = [n for _, n in sources]
+        res.execution_time = time.perf_counter() - t_start
+        for sc in res.scenarios:
+            if on_scenario is not None:
+                on_scenario(sc, [t for t in res.tests if t.scenario == sc.name])
+        return res
+    res = Result(lab.id, student, diagnostics=diags, files=[n for _, n in sources],
+                 lab_title=lab.title, lab_hash=lab.hash)
+    for i, sc in enumerate(specs, 1):
+        run, tests, trace = run_scenario(lab, compiled, sc, i, media_dir, rrd)
+        res.scenarios.append(run)
+        res.tests.extend(tests)
+        if keep_traces and trace is not None:
+            res.traces[sc.name] = trace
+        if on_scenario is not None:
+            on_scenario(run, tests)
+    if any(not r.ran for r in res.scenarios) and all(not r.ran for r in res.scenarios):
+        res.message = res.scenarios[0].error
+    res.execution_time = time.perf_counter() - t_start
+    return res
+
+
+def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
+                 media_dir: str | os.PathLike | None = None, rrd: bool = True
+                 ) -> tuple[ScenarioRun, list[TestResult], Any]:
+    """Run one scenario of a compiled program; evaluate its criteria."""
+    from plclab.runtime.plc import Plc
+    from plclab.sim import Simulation
+
+    run = ScenarioRun(sc.name, sc.description, sc.visible, duration=sc.duration)
+    t0 = time.perf_counter()
+    try:
+        plc = Plc(compiled, cycle_time=lab.scan)
+        sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
+                         watch=lab.all_watch(sc), plant_params={**lab.plant_params,
+                                                                **sc.plant_params})
+        trace = sim.run()
+    except MemoryError:
+        raise
+    except PlcError as e:
+        msg = (f"the scenario could not run with this program: {e} (PLC5028). Check that your "
+               "program declares the I/O addresses of the lab's I/O table with their types")
+        run.error = msg
+        run.wall_s = time.perf_counter() - t0
+        return run, _tests_failed(lab, sc, msg, number), None
+    run.ran = True
+    run.wall_s = time.perf_counter() - t0
+    faults = trace.events_of("plc_fault")
+    for f in faults:
+        run.notes.append(f"The PLC stopped at t = {f.time:.2f} s: {f.message}")
+    tests: list[TestResult] = []
+    for j, c in enumerate(lab.criteria_for(sc.name), 1):
+        v = c.evaluate(trace)
+        if v.passed:
+            msg = v.message
+        else:
+            msg = f"{c.message}: {v.message}" if c.message else v.message
+            if faults and (v.t_fail is None or v.t_fail >= faults[0].time):
+                msg += (f". Note: the PLC was stopped by a fault from t = {faults[0].time:.2f} s"
+                        f" on ({faults[0].message})")
+        tests.append(TestResult(f"{sc.name}: {c.name}", sc.name, c.name,
+                                c.points if v.passed else 0.0, c.points, v.passed, msg,
+                                v.message, v.t_fail, sc.visible, c.hint, number=f"{number}.{j}"))
+    if media_dir is not None and any(not t.passed for t in tests):
+        from .feedback import draw_failures
+
+        draw_failures(lab, sc, trace, tests, Path(media_dir), run, rrd=rrd)
+    return run, tests, trace
+
+
+def source_hash(sources: list[tuple[str, str]]) -> str:
+    """A hash of a submission's files (names relative to the submission, and contents)."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for text, name in sorted(sources, key=lambda s: s[1]):
+        rel = name.split("/", 1)[-1]
+        h.update(rel.encode() + b"\0" + text.encode("utf-8", "surrogatepass") + b"\0")
+    return h.hexdigest()[:16]
+
+
+def check_error(code: str, message: str) -> PlcError:
+    return grade_error(code, message)
