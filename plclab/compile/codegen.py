@@ -537,7 +537,7 @@ class Codegen:
             else:
                 self.emit(f"_CTX.advance_ns({args[0]} * 1000000)")
             return
-        texts = [_expr_text(e) for _, e in info.inputs]
+        texts = [A.expr_text(e) for _, e in info.inputs]
         self.assert_texts[w] = ", ".join(texts)
         kinds = [_kind_name(e.ty) for _, e in info.inputs]
         if name in ("ASSERT_EQ", "ASSERT_NE"):
@@ -1115,29 +1115,6 @@ def _kind_name(t: T.Type | None) -> str:
     if isinstance(r, T.Subrange):
         return "int"
     return r.kind if r.name not in ("LTIME",) else "ltime"
-
-
-def _expr_text(e: A.Expr) -> str:
-    """A short readable rendering of an expression for assertion messages."""
-    if isinstance(e, A.Literal):
-        return e.text or repr(e.value)
-    if isinstance(e, A.Name):
-        return e.name
-    if isinstance(e, A.Member):
-        f = e.field_name
-        return f"{_expr_text(e.obj)}.{f[1:] if f.startswith('%') else f}"
-    if isinstance(e, A.Index):
-        return f"{_expr_text(e.obj)}[{', '.join(_expr_text(i) for i in e.indices)}]"
-    if isinstance(e, A.Unary):
-        sep = " " if e.op == "NOT" else ""
-        return f"{e.op}{sep}{_expr_text(e.operand)}"
-    if isinstance(e, A.Binary):
-        return f"{_expr_text(e.left)} {e.op} {_expr_text(e.right)}"
-    if isinstance(e, A.Call):
-        return f"{_expr_text(e.func)}(...)"
-    if isinstance(e, A.DirectAddr):
-        return e.address
-    return "?"
 
 
 def generate(project: Project, filename: str = "<plclab>") -> Compiled:

@@ -344,3 +344,27 @@ def walk_stmts(stmts: list[Stmt]):
                 yield from walk_stmts(s.orelse)
         elif isinstance(s, (For, While, Repeat)):
             yield from walk_stmts(s.body)
+
+
+def expr_text(e: Expr | None) -> str:
+    """A short readable rendering of an expression, for messages (``t.Q``, ``a + 1``)."""
+    if e is None:
+        return "?"
+    if isinstance(e, Literal):
+        return e.text or repr(e.value)
+    if isinstance(e, Name):
+        return e.name
+    if isinstance(e, Member):
+        f = e.field_name
+        return f"{expr_text(e.obj)}.{f[1:] if f.startswith('%') else f}"
+    if isinstance(e, Index):
+        return f"{expr_text(e.obj)}[{', '.join(expr_text(i) for i in e.indices)}]"
+    if isinstance(e, DirectAddr):
+        return e.address
+    if isinstance(e, Unary):
+        return f"NOT {expr_text(e.operand)}" if e.op == "NOT" else f"-{expr_text(e.operand)}"
+    if isinstance(e, Binary):
+        return f"{expr_text(e.left)} {e.op} {expr_text(e.right)}"
+    if isinstance(e, Call):
+        return f"{expr_text(e.func)}(...)"
+    return "?"

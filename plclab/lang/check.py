@@ -421,8 +421,6 @@ class Checker:
             if d.name == p.name and p.kind == "FUNCTION":
                 self.err("PLC0101", f"{d.name} is the function's own name (its result); choose "
                          "another variable name", d.loc)
-            if p.kind == "FUNCTION" and d.section == "VAR_OUTPUT":
-                pass
             if d.address and p.kind != "PROGRAM" and not d.address.endswith("*"):
                 self.err("PLC0120", f"{d.name}: located variables (AT {d.address}) belong in a "
                          "PROGRAM or VAR_GLOBAL, not in a function or function block", d.loc)
@@ -770,9 +768,7 @@ class Checker:
             if e.address.startswith("%I"):
                 self.err("PLC0105", f"{e.address} is a physical input; a program cannot write it",
                          e.loc)
-        elif isinstance(e, A.Member | A.Index):
-            pass
-        elif not isinstance(e, A.Name):
+        elif not isinstance(e, A.Name | A.Member | A.Index):
             self.err("PLC0105", "the left side of ':=' must be a variable, an element or a "
                      "member", e.loc)
         return t
@@ -944,8 +940,6 @@ class Checker:
                 elif write and d.section == "VAR_OUTPUT":
                     self.err("PLC0105", f"{f} is an output of {pou.name}; only the block itself "
                              "writes it", e.loc)
-            if self.pou is not None and pou is not None:
-                pass
             return d.ty
         self.err("PLC0116", f"{ot} has no members; '.{f}' needs a structure or a function block "
                  "instance", e.loc)
@@ -1023,15 +1017,11 @@ class Checker:
             if isinstance(a, T.EnumType) or isinstance(b, T.EnumType):
                 if a is not b:
                     self.err("PLC0104", f"cannot compare {a} with {b}", e.loc)
-                elif op not in ("=", "<>"):
-                    pass
                 return T.BOOL
             c = T.common_type(a, b)
             if c is None:
                 self.err("PLC0104", f"cannot compare {T.concrete(a)} with {T.concrete(b)}" +
                          _conv_hint(a, b), e.loc)
-            elif c is T.BOOL and op not in ("=", "<>"):
-                pass
             return T.BOOL
         # arithmetic
         ka, kb = a.kind, b.kind
@@ -1242,7 +1232,7 @@ class Checker:
             self.err("PLC0106", f"{name} is a statement, not a value", c.loc)
         vals: list[A.Expr] = []
         names = list(b.params)
-        for i, a in enumerate(c.args):
+        for a in c.args:
             if a.output:
                 self.err("PLC0107", f"{name} has no outputs to connect with '=>'", a.loc)
                 continue
@@ -1262,7 +1252,6 @@ class Checker:
                 vals[idx] = a.value
             else:
                 vals.append(a.value)
-            del i
         if any(v is None for v in vals) or len(vals) < b.min_args or (
             not b.variadic and len(vals) > len(b.params)
         ):

@@ -465,27 +465,6 @@ def lower_pending(files: list[A.SourceFile]) -> list[Diagnostic]:
 # IL -> AST
 
 
-def _text(e: A.Expr | None) -> str:
-    if e is None:
-        return "?"
-    if isinstance(e, A.Literal):
-        return e.text or repr(e.value)
-    if isinstance(e, A.Name):
-        return e.name
-    if isinstance(e, A.Member):
-        f = e.field_name
-        return f"{_text(e.obj)}.{f[1:] if f.startswith('%') else f}"
-    if isinstance(e, A.Index):
-        return f"{_text(e.obj)}[{', '.join(_text(i) for i in e.indices)}]"
-    if isinstance(e, A.DirectAddr):
-        return e.address
-    if isinstance(e, A.Unary):
-        return f"{e.op} {_text(e.operand)}" if e.op == "NOT" else f"-{_text(e.operand)}"
-    if isinstance(e, A.Call):
-        return f"{_text(e.func)}(...)"
-    return "..."
-
-
 class _Lowering:
     def __init__(self, pou: A.Pou, instrs: list[Instr], env: Env, file: str) -> None:
         self.pou = pou

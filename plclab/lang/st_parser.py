@@ -205,7 +205,6 @@ class Parser:
 
     def test_block(self) -> A.TestBlock:
         head = self.advance()
-        title_tok = self.tok
         if self.at("STRING", "WSTRING"):
             title = self.advance().value
         elif self.at("IDENT"):
@@ -213,7 +212,6 @@ class Parser:
         else:
             self.fail_expected("a test name in quotes, e.g. TEST 'TON fires at PT'")
             title = ""
-        del title_tok
         decls: list[A.VarDecl] = []
         while self.tok.kind in _VAR_SECTIONS:
             decls.extend(self.var_section())
@@ -474,16 +472,20 @@ class Parser:
         while self.tok.kind not in stop:
             if self.tok.kind in _POU_START and self.tok.kind != "TYPE":
                 break
-            start = self.i
-            try:
-                s = self.statement()
-                if s is not None:
-                    out.append(s)
-            except _Bail:
-                if self.i == start:
-                    self.advance()
-                self.sync(stop)
+            self._guarded_statement(out, stop)
         return out
+
+    def _guarded_statement(self, out: list[A.Stmt], stop: set[str]) -> None:
+        """Parse one statement into ``out``; after a syntax error skip to a safe point."""
+        start = self.i
+        try:
+            s = self.statement()
+            if s is not None:
+                out.append(s)
+        except _Bail:
+            if self.i == start:
+                self.advance()
+            self.sync(stop)
 
     def statement(self) -> A.Stmt | None:
         t = self.tok
@@ -543,13 +545,11 @@ class Parser:
                     return None
             self.fail_expected("':=' or '(' after the name (a statement is an assignment or a "
                                "call)")
-        close = []
         if k.startswith("END_") or k in ("ELSE", "ELSIF", "UNTIL", "THEN", "DO"):
             self.error("PLC0010", f"unexpected {t.text}: there is no open statement it could "
                        "close here; check the structure above")
             raise _Bail
         self.fail_expected("a statement")
-        del close
         return None
 
     def semicolon(self) -> None:
@@ -640,15 +640,7 @@ class Parser:
             # a new label starts: literal/name followed by ':' ',' or '..'
             if self._at_case_label():
                 break
-            start = self.i
-            try:
-                s = self.statement()
-                if s is not None:
-                    out.append(s)
-            except _Bail:
-                if self.i == start:
-                    self.advance()
-                self.sync({"END_CASE", "ELSE"})
+            self._guarded_statement(out, {"END_CASE", "ELSE"})
         return out
 
     def _at_case_label(self) -> bool:

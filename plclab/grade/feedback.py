@@ -1,0 +1,240 @@
+"""Feedback: the Markdown a student reads, the timing diagram of each failed criterion around
+the moment it failed, and a rerun recording of the scenario around its first failure.
+
+Hidden scenarios are reported by name and pass/fail only (no diagram, no message), so their
+details stay with the instructor (``Result.to_json()`` keeps everything).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+from typing import Any
+
+RRD_SPAN = (60.0, 30.0)
+"""The rerun recording covers this much before and after the first failure, seconds."""
+MAX_SIGNALS = 8
+
+
+def slug(text: str) -> str:
+    """A file-name-safe form of a name."""
+    s = re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
+    return s or "x"
+
+
+def _atomic_tmp(path: Path) -> Path:
+    return path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+
+
+def _window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
+    if tf is None:
+        return max(0.0, t_end - w), t_end
+    t0 = max(0.0, tf - 0.6 * w)
+    t1 = min(t_end, t0 + w)
+    return max(0.0, min(t0, t1 - w)), t1
+
+
+def _names(trace: Any, lab: Any, crit: Any) -> list[str]:
+    out: list[str] = []
+    for n in list(crit.relevant_signals()) + list(lab.diagram_signals):
+        if n in trace and trace.resolve(n) not in out:
+            out.append(trace.resolve(n))
+    if not out:
+        out = [r["plant_column"] for r in trace.io][:MAX_SIGNALS]
+    return out[:MAX_SIGNALS]
+
+
+def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Path, run: Any,
+                  rrd: bool = True) -> None:
+    """Timing diagrams (PNG) of the failed tests of a visible scenario, and its recording."""
+    failed = [t for t in tests if not t.passed]
+    if not failed or not sc.visible:
+        return
+    media_dir.mkdir(parents=True, exist_ok=True)
+    crits = {c.name: c for c in lab.criteria_for(sc.name)}
+    faults = [(e.time, "PLC fault") for e in trace.events_of("plc_fault")]
+    drawn: dict[tuple[Any, ...], str] = {}
+    for t in failed:
+        crit = crits[t.criterion]
+        w = crit.window or lab.diagram_window
+        t0, t1 = _window(t.t_fail, w, trace.t_end)
+        names = _names(trace, lab, crit)
+        key = (tuple(names), round(t0, 3), round(t1, 3))
+        if key in drawn:  # same picture as another failed criterion
+            t.diagram = drawn[key]
+            continue
+        fname = f"{slug(sc.name)}--{slug(crit.name)}.png"
+        markers = [(t.t_fail, f"{crit.name} fails")] if t.t_fail is not None else []
+        markers += [m for m in faults if t0 <= m[0] <= t1]
+        try:
+            timing_png(trace, names, media_dir / fname, t0, t1, markers,
+                       f"{sc.name}: {crit.name}")
+        except Exception as e:  # noqa: BLE001 - a picture must never cost a grade
+            run.notes.append(f"(no diagram for {crit.name}: {type(e).__name__}: {e})")
+            continue
+        t.diagram = fname
+        drawn[key] = fname
+    if rrd:
+        write_rrd(trace, lab, sc, failed, media_dir, run)
+
+
+def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
+               markers: list[tuple[float, str]], title: str) -> None:
+    """A timing diagram of ``names`` over [t0, t1], written atomically."""
+    from plclab.viz.from_trace import series
+    from plclab.viz.timing import timing_diagram
+
+    fig = timing_diagram(series(trace, names, t0, t1), None, t0, t1, title=title,
+                         markers=markers, width=9.0)
+    tmp = _atomic_tmp(path)
+    try:
+        fig.savefig(str(tmp), dpi=72)
+    finally:
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
+    os.replace(tmp, path)
+
+
+def rerun_available() -> bool:
+    try:
+        import rerun  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
+              run: Any) -> None:
+    """The scenario's rerun recording around its first failure (skipped quietly, with a note,
+    when rerun is not installed)."""
+    if not rerun_available():
+        run.rrd_note = ("no .rrd recording: rerun is not installed "
+                        "(pip install 'plclab[viz]')")
+        return
+    from plclab.viz.from_trace import to_rerun
+
+    times = [t.t_fail for t in failed if t.t_fail is not None]
+    tf = min(times) if times else trace.t_end
+    t0 = max(0.0, tf - RRD_SPAN[0])
+    t1 = min(trace.t_end, tf + RRD_SPAN[1])
+    crits = {c.name: c for c in lab.criteria_for(sc.name)}
+    names: list[str] = []
+    for t in failed:
+        for n in _names(trace, lab, crits[t.criterion]):
+            if n not in names:
+                names.append(n)
+    for r in trace.io:
+        for n in (r["plant_column"], r["column"]):
+            if n not in names and n in trace:
+                names.append(n)
+    path = media_dir / f"{slug(sc.name)}.rrd"
+    tmp = _atomic_tmp(path)
+    try:
+        to_rerun(trace, tmp, names=names, window=(t0, t1))
+        os.replace(tmp, path)
+    except Exception as e:  # noqa: BLE001 - a recording must never cost a grade
+        run.rrd_note = f"no .rrd recording ({type(e).__name__}: {e})"
+        if tmp.exists():
+            tmp.unlink()
+        return
+    run.rrd = path.name
+    run.rrd_note = f"{t0:.0f}..{t1:.0f} s"
+
+
+# ---------------------------------------------------------------------------- Markdown
+
+
+def _pts(x: float) -> str:
+    return f"{x:g}"
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def render_feedback(result: Any, instructor: bool = False) -> str:
+    """The feedback of a :class:`~plclab.grade.engine.Result` as Markdown.
+
+    ``instructor=True`` shows the hidden scenarios in full too.
+    """
+    lines: list[str] = []
+    who = f" — {result.student}" if result.student else ""
+    title = result.lab_title or result.lab_id
+    lines.append(f"# {title}{who}")
+    lines.append("")
+    lines.append(f"**Score: {_pts(result.score)} / {_pts(result.max_score)}**")
+    status_words = {
+        "compile_error": "The program does not compile, so no scenario could run.",
+        "no_source": "No source file was found in the submission.",
+        "language": "The submission uses a language this lab does not accept.",
+        "timeout": "The grading was stopped at the time limit.",
+        "memory": "The program needed more memory than allowed.",
+        "crash": "The grading process crashed.",
+    }
+    if result.status in status_words:
+        lines += ["", status_words[result.status]]
+    if result.message:
+        lines += ["", result.message]
+    if result.files:
+        lines += ["", "Files: " + ", ".join(f"`{f}`" for f in result.files)]
+    if result.diagnostics:
+        errors = [d for d in result.diagnostics if " error " in f" {d} "]
+        head = "Compiler errors" if errors else "Compiler warnings"
+        lines += ["", f"## {head}", "", "```text", *result.diagnostics, "```"]
+    by_sc: dict[str, list[Any]] = {}
+    for t in result.tests:
+        by_sc.setdefault(t.scenario, []).append(t)
+    runs = {s.name: s for s in result.scenarios}
+    hidden: list[str] = []
+    for name, tests in by_sc.items():
+        run = runs.get(name)
+        visible = tests[0].visible
+        if not visible and not instructor:
+            hidden.append(name)
+            continue
+        got = sum(t.score for t in tests)
+        mx = sum(t.max_score for t in tests)
+        desc = f" — {run.description}" if run and run.description else ""
+        tag = "" if visible else " (hidden)"
+        lines += ["", f"## Scenario `{name}`{tag}{desc}", "", f"{_pts(got)} / {_pts(mx)} points"]
+        if run and run.error and not run.ran:
+            lines += ["", f"**{run.error}**"]
+        for note in (run.notes if run else []):
+            lines += ["", f"**{note}**"]
+        lines += ["", "| | Criterion | Points | What happened |", "|---|---|---|---|"]
+        for t in tests:
+            mark = "PASS" if t.passed else "FAIL"
+            lines.append(f"| {mark} | {_cell(t.criterion)} | {_pts(t.score)}/"
+                         f"{_pts(t.max_score)} | {_cell(t.message)} |")
+        for t in tests:
+            if t.passed:
+                continue
+            lines += ["", f"### FAIL: {t.criterion}", "", t.message + "."
+                      if not t.message.endswith(".") else t.message]
+            if t.hint:
+                lines += ["", f"Hint: {t.hint}"]
+            if t.diagram:
+                at = f" around t = {t.t_fail:.2f} s" if t.t_fail is not None else ""
+                lines += ["", f"![timing diagram of {t.criterion}{at}]({t.diagram})"]
+        if run and run.rrd:
+            lines += ["", f"Recording of this scenario ({run.rrd_note}): [{run.rrd}]({run.rrd})"
+                      f" — open it with `rerun {run.rrd}`."]
+        elif run and run.rrd_note:
+            lines += ["", f"({run.rrd_note})"]
+    if hidden:
+        lines += ["", "## Hidden scenarios", "",
+                  "These scenarios are not shown before the grades are published; you see "
+                  "only whether each test passed.", "", "| | Test | Points |", "|---|---|---|"]
+        for name in hidden:
+            for t in by_sc[name]:
+                mark = "PASS" if t.passed else "FAIL"
+                lines.append(f"| {mark} | {_cell(t.name)} | {_pts(t.score)}/"
+                             f"{_pts(t.max_score)} |")
+    return "\n".join(lines) + "\n"
+
+
+def hidden_output(test: Any) -> str:
+    """What a student sees of a hidden test."""
+    return "passed" if test.passed else "failed (hidden scenario: details are not shown)"
