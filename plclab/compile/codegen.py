@@ -1064,6 +1064,19 @@ class Codegen:
             return f"len({codes[0]})"
         if name == "CONCAT":
             return "(" + " + ".join(codes) + ")[:" + str(getattr(t, "length", 80)) + "]"
+        lit = [_const_int(a) for a in args]
+        # constant lengths and positions (the common case) become plain slices
+        if name == "LEFT" and lit[1] is not None and lit[1] >= 0:
+            return f"{codes[0]}[:{lit[1]}]"
+        if name == "RIGHT" and lit[1] is not None and lit[1] > 0:
+            return f"{codes[0]}[-{lit[1]}:]"
+        if name == "MID" and lit[1] is not None and lit[2] is not None and lit[1] >= 0 and \
+                lit[2] >= 1:
+            return f"{codes[0]}[{lit[2] - 1}:{lit[2] - 1 + lit[1]}]"
+        if name == "DELETE" and lit[1] is not None and lit[2] is not None and lit[1] >= 0 and \
+                lit[2] >= 1:
+            head = f"{codes[0]}[:{lit[2] - 1}] + " if lit[2] > 1 else ""
+            return f"({head}{codes[0]}[{lit[2] - 1 + lit[1]}:])"
         fn = {"LEFT": "_left", "RIGHT": "_right", "MID": "_mid", "INSERT": "_insert",
               "DELETE": "_delete", "REPLACE": "_replace", "FIND": "_find"}[name]
         return f"{fn}({', '.join(codes)})"

@@ -297,7 +297,7 @@ def eventually(tr: Any, p: dict[str, Any]) -> Verdict:
     if len(idx):
         t = float(tr.time[idx[0]])
         return Verdict(True, f"`{text}` at t = {fmt_t(t)}", None, names, t)
-    return Verdict(False, f"`{text}` never held {_span(a, b)}", a, names)
+    return Verdict(False, f"`{text}` never held {_span(a, b)}", None, names)
 
 
 @check("implies", Param("if", "condition", True), Param("then", "condition", True))
@@ -317,10 +317,13 @@ def implies(tr: Any, p: dict[str, Any]) -> Verdict:
 
 @check("within", Param("trigger", "condition", True, help="the cause, e.g. \"FAULT2\""),
        Param("response", "condition", True, help="the effect, e.g. \"FAN1\""),
-       Param("time", "time", True, help="the allowed response time, e.g. \"2s\""))
+       Param("time", "time", True, help="the allowed response time, e.g. \"2s\""),
+       Param("need_trigger", "bool", default=True,
+             help="fail when the trigger never happens (default true)"))
 def within(tr: Any, p: dict[str, Any]) -> Verdict:
     """Each time ``trigger`` becomes true, ``response`` holds within ``time`` ("FAN1 on within
-    2 s of a fault on FAN2")."""
+    2 s of a fault on FAN2"). With ``need_trigger = false`` a trigger that never happens
+    passes."""
     np = _np()
     a, b = window(tr, p)
     limit = float(p["time"])
@@ -331,6 +334,8 @@ def within(tr: Any, p: dict[str, Any]) -> Verdict:
     prev = np.concatenate(([False], trig[:-1]))
     edges = np.nonzero(trig & ~prev & in_window(tr, a, b))[0]
     if len(edges) == 0:
+        if p.get("need_trigger") is False:
+            return Verdict(True, f"`{p['trigger']}` never happened {_span(a, b)}", None, names)
         return Verdict(False, f"`{p['trigger']}` never happened {_span(a, b)}, so the response "
                        "could not be checked", a, names)
     worst = 0.0

@@ -10,6 +10,7 @@ its points, a message, the time of the failure and the timing diagram drawn arou
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 from collections.abc import Callable, Iterable
@@ -19,7 +20,7 @@ from typing import Any
 
 from plclab.errors import PlcError
 
-from .errors import grade_error
+from .criteria import Verdict
 from .lab import SOURCE_EXTS, Lab, ScenarioSpec
 
 STATUSES = ("ok", "compile_error", "no_source", "language", "timeout", "memory", "crash")
@@ -65,6 +66,7 @@ class ScenarioRun:
     wall_s: float = 0.0
     rrd: str | None = None
     rrd_note: str = ""
+    code: str = ""
 
     def to_json(self) -> dict[str, Any]:
         return asdict(self)
@@ -181,6 +183,18 @@ def read_submission(path: str | os.PathLike) -> tuple[list[tuple[str, str]], lis
 # ---------------------------------------------------------------------------- grading
 
 
+NOT_RUN = {
+    "compile_error": "not run: the program does not compile",
+    "no_source": "not run: no source file",
+    "language": "not run: language not accepted",
+    "timeout": "not run: stopped at the time limit",
+    "memory": "not run: the program needs too much memory",
+    "crash": "not run: the grading process crashed",
+    "setup": "not run: the scenario could not start with this program",
+}
+"""Short test messages for scenarios that did not run (the reason is given once above)."""
+
+
 def _tests_failed(lab: Lab, sc: ScenarioSpec, message: str, first: int) -> list[TestResult]:
     out = []
     for j, c in enumerate(lab.criteria_for(sc.name)):
@@ -191,13 +205,15 @@ def _tests_failed(lab: Lab, sc: ScenarioSpec, message: str, first: int) -> list[
 
 
 def failed_result(lab: Lab, status: str, message: str, scenarios: Iterable[ScenarioSpec],
-                  diagnostics: Iterable[str] = ()) -> Result:
-    """A result in which every test of ``scenarios`` failed with ``message``."""
+                  diagnostics: Iterable[str] = (), first: int = 1) -> Result:
+    """A result in which no test of ``scenarios`` ran: ``message`` says why (once)."""
     res = Result(lab.id, status=status, message=message, diagnostics=list(diagnostics),
                  lab_title=lab.title, lab_hash=lab.hash)
-    for i, sc in enumerate(scenarios, 1):
-        res.scenarios.append(ScenarioRun(sc.name, sc.description, sc.visible, False, message))
-        res.tests += _tests_failed(lab, sc, message, i)
+    short = NOT_RUN.get(status, "not run")
+    numbers = {s.name: i for i, s in enumerate(lab.scenarios, 1)}
+    for sc in scenarios:
+        res.scenarios.append(ScenarioRun(sc.name, sc.description, sc.visible, False, short))
+        res.tests += _tests_failed(lab, sc, short, numbers.get(sc.name, first))
     return res
 
 
@@ -225,7 +241,8 @@ def grade_sources(lab: Lab, sources: list[tuple[str, str]], *, student: str = ""
                   media_dir: str | os.PathLike | None = None, rrd: bool = True,
                   keep_traces: bool = False,
                   on_scenario: Callable[[ScenarioRun, list[TestResult]], None] | None = None,
-                  on_compiled: Callable[[list[str]], None] | None = None) -> Result:
+                  on_compiled: Callable[[list[str]], None] | None = None,
+                  guard: Callable[[], Any] | None = None) -> Result:
     """Grade program sources ``[(text, name)]`` against a lab.
 
     Parameters
@@ -241,13 +258,18 @@ def grade_sources(lab: Lab, sources: list[tuple[str, str]], *, student: str = ""
         Keep every scenario's Trace in ``Result.traces``.
     on_scenario : callable, optional
         Called after each scenario with its run and tests (the worker streams them).
+    guard : callable, optional
+        A context manager factory wrapped around compiling and simulating (the worker's
+        memory limit); drawing the feedback happens outside it.
     """
     t_start = time.perf_counter()
     specs = [s for s in lab.scenarios if include_hidden or s.visible]
     if scenarios is not None:
         wanted = list(scenarios)
         specs = [lab.scenario(n) for n in wanted]
-    compiled, diags, status = compile_submission(lab, sources)
+    guard = guard or contextlib.nullcontext
+    with guard():
+        compiled, diags, status = compile_submission(lab, sources)
     if on_compiled is not None:
         on_compiled(diags)
     if compiled is None:
@@ -264,58 +286,72 @@ def grade_sources(lab: Lab, sources: list[tuple[str, str]], *, student: str = ""
         return res
     res = Result(lab.id, student, diagnostics=diags, files=[n for _, n in sources],
                  lab_title=lab.title, lab_hash=lab.hash)
-    for i, sc in enumerate(specs, 1):
-        run, tests, trace = run_scenario(lab, compiled, sc, i, media_dir, rrd)
+    numbers = {s.name: i for i, s in enumerate(lab.scenarios, 1)}
+    for sc in specs:
+        # one recording per submission: the first scenario with a failure
+        run, tests, trace = run_scenario(lab, compiled, sc, numbers[sc.name], media_dir, rrd,
+                                         guard)
+        if run.rrd or run.rrd_note.startswith("no .rrd"):
+            rrd = False
         res.scenarios.append(run)
         res.tests.extend(tests)
         if keep_traces and trace is not None:
             res.traces[sc.name] = trace
         if on_scenario is not None:
             on_scenario(run, tests)
-    if any(not r.ran for r in res.scenarios) and all(not r.ran for r in res.scenarios):
+    if any(r.code == "PLC5024" for r in res.scenarios):
+        res.status = "memory"
+    if res.scenarios and all(not r.ran for r in res.scenarios):
         res.message = res.scenarios[0].error
     res.execution_time = time.perf_counter() - t_start
     return res
 
 
 def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
-                 media_dir: str | os.PathLike | None = None, rrd: bool = True
+                 media_dir: str | os.PathLike | None = None, rrd: bool = True,
+                 guard: Callable[[], Any] | None = None
                  ) -> tuple[ScenarioRun, list[TestResult], Any]:
     """Run one scenario of a compiled program; evaluate its criteria."""
-    from plclab.runtime.plc import Plc
-    from plclab.sim import Simulation
-
     run = ScenarioRun(sc.name, sc.description, sc.visible, duration=sc.duration)
     t0 = time.perf_counter()
     try:
-        plc = Plc(compiled, cycle_time=lab.scan)
-        sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
-                         watch=lab.all_watch(sc), plant_params={**lab.plant_params,
-                                                                **sc.plant_params})
-        trace = sim.run()
-    except MemoryError:
-        raise
+        with (guard or contextlib.nullcontext)():
+            trace = _simulate(lab, compiled, sc)
     except PlcError as e:
-        msg = (f"the scenario could not run with this program: {e} (PLC5028). Check that your "
-               "program declares the I/O addresses of the lab's I/O table with their types")
+        if e.code == "PLC2009":
+            msg = ("the program needs more memory than the grader allows (PLC5024): are there "
+                   "huge arrays?")
+            run.code = "PLC5024"
+        else:
+            msg = (f"the scenario could not run with this program: {e} (PLC5028). Check that "
+                   "your program declares the I/O addresses of the lab's I/O table with their "
+                   "types")
+            run.code = "PLC5028"
         run.error = msg
         run.wall_s = time.perf_counter() - t0
-        return run, _tests_failed(lab, sc, msg, number), None
+        short = NOT_RUN["memory" if run.code == "PLC5024" else "setup"]
+        return run, _tests_failed(lab, sc, short, number), None
     run.ran = True
     run.wall_s = time.perf_counter() - t0
     faults = trace.events_of("plc_fault")
     for f in faults:
         run.notes.append(f"The PLC stopped at t = {f.time:.2f} s: {f.message}")
     tests: list[TestResult] = []
+    passed: dict[str, bool] = {}
     for j, c in enumerate(lab.criteria_for(sc.name), 1):
-        v = c.evaluate(trace)
-        if v.passed:
+        missing = [r for r in c.requires if r in passed and not passed[r]]
+        if missing:
+            v = Verdict(False, f"not earned: this criterion counts only when '{missing[0]}' "
+                        "passes")
+        else:
+            v = c.evaluate(trace)
+        passed[c.name] = v.passed
+        if v.passed or missing:
             msg = v.message
         else:
             msg = f"{c.message}: {v.message}" if c.message else v.message
             if faults and (v.t_fail is None or v.t_fail >= faults[0].time):
-                msg += (f". Note: the PLC was stopped by a fault from t = {faults[0].time:.2f} s"
-                        f" on ({faults[0].message})")
+                msg += f" (the PLC was in STOP after its fault at t = {faults[0].time:.2f} s)"
         tests.append(TestResult(f"{sc.name}: {c.name}", sc.name, c.name,
                                 c.points if v.passed else 0.0, c.points, v.passed, msg,
                                 v.message, v.t_fail, sc.visible, c.hint, number=f"{number}.{j}"))
@@ -324,6 +360,18 @@ def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
 
         draw_failures(lab, sc, trace, tests, Path(media_dir), run, rrd=rrd)
     return run, tests, trace
+
+
+def _simulate(lab: Lab, compiled: Any, sc: ScenarioSpec) -> Any:
+    """The trace of one scenario (the PLC and the simulation are dropped on return)."""
+    from plclab.runtime.plc import Plc
+    from plclab.sim import Simulation
+
+    plc = Plc(compiled, cycle_time=lab.scan)
+    sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
+                     watch=lab.all_watch(sc), plant_params={**lab.plant_params,
+                                                            **sc.plant_params})
+    return sim.run()
 
 
 def source_hash(sources: list[tuple[str, str]]) -> str:
@@ -336,6 +384,3 @@ def source_hash(sources: list[tuple[str, str]]) -> str:
         h.update(rel.encode() + b"\0" + text.encode("utf-8", "surrogatepass") + b"\0")
     return h.hexdigest()[:16]
 
-
-def check_error(code: str, message: str) -> PlcError:
-    return grade_error(code, message)

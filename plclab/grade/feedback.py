@@ -12,9 +12,12 @@ import re
 from pathlib import Path
 from typing import Any
 
-RRD_SPAN = (60.0, 30.0)
+RRD_SPAN = (40.0, 20.0)
 """The rerun recording covers this much before and after the first failure, seconds."""
+RRD_FPS = 4.0
+"""Frames per second of the plant picture in the recording."""
 MAX_SIGNALS = 8
+MAX_DIAGNOSTICS = 20
 
 
 def slug(text: str) -> str:
@@ -25,6 +28,11 @@ def slug(text: str) -> str:
 
 def _atomic_tmp(path: Path) -> Path:
     return path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+
+
+def real_failure(t: Any) -> bool:
+    """A failed test that was evaluated (not 'not run', not 'not earned')."""
+    return not t.passed and not t.detail.startswith(("not earned", "not run"))
 
 
 def _window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
@@ -47,8 +55,9 @@ def _names(trace: Any, lab: Any, crit: Any) -> list[str]:
 
 def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Path, run: Any,
                   rrd: bool = True) -> None:
-    """Timing diagrams (PNG) of the failed tests of a visible scenario, and its recording."""
-    failed = [t for t in tests if not t.passed]
+    """Timing diagrams (PNG) of the failed tests of a visible scenario, and (``rrd``) its
+    recording around the first failure."""
+    failed = [t for t in tests if real_failure(t)]
     if not failed or not sc.visible:
         return
     media_dir.mkdir(parents=True, exist_ok=True)
@@ -58,7 +67,10 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
     for t in failed:
         crit = crits[t.criterion]
         w = crit.window or lab.diagram_window
-        t0, t1 = _window(t.t_fail, w, trace.t_end)
+        if t.t_fail is None:  # no single moment to blame: the whole scenario
+            t0, t1 = 0.0, trace.t_end
+        else:
+            t0, t1 = _window(t.t_fail, w, trace.t_end)
         names = _names(trace, lab, crit)
         key = (tuple(names), round(t0, 3), round(t1, 3))
         if key in drawn:  # same picture as another failed criterion
@@ -113,7 +125,8 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
         run.rrd_note = ("no .rrd recording: rerun is not installed "
                         "(pip install 'plclab[viz]')")
         return
-    from plclab.viz.from_trace import to_rerun
+    from plclab.viz.from_trace import recording
+    from plclab.viz.recording import write_rrd as _write
 
     times = [t.t_fail for t in failed if t.t_fail is not None]
     tf = min(times) if times else trace.t_end
@@ -132,7 +145,7 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
     path = media_dir / f"{slug(sc.name)}.rrd"
     tmp = _atomic_tmp(path)
     try:
-        to_rerun(trace, tmp, names=names, window=(t0, t1))
+        _write(recording(trace, names, t0, t1, fps=RRD_FPS), tmp)
         os.replace(tmp, path)
     except Exception as e:  # noqa: BLE001 - a recording must never cost a grade
         run.rrd_note = f"no .rrd recording ({type(e).__name__}: {e})"
@@ -182,7 +195,11 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
     if result.diagnostics:
         errors = [d for d in result.diagnostics if " error " in f" {d} "]
         head = "Compiler errors" if errors else "Compiler warnings"
-        lines += ["", f"## {head}", "", "```text", *result.diagnostics, "```"]
+        shown = result.diagnostics[:MAX_DIAGNOSTICS]
+        more = len(result.diagnostics) - len(shown)
+        if more:
+            shown = shown + [f"... and {more} more"]
+        lines += ["", f"## {head}", "", "```text", *shown, "```"]
     by_sc: dict[str, list[Any]] = {}
     for t in result.tests:
         by_sc.setdefault(t.scenario, []).append(t)
@@ -209,7 +226,7 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
             lines.append(f"| {mark} | {_cell(t.criterion)} | {_pts(t.score)}/"
                          f"{_pts(t.max_score)} | {_cell(t.message)} |")
         for t in tests:
-            if t.passed:
+            if not real_failure(t):
                 continue
             lines += ["", f"### FAIL: {t.criterion}", "", t.message + "."
                       if not t.message.endswith(".") else t.message]

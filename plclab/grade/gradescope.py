@@ -90,7 +90,10 @@ def results_json(result: Any) -> dict[str, Any]:
     if result.message:
         head.append(result.message)
     if result.diagnostics:
-        head.append("```text\n" + "\n".join(result.diagnostics) + "\n```")
+        shown = result.diagnostics[:20]
+        more = len(result.diagnostics) - len(shown)
+        head.append("```text\n" + "\n".join(shown + ([f"... and {more} more"] if more else []))
+                    + "\n```")
     for s in result.scenarios:
         if s.visible:
             head += s.notes

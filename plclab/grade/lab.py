@@ -39,7 +39,7 @@ TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", 
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
-                  "message", "hint", "signals", "window", "description")
+                  "message", "hint", "signals", "window", "description", "requires")
 IO_KEYS = ("name", "address", "type", "unit", "description")
 DIAGRAM_KEYS = ("signals", "window")
 
@@ -161,6 +161,7 @@ class CriterionSpec:
     description: str = ""
     function: Callable[..., Any] | None = None
     python: str = ""
+    requires: list[str] = field(default_factory=list)
 
     def evaluate(self, trace: Any) -> Verdict:
         """Run the check on a trace; a check that cannot run is a failed verdict."""
@@ -733,6 +734,17 @@ class _Builder:
                                    f"the parameters of '{chk}' as keys of the criterion",
                                    "criterion", i, "params")
                 spec.params = self.check_params(chk, c, what, i, names)
+            spec.requires = self.strings(c, "requires", what, "criterion", i)
+            for r in spec.requires:
+                prev = next((o for o in out if o.name == r), None)
+                if prev is None:
+                    raise self.err("PLC5009", f"{what}: requires '{r}', which is not a criterion "
+                                   "written before this one."
+                                   f"{did_you_mean(r, [o.name for o in out])}", "criterion", i,
+                                   "requires")
+                if not any(s in prev.scenarios for s in scs):
+                    raise self.err("PLC5009", f"{what}: requires '{r}', which is not checked in "
+                                   "any of its scenarios", "criterion", i, "requires")
             for s in sigs:
                 if s not in names:
                     raise self.err("PLC5009", f"{what}: signal '{s}' is neither a signal of the "

@@ -287,3 +287,16 @@ def test_benchmark_programs_match_their_python_equivalents():
                 if isinstance(v, list) and v and not isinstance(v[0], int):
                     continue
                 assert got[k] == v, (name, k)
+
+
+@pytest.mark.parametrize("expr,want", [
+    ("LEFT('hello', 2)", "he"), ("RIGHT('hello', 3)", "llo"), ("RIGHT('hi', 5)", "hi"),
+    ("MID('hello', 2, 2)", "el"), ("DELETE('hello', 2, 2)", "hlo"),
+    ("DELETE('hello', 2, 1)", "llo"), ("LEFT('hi', 0)", ""), ("LEFT('hi', n)", ""),
+    ("MID('hello', 2, n + 2)", "el"), ("INSERT('abc', 'X', 1)", "aXbc"),
+    ("REPLACE('abcdef', 'XY', 3, 2)", "aXYef"), ("CONCAT('a', 'b', 'c')", "abc"),
+])
+def test_string_functions_constant_and_variable_arguments(expr, want):
+    plc = plclab.loads(f"PROGRAM P VAR s : STRING; n : INT; END_VAR s := {expr}; END_PROGRAM")
+    plc.scan()
+    assert plc["s"] == want

@@ -1,0 +1,261 @@
+"""Command-line sub-commands ``plclab grade`` and ``plclab lab``.
+
+``plclab grade LAB SUBMISSIONS_DIR [--jobs N] [--out DIR] [--timeout 30s] [--force]``
+grades a folder of submissions; ``plclab lab list``, ``plclab lab show LAB``, ``plclab lab
+check LAB FILE...`` (a student's local run of the visible scenarios, ending with ``score:
+X/Y``) and ``plclab lab new ID`` (an instructor's scaffold).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from plclab.cli import COMMANDS, arg, command
+
+from .errors import grade_error
+
+
+def _labs_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--labs", action="append", default=[], metavar="DIR",
+                   help="also look for labs in DIR (PLCLAB_LABS works too)")
+
+
+# ---------------------------------------------------------------------------- plclab grade
+
+
+@command("grade", "grade a folder of submissions against a lab (Gradescope JSON, feedback, CSV)")
+@arg("lab", metavar="LAB", help="lab id (see: plclab lab list) or lab folder")
+@arg("submissions", metavar="SUBMISSIONS_DIR",
+     help="folder with one file or one folder per student")
+@arg("--jobs", "-j", type=int, default=None, help="submissions graded in parallel "
+     "(default: the number of CPUs)")
+@arg("--out", default=None, metavar="DIR", help="output folder (default: ./grades)")
+@arg("--timeout", default=None, help="wall-clock limit per submission, e.g. 30s (default: the "
+     "lab's time_limit)")
+@arg("--memory", default=None, help="memory limit per submission, e.g. 1.5GB (default: the "
+     "lab's memory_limit)")
+@arg("--force", action="store_true", help="regrade submissions that did not change")
+@arg("--no-media", action="store_true", help="no timing diagrams and recordings (faster)")
+@arg("--labs", action="append", default=[], metavar="DIR", help="also look for labs in DIR")
+@arg("--quiet", "-q", action="store_true", help="no summary table")
+def cmd_grade(ns: argparse.Namespace) -> int:
+    from plclab.sim import parse_seconds
+
+    from .grader import Grader, ProgressBar, summary_table
+    from .lab import load_lab, parse_memory
+
+    lab = load_lab(ns.lab, ns.labs, deep=True)
+    jobs = ns.jobs if ns.jobs is not None else (os.cpu_count() or 1)
+    if jobs < 1:
+        raise grade_error("PLC5026", "--jobs must be 1 or more")
+    timeout = None
+    if ns.timeout is not None:
+        try:
+            timeout = parse_seconds(ns.timeout, "--timeout", allow_zero=False)
+        except Exception as e:  # noqa: BLE001
+            raise grade_error("PLC5026", f"--timeout {ns.timeout}: write e.g. 30s or 2min "
+                              f"({e})") from None
+    memory = None
+    if ns.memory is not None:
+        try:
+            memory = parse_memory(ns.memory)
+        except ValueError as e:
+            raise grade_error("PLC5026", f"--memory: {e}") from None
+    out = Path(ns.out or "grades")
+    bar = ProgressBar() if sys.stdout.isatty() else None
+    g = Grader(lab, out, jobs, timeout, memory, ns.force, not ns.no_media, progress=bar)
+    outcomes = g.grade_folder(ns.submissions)
+    if not ns.quiet:
+        print(summary_table(outcomes))
+    graded = sum(1 for o in outcomes if not o.skipped)
+    print(f"{graded} graded, {len(outcomes) - graded} unchanged; results in {out}/<student>/, "
+          f"gradebook {out / 'grades.csv'}")
+    return 0
+
+
+# ---------------------------------------------------------------------------- plclab lab
+
+
+def _lab_args(p: argparse.ArgumentParser) -> None:
+    from plclab.viz.from_trace import add_export_args
+
+    sub = p.add_subparsers(dest="lab_cmd", metavar="ACTION")
+    sp = sub.add_parser("list", help="list the labs")
+    _labs_arg(sp)
+    sp = sub.add_parser("show", help="the task and the I/O table of a lab")
+    sp.add_argument("lab", metavar="LAB")
+    sp.add_argument("--update-readme", action="store_true",
+                    help="rewrite the I/O table in the lab's README.md from lab.toml")
+    _labs_arg(sp)
+    sp = sub.add_parser("check", help="run the visible scenarios on your program and get the "
+                        "feedback (ends with score: X/Y)")
+    sp.add_argument("lab", metavar="LAB")
+    sp.add_argument("files", nargs="+", metavar="FILE", help="your source files (or a folder)")
+    sp.add_argument("--scenario", default=None, help="only this scenario (and export it)")
+    sp.add_argument("--hidden", action="store_true", help="also the hidden scenarios "
+                    "(instructors)")
+    sp.add_argument("--out", default=None, metavar="DIR", help="folder for feedback.md, the "
+                    "diagrams and recordings (default: ./<lab>-feedback)")
+    sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
+    add_export_args(sp)
+    _labs_arg(sp)
+    sp = sub.add_parser("new", help="create a lab folder with a working example (instructors)")
+    sp.add_argument("id", metavar="ID", help="lab id: lower-case words with dashes")
+    sp.add_argument("--dir", default=None, help="parent folder (default: ./labs if it exists, "
+                    "else .)")
+    p.set_defaults(_lab_parser=p)
+
+
+@command("lab", "labs: list, show LAB, check LAB FILE..., new ID")
+def cmd_lab(ns: argparse.Namespace) -> int:
+    action = getattr(ns, "lab_cmd", None)
+    if action == "list":
+        return lab_list(ns)
+    if action == "show":
+        return lab_show(ns)
+    if action == "check":
+        return lab_check(ns)
+    if action == "new":
+        return lab_new(ns)
+    ns._lab_parser.print_help()
+    return 2
+
+
+COMMANDS["lab"] = (COMMANDS["lab"][0], _lab_args, cmd_lab)
+
+
+def lab_list(ns: argparse.Namespace) -> int:
+    from .lab import list_labs, load_lab, repo_labs_dir
+
+    rows = [("lab", "plant", "languages", "points", "title")]
+    for p in list_labs(ns.labs):
+        try:
+            lab = load_lab(p)
+        except Exception as e:  # noqa: BLE001 - show the broken lab, go on
+            rows.append((p.name, "?", "?", "?", f"(broken: {e})"))
+            continue
+        where = "" if p.parent == repo_labs_dir() else f"  [{p}]"
+        rows.append((lab.id, lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
+                     lab.title + where))
+    widths = [max(len(r[i]) for r in rows) for i in range(4)]
+    for r in rows:
+        print("  ".join(c.ljust(w) for c, w in zip(r[:4], widths, strict=True)) + "  " + r[4])
+    return 0
+
+
+def show_text(lab) -> str:
+    """What ``plclab lab show`` prints: the task summary and the I/O table."""
+    from plclab.sim import format_duration
+
+    lines = [f"# {lab.title}", ""]
+    if lab.summary:
+        lines += [lab.summary, ""]
+    if lab.goals:
+        lines += ["Learning goals:", ""] + [f"- {g}" for g in lab.goals] + [""]
+    lines += [f"Plant: `{lab.plant}` (`plclab plants {lab.plant}`); scan {lab.scan}; "
+              f"languages: {', '.join(lab.languages)}; time limit {lab.time_limit:g} s.", ""]
+    lines += ["## I/O table", "", lab.io_table_markdown(), ""]
+    lines += ["## Scenarios", ""]
+    for s in lab.scenarios:
+        pts = sum(c.points for c in lab.criteria_for(s.name))
+        if s.visible:
+            lines.append(f"- `{s.name}` ({format_duration(s.duration)}, {pts:g} points): "
+                         f"{s.description}")
+        else:
+            lines.append(f"- `{s.name}` (hidden, {pts:g} points)")
+    lines += ["", "## Criteria", ""]
+    for c in lab.criteria:
+        vis = [s for s in c.scenarios if lab.scenario(s).visible]
+        where = ", ".join(vis) if vis else "hidden scenarios"
+        desc = f": {c.description}" if c.description else ""
+        lines.append(f"- {c.name} ({c.points:g} points each, in {where}){desc}")
+    lines += ["", f"Total: {lab.max_score:g} points. Check your program with "
+              f"`plclab lab check {lab.id} FILE...`."]
+    return "\n".join(lines)
+
+
+README_START = "<!-- io-table:start (generated by `plclab lab show --update-readme`) -->"
+README_END = "<!-- io-table:end -->"
+
+
+def readme_table(readme: str) -> str | None:
+    """The I/O table between the markers of a README, or None."""
+    if README_START not in readme or README_END not in readme:
+        return None
+    return readme.split(README_START, 1)[1].split(README_END, 1)[0].strip()
+
+
+def lab_show(ns: argparse.Namespace) -> int:
+    from .gradescope import write_atomic
+    from .lab import load_lab
+
+    lab = load_lab(ns.lab, ns.labs)
+    if ns.update_readme:
+        path = lab.path / "README.md"
+        text = path.read_text(encoding="utf-8") if path.is_file() else f"# {lab.title}\n"
+        block = f"{README_START}\n{lab.io_table_markdown()}\n{README_END}"
+        if readme_table(text) is not None:
+            head = text.split(README_START, 1)[0]
+            tail = text.split(README_END, 1)[1]
+            text = head + block + tail
+        else:
+            text = text.rstrip() + "\n\n## I/O table\n\n" + block + "\n"
+        write_atomic(path, text)
+        print(f"{path}: I/O table updated")
+        return 0
+    print(show_text(lab))
+    readme = lab.path / "README.md"
+    if readme.is_file():
+        print(f"\nThe task: {readme}")
+    return 0
+
+
+def lab_check(ns: argparse.Namespace) -> int:
+    from plclab.viz.from_trace import run_exports
+
+    from .engine import grade_sources, read_submission
+    from .lab import load_lab
+
+    lab = load_lab(ns.lab, ns.labs)
+    sources: list[tuple[str, str]] = []
+    for f in ns.files:
+        if not Path(f).exists():
+            raise grade_error("PLC5021", f"{f}: no such file or folder")
+        got, _ = read_submission(f)
+        sources += got
+    out = Path(ns.out or f"{lab.id}-feedback")
+    scen = [ns.scenario] if ns.scenario else None
+    if scen and not lab.scenario(ns.scenario).visible and not ns.hidden:
+        raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
+                          "work is graded")
+    res = grade_sources(lab, sources, student="", scenarios=scen, include_hidden=ns.hidden,
+                        media_dir=None if ns.no_media else out, keep_traces=True)
+    from .feedback import render_feedback
+    from .gradescope import write_atomic
+
+    text = render_feedback(res, instructor=ns.hidden)
+    if not ns.no_media:
+        write_atomic(out / "feedback.md", text)
+    print(text)
+    wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
+    if wants_export and res.traces:
+        name = ns.scenario or next(iter(res.traces))
+        for line in run_exports(res.traces[name], ns):
+            print(line)
+    if not ns.no_media and any(t.diagram for t in res.tests):
+        print(f"feedback with diagrams: {out / 'feedback.md'}")
+    print(f"score: {res.score:g}/{res.max_score:g}")
+    return 0
+
+
+def lab_new(ns: argparse.Namespace) -> int:
+    from .scaffold import create_lab
+
+    parent = Path(ns.dir) if ns.dir else (Path("labs") if Path("labs").is_dir() else Path("."))
+    folder = create_lab(ns.id, parent)
+    print(f"created {folder}: lab.toml, README.md, starter.st, solution/, mistakes/, checks.py")
+    print(f"try it: plclab lab check {folder} {folder / 'solution' / 'solution.st'}")
+    return 0

@@ -1,0 +1,161 @@
+"""The child process that grades one submission.
+
+The autograder (:mod:`plclab.grade.grader`) starts one process per submission through a
+multiprocessing *forkserver* that has already imported NumPy, the simulator, the plants and
+matplotlib (:func:`preload`), so a child starts in milliseconds. The child
+
+1. limits its address space (``RLIMIT_AS``: what it has after start-up plus the memory limit)
+   while it compiles and simulates -- a program with huge arrays gets ``MemoryError`` (PLC2009)
+   instead of taking the machine down; the limit is lifted again to draw the feedback;
+2. grades the submission (:func:`plclab.grade.engine.grade_sources`), sending each scenario's
+   tests to the parent as soon as they are known, so a submission stopped at the time limit
+   keeps what it earned;
+3. sends the whole result and ends.
+
+The parent kills a child that runs past the wall-clock limit. ``python -m plclab.grade.worker
+LAB SUBMISSION [--media DIR]`` grades one submission in this process and prints the result as
+JSON (for debugging, or as the body of a Gradescope ``run_autograder`` script).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import signal
+import sys
+from collections.abc import Iterator
+from typing import Any
+
+PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
+           "plclab.viz.from_trace", "plclab.viz.timing", "plants")
+
+
+def preload() -> None:
+    """Import what every grading needs (run once in the forkserver; errors are ignored)."""
+    import importlib
+
+    for mod in PRELOAD + ("pymunk",):
+        try:
+            importlib.import_module(mod)
+        except Exception:  # noqa: BLE001, S112 - optional speed-up only
+            continue
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg", force=True)
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=(2, 1))  # load the fonts once
+        fig.text(0.5, 0.5, "x")
+        fig.canvas.draw()
+        plt.close(fig)
+    except Exception:  # noqa: BLE001 - no matplotlib: no diagrams
+        pass
+
+
+def _vm_bytes() -> int:
+    try:
+        with open("/proc/self/statm") as fh:
+            return int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, AttributeError):
+        return 0
+
+
+@contextlib.contextmanager
+def memory_limit(mb: int | None) -> Iterator[None]:
+    """Limit the address space this process may add by ``mb`` megabytes while inside."""
+    try:
+        import resource
+    except ImportError:  # Windows: no limit
+        yield
+        return
+    if not mb:
+        yield
+        return
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    want = _vm_bytes() + int(mb) * 2**20
+    if hard != resource.RLIM_INFINITY:
+        want = min(want, hard)
+    try:
+        resource.setrlimit(resource.RLIMIT_AS, (want, hard))
+    except (ValueError, OSError):
+        yield
+        return
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+
+
+def child_main(job: dict[str, Any], conn: Any) -> None:
+    """Grade one submission (``job`` from the grader) and report through ``conn``."""
+    with contextlib.suppress(ValueError, OSError):
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    failure: tuple[str, str] | None = None
+    try:
+        from .engine import grade_sources, read_submission
+        from .lab import load_lab
+
+        lab = load_lab(job["lab"])
+        sources: list[tuple[str, str]] = []
+        for p in job["paths"]:
+            s, _ = read_submission(p)
+            sources += s
+
+        def on_compiled(diags: list[str]) -> None:
+            conn.send(("compiled", diags))
+
+        def on_scenario(run: Any, tests: list[Any]) -> None:
+            conn.send(("scenario", run.to_json(), [t.to_json() for t in tests]))
+
+        res = grade_sources(lab, sources, student=job["student"],
+                            media_dir=job.get("media_dir"), rrd=job.get("rrd", True),
+                            on_scenario=on_scenario, on_compiled=on_compiled,
+                            guard=lambda: memory_limit(job.get("memory_mb")))
+        if job.get("selftest_crash") == job["student"]:
+            import faulthandler
+
+            faulthandler._sigsegv()  # a real crash, for the grader's own tests
+        conn.send(("done", res.to_json()))
+    except MemoryError:
+        failure = ("memory", "")
+    except BaseException as e:  # noqa: BLE001 - report anything, never a traceback
+        failure = ("error", f"{type(e).__name__}: {e}")
+    if failure is not None:
+        with contextlib.suppress(Exception):
+            conn.send(failure)
+    with contextlib.suppress(Exception):
+        conn.close()
+
+
+def main(argv: list[str] | None = None) -> int:
+    import argparse
+
+    from .engine import grade_sources, read_submission
+    from .lab import load_lab
+
+    p = argparse.ArgumentParser(prog="python -m plclab.grade.worker",
+                                description="grade one submission; print the result as JSON")
+    p.add_argument("lab")
+    p.add_argument("submission")
+    p.add_argument("--media", default=None, help="folder for diagrams and recordings")
+    p.add_argument("--memory", type=int, default=1536, help="memory limit, MB")
+    p.add_argument("--gradescope", action="store_true",
+                   help="print Gradescope's results.json instead of the full result")
+    ns = p.parse_args(argv)
+    lab = load_lab(ns.lab)
+    sources, _ = read_submission(ns.submission)
+    res = grade_sources(lab, sources, student=os.path.basename(ns.submission.rstrip("/")),
+                        media_dir=ns.media, guard=lambda: memory_limit(ns.memory))
+    if ns.gradescope:
+        from .gradescope import results_json
+
+        print(json.dumps(results_json(res), indent=2))
+    else:
+        print(json.dumps(res.to_json(), indent=2))
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
