@@ -64,6 +64,7 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
     crits = {c.name: c for c in lab.criteria_for(sc.name)}
     faults = [(e.time, "PLC fault") for e in trace.events_of("plc_fault")]
     drawn: dict[tuple[Any, ...], str] = {}
+    labels = {r.address.upper(): f"{r.name} ({r.address})" for r in lab.io}
     for t in failed:
         crit = crits[t.criterion]
         w = crit.window or lab.diagram_window
@@ -81,7 +82,7 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
         markers += [m for m in faults if t0 <= m[0] <= t1]
         try:
             timing_png(trace, names, media_dir / fname, t0, t1, markers,
-                       f"{sc.name}: {crit.name}")
+                       f"{sc.name}: {crit.name}", labels)
         except Exception as e:  # noqa: BLE001 - a picture must never cost a grade
             run.notes.append(f"(no diagram for {crit.name}: {type(e).__name__}: {e})")
             continue
@@ -92,13 +93,17 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
 
 
 def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
-               markers: list[tuple[float, str]], title: str) -> None:
-    """A timing diagram of ``names`` over [t0, t1], written atomically."""
+               markers: list[tuple[float, str]], title: str,
+               labels: dict[str, str] | None = None) -> None:
+    """A timing diagram of ``names`` over [t0, t1], written atomically. ``labels`` renames
+    PLC addresses for the reader (``%QX0.1`` -> ``REJECT (%QX0.1)``)."""
     from plclab.viz.from_trace import series
     from plclab.viz.timing import timing_diagram
 
-    fig = timing_diagram(series(trace, names, t0, t1), None, t0, t1, title=title,
-                         markers=markers, width=9.0)
+    ss = series(trace, names, t0, t1)
+    for s in ss:
+        s.name = (labels or {}).get(s.name.upper(), s.name)
+    fig = timing_diagram(ss, None, t0, t1, title=title, markers=markers, width=9.0)
     tmp = _atomic_tmp(path)
     try:
         fig.savefig(str(tmp), dpi=72)

@@ -37,6 +37,7 @@ from .lab import SOURCE_EXTS, Lab
 
 GRADER_VERSION = "1"
 SIDECAR = ".plclab-result.json"
+LOG = ".plclab-grade.log"
 
 
 @dataclass
@@ -262,7 +263,7 @@ class Grader:
         job = {"lab": str(self.lab.path), "paths": [str(p) for p in sub.paths],
                "student": sub.student, "media_dir": str(d) if self.media else None,
                "rrd": self.media, "memory_mb": self.memory_mb,
-               "selftest_crash": self.selftest_crash}
+               "selftest_crash": self.selftest_crash, "log": str(d / LOG)}
         from .worker import child_main
 
         parent, child = ctx.Pipe(duplex=False)
@@ -310,6 +311,12 @@ class Grader:
         res.execution_time = wall
         self._write_student(res)
         with_conn_closed(r.conn)
+        log = r.media / LOG
+        try:
+            if log.is_file() and log.stat().st_size == 0:
+                log.unlink()
+        except OSError:
+            pass
         return Outcome(res, False, wall)
 
     # ------------------------------------------------------------------ files

@@ -164,8 +164,6 @@ def write_atomic(path: str | os.PathLike, text: str) -> None:
     tmp = p.with_name(f".{p.name}.{os.getpid()}.tmp")
     with open(tmp, "w", encoding="utf-8", newline="") as fh:
         fh.write(text)
-        fh.flush()
-        os.fsync(fh.fileno())
     os.replace(tmp, p)
 
 

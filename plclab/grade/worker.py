@@ -41,6 +41,12 @@ def preload() -> None:
         except Exception:  # noqa: BLE001, S112 - optional speed-up only
             continue
     try:
+        import plclab
+
+        plclab.loads("PROGRAM Warm__ VAR x : INT; END_VAR x := x + 1; END_PROGRAM", "warm.st")
+    except Exception:  # noqa: BLE001 - only a warm-up of the compiler's caches
+        pass
+    try:
         import matplotlib
 
         matplotlib.use("Agg", force=True)
@@ -88,10 +94,24 @@ def memory_limit(mb: int | None) -> Iterator[None]:
         resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
 
 
+def _redirect_output(log: str | None) -> None:
+    """Send the child's stdout/stderr to a log file (or nowhere): warnings of one submission
+    must not garble the parent's progress bar."""
+    try:
+        fd = os.open(log or os.devnull, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    except OSError:
+        return
+    for std in (1, 2):
+        with contextlib.suppress(OSError):
+            os.dup2(fd, std)
+    os.close(fd)
+
+
 def child_main(job: dict[str, Any], conn: Any) -> None:
     """Grade one submission (``job`` from the grader) and report through ``conn``."""
     with contextlib.suppress(ValueError, OSError):
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    _redirect_output(job.get("log"))
     failure: tuple[str, str] | None = None
     try:
         from .engine import grade_sources, read_submission

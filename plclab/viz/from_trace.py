@@ -167,15 +167,17 @@ def _plant_picture(trace):
 
 
 def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
-             names: list[str] | None = None, window: tuple[float | None, float | None] = (None,
-                                                                                      None)):
-    """Write a trace as a rerun recording (``spawn=True`` opens the viewer instead)."""
+             names: list[str] | None = None,
+             window: tuple[float | None, float | None] = (None, None), fps: float = 10.0):
+    """Write a trace as a rerun recording (``spawn=True`` opens the viewer instead); ``fps``
+    is the frame rate of the plant animation (the signals keep every scan)."""
     try:
         import rerun  # noqa: F401
     except ImportError:
         raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
                        "'plclab[viz]'") from None
-    return write_rrd(recording(trace, names, *window), None if spawn else path, spawn=spawn)
+    return write_rrd(recording(trace, names, *window, fps=fps), None if spawn else path,
+                     spawn=spawn)
 
 
 def export(trace, *, rrd: str | None = None, vcd: str | None = None,

@@ -25,7 +25,8 @@ def _mpl():
 
 def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
                    t0: float | None = None, t1: float | None = None, title: str = "",
-                   markers: Sequence[tuple[float, str]] = (), width: float = 10.0):
+                   markers: Sequence[tuple[float, str]] = (), width: float = 10.0,
+                   dpi: int = 110):
     """Draw ``series`` stacked over a shared time axis; save to ``path`` (.png/.svg) if given.
 
     ``markers`` are (time, label) pairs drawn as vertical lines (e.g. "chatter", "fault").
@@ -54,7 +55,7 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     if path is not None:
-        fig.savefig(str(path), dpi=110)
+        fig.savefig(str(path), dpi=dpi)
         plt.close(fig)
     return fig
 

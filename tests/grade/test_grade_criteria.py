@@ -248,3 +248,13 @@ def test_requires_gates_points(tmp_path):
     res = check(lab.path, "PROGRAM P VAR Q AT %QX0.0 : BOOL; END_VAR\nQ := TRUE;\nEND_PROGRAM")
     assert [t.passed for t in res.tests] == [False, False]
     assert "not earned" in res.tests[1].message
+
+
+@pytest.mark.parametrize("name", ["plclab.grade.criteria", "plclab.grade.errors",
+                                  "plclab.grade.lab", "plclab.grade.engine"])
+def test_doctests(name):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0
