@@ -1,0 +1,370 @@
+"""Build the lab notebooks: one ``notebooks/<lab-id>.ipynb`` per lab, all of the same shape.
+
+    python notebooks/build.py            # write every notebook
+    python notebooks/build.py --check    # exit 1 if a notebook is missing or out of date
+
+Each notebook is made from the lab itself, so it stays in step with it: the task, the plant and
+the I/O table come from the lab's ``README.md`` (which ``plclab lab show --update-readme`` keeps
+in step with ``lab.toml``), the program cell starts with the lab's starter file. The cells:
+
+1. the task, where it comes from and the plant (Markdown from the README);
+2. set-up: imports, the lab, three small helpers (``simulate``, ``show_timing``, ``grade``);
+3. **the student's program**, a Python string ``PROGRAM`` (ST or text LD). The cell carries the
+   tag ``student-program``: the tests put the reference solution there;
+4. a short run of one scenario with the lab's wiring (``plclab.sim.run``) and its timing
+   diagram;
+5. the lab's visible checks (``plclab.grade.check``): the feedback and the score;
+6. questions to think about.
+
+The notebooks are committed as generated, without outputs. Nothing here runs a simulation.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+import tomllib
+from pathlib import Path
+
+import nbformat
+from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+LABS = ROOT / "labs"
+
+PROGRAM_TAG = "student-program"
+"""Tag of the cell that holds the student's program."""
+
+# Per lab: the scenario of the exploration run, how long to run it (None: the whole scenario),
+# the window of the timing diagram (None: everything), and questions to think about.
+LABS_CONFIG: dict[str, dict] = {
+    "motor-start-stop": {
+        "scenario": "start-stop",
+        "duration": None,
+        "window": (0.0, 12.0),
+        "questions": [
+            "Why is the stop button wired normally closed? What happens to the motor when the "
+            "wire to STOP breaks?",
+            "The overload relay already breaks the coil circuit in hardware. Why must the "
+            "program still drop K1 when OVERLOAD is TRUE?",
+            "RUN follows K1 a little later in the diagram. Where does the delay come from?",
+        ],
+    },
+    "tank-two-position": {
+        "scenario": "normal",
+        "duration": "3min",
+        "window": None,
+        "questions": [
+            "Between LS1 and LS2 the pump keeps what it was doing. Which part of "
+            "`M := ((NOT LS1) OR M) AND (NOT LS2)` makes it remember?",
+            "Move LS2 closer to LS1 (in your head): what happens to the number of pump starts "
+            "per hour?",
+        ],
+    },
+    "relay-thermostat": {
+        "scenario": "warm-up",
+        "duration": "8min",
+        "window": None,
+        "questions": [
+            "How many times per hour does the contactor switch with H = 2 °C? With H = 0.5 °C?",
+            "Why does the temperature go a little beyond 48 °C and 52 °C before it turns?",
+        ],
+    },
+    "bottle-reject": {
+        "scenario": "run",
+        "duration": "15s",
+        "window": (0.0, 15.0),
+        "questions": [
+            "A standing bottle wobbles as it passes the eyes. What would a reject rung without "
+            "the 30 ms TON do?",
+            "Why must the counters count edges and not the scans in which a beam is broken?",
+        ],
+    },
+    "ventilation-fans": {
+        "scenario": "two-faults",
+        "duration": None,
+        "window": (10.0, 40.0),
+        "questions": [
+            "5 Hz is five flashes per second. What T_ON and T_OFF give it, and why would "
+            "T#200ms / T#200ms be wrong?",
+            "After two faults, should the main power come back by itself when one fan is "
+            "repaired? Argue for and against.",
+            "Why does the standby fan stop again after the repair instead of running on?",
+        ],
+    },
+    "pump-station": {
+        "scenario": "surge",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "The book's program starts pump 1 at WY without looking at DAWL. When does that go "
+            "wrong?",
+            "What happens with a stage time of 10 s? Of 10 minutes?",
+            "Why are the starts of the pumps spread out by a few seconds?",
+        ],
+    },
+    "heater-pid": {
+        "scenario": "warm-up-and-step",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "Set TN := 0.0 (a P controller). How far below the set point does the water stay, "
+            "and how does that depend on KP?",
+            "Call the controller every 10 s instead of every second. What changes?",
+            "Why does the power stay at 100 % for minutes at the start, and why does that not "
+            "make the temperature overshoot (anti-windup)?",
+        ],
+    },
+    "press-safety": {
+        "scenario": "taped-hand",
+        "duration": None,
+        "window": (0.0, 14.0),
+        "questions": [
+            "In the taped-hand scenario the right hand comes 2.5 s after the left one. What "
+            "does your program do, and where in the code is the 0.5 s?",
+            "Why does the piston go back up (and not down) when the light curtain is clear "
+            "again?",
+            "What limits the dose accuracy: the scan time, the valve lag or the encoder?",
+        ],
+    },
+}
+
+
+# ---------------------------------------------------------------------------- README
+
+
+def readme_sections(text: str) -> tuple[str, str, dict[str, str]]:
+    """(title, intro, {heading: body}) of a lab README."""
+    lines = text.splitlines()
+    title = lines[0].lstrip("# ").strip() if lines and lines[0].startswith("# ") else ""
+    parts = re.split(r"^## +(.+?)\s*$", "\n".join(lines[1:]), flags=re.MULTILINE)
+    intro = parts[0].strip()
+    sections = {parts[i].strip(): parts[i + 1].strip() for i in range(1, len(parts) - 1, 2)}
+    return title, intro, sections
+
+
+def io_table(body: str) -> str:
+    """The table between the README's generated markers (the markers dropped)."""
+    out = [ln for ln in body.splitlines() if not ln.strip().startswith("<!--")]
+    return "\n".join(out).strip()
+
+
+def program_source(text: str) -> str:
+    """The source of the program cell for a program text."""
+    if '"""' in text:
+        raise ValueError('a program text holds """; the notebook cell cannot quote it')
+    return ("# Your program (ST or text LD). Edit it here, then run all cells below.\n"
+            f'PROGRAM = r"""\n{text.strip()}\n"""\n')
+
+
+def starter_text(lab_dir: Path) -> str:
+    for ext in (".st", ".ld", ".il"):
+        p = lab_dir / f"starter{ext}"
+        if p.is_file():
+            return p.read_text(encoding="utf-8")
+    raise FileNotFoundError(f"{lab_dir}: no starter file")
+
+
+# ---------------------------------------------------------------------------- cells
+
+SETUP = '''\
+# Set-up: plclab, the lab, and three helpers. Nothing to change here.
+import io
+import logging
+import os
+import warnings
+from pathlib import Path
+
+import matplotlib
+from IPython.display import Image, Markdown, display
+
+import plclab
+from plclab.errors import PlcError
+from plclab.grade import check, load_lab
+from plclab.grade.engine import guess_language
+from plclab.sim import run
+from plclab.viz import timing_diagram
+from plclab.viz.from_trace import series
+
+warnings.simplefilter("ignore", DeprecationWarning)
+warnings.simplefilter("ignore", PendingDeprecationWarning)
+warnings.simplefilter("ignore", FutureWarning)
+warnings.simplefilter("ignore", RuntimeWarning)  # NumPy on odd traces: the feedback says it
+warnings.filterwarnings("ignore", category=UserWarning, module="matplotlib")
+logging.getLogger("matplotlib").setLevel(logging.ERROR)  # no font-cache message on stderr
+matplotlib.use("Agg")  # pictures are shown as PNG images below, no GUI window
+
+if (Path.cwd().parent / "labs").is_dir():  # running from the repository's notebooks/ folder
+    os.environ.setdefault("PLCLAB_LABS", str(Path.cwd().parent / "labs"))
+
+LAB = {lab_id!r}
+lab = load_lab(LAB)
+
+
+def simulate(program, scenario, duration=None):
+    """Run the program on the lab's plant and wiring in one of its scenarios: a Trace, or
+    None (with the compiler's or the simulator's message) when it cannot run."""
+    spec = lab.scenario(scenario)
+    try:
+        plc = plclab.loads(program, f"program.{{guess_language(program)}}", cycle_time=lab.scan)
+        return run(plc, plant=lab.plant, wiring=lab.wiring, scan=lab.scan, seed=spec.seed,
+                   scenario=spec.scenario(duration), watch=lab.all_watch(spec),
+                   plant_params={{**lab.plant_params, **spec.plant_params}})
+    except PlcError as e:
+        print(f"The program cannot run yet:\\n{{e}}")
+        return None
+
+
+def show_timing(trace, signals=None, t0=None, t1=None, title=""):
+    """A timing diagram of the trace, shown as a PNG image."""
+    if trace is None:
+        return
+    names = [s for s in (signals or lab.diagram_signals) if s in trace]
+    fig = timing_diagram(series(trace, names), t0=t0, t1=t1, title=title, width=9.0)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=80)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    display(Image(data=buf.getvalue()))
+
+
+def grade(program):
+    """The lab's visible scenarios and criteria on the program: feedback and score."""
+    result = check(LAB, program)
+    display(Markdown(result.feedback_markdown))
+    print(f"score: {{result.score:g}}/{{result.max_score:g}}")
+    return result
+
+
+print(lab)
+'''
+
+EXPLORE = '''\
+# A run of the scenario `{scenario}`{dur_text} on the simulated plant, with the lab's wiring.
+trace = simulate(PROGRAM, {scenario!r}, duration={duration!r})
+show_timing(trace, t0={t0!r}, t1={t1!r}, title={title!r})
+if trace is not None:
+    print("events (kind: count, first time):", trace.event_counts())
+'''
+
+GRADE = '''\
+# The visible scenarios and criteria of the lab: what passed, what failed, hints.
+result = grade(PROGRAM)
+'''
+
+
+def build_notebook(lab_id: str) -> nbformat.NotebookNode:
+    """The notebook of one lab."""
+    lab_dir = LABS / lab_id
+    cfg = lab_config(lab_id)
+    title, intro, sec = readme_sections((lab_dir / "README.md").read_text(encoding="utf-8"))
+    cells = []
+    head = [f"# {title}", "", f"*Lab `{lab_id}` — a plclab notebook.* Write your program in the "
+            "cell marked **Your program**, run the notebook from the top (Run All), read the "
+            "timing diagram and the feedback, improve, repeat. The same checks run with "
+            f"`plclab lab check {lab_id} FILE`; the graded run adds hidden scenarios.", "",
+            intro]
+    cells.append(new_markdown_cell("\n".join(head).strip()))
+    if "Your task" in sec:
+        cells.append(new_markdown_cell("## Your task\n\n" + sec["Your task"]))
+    if "Where this comes from" in sec:
+        cells.append(new_markdown_cell("## Where this comes from\n\n"
+                                       + sec["Where this comes from"]))
+    if "The plant" in sec:
+        cells.append(new_markdown_cell("## The plant\n\n" + sec["The plant"]))
+    if "I/O table" in sec:
+        cells.append(new_markdown_cell("## I/O table\n\nDeclare these addresses in your "
+                                       "program (`AT %IX0.0` ...):\n\n"
+                                       + io_table(sec["I/O table"])))
+    cells.append(new_markdown_cell("## Set-up"))
+    cells.append(new_code_cell(SETUP.format(lab_id=lab_id)))
+    cells.append(new_markdown_cell(
+        "## Your program\n\nThe program is a Python string: Structured Text, or a ladder "
+        "diagram in plclab's text LD. It starts as the lab's starter file."))
+    prog = new_code_cell(program_source(starter_text(lab_dir)))
+    prog.metadata["tags"] = [PROGRAM_TAG]
+    cells.append(prog)
+    dur = cfg["duration"]
+    t0, t1 = cfg["window"] if cfg["window"] else (None, None)
+    cells.append(new_markdown_cell(
+        "## Run it on the plant\n\nOne scenario of the lab, simulated with the lab's wiring "
+        "(`plclab.sim.run`). The timing diagram shows the signals over time; "
+        "`trace` holds every signal (`trace['NAME']`, `trace.value_at('NAME', t)`)."))
+    cells.append(new_code_cell(EXPLORE.format(
+        scenario=cfg["scenario"], duration=dur, t0=t0, t1=t1,
+        dur_text=f" (the first {dur})" if dur else "",
+        title=f"{lab_id}: {cfg['scenario']}")))
+    cells.append(new_markdown_cell(
+        "## Check it\n\nThe lab's visible scenarios and criteria (`plclab.grade.check`), "
+        "with the feedback a grader gives. The last line is your score."))
+    cells.append(new_code_cell(GRADE))
+    if "Grading" in sec:
+        cells.append(new_markdown_cell("## What is graded\n\n" + sec["Grading"]))
+    qs = "\n".join(f"{i}. {q}" for i, q in enumerate(cfg["questions"], 1))
+    cells.append(new_markdown_cell("## Questions\n\n" + qs))
+    nb = new_notebook(cells=cells)
+    nb.metadata["kernelspec"] = {"display_name": "Python 3", "language": "python",
+                                 "name": "python3"}
+    nb.metadata["language_info"] = {"name": "python"}
+    nb.metadata["plclab"] = {"lab": lab_id, "generated_by": "notebooks/build.py"}
+    for i, c in enumerate(nb.cells):
+        c["id"] = f"{lab_id}-{i:02d}"
+    return nb
+
+
+DEFAULT_QUESTIONS = [
+    "Which criterion was the hardest to meet, and what in the timing diagram showed you why?",
+    "What would go wrong on the real machine if the program were off by one scan?",
+]
+
+
+def lab_config(lab_id: str) -> dict:
+    """The notebook settings of a lab: from LABS_CONFIG, else its first visible scenario."""
+    if lab_id in LABS_CONFIG:
+        return LABS_CONFIG[lab_id]
+    data = tomllib.loads((LABS / lab_id / "lab.toml").read_text(encoding="utf-8"))
+    scenarios = [s for s in data.get("scenario", []) if s.get("visible", True)]
+    return {"scenario": scenarios[0]["name"], "duration": None, "window": None,
+            "questions": DEFAULT_QUESTIONS}
+
+
+def lab_ids() -> list[str]:
+    """Every lab of the repository (a folder of labs/ with a lab.toml): the configured ones
+    first, in the course's order, then the others by name."""
+    found = sorted(p.name for p in LABS.iterdir() if (p / "lab.toml").is_file())
+    return [k for k in LABS_CONFIG if k in found] + [k for k in found if k not in LABS_CONFIG]
+
+
+def render(nb: nbformat.NotebookNode) -> str:
+    return nbformat.writes(nb) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--check", action="store_true", help="only check that the notebooks are "
+                    "up to date")
+    ap.add_argument("labs", nargs="*", help="lab ids (default: all)")
+    ns = ap.parse_args(argv)
+    stale = []
+    for lab_id in ns.labs or lab_ids():
+        nb = build_notebook(lab_id)
+        nbformat.validate(nb)
+        text = render(nb)
+        path = HERE / f"{lab_id}.ipynb"
+        if ns.check:
+            if not path.is_file() or path.read_text(encoding="utf-8") != text:
+                stale.append(path.name)
+            continue
+        path.write_text(text, encoding="utf-8")
+        print(f"wrote {path.relative_to(ROOT)}")
+    if stale:
+        print("out of date: " + ", ".join(stale) + " (run: python notebooks/build.py)")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

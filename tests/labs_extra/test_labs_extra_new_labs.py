@@ -1,0 +1,211 @@
+"""The labs ventilation-fans, pump-station, heater-pid and press-safety: every reference
+solution scores 100 % (hidden scenarios included), every typical mistake scores less and fails
+the criteria it is meant to fail, the starter scores low, the README keeps its I/O table in
+step with lab.toml and cites the textbook, and the labs' own Python checks do what they say on
+small hand-made traces."""
+
+from __future__ import annotations
+
+import importlib.util
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from plclab.grade.commands import readme_table
+from plclab.grade.engine import grade_sources, read_submission
+from plclab.grade.feedback import render_feedback
+from plclab.grade.lab import load_lab
+from plclab.trace import Trace
+
+ROOT = Path(__file__).resolve().parents[2]
+NEW_LABS = ["ventilation-fans", "pump-station", "heater-pid", "press-safety"]
+EXPECT = re.compile(r"\(\*\s*expect:\s*(.+?)\s*\*\)")
+
+# mistake file -> criteria it must fail (at least these)
+MISTAKES = {
+    ("ventilation-fans", "steady_lamp.st"): {"fault lamp flashes at 5 Hz"},
+    ("ventilation-fans", "half_frequency.st"): {"fault lamp flashes at 5 Hz"},
+    ("ventilation-fans", "standby_latched.st"): {"standby stops after the repair",
+                                                 "two fans run"},
+    ("pump-station", "no_priming_wait.st"): {"no pump without prime"},
+    ("pump-station", "all_together.st"): {"one pump copes with the normal inflow",
+                                          "one start at a time", "pump 2 joins in stage"},
+    ("pump-station", "no_latch.st"): {"no chatter"},
+    ("heater-pid", "reverse_acting.st"): {"heats up"},
+    ("heater-pid", "no_integral.st"): {"reaches 50 °C", "holds 50 °C"},
+    ("heater-pid", "gain_too_high.st"): {"no saturation chatter"},
+    ("press-safety", "taped_hand.st"): {"two hands within 0.5 s"},
+    ("press-safety", "ignores_curtain.st"): {"stops for the light curtain"},
+    ("press-safety", "counts_levels.st"): {"makes doses"},
+    ("press-safety", "no_bottom_switch.st"): {"stops at the bottom", "no crash"},
+}
+
+
+def _grade(lab_id, path):
+    lab = load_lab(lab_id)
+    sources, _ = read_submission(path)
+    return lab, grade_sources(lab, sources, include_hidden=True)
+
+
+def _checks(lab_id):
+    path = ROOT / "labs" / lab_id / "checks.py"
+    spec = importlib.util.spec_from_file_location(f"checks_{lab_id.replace('-', '_')}", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _trace(t, **cols):
+    t = np.asarray(t, dtype=float)
+    return Trace(t, {k: np.asarray(v) for k, v in cols.items()},
+                 meta={"t_end": float(t[-1]) + (t[1] - t[0] if len(t) > 1 else 1.0)})
+
+
+# ---------------------------------------------------------------------------- the labs
+
+
+@pytest.mark.parametrize("lab_id", NEW_LABS)
+def test_lab_is_complete(lab_id):
+    lab = load_lab(lab_id, deep=True)
+    assert len(lab.files("mistakes")) >= 2
+    assert lab.files("solution") and lab.starter
+    assert any(not s.visible for s in lab.scenarios) and any(s.visible for s in lab.scenarios)
+    readme = (lab.path / "README.md").read_text(encoding="utf-8")
+    assert readme_table(readme) == lab.io_table_markdown(), (
+        f"run: plclab lab show {lab_id} --update-readme")
+    assert "001_c648febd3bbd6efb.txt" in readme and re.search(r"lines \d+-\d+", readme)
+    for m in lab.files("mistakes"):
+        assert EXPECT.search(m.read_text(encoding="utf-8")), f"{m.name}: (* expect: ... *)"
+
+
+def _solutions():
+    return [(lab_id, p.name) for lab_id in NEW_LABS for p in load_lab(lab_id).files("solution")]
+
+
+@pytest.mark.parametrize("lab_id,name", _solutions())
+def test_solution_scores_full_marks_hidden_included(lab_id, name):
+    lab, res = _grade(lab_id, ROOT / "labs" / lab_id / "solution" / name)
+    failed = [f"{t.name}: {t.message}" for t in res.tests if not t.passed]
+    assert res.status == "ok" and not failed, failed
+    assert res.score == res.max_score == lab.max_score
+    assert {t.scenario for t in res.tests} == {s.name for s in lab.scenarios}
+
+
+@pytest.mark.parametrize("lab_id,name", sorted(MISTAKES))
+def test_mistake_fails_what_it_should(lab_id, name):
+    path = ROOT / "labs" / lab_id / "mistakes" / name
+    lab, res = _grade(lab_id, path)
+    assert res.status == "ok", res.diagnostics
+    assert res.score < res.max_score
+    failed = {t.criterion for t in res.tests if not t.passed}
+    assert MISTAKES[(lab_id, name)] <= failed, failed
+    expect = EXPECT.search(path.read_text(encoding="utf-8")).group(1)
+    assert expect.lower() in render_feedback(res, instructor=True).lower()
+
+
+def test_every_mistake_is_listed():
+    have = {(lab_id, p.name) for lab_id in NEW_LABS for p in load_lab(lab_id).files("mistakes")}
+    assert have == set(MISTAKES)
+
+
+@pytest.mark.parametrize("lab_id", NEW_LABS)
+def test_starter_scores_low(lab_id):
+    lab = load_lab(lab_id)
+    sources, _ = read_submission(lab.starter[0])
+    res = grade_sources(lab, sources, include_hidden=True)
+    assert res.status == "ok", res.diagnostics
+    assert res.score <= 0.25 * res.max_score
+
+
+def test_grading_is_deterministic():
+    a = _grade("pump-station", ROOT / "labs/pump-station/mistakes/no_latch.st")[1]
+    b = _grade("pump-station", ROOT / "labs/pump-station/mistakes/no_latch.st")[1]
+    assert [(t.name, t.score, t.message) for t in a.tests] == \
+        [(t.name, t.score, t.message) for t in b.tests]
+
+
+# ---------------------------------------------------------------------------- the checks
+
+
+def test_two_fans_run():
+    two_fans_run = _checks("ventilation-fans").two_fans_run
+    t = np.arange(0.0, 10.0, 0.5)
+    n = len(t)
+    on, off = np.ones(n, bool), np.zeros(n, bool)
+    f2 = t >= 5.0
+    good = _trace(t, FAULT1=off, FAULT2=f2, FAULT3=off, MAIN_POWER=on,
+                  FAN1=t >= 6.0, FAN2=on, FAN3=on)  # a faulted fan's contactor may stay on
+    assert two_fans_run(good, settle=2.0)[0]
+    late = _trace(t, FAULT1=off, FAULT2=f2, FAULT3=off, MAIN_POWER=on,
+                  FAN1=t >= 8.0, FAN2=on, FAN3=on)
+    ok, msg, tf = two_fans_run(late, settle=2.0)
+    assert not ok and tf == 7.0 and "1 fan(s)" in msg
+    three = _trace(t, FAULT1=off, FAULT2=off, FAULT3=off, MAIN_POWER=on, FAN1=on, FAN2=on,
+                   FAN3=on)
+    assert not two_fans_run(three)[0]
+
+
+def test_lamps_show_state():
+    lamps = _checks("ventilation-fans").lamps_show_state
+    t = np.arange(0.0, 3.0, 1.0)
+    on, off = np.ones(3, bool), np.zeros(3, bool)
+    cols = {"%QX0.0": on, "%QX0.1": off, "%QX0.2": on, "%QX0.3": on, "%IX0.3": off,
+            "%IX0.4": np.array([False, True, True]), "%IX0.5": off, "%QX0.4": on,
+            "%QX0.6": off, "%QX0.7": np.array([True, False, False]), "%QX1.0": on}
+    assert lamps(_trace(t, **cols))[0]
+    cols["%QX0.7"] = on  # lit although fan 2 is faulted
+    ok, msg, tf, sig = lamps(_trace(t, **cols))
+    assert not ok and tf == 1.0 and sig == ["FAN2_LAMP"]
+
+
+def test_stage_and_start_gap():
+    c = _checks("pump-station")
+    t = np.arange(0.0, 300.0, 0.5)
+    ns1 = (t >= 10.0) & (t < 250.0)
+    sw = np.zeros(len(t), bool)
+    ok_ns2 = (t >= 130.5) & (t < 250.0)
+    assert c.stage(_trace(t, NS1=ns1, NS2=ok_ns2, PWY=sw), delay=120.0)[0]
+    early = (t >= 50.0) & (t < 250.0)
+    ok, msg, tf, _ = c.stage(_trace(t, NS1=ns1, NS2=early, PWY=sw), delay=120.0)
+    assert not ok and tf == 50.0 and "only 40.0 s after NS1" in msg
+    assert c.stage(_trace(t, NS1=ns1, NS2=early, PWY=t >= 45.0), delay=120.0)[0]
+    never = np.zeros(len(t), bool)
+    ok, msg, tf, _ = c.stage(_trace(t, NS1=ns1, NS2=never, PWY=sw), delay=120.0)
+    assert not ok and "still off" in msg
+    ns3 = np.zeros(len(t), bool)
+    assert c.start_gap(_trace(t, NS1=ns1, NS2=ok_ns2, NS3=ns3))[0]
+    ok, msg, tf, _ = c.start_gap(_trace(t, NS1=ns1, NS2=(t >= 12.0), NS3=ns3), gap=5.0)
+    assert not ok and tf == 12.0
+
+
+def test_no_saturation_chatter():
+    chk = _checks("heater-pid").no_saturation_chatter
+    t = np.arange(0.0, 60.0, 1.0)
+    smooth = np.clip(100.0 - 2.0 * t, 0.0, 100.0)
+    assert chk(_trace(t, POWER=smooth))[0]
+    bang = np.where(np.arange(len(t)) % 2 == 0, 100.0, 0.0)
+    ok, msg, tf, sig = chk(_trace(t, POWER=bang))
+    assert not ok and sig == ["POWER"]
+
+
+def test_two_hand_and_dose():
+    c = _checks("press-safety")
+    t = np.round(np.arange(0.0, 10.0, 0.01), 2)
+    left = (t >= 1.0) & (t < 5.0)
+    right = (t >= 1.3) & (t < 5.0)
+    down = (t >= 1.31) & (t < 3.7)
+    assert c.two_hand(_trace(t, **{"%IX0.0": left, "%IX0.1": right, "%QX0.0": down}))[0]
+    taped = t >= 0.2
+    ok, msg, tf, _ = c.two_hand(_trace(t, **{"%IX0.0": taped, "%IX0.1": right,
+                                            "%QX0.0": down}))
+    assert not ok and "1.10 s after" in msg
+    twice = down | ((t >= 6.0) & (t < 7.0))
+    both = (t >= 1.0) & (t < 8.0)
+    ok, msg, _, _ = c.two_hand(_trace(t, **{"%IX0.0": both, "%IX0.1": both, "%QX0.0": twice}))
+    assert not ok and "without releasing" in msg
+    pos = np.clip((t - 1.31) * 25.0, 0.0, 60.0) + 2.0
+    assert c.dose(_trace(t, DOWN=down, POSITION=pos), pulses=60, count=1)[0]
+    ok, msg, _, _ = c.dose(_trace(t, DOWN=down, POSITION=pos * 0.5), pulses=60)
+    assert not ok and "60 mm" in msg
