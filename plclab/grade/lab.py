@@ -39,7 +39,8 @@ TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", 
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
-                  "message", "hint", "signals", "window", "description", "requires")
+                  "message", "hint", "signals", "window", "description", "requires",
+                  "critical")
 IO_KEYS = ("name", "address", "type", "unit", "description")
 DIAGRAM_KEYS = ("signals", "window")
 
@@ -162,6 +163,7 @@ class CriterionSpec:
     function: Callable[..., Any] | None = None
     python: str = ""
     requires: list[str] = field(default_factory=list)
+    critical: bool = False  # failing it voids every point of its scenario (safety)
 
     def evaluate(self, trace: Any) -> Verdict:
         """Run the check on a trace; a check that cannot run is a failed verdict."""
@@ -735,6 +737,11 @@ class _Builder:
                                    "criterion", i, "params")
                 spec.params = self.check_params(chk, c, what, i, names)
             spec.requires = self.strings(c, "requires", what, "criterion", i)
+            crit = c.get("critical", False)
+            if not isinstance(crit, bool):
+                raise self.err("PLC5004", f"{what}: critical is true or false", "criterion", i,
+                               "critical")
+            spec.critical = crit
             for r in spec.requires:
                 prev = next((o for o in out if o.name == r), None)
                 if prev is None:

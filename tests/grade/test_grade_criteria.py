@@ -258,3 +258,21 @@ def test_doctests(name):
 
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.failed == 0
+
+
+def test_critical_criterion_voids_its_scenario():
+    """press-safety marks its safety checks critical: a press that ignores the light curtain
+    loses every point of that scenario, not just the curtain criterion's."""
+    from pathlib import Path
+
+    import plclab.grade as grade
+
+    lab = Path(__file__).resolve().parents[2] / "labs" / "press-safety"
+    good = grade.check(str(lab), [str(lab / "solution" / "press.st")])
+    bad = grade.check(str(lab), [str(lab / "mistakes" / "ignores_curtain.st")])
+    assert good.score == good.max_score
+    curtain = [t for t in bad.tests if t.scenario == "light-curtain"]
+    assert curtain and all(t.score == 0 for t in curtain)
+    assert any("voided" in t.message for t in curtain if t.passed)
+    other = [t for t in bad.tests if t.scenario != "light-curtain"]
+    assert sum(t.score for t in other) > 0
