@@ -32,6 +32,7 @@ as ``STOP`` reads ``True`` while nobody presses it; the scenario presses it by w
 
 from __future__ import annotations
 
+import abc
 import difflib
 import math
 import random
@@ -237,7 +238,7 @@ class StepProfile:
         return self._values[i]
 
 
-class Plant:
+class Plant(abc.ABC):
     """Base class of all plants (see the module docstring for the subclass hooks).
 
     Attributes
@@ -446,22 +447,25 @@ class Plant:
         return f"<{type(self).__name__} {self.name!r} t={self.time:.3f}s>"
 
     # ------------------------------------------------------------------ hooks
-    def _reset_state(self) -> None:  # pragma: no cover - every plant overrides it
-        raise NotImplementedError
+    @abc.abstractmethod
+    def _reset_state(self) -> None:
+        """Set the physical state to its initial values (after the seed is set)."""
 
-    def _advance(self, h: float) -> None:  # pragma: no cover - every plant overrides it
-        raise NotImplementedError
+    @abc.abstractmethod
+    def _advance(self, h: float) -> None:
+        """Integrate the physics over one sub-step of ``h`` seconds."""
 
-    def _outputs(self) -> None:  # pragma: no cover - every plant overrides it
-        raise NotImplementedError
+    @abc.abstractmethod
+    def _outputs(self) -> None:
+        """Compute the sensor signals from the state."""
 
-    def _faults_changed(self) -> None:
+    def _faults_changed(self) -> None:  # noqa: B027 - optional hook
         """Called after every inject/clear/reset; cache fault flags here."""
 
-    def _on_inject(self, fault: str, params: dict[str, Any]) -> None:
+    def _on_inject(self, fault: str, params: dict[str, Any]) -> None:  # noqa: B027
         """Called when ``fault`` becomes active (before :meth:`_faults_changed`)."""
 
-    def _on_clear(self, fault: str) -> None:
+    def _on_clear(self, fault: str) -> None:  # noqa: B027 - optional hook
         """Called when ``fault`` is cleared (before :meth:`_faults_changed`)."""
 
     # ------------------------------------------------------------------ helpers

@@ -57,7 +57,6 @@ class Transmitter(Protocol):
 
     def output(self, value: float) -> float:  # pragma: no cover - protocol
         """Signal (mA or V) for the plant value ``value``."""
-        ...
 
 
 class LinearTransmitter:

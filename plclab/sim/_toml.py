@@ -114,3 +114,26 @@ def key_position(text: str, span: tuple[int, int] | None, key: str) -> tuple[int
         if m:
             return ln, m.start(1) + 1
     return span[0], 1
+
+
+def row_reporter(what: str, index: int, file: str | None, text: str | None,
+                 span: tuple[int, int] | None, diags: list):
+    """``(loc, bad)`` for one row of a TOML table: ``loc(key)`` is where the row (or one of its
+    keys) stands in the file, ``bad(code, key, msg)`` records a diagnostic there."""
+    from plclab.errors import Diagnostic, Location
+
+    def loc(key: str | None = None) -> Location | None:
+        if file is None:
+            return None
+        if text is not None and span is not None:
+            if key is None:
+                return Location(file, span[0], 1)
+            ln, col = key_position(text, span, key)
+            return Location(file, ln, col)
+        return Location(file)
+
+    def bad(code: str, key: str | None, msg: str) -> None:
+        where = f"{what} {index}" + (f", key '{key}'" if key else "")
+        diags.append(Diagnostic(code, f"{where}: {msg}", loc(key)))
+
+    return loc, bad

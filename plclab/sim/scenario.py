@@ -66,7 +66,7 @@ from typing import Any
 
 from plclab.errors import Diagnostic, Location, PlcError
 
-from ._toml import key_position, read_toml, row_spans
+from ._toml import read_toml, row_reporter, row_spans
 from .durations import format_duration, parse_ns
 from .errors import did_you_mean, raise_all, sim_error
 
@@ -337,19 +337,7 @@ def _top_line(text: str, key: str) -> tuple[int, int]:
 
 def _action_from(raw: Any, index: int, file: str | None, text: str | None,
                  span: tuple[int, int] | None, diags: list[Diagnostic]) -> Action | None:
-    def loc(key: str | None = None) -> Location | None:
-        if file is None:
-            return None
-        if text is not None and span is not None:
-            if key is None:
-                return Location(file, span[0], 1)
-            ln, col = key_position(text, span, key)
-            return Location(file, ln, col)
-        return Location(file)
-
-    def bad(code: str, key: str | None, msg: str) -> None:
-        where = f"action {index}" + (f", key '{key}'" if key else "")
-        diags.append(Diagnostic(code, f"{where}: {msg}", loc(key)))
+    loc, bad = row_reporter('action', index, file, text, span, diags)
 
     if not isinstance(raw, Mapping):
         bad("PLC4010", None, f"an action is a table such as {{ at = \"1s\", press = \"START\" }}, "

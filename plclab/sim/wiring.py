@@ -53,7 +53,7 @@ from typing import Any
 
 from plclab.errors import Diagnostic, Location
 
-from ._toml import key_position, read_toml, row_spans
+from ._toml import read_toml, row_reporter, row_spans
 from .durations import parse_ns
 from .errors import did_you_mean, raise_all
 
@@ -283,19 +283,7 @@ def _row_from(obj: Any, index: int, file: str | None, text: str | None,
                                 f"{obj!r}", loc))
         return None
 
-    def loc(key: str | None = None) -> Location | None:
-        if file is None:
-            return None
-        if text is not None and span is not None:
-            if key is None:
-                return Location(file, span[0], 1)
-            ln, col = key_position(text, span, key)
-            return Location(file, ln, col)
-        return Location(file)
-
-    def bad(code: str, key: str | None, msg: str) -> None:
-        where = f"wiring row {index}" + (f", key '{key}'" if key else "")
-        diags.append(Diagnostic(code, f"{where}: {msg}", loc(key)))
+    loc, bad = row_reporter('wiring row', index, file, text, span, diags)
 
     n0 = len(diags)
     for key in ("plc", "signal"):
