@@ -1122,7 +1122,7 @@ def _kind_name(t: T.Type | None) -> str:
     if r is T.ANY_INT_LIT:
         return "int?"
     if isinstance(r, T.EnumType):
-        return "enum:" + ",".join(f"{v}={k}" for k, v in r.members.items())
+        return "enum:" + ",".join(f"{v}={r.spellings.get(k, k)}" for k, v in r.members.items())
     if r is T.REAL:
         return "real32"
     if isinstance(r, T.Subrange):

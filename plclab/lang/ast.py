@@ -49,6 +49,7 @@ class SubrangeTypeRef(TypeRef):
 class EnumTypeRef(TypeRef):
     members: list[tuple[str, Expr | None, Location]]
     base: TypeRef | None = None
+    spellings: dict[str, str] = field(default_factory=dict)  # RED -> Red, as written
 
 
 @dataclass(eq=False)
@@ -77,6 +78,7 @@ class Literal(Expr):
 @dataclass(eq=False)
 class Name(Expr):
     name: str
+    text: str = ""  # as written (the name is upper-cased: identifiers are case-insensitive)
     sym: Any = field(default=None, init=False, repr=False)
 
 
@@ -89,6 +91,7 @@ class DirectAddr(Expr):
 class Member(Expr):
     obj: Expr
     field_name: str
+    text: str = ""  # the member name as written
     sym: Any = field(default=None, init=False, repr=False)
 
 
@@ -353,9 +356,9 @@ def expr_text(e: Expr | None) -> str:
     if isinstance(e, Literal):
         return e.text or repr(e.value)
     if isinstance(e, Name):
-        return e.name
+        return e.text or e.name
     if isinstance(e, Member):
-        f = e.field_name
+        f = e.text or e.field_name
         return f"{expr_text(e.obj)}.{f[1:] if f.startswith('%') else f}"
     if isinstance(e, Index):
         return f"{expr_text(e.obj)}[{', '.join(expr_text(i) for i in e.indices)}]"

@@ -254,7 +254,7 @@ class Checker:
                 b = T.base_of(self.type_ref(r.base))
                 if isinstance(b, T.Elementary) and b.kind in ("int", "bits"):
                     base = b
-            et = T.EnumType(name or f"enum@{r.loc.line}", {}, base)
+            et = T.EnumType(name or f"enum@{r.loc.line}", {}, base, dict(r.spellings))
             nxt = 0
             for mname, mval, mloc in r.members:
                 if mval is not None:

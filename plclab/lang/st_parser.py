@@ -430,19 +430,21 @@ class Parser:
         if t.kind == "(":
             self.advance()
             members = []
+            spellings: dict[str, str] = {}
             while True:
                 n = self.expect("IDENT", "an enumeration value name")
                 val = None
                 if self.accept(":="):
                     val = self.expr()
                 members.append((n.value, val, self.loc(n)))
+                spellings[n.value] = n.text
                 if not self.accept(","):
                     break
             self.expect(")", "')' to close the enumeration")
             base = None
             if self.at("IDENT") and not self.at(";"):
                 base = A.NamedTypeRef(self.loc(), self.advance().value)
-            return A.EnumTypeRef(loc, members, base)
+            return A.EnumTypeRef(loc, members, base, spellings)
         if t.kind == "IDENT":
             self.advance()
             base = A.NamedTypeRef(loc, t.value)
@@ -764,7 +766,7 @@ class Parser:
             return A.DirectAddr(loc, t.value)
         if k == "IDENT":
             self.advance()
-            return A.Name(loc, t.value)
+            return A.Name(loc, t.value, t.text)
         if k == "(":
             self.advance()
             e = self.expr()
@@ -785,7 +787,7 @@ class Parser:
                     e = A.Member(self.loc(dot), e, f"%{bit.value}")
                     continue
                 n = self.expect("IDENT", "a member name after '.'")
-                e = A.Member(self.loc(n), e, n.value)
+                e = A.Member(self.loc(n), e, n.value, n.text)
             elif self.at("["):
                 b = self.advance()
                 idx = [self.expr()]

@@ -138,12 +138,14 @@ class EnumType(Type):
     name: str
     members: dict[str, int] = field(default_factory=dict)
     base: Elementary = INT
+    spellings: dict[str, str] = field(default_factory=dict)
     kind = "enum"
 
     def member_name(self, value: int) -> str:
+        """The member's name as the source wrote it."""
         for k, v in self.members.items():
             if v == value:
-                return k
+                return self.spellings.get(k, k)
         return str(value)
 
 

@@ -199,7 +199,7 @@ def test_set_with_iec_literals():
     plc["r"] = "1.5E3"
     plc["s"] = "abcdefgh"
     assert plc["t"] == 90_000 and plc["b"] == 255 and plc["e"] == 2 and plc["r"] == 1500.0
-    assert plc.format("e") == "FAST" and plc["s"] == "abcde"
+    assert plc.format("e") == "Fast" and plc["s"] == "abcde"
     with pytest.raises(PlcError):
         plc["b"] = 300
 
