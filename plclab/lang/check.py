@@ -881,7 +881,7 @@ class Checker:
                      f"(inst : {e.name};) and use the instance", e.loc)
             return T.ANY
         cands = list(self.scope) + list(self.globals) + list(self.enum_members)
-        self.err("PLC0100", f"{e.name} is not declared" + self._suggest(e.name, cands) +
+        self.err("PLC0100", f"{e.text or e.name} is not declared" + self._suggest(e.name, cands) +
                  ("" if self._suggest(e.name, cands) else "; declare it in a VAR section"),
                  e.loc)
         # declare it to avoid repeated errors

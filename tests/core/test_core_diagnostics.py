@@ -93,7 +93,7 @@ def test_all_errors_in_a_file_are_reported():
 
 def test_diagnostic_format():
     _, diags = check_sources([(P.format(body="x := undefinedName;"), "fmt.st")])
-    assert str(diags[0]).startswith("fmt.st:3:6: error PLC0100: UNDEFINEDNAME is not declared")
+    assert str(diags[0]).startswith("fmt.st:3:6: error PLC0100: undefinedName is not declared")
 
 
 def test_runtime_fault_codes_are_catalogued():
