@@ -61,3 +61,23 @@ def switching_report(trace) -> str:
                 seen = Series(base, trace.time, trace.columns.get(base, []), "bool")
             inputs.append(bounce_stats(base, raw, seen))
     return report(outs, trace.t_end, [b for b in inputs if b.raw_edges])
+
+
+@command("figures", "draw the timing diagrams of TP/TON/TOF/TONR/CTU/CTD/CTUD from real runs")
+@arg("folder", help="where to write the pictures")
+@arg("--format", default="svg", choices=["svg", "png"], help="picture format (default svg)")
+@arg("--scan-cycle", action="store_true", help="also draw the scan-cycle diagram")
+def cmd_figures(ns: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .figures import write_all
+
+    for p in write_all(ns.folder, ns.format):
+        print(p)
+    if ns.scan_cycle:
+        from .timing import scan_cycle_diagram
+
+        p = Path(ns.folder) / f"scan_cycle.{ns.format}"
+        _, reaction = scan_cycle_diagram(p)
+        print(f"{p} (reaction {reaction:.1f} ms)")
+    return 0
