@@ -55,6 +55,9 @@ def _param(text: str) -> tuple[str, object]:
 @arg("--signals", default=None, metavar="A,B", help="columns for the viz exports")
 @arg("--window", default=None, metavar="T0..T1", help="time window of the viz exports, "
      "e.g. 0s..20s")
+@arg("--spawn", action="store_true", help="stream the run live into the rerun viewer")
+@arg("--speed", type=float, default=None, help="with --spawn: pace the run to the wall clock "
+     "(1.0 = real time, 10 = ten times faster)")
 def cmd_sim(ns: argparse.Namespace) -> int:
     from .durations import format_duration, parse_ns
     from .runner import load_plc
@@ -80,7 +83,13 @@ def cmd_sim(ns: argparse.Namespace) -> int:
     duration = ns.duration
     if duration is None and sc.duration_ns is None:
         duration = "10min"
-    tr = sim.run(duration, ns.until)
+    if ns.spawn:
+        from plclab.viz.live import run_live
+
+        tr = run_live(sim, duration, ns.until, spawn=True, speed=ns.speed,
+                      names=split_names(ns.signals) if ns.signals else None)
+    else:
+        tr = sim.run(duration, ns.until)
     wall = tr.wall.get("run_s", 0.0) or 1e-9
     print(f"{sim.plant.name}: {format_duration(tr.t_end)} simulated in {wall:.2f} s "
           f"({tr.t_end / wall:,.0f}x real time), {sim.k} scans of "

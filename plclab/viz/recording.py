@@ -58,19 +58,36 @@ def _entity(name: str) -> str:
     return "".join(c if c.isalnum() or c in "_-" else "_" for c in name)
 
 
-def write_rrd(rec: Recording, path: str | Path | None = "run.rrd", spawn: bool = False,
-              blueprint: bool = True) -> Path | None:
-    """Write ``rec`` to ``path`` (headless), or open a viewer with ``spawn=True``."""
-    import numpy as np
-    import rerun as rr
-    import rerun.blueprint as rrb
+class RrdWriter:
+    """A rerun stream for one run: the layout is fixed by the first :class:`Recording`, then
+    :meth:`send` logs rows (all of them, or only the new ones when streaming live)."""
 
-    stream = rr.RecordingStream(f"plclab-{_entity(rec.title)}")
-    if spawn:
-        stream.spawn()
-    elif path is not None:
-        stream.save(str(path))
-    if blueprint:
+    def __init__(self, rec: Recording, path: str | Path | None = "run.rrd",
+                 spawn: bool = False, blueprint: bool = True) -> None:
+        import rerun as rr
+
+        self.rr = rr
+        self.path = None if spawn else path
+        self.stream = rr.RecordingStream(f"plclab-{_entity(rec.title)}")
+        if spawn:
+            self.stream.spawn()
+        elif path is not None:
+            self.stream.save(str(path))
+        if blueprint:
+            self._blueprint(rec)
+        n = len(rec.digital)
+        # stacked: each digital signal on its own 0..1 lane, like a logic analyzer
+        self.lanes = {s.name: 1.5 * (n - 1 - k) for k, s in enumerate(rec.digital)}
+        self.rows = 0  # rows already sent
+        self.events = 0  # events already sent
+        self.marked: set[str] = set()
+        self._styles(rec)
+        if rec.geometry:
+            _log_geometry(self.stream, Recording(geometry=rec.geometry))
+
+    def _blueprint(self, rec: Recording) -> None:
+        import rerun.blueprint as rrb
+
         views = []
         if rec.analog:
             views.append(rrb.TimeSeriesView(origin="/analog", name="analog signals"))
@@ -81,65 +98,108 @@ def write_rrd(rec: Recording, path: str | Path | None = "run.rrd", spawn: bool =
         views.append(rrb.TextLogView(origin="/events", name="events"))
         if len(rec.scan_durations_us):
             views.append(rrb.TimeSeriesView(origin="/scan", name="scan duration"))
-        stream.send_blueprint(rrb.Blueprint(rrb.Vertical(*views)))
+        self.stream.send_blueprint(rrb.Blueprint(rrb.Vertical(*views)))
 
-    def send(entity: str, s: Series, step: bool, color, offset: float = 0.0) -> None:
-        t = np.asarray(s.times, dtype=np.float64)
-        v = np.asarray([float(x) for x in s.values], dtype=np.float64) + offset
-        stream.log(entity, rr.SeriesLines(
-            names=s.name, colors=[color],
-            interpolation_mode="StepAfter" if step else "Linear"), static=True)
-        idx = np.arange(len(t), dtype=np.int64)
+    def _styles(self, rec: Recording) -> None:
+        rr = self.rr
+
+        def style(entity, name, color, step):
+            self.stream.log(entity, rr.SeriesLines(
+                names=name, colors=[color],
+                interpolation_mode="StepAfter" if step else "Linear"), static=True)
+
+        for k, s in enumerate(rec.analog):
+            style(f"/analog/{_entity(s.name)}", s.name, _PALETTE[k % len(_PALETTE)],
+                  s.kind != "real")
+            for lname, _ in rec.limits.get(s.name, []):
+                style(f"/analog/{_entity(s.name)}/limits/{_entity(lname)}", lname,
+                      (150, 150, 150), False)
+        for k, s in enumerate(rec.digital):
+            style(f"/digital/{_entity(s.name)}", s.name, _PALETTE[k % len(_PALETTE)], True)
+        if len(rec.scan_durations_us):
+            style("/scan/duration_us", "scan duration [us]", (100, 100, 100), False)
+
+    def _columns(self, entity: str, times, values, first_index: int, offset: float = 0.0):
+        import numpy as np
+
+        rr = self.rr
+        t = np.asarray(times, dtype=np.float64)
+        v = np.asarray([float(x) for x in values], dtype=np.float64) + offset
+        idx = np.arange(first_index, first_index + len(t), dtype=np.int64)
         rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=t),
                                          rr.TimeColumn("scan", sequence=idx)],
-                        columns=rr.Scalars.columns(scalars=v), recording=stream)
+                        columns=rr.Scalars.columns(scalars=v), recording=self.stream)
 
-    for k, s in enumerate(rec.analog):
-        color = _PALETTE[k % len(_PALETTE)]
-        send(f"/analog/{_entity(s.name)}", s, s.kind != "real", color)
-        for lname, value in rec.limits.get(s.name, []):
-            lim = Series(lname, [s.times[0], s.times[-1]], [value, value], "real")
-            send(f"/analog/{_entity(s.name)}/limits/{_entity(lname)}", lim, False,
-                 (150, 150, 150))
-    n = len(rec.digital)
-    for k, s in enumerate(rec.digital):
-        # stacked: each digital signal on its own 0..1 lane, like a logic analyzer
-        send(f"/digital/{_entity(s.name)}", s, True, _PALETTE[k % len(_PALETTE)],
-             offset=1.5 * (n - 1 - k))
-    if len(rec.scan_durations_us):
-        d = Series("scan duration [us]", list(rec.scan_times), list(rec.scan_durations_us))
-        send("/scan/duration_us", d, False, (100, 100, 100))
-    levels = {"INFO": rr.TextLogLevel.INFO, "WARN": rr.TextLogLevel.WARN,
-              "ERROR": rr.TextLogLevel.ERROR}
-    lanes = {s.name: 1.5 * (n - 1 - k) for k, s in enumerate(rec.digital)}
-    for ev in sorted(rec.events, key=lambda e: e.time):
-        stream.set_time("sim_time", duration=ev.time)
-        stream.log("/events", rr.TextLog(f"[{ev.kind}] {ev.source}: {ev.message}",
-                                         level=levels.get(ev.level, rr.TextLogLevel.INFO)))
-        if ev.level != "INFO":
-            y = lanes.get(ev.source, 0.0) + 1.2
-            stream.log(f"/markers/{_entity(ev.source)}", rr.Scalars(y))
-    for name in {_entity(ev.source) for ev in rec.events if ev.level != "INFO"}:
-        stream.log(f"/markers/{name}", rr.SeriesPoints(markers="cross", colors=[(214, 39, 40)]),
-                   static=True)
-    if rec.geometry:
-        _log_geometry(stream, rec)
-    if path is not None and not spawn:
-        stream.flush()
-        stream.disconnect()
-        return Path(path)
-    return None
+    def send(self, rec: Recording) -> None:
+        """Log the rows of ``rec`` from row ``self.rows`` on, and its new events and frames."""
+        start = self.rows
+        for s in rec.analog:
+            self._columns(f"/analog/{_entity(s.name)}", s.times[start:], s.values[start:],
+                          start)
+            for lname, value in rec.limits.get(s.name, []):
+                if len(s.times) > start:
+                    ends = [s.times[start], s.times[-1]]
+                    self._columns(f"/analog/{_entity(s.name)}/limits/{_entity(lname)}", ends,
+                                  [value, value], start)
+        for s in rec.digital:
+            self._columns(f"/digital/{_entity(s.name)}", s.times[start:], s.values[start:],
+                          start, offset=self.lanes.get(s.name, 0.0))
+        if len(rec.scan_durations_us):
+            self._columns("/scan/duration_us", list(rec.scan_times)[start:],
+                          list(rec.scan_durations_us)[start:], start)
+        self.rows = max([len(s.times) for s in rec.analog + rec.digital] + [start])
+        self._events(rec.events[self.events:])
+        self.events = len(rec.events)
+        if rec.geometry and rec.frames is not None:
+            _log_frames(self.stream, rec)
+
+    def _events(self, events: list[Event]) -> None:
+        rr = self.rr
+        levels = {"INFO": rr.TextLogLevel.INFO, "WARN": rr.TextLogLevel.WARN,
+                  "ERROR": rr.TextLogLevel.ERROR}
+        for ev in sorted(events, key=lambda e: e.time):
+            self.stream.set_time("sim_time", duration=ev.time)
+            self.stream.log("/events", rr.TextLog(f"[{ev.kind}] {ev.source}: {ev.message}",
+                                                  level=levels.get(ev.level,
+                                                                   rr.TextLogLevel.INFO)))
+            if ev.level != "INFO":
+                name = _entity(ev.source)
+                if name not in self.marked:
+                    self.marked.add(name)
+                    self.stream.log(f"/markers/{name}", rr.SeriesPoints(
+                        markers="cross", colors=[(214, 39, 40)]), static=True)
+                self.stream.log(f"/markers/{name}",
+                                rr.Scalars(self.lanes.get(ev.source, 0.0) + 1.2))
+
+    def close(self) -> Path | None:
+        if self.path is not None:
+            self.stream.flush()
+            self.stream.disconnect()
+            return Path(self.path)
+        return None
+
+
+def write_rrd(rec: Recording, path: str | Path | None = "run.rrd", spawn: bool = False,
+              blueprint: bool = True) -> Path | None:
+    """Write ``rec`` to ``path`` (headless), or open a viewer with ``spawn=True``."""
+    w = RrdWriter(rec, path, spawn, blueprint)
+    w.send(rec)
+    return w.close()
 
 
 def _log_geometry(stream, rec: Recording) -> None:
+    """The plant's static shapes."""
     import rerun as rr
 
-    statics = rec.geometry.get("shapes", [])
-    for shp in statics:
+    for shp in rec.geometry.get("shapes", []):
         _log_shape(stream, f"/plant/static/{_entity(shp.get('name', 'shape'))}", shp, rr,
                    static=True)
-    if rec.frames is None:
-        return
+
+
+def _log_frames(stream, rec: Recording) -> None:
+    """The plant's moving parts at each frame time."""
+    import rerun as rr
+
     for t in rec.frame_times:
         stream.set_time("sim_time", duration=float(t))
         for shp in rec.frames(t):
