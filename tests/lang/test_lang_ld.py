@@ -320,7 +320,7 @@ DIAG_CASES = {
     "unknown variable": ("""
 |   a        xx  |
 |---[ ]------( )-|
-""", "PLC0100", 3, 14, ["XX is not declared"]),
+""", "PLC0100", 3, 14, ["xx is not declared"]),
 }
 
 
