@@ -396,7 +396,24 @@ def _config(rng_name, convention, bits, live):
 
 
 class _Scaler(NativeBlock):
-    __slots__ = ("_key", "_cfg", "_dbl")
+    """What AI_SCALE and AO_SCALE share: the channel configuration inputs (with the defaults
+    of their ST declarations), the ERROR output and the cached scaling configuration."""
+
+    __slots__ = ("_key", "_cfg", "_dbl", "LO", "HI", "RANGE", "CONVENTION", "BITS",
+                 "LIVE_ZERO", "ERROR")
+
+    def __init__(self, ctx, double: bool = False) -> None:
+        self._ctx = ctx
+        self._dbl = double
+        self._key = None
+        self._cfg = None
+        self.LO = 0.0
+        self.HI = 100.0
+        self.RANGE = "4-20mA"
+        self.CONVENTION = "s7"
+        self.BITS = 0
+        self.LIVE_ZERO = False
+        self.ERROR = False
 
     def _get_cfg(self):
         key = (self.RANGE, self.CONVENTION, self.BITS, bool(self.LIVE_ZERO))
@@ -433,26 +450,15 @@ class AI_SCALE(_Scaler):
     last good value (substitute value "last value").
     """
 
-    __slots__ = ("IN", "LO", "HI", "RANGE", "CONVENTION", "BITS", "LIVE_ZERO", "VALUE",
-                 "WIRE_BREAK", "OVERRANGE", "UNDERRANGE", "ERROR")
+    __slots__ = ("IN", "VALUE", "WIRE_BREAK", "OVERRANGE", "UNDERRANGE")
 
     def __init__(self, ctx, double: bool = False) -> None:
-        self._ctx = ctx
-        self._dbl = double
-        self._key = None
-        self._cfg = None
+        super().__init__(ctx, double)
         self.IN = 0
-        self.LO = 0.0
-        self.HI = 100.0
-        self.RANGE = "4-20mA"
-        self.CONVENTION = "s7"
-        self.BITS = 0
-        self.LIVE_ZERO = False
         self.VALUE = 0.0
         self.WIRE_BREAK = False
         self.OVERRANGE = False
         self.UNDERRANGE = False
-        self.ERROR = False
 
     def _body(self) -> None:
         cfg = self._get_cfg()
@@ -502,24 +508,13 @@ class AO_SCALE(_Scaler):
     %QW receives). ERROR (with OUT held) on a bad configuration, LO = HI or a NaN input.
     """
 
-    __slots__ = ("IN", "LO", "HI", "RANGE", "CONVENTION", "BITS", "LIVE_ZERO", "OUT",
-                 "LIMITED", "ERROR")
+    __slots__ = ("IN", "OUT", "LIMITED")
 
     def __init__(self, ctx) -> None:
-        self._ctx = ctx
-        self._dbl = False
-        self._key = None
-        self._cfg = None
+        super().__init__(ctx)
         self.IN = 0.0
-        self.LO = 0.0
-        self.HI = 100.0
-        self.RANGE = "4-20mA"
-        self.CONVENTION = "s7"
-        self.BITS = 0
-        self.LIVE_ZERO = False
         self.OUT = 0
         self.LIMITED = False
-        self.ERROR = False
 
     def _body(self) -> None:
         cfg = self._get_cfg()

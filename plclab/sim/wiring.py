@@ -72,24 +72,23 @@ def _number(v: Any) -> float:
     return float(v)
 
 
-def _ms(v: Any) -> float:
-    """Milliseconds: a number of ms, or a duration string ('3ms', '0.5s')."""
-    if isinstance(v, str):
-        return parse_ns(v) / 1e6
-    x = _number(v)
-    if x < 0:
-        raise _Bad("zero or a positive number of milliseconds")
-    return x
+def _duration(unit_ns: float, unit: str):
+    """A parameter converter for durations in ``unit``: a number of that unit, or a duration
+    string ('3ms', '0.5s')."""
+
+    def conv(v: Any) -> float:
+        if isinstance(v, str):
+            return parse_ns(v) / unit_ns
+        x = _number(v)
+        if x < 0:
+            raise _Bad(f"zero or a positive number of {unit}")
+        return x
+
+    return conv
 
 
-def _seconds(v: Any) -> float:
-    """Seconds: a number of s, or a duration string ('50ms')."""
-    if isinstance(v, str):
-        return parse_ns(v) / 1e9
-    x = _number(v)
-    if x < 0:
-        raise _Bad("zero or a positive number of seconds")
-    return x
+_ms = _duration(1e6, "milliseconds")
+_seconds = _duration(1e9, "seconds")
 
 
 def _nonneg(v: Any) -> float:
