@@ -1,0 +1,34 @@
+"""The runnable examples in the docstrings stay true (one runner for every package)."""
+
+import doctest
+import importlib
+
+import pytest
+
+MODULES = [
+    # the core
+    "plclab", "plclab.errors", "plclab.project", "plclab.lang.lexer", "plclab.lang.st_parser",
+    "plclab.lang.types", "plclab.runtime.plc", "plclab.runtime.literals",
+    # IL, LD and PLCopen front ends, ladder drawing
+    "plclab.lang.il_parser", "plclab.lang.ld_parser", "plclab.lang.plcopen",
+    "plclab.viz.ladder_svg",
+    # I/O modules
+    "plclab.io", "plclab.io.scaling", "plclab.io.pt100", "plclab.io.analog",
+    "plclab.io.digital",
+    # plants
+    "plants", "plants.base", "plants.tank", "plants.heater",
+    # simulation and trace
+    "plclab.sim", "plclab.sim.durations", "plclab.sim.errors", "plclab.sim.wiring",
+    "plclab.sim.wirings", "plclab.sim.runner", "plclab.sim.simulation", "plclab.trace.events",
+    "plclab.trace.expr", "plclab.trace.trace",
+    # visualisation
+    "plclab.viz.series", "plclab.viz.chatter", "plclab.viz.figures",
+]
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_doctests(name: str) -> None:
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0
+    assert result.attempted > 0, f"{name} has no examples"
