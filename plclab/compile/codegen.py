@@ -769,7 +769,7 @@ class Codegen:
         mask = (1 << bits) - 1
         if t.signed:
             half = 1 << (bits - 1)
-            return f"((({code}) + {half}) & {mask}) - {half}"
+            return f"(((({code}) + {half}) & {mask}) - {half})"
         return f"(({code}) & {mask})"
 
     # -- expressions --------------------------------------------------------------------------
