@@ -60,7 +60,12 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "the variable is not in a PROGRAM or VAR_GLOBAL."),
     "PLC0121": ("internal variable of a function block", "From outside, only inputs and outputs "
                 "of an instance are visible."),
-    "PLC0130": ("bad native block", "A {native ...} pragma must name a class inside plclab."),
+    "PLC0130": ("unknown native block", "plclab's own library names a block that has no "
+                "registered Python implementation (plclab/runtime/natives.py). This is a bug in "
+                "plclab, not in your program: please report it."),
+    "PLC0131": ("native pragma in a user file", "The {native ...} pragma binds a block to Python "
+                "code and is reserved for plclab's own library. Remove it and write the body of "
+                "your FUNCTION or FUNCTION_BLOCK in ST (or IL, LD)."),
     "PLC0140": ("IL current result type mismatch", "The operator cannot use the current result's "
                 "type, or the store target has another type (e.g. ADD on BOOL, JMPC on INT)."),
     "PLC0141": ("unknown IL operator", "Not an IL operator or a function, or an ST statement "

@@ -55,7 +55,7 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
     for name in STDLIB_FILES:
         from .lang.st_parser import parse_st_collect
 
-        f, d = parse_st_collect(_stdlib_text(name), f"<plclab>/{name}")
+        f, d = parse_st_collect(_stdlib_text(name), f"<plclab>/{name}", library=True)
         assert not d, d
         files.append(f)
     for text, filename in sources:

@@ -268,7 +268,7 @@ class Pou:
     return_type: TypeRef | None = None
     spelling: str = ""
     language: str = "ST"
-    native: str | None = None  # "module:Class" for a block implemented in Python
+    native: str | None = None  # library blocks only: key in plclab.runtime.natives
     end_loc: Location | None = None
 
 

@@ -35,7 +35,8 @@ _STMT_END = {"END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNT
 _POU_START = {"PROGRAM", "FUNCTION", "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION",
               "TEST"}
 _CMP = {"=": "=", "<>": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
-_NATIVE_RE = re.compile(r"^native\s+'([A-Za-z0-9_.]+:[A-Za-z0-9_]+)'$")
+_NATIVE_RE = re.compile(r"^native\s+'([A-Z][A-Z0-9_]*)'$")
+_NATIVE_WORD = re.compile(r"^native\b", re.IGNORECASE)
 
 
 class _Bail(Exception):
@@ -43,14 +44,32 @@ class _Bail(Exception):
 
 
 class Parser:
-    def __init__(self, text: str, file: str = "<input>") -> None:
+    """``library=True`` only for plclab's own library files (see :mod:`plclab.runtime.natives`):
+    there a ``{native 'NAME'}`` pragma binds a block to its registered implementation. In any
+    other file the pragma is an error (PLC0131), so user text never selects Python code."""
+
+    def __init__(self, text: str, file: str = "<input>", library: bool = False) -> None:
         lexer = Lexer(text, file)
         self.toks: list[Token] = lexer.tokens()
         self.diagnostics: list[Diagnostic] = lexer.diagnostics
         self.pragmas = lexer.pragmas
         self.file = file
+        self.library = library
         self.i = 0
         self.il_default = file.lower().endswith(".il")  # a .il file: bodies are IL unless ST
+        if not library:
+            self._reject_native_pragmas(text)
+
+    def _reject_native_pragmas(self, text: str) -> None:
+        lines = text.splitlines()
+        for line, body in self.pragmas:
+            if _NATIVE_WORD.match(body):
+                src = lines[line - 1] if 0 < line <= len(lines) else ""
+                col = src.find("{") + 1 or 1
+                self.diagnostics.append(Diagnostic(
+                    "PLC0131", "the {native ...} pragma is reserved for plclab's own block "
+                    "library; remove it and write the block's body in ST",
+                    Location(self.file, line, col)))
 
     # -- token helpers ------------------------------------------------------------------------
     @property
@@ -149,6 +168,8 @@ class Parser:
         return out
 
     def _native_for(self, line: int) -> str | None:
+        if not getattr(self, "library", False):
+            return None
         for pl, body in self.pragmas:
             if pl in (line - 1, line):
                 m = _NATIVE_RE.match(body)
@@ -845,13 +866,14 @@ def parse_st(text: str, file: str = "<input>") -> A.SourceFile:
     return out
 
 
-def parse_st_collect(text: str, file: str = "<input>",
-                     defer: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
+def parse_st_collect(text: str, file: str = "<input>", defer: bool = False,
+                     library: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
     """Parse ST source and return the tree plus the diagnostics (no exception).
 
     IL bodies found in the file are translated at the end; with ``defer=True`` that is left to
-    the caller (:func:`plclab.project.parse_sources` does it once all files are parsed)."""
-    p = Parser(text, file)
+    the caller (:func:`plclab.project.parse_sources` does it once all files are parsed).
+    ``library`` is for plclab's own library files only (see :class:`Parser`)."""
+    p = Parser(text, file, library)
     out = p.parse_file()
     diags = p.diagnostics
     if not defer and any(hasattr(pou, "_lower") for pou in out.pous):

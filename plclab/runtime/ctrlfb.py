@@ -2,8 +2,8 @@
 RAMP, PT1, MOVING_AVG and LIMIT_ALARM, implemented natively.
 
 Their interfaces are declared in ``ctrllib.st`` (read by the checker like any other source),
-each bound here with a ``{native 'plclab.runtime.ctrlfb:NAME'}`` pragma; ``docs/blocks.md``
-documents every block with its interface table, equations and an ST example. NORM_X, SCALE_X,
+each bound here with a ``{native 'NAME'}`` pragma (registry: :mod:`plclab.runtime.natives`);
+``docs/blocks.md`` documents every block with its interface table, equations and an ST example. NORM_X, SCALE_X,
 SCALE_R and DEADBAND are plain ST in ``ctrllib.st``.
 
 Conventions shared by all blocks here:

@@ -15,7 +15,6 @@ False
 from __future__ import annotations
 
 import datetime as _dt
-import importlib
 import math
 import re
 import sys
@@ -26,6 +25,7 @@ from ..compile.codegen import Compiled, _kind_name
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
 from ..lang.lexer import parse_duration
+from . import natives
 from .rt import HELPERS, AssertFailure, Budget, Fault, format_value
 
 _PATH_RE = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
@@ -123,7 +123,7 @@ class Plc:
         self.forced: dict[str, Any] = {}
         self.state = "RUN"
         self.fault: PlcRuntimeFault | None = None
-        self._natives = {k: _import(v) for k, v in compiled.natives.items()}
+        self._natives = {k: natives.resolve(v) for k, v in compiled.natives.items()}
         self._var_cache: dict[str, Var] = {}
         self.tasks = self._make_tasks()
         self._tick_ns = _gcd_all([t.interval_ns for t in self.tasks] or [self.cycle_ns])
@@ -708,13 +708,6 @@ def convert_in(value: Any, ty: T.Type, path: str = "") -> Any:
     elif t is T.ANY:
         return value
     raise PlcError("PLC3002", f"{path}: cannot store {value!r} in a {t} variable")
-
-
-def _import(spec: str):
-    mod, _, name = spec.partition(":")
-    if not mod.startswith("plclab."):
-        raise PlcError("PLC0130", f"native blocks must live in the plclab package, not {mod}")
-    return getattr(importlib.import_module(mod), name)
 
 
 def _gcd_all(values: list[int]) -> int:

@@ -1,7 +1,8 @@
 """The IEC 61131-3 standard function blocks, implemented natively for speed.
 
 Their interfaces are declared in ``stdlib.st`` (the checker reads that file like any other),
-each bound here with a ``{native 'plclab.runtime.stdfb:NAME'}`` pragma. Time is read once per
+each bound here with a ``{native 'NAME'}`` pragma through the registry in
+:mod:`plclab.runtime.natives`. Time is read once per
 call from ``ctx.now`` (TIME, milliseconds), which the PLC samples once per scan, so every timer
 in a scan sees the same time. Behaviour follows the IEC timing diagrams and Table 11 of
 ``001_c648febd3bbd6efb.txt`` (lines 3272-3314).

@@ -13,7 +13,7 @@ import plclab
 from plclab.lang import ast as A
 from plclab.lang import types as T
 from plclab.project import check_sources
-from plclab.runtime import ctrlfb
+from plclab.runtime import ctrlfb, natives
 from plclab.runtime.rt import _f32
 from plclab.testing import run_test_sources
 
@@ -115,7 +115,7 @@ def _library():
     project, diags = check_sources([])
     assert not diags
     return {name: pou for name, pou in project.pous.items()
-            if pou.native and pou.native.startswith("plclab.runtime.ctrlfb:")}
+            if pou.native in natives.CONTROL_BLOCKS}
 
 
 def _literal(e):
@@ -132,7 +132,7 @@ def test_python_defaults_equal_the_st_declarations():
     assert set(lib) == {"PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE", "BLINKER",
                         "RAMP", "PT1", "MOVING_AVG", "LIMIT_ALARM"}
     for name, pou in lib.items():
-        cls = getattr(ctrlfb, pou.native.split(":")[1])
+        cls = natives.resolve(pou.native)
         inst = cls(Ctx())
         for d in pou.decls:
             want = T.default_value(d.ty) if d.init is None else _literal(d.init)
@@ -203,7 +203,7 @@ def test_no_block_raises_and_no_output_becomes_nan(call, cycle_ms):
     name, steps = call
     ctx = type("Ctx", (), {})()
     ctx.now, ctx.cycle_ms = 0, cycle_ms
-    cls = getattr(ctrlfb, _LIB[name].native.split(":")[1])
+    cls = natives.resolve(_LIB[name].native)
     inst = cls(ctx)
     outs = [d for d in _LIB[name].decls if d.section == "VAR_OUTPUT"]
     for dt, values in steps:

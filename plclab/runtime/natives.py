@@ -1,0 +1,47 @@
+"""The registry of blocks implemented in Python: block name -> implementation.
+
+This is the trust boundary between a program and Python (``docs/adr/0001-native-blocks.md``).
+Only plclab's own library files (``stdlib.st``, ``ctrllib.st``, parsed with ``library=True``)
+may bind a FUNCTION_BLOCK to Python, with a ``{native 'NAME'}`` pragma; ``NAME`` is looked up
+here, in a table written in this file, and nothing is ever imported by a name taken from
+source text. In a user file the pragma is an error (PLC0131).
+
+>>> sorted(names())[:3]
+['AI_SCALE', 'AO_SCALE', 'BLINKER']
+>>> resolve("TON").__name__
+'TON'
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+from ..errors import PlcError
+
+STANDARD_BLOCKS = ("TP", "TON", "TOF", "TONR", "CTU", "CTD", "CTUD", "R_TRIG", "F_TRIG", "SR",
+                   "RS")
+CONTROL_BLOCKS = ("PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE", "BLINKER",
+                  "RAMP", "PT1", "MOVING_AVG", "LIMIT_ALARM")
+
+
+@cache
+def _table() -> dict[str, type]:
+    from . import ctrlfb, stdfb
+
+    table = {name: getattr(stdfb, name) for name in STANDARD_BLOCKS}
+    table.update({name: getattr(ctrlfb, name) for name in CONTROL_BLOCKS})
+    return table
+
+
+def names() -> frozenset[str]:
+    """The names a library ``{native 'NAME'}`` pragma may use."""
+    return frozenset(STANDARD_BLOCKS + CONTROL_BLOCKS)
+
+
+def resolve(name: str) -> type:
+    """The Python class registered for a library block (PLC0130 if there is none)."""
+    impl = _table().get(name)
+    if impl is None:
+        raise PlcError("PLC0130", f"no native implementation is registered for {name!r}; "
+                       "native blocks are listed in plclab/runtime/natives.py")
+    return impl
