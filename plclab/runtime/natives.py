@@ -1,6 +1,6 @@
 """The registry of blocks implemented in Python: block name -> implementation.
 
-This is the trust boundary between a program and Python (``docs/adr/0001-native-blocks.md``).
+This is the trust boundary between a program and Python (``docs/adr/0003-native-blocks.md``).
 Only plclab's own library files (``stdlib.st``, ``ctrllib.st``, parsed with ``library=True``)
 may bind a FUNCTION_BLOCK to Python, with a ``{native 'NAME'}`` pragma; ``NAME`` is looked up
 here, in a table written in this file, and nothing is ever imported by a name taken from
