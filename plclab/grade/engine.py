@@ -160,24 +160,43 @@ def guess_language(text: str) -> str:
 
 def read_submission(path: str | os.PathLike) -> tuple[list[tuple[str, str]], list[str]]:
     """Source files of a submission (a file or a folder): ``[(text, display name)]`` and the
-    other files found (ignored). Display names are relative to the submission's parent."""
-    p = Path(path)
-    base = p.parent
-    files = [p] if p.is_file() else sorted(
-        f for f in p.rglob("*") if f.is_file() and not any(
-            part.startswith(".") or part == "__MACOSX" for part in f.relative_to(p).parts))
-    sources, ignored = [], []
-    for f in files:
-        rel = f.relative_to(base).as_posix()
-        if language_of(f.name) is None:
-            ignored.append(rel)
-            continue
-        try:
-            text = f.read_bytes().decode("utf-8-sig")
-        except UnicodeDecodeError:
-            text = f.read_bytes().decode("latin-1")
-        sources.append((text, rel))
-    return sources, ignored
+    other files found (ignored). Display names are relative to the submission's parent.
+
+    Symbolic links are never followed and sizes are capped (:mod:`plclab.grade.safety`):
+    a link, a special file, a file over the size cap or too many files is a PlcError."""
+    from .safety import read_sources
+
+    return read_sources(path, SOURCE_EXTS)
+
+
+MAX_DIAGNOSTICS_PER_FILE = 50
+"""Compiler messages kept per file; the rest become one "... and K more" line."""
+MAX_DIAGNOSTIC_CHARS = 1000
+"""Characters kept of one compiler message."""
+
+
+def cap_diagnostics(diags: Iterable[Any], per_file: int = MAX_DIAGNOSTICS_PER_FILE) -> list[str]:
+    """Compiler messages as text, at most ``per_file`` of each file (in order) plus one
+    ``... and K more in FILE`` line per file that had more; each message cut to
+    :data:`MAX_DIAGNOSTIC_CHARS`."""
+    kept: list[str] = []
+    count: dict[str, int] = {}
+    for d in diags:
+        loc = getattr(d, "location", None)
+        key = str(getattr(loc, "file", "") or "")
+        n = count.get(key, 0) + 1
+        count[key] = n
+        if n <= per_file:
+            text = str(d)
+            if len(text) > MAX_DIAGNOSTIC_CHARS:
+                text = text[:MAX_DIAGNOSTIC_CHARS - 1] + "…"
+            kept.append(text)
+    for key, n in count.items():
+        if n > per_file:
+            where = f" in {key}" if key else ""
+            kept.append(f"note PLC5036: ... and {n - per_file} more{where} (only the first "
+                        f"{per_file} messages of a file are kept: fix those first)")
+    return kept
 
 
 # ---------------------------------------------------------------------------- grading
@@ -231,8 +250,8 @@ def compile_submission(lab: Lab, sources: list[tuple[str, str]]) -> tuple[Any, l
     try:
         compiled = compile_sources(sources)
     except PlcError as e:
-        return None, [str(d) for d in e.diagnostics], "compile_error"
-    diags = [str(d) for d in getattr(compiled, "diagnostics", [])]
+        return None, cap_diagnostics(e.diagnostics), "compile_error"
+    diags = cap_diagnostics(getattr(compiled, "diagnostics", []))
     return compiled, diags, "ok"
 
 
