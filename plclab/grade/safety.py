@@ -110,6 +110,16 @@ def md_text(text: str) -> str:
     return _MD_SPECIAL.sub(r"\\\1", clean_text(text, 10 * MAX_NAME))
 
 
+_MD_INLINE = re.compile(r"([\\`*<>\[\]|])")
+
+
+def md_line(text: str, limit: int = 4000) -> str:
+    """Untrusted text inside a Markdown paragraph: one line, no code span, HTML, link,
+    emphasis with ``*`` or table cell can start (lighter than :func:`md_text`, so identifiers
+    like ``K1_OUT`` stay readable in a terminal)."""
+    return _MD_INLINE.sub(r"\\\1", clean_text(text, limit))
+
+
 def md_code(text: str) -> str:
     """Untrusted text as an inline code span that no backtick inside can close."""
     s = clean_text(text, 10 * MAX_NAME)
