@@ -115,16 +115,48 @@ def _redirect_output(log: str | None) -> None:
 def lab_payload(lab: Any) -> tuple[Any, dict[str, str]]:
     """What a child needs of a lab: a copy without paths into the lab folder and without the
     imported check functions, and the text of the lab's check modules (``{module: text}``)."""
+    import copy
     import dataclasses
 
     crits = [dataclasses.replace(c, function=None) for c in lab.criteria]
-    clone = dataclasses.replace(lab, criteria=crits, path=Path(lab.id))
+    wiring = copy.deepcopy(lab.wiring)
+    _base_names(wiring)
+    clone = dataclasses.replace(lab, criteria=crits, path=Path(lab.id), wiring=wiring,
+                                wiring_source=os.path.basename(lab.wiring_source))
     checks: dict[str, str] = {}
     for c in lab.criteria:
         mod = c.python.partition(":")[0]
         if c.python and mod not in checks:
             checks[mod] = (lab.path / f"{mod}.py").read_text(encoding="utf-8")
     return clone, checks
+
+
+def _base_names(obj: Any, depth: int = 0) -> None:
+    """Replace file paths in the wiring's locations by their base names (a child names the
+    file in a message; it never needs to open it)."""
+    import dataclasses
+
+    from plclab.errors import Location
+
+    if depth > 6:
+        return
+
+    def put(key: Any, value: Any) -> None:
+        if isinstance(obj, dict | list):
+            obj[key] = value
+        else:
+            object.__setattr__(obj, key, value)
+
+    items = (obj.items() if isinstance(obj, dict) else enumerate(obj)
+             if isinstance(obj, list) else vars(obj).items() if hasattr(obj, "__dict__")
+             else ())
+    for key, v in list(items):
+        if isinstance(v, Location) and v.file:
+            put(key, dataclasses.replace(v, file=os.path.basename(v.file)))
+        elif key == "source" and isinstance(v, str):
+            put(key, os.path.basename(v))
+        elif isinstance(v, dict | list) or hasattr(v, "__dict__"):
+            _base_names(v, depth + 1)
 
 
 def lab_from_payload(lab: Any, checks: dict[str, str]) -> Any:
