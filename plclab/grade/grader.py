@@ -403,7 +403,7 @@ class Grader:
         lab = self.lab
         box = r.inbox
         code = r.proc.exitcode
-        cpu = code == -signal.SIGXCPU  # RLIMIT_CPU: only if the wall-clock kill came late
+        cpu = code == -getattr(signal, "SIGXCPU", 0)  # RLIMIT_CPU: a late wall-clock kill
         if r.rejected:
             res = failed_result(lab, "rejected", "The grading process sent results the grader "
                                 f"does not accept ({clean_text(r.rejected, 300)}; PLC5034): "

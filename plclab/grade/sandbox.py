@@ -33,6 +33,8 @@ _KEEP = ("PATH", "LANG", "LC_ALL", "LC_CTYPE", "LC_NUMERIC", "TZ", "PYTHONPATH",
          "MPLCONFIGDIR")
 """Variables a grading process may inherit (Python and matplotlib need them); nothing else."""
 
+KILL = getattr(signal, "SIGKILL", signal.SIGTERM)
+"""The signal that ends a grading process (SIGTERM where there is no SIGKILL)."""
 PR_SET_PDEATHSIG = 1
 PR_SET_NAME = 15
 
@@ -87,7 +89,7 @@ def _libc() -> object | None:
         return None
 
 
-def set_pdeathsig(sig: int = signal.SIGKILL) -> bool:
+def set_pdeathsig(sig: int = KILL) -> bool:
     """Ask Linux to send ``sig`` to this process when its parent ends (True when done)."""
     libc = _libc()
     if libc is None:
@@ -128,19 +130,19 @@ def die_with_parent(grader_pid: int | None, interval: float = 0.5) -> bool:
     died) and that ``grader_pid`` still exists -- the forkserver's children have the
     forkserver as parent, the grader above it. Returns whether prctl was used."""
     ppid = os.getppid()
-    used = set_pdeathsig(signal.SIGKILL)
+    used = set_pdeathsig(KILL)
 
     def gone() -> bool:
         return os.getppid() != ppid or (grader_pid is not None and not alive(grader_pid))
 
     if gone():  # the parent ended before prctl took effect
-        os.kill(os.getpid(), signal.SIGKILL)
+        os.kill(os.getpid(), KILL)
 
     def watch() -> None:
         while True:
             time.sleep(interval)
             if gone():
-                os.kill(os.getpid(), signal.SIGKILL)
+                os.kill(os.getpid(), KILL)
 
     threading.Thread(target=watch, name="plclab-parent-watchdog", daemon=True).start()
     return used

@@ -227,8 +227,8 @@ def child_main(job: dict[str, Any], conn: Any) -> None:
 
     with contextlib.suppress(ValueError, OSError):
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    _redirect_output(os.path.join(job["workdir"], LOG_NAME))  # first: no trace on the terminal
     confine(job["workdir"], job.get("grader_pid"), job.get("cpu_seconds"))
-    _redirect_output(os.path.join(job["workdir"], LOG_NAME))
     media = Path(job["workdir"]) / "media" if job.get("media") else None
     out = _Outbox(conn, media)
     failure: tuple[str, ...] | None = None

@@ -465,3 +465,33 @@ def test_no_grading_process_outlives_a_killed_grader(tmp_path):
             os.kill(pid, signal.SIGKILL)
         if proc.poll() is None:
             proc.kill()
+
+
+def _py(code: str) -> subprocess.Popen:
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(Path(__file__).resolve().parents[2])] + sys.path))
+    return subprocess.Popen([sys.executable, "-c", code], env=env)
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGXCPU"), reason="no RLIMIT_CPU here")
+def test_the_cpu_limit_stops_a_busy_child():
+    p = _py("from plclab.grade.sandbox import limit_cpu\nlimit_cpu(1)\nwhile True:\n    pass")
+    assert p.wait(timeout=60) in (-signal.SIGXCPU, -signal.SIGKILL)
+
+
+def test_the_watchdog_ends_a_child_whose_grader_is_gone():
+    """The fallback where prctl is missing: the grader's pid disappears, the child ends (its
+    own parent, this test, stays alive, so only the watchdog can notice)."""
+    grader = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    child = _py(f"import time\nfrom plclab.grade.sandbox import die_with_parent\n"
+                f"die_with_parent({grader.pid}, interval=0.1)\ntime.sleep(60)")
+    try:
+        time.sleep(1.0)
+        assert child.poll() is None
+        grader.kill()
+        grader.wait()
+        assert child.wait(timeout=10) == -signal.SIGKILL
+    finally:
+        for p in (grader, child):
+            if p.poll() is None:
+                p.kill()
