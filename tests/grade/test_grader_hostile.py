@@ -438,7 +438,8 @@ def test_no_grading_process_outlives_a_killed_grader(tmp_path):
     subs = tmp_path / "subs"
     subs.mkdir()
     (subs / "slow.st").write_text(SLOW, encoding="utf-8")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+    (tmp_path / "tmp").mkdir()  # a killed grader cannot remove its child's folder: keep it here
+    env = dict(os.environ, TMPDIR=str(tmp_path / "tmp"), PYTHONPATH=os.pathsep.join(
         [str(Path(__file__).resolve().parents[2])] + sys.path))
     proc = subprocess.Popen([sys.executable, "-m", "plclab", "grade", "motor-start-stop",
                              str(subs), "--out", str(tmp_path / "out"), "--jobs", "1",
