@@ -156,6 +156,7 @@ def _start_forkserver() -> None:
 
     from .sandbox import environ_as, minimal_env
 
+    tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
     with environ_as(minimal_env(None, "forkserver")):
         forkserver.ensure_running()
 

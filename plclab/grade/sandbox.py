@@ -48,8 +48,8 @@ def minimal_env(home: str | None, role: str, environ: Mapping[str, str] | None =
     env.setdefault("PATH", os.defpath)
     if home is not None:
         env["HOME"] = env["TMPDIR"] = home
-    elif "HOME" in src:  # the forkserver: matplotlib finds its font cache under HOME
-        env["HOME"] = src["HOME"]
+    else:  # the forkserver: matplotlib finds its font cache under HOME
+        env.update({k: src[k] for k in ("HOME", "TMPDIR") if k in src})
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         env[var] = "1"  # one core a child: --jobs decides the parallelism, CPU time ~ wall
     env[MARKER] = role
