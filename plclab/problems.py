@@ -229,6 +229,26 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "name with dashes, or the folder exists."),
     "PLC5028": ("scenario cannot run", "The program and the lab's wiring do not fit (e.g. an "
                 "address declared with another type), or the scenario failed to start."),
+    # the grader's defences (untrusted submissions)
+    "PLC5030": ("symbolic link in a submission", "The grader never follows a symbolic link "
+                "(it could point at another student's work or a system file); the submission "
+                "is not graded. Submit the files themselves."),
+    "PLC5031": ("source file too large", "A source file is larger than the grader reads "
+                "(4 MB; 8 MB a submission). It is rejected without being read: submit the "
+                "program's text only."),
+    "PLC5032": ("too many files", "A submission holds more source files, entries or folder "
+                "levels than the grader accepts (64 sources, 2000 entries, 8 levels). Submit "
+                "only the program's files."),
+    "PLC5033": ("not a plain file", "A submission holds something that is not a plain file "
+                "(a device, a pipe, a socket) or cannot be read. Submit plain source files."),
+    "PLC5034": ("results rejected", "The grading process sent results the grader does not "
+                "accept (wrong shape, a score out of range, an oversized text or picture); "
+                "nothing it sent counts. Tell your instructor."),
+    "PLC5035": ("CPU time limit exceeded", "The grading process used more CPU time than "
+                "the limit (the wall-clock limit plus a margin) and was stopped by the "
+                "operating system."),
+    "PLC5036": ("diagnostics cut", "Only the first 50 compiler messages of a file are kept "
+                "(the rest are counted); fix those first and check again."),
     "PLC9101": ("unknown signal range", "I/O module: use 0-10V, +-10V, 0-20mA, 4-20mA or 1-5V."),
     "PLC9102": ("unknown count convention", "I/O module: use book, full, s7 or logo."),
     "PLC9103": ("bad bit width", "I/O module: the ADC bit width is outside what the convention allows."),

@@ -23,7 +23,8 @@ from plclab.errors import PlcError
 from .criteria import Verdict
 from .lab import SOURCE_EXTS, Lab, ScenarioSpec
 
-STATUSES = ("ok", "compile_error", "no_source", "language", "timeout", "memory", "crash")
+STATUSES = ("ok", "compile_error", "no_source", "language", "timeout", "memory", "crash",
+            "rejected")
 
 
 @dataclass
@@ -82,7 +83,8 @@ class Result:
 
     ``score``/``max_score``, ``tests`` (one per scenario and criterion), ``scenarios``,
     ``status`` (``ok``, ``compile_error``, ``no_source``, ``language``, ``timeout``,
-    ``memory``, ``crash``), ``diagnostics`` (compiler messages), ``message`` (a word on the
+    ``memory``, ``crash``, ``rejected``: a link, an oversized file or results the grader
+    refused), ``diagnostics`` (compiler messages), ``message`` (a word on the
     whole submission), ``traces`` (scenario name -> Trace, in-process runs only) and
     :attr:`feedback_markdown`. In Jupyter the result shows itself as Markdown.
     """
@@ -160,24 +162,47 @@ def guess_language(text: str) -> str:
 
 def read_submission(path: str | os.PathLike) -> tuple[list[tuple[str, str]], list[str]]:
     """Source files of a submission (a file or a folder): ``[(text, display name)]`` and the
-    other files found (ignored). Display names are relative to the submission's parent."""
-    p = Path(path)
-    base = p.parent
-    files = [p] if p.is_file() else sorted(
-        f for f in p.rglob("*") if f.is_file() and not any(
-            part.startswith(".") or part == "__MACOSX" for part in f.relative_to(p).parts))
-    sources, ignored = [], []
-    for f in files:
-        rel = f.relative_to(base).as_posix()
-        if language_of(f.name) is None:
-            ignored.append(rel)
+    other files found (ignored). Display names are relative to the submission's parent.
+
+    Symbolic links are never followed and sizes are capped (:mod:`plclab.grade.safety`):
+    a link, a special file, a file over the size cap or too many files is a PlcError."""
+    from .safety import read_sources
+
+    return read_sources(path, SOURCE_EXTS)
+
+
+MAX_DIAGNOSTICS_PER_FILE = 50
+"""Compiler messages kept per file; the rest become one "... and K more" line."""
+MAX_DIAGNOSTIC_CHARS = 1000
+"""Characters kept of one compiler message."""
+MAX_DIAGNOSTICS = 200
+"""Compiler messages kept of a whole submission."""
+
+
+def cap_diagnostics(diags: Iterable[Any], per_file: int = MAX_DIAGNOSTICS_PER_FILE,
+                    total: int = MAX_DIAGNOSTICS) -> list[str]:
+    """Compiler messages as text: at most ``per_file`` of each file and ``total`` in all (in
+    order), plus one ``... and K more in FILE`` line per file that had more; each message
+    cut to :data:`MAX_DIAGNOSTIC_CHARS`. Bounded whatever the compiler produced."""
+    kept: list[str] = []
+    count: dict[str, int] = {}
+    dropped: dict[str, int] = {}
+    for d in diags:
+        loc = getattr(d, "location", None)
+        key = str(getattr(loc, "file", "") or "")
+        count[key] = count.get(key, 0) + 1
+        if count[key] > per_file or len(kept) >= total:
+            dropped[key] = dropped.get(key, 0) + 1
             continue
-        try:
-            text = f.read_bytes().decode("utf-8-sig")
-        except UnicodeDecodeError:
-            text = f.read_bytes().decode("latin-1")
-        sources.append((text, rel))
-    return sources, ignored
+        text = str(d)
+        if len(text) > MAX_DIAGNOSTIC_CHARS:
+            text = text[:MAX_DIAGNOSTIC_CHARS - 1] + "…"
+        kept.append(text)
+    for key, n in dropped.items():
+        where = f" in {key[:MAX_DIAGNOSTIC_CHARS]}" if key else ""
+        kept.append(f"note PLC5036: ... and {n} more{where} (only the first {per_file} "
+                    f"messages of a file, {total} in all, are kept: fix those first)")
+    return kept
 
 
 # ---------------------------------------------------------------------------- grading
@@ -190,6 +215,7 @@ NOT_RUN = {
     "timeout": "not run: stopped at the time limit",
     "memory": "not run: the program needs too much memory",
     "crash": "not run: the grading process crashed",
+    "rejected": "not run: the submission or its results were rejected",
     "setup": "not run: the scenario could not start with this program",
 }
 """Short test messages for scenarios that did not run (the reason is given once above)."""
@@ -231,8 +257,8 @@ def compile_submission(lab: Lab, sources: list[tuple[str, str]]) -> tuple[Any, l
     try:
         compiled = compile_sources(sources)
     except PlcError as e:
-        return None, [str(d) for d in e.diagnostics], "compile_error"
-    diags = [str(d) for d in getattr(compiled, "diagnostics", [])]
+        return None, cap_diagnostics(e.diagnostics), "compile_error"
+    diags = cap_diagnostics(getattr(compiled, "diagnostics", []))
     return compiled, diags, "ok"
 
 

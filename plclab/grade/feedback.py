@@ -12,12 +12,15 @@ import re
 from pathlib import Path
 from typing import Any
 
+from .safety import clean_text, md_code, md_fence, md_line, md_text
+
 RRD_SPAN = (40.0, 20.0)
 """The rerun recording covers this much before and after the first failure, seconds."""
 RRD_FPS = 4.0
 """Frames per second of the plant picture in the recording."""
 MAX_SIGNALS = 8
 MAX_DIAGNOSTICS = 20
+MAX_FILES = 20
 
 
 def slug(text: str) -> str:
@@ -169,7 +172,7 @@ def _pts(x: float) -> str:
 
 
 def _cell(text: str) -> str:
-    return text.replace("|", "\\|").replace("\n", " ")
+    return clean_text(text, 4000).replace("|", "\\|")
 
 
 def render_feedback(result: Any, instructor: bool = False) -> str:
@@ -178,7 +181,7 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
     ``instructor=True`` shows the hidden scenarios in full too.
     """
     lines: list[str] = []
-    who = f" — {result.student}" if result.student else ""
+    who = f" — {md_text(result.student)}" if result.student else ""
     title = result.lab_title or result.lab_id
     lines.append(f"# {title}{who}")
     lines.append("")
@@ -190,13 +193,16 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
         "timeout": "The grading was stopped at the time limit.",
         "memory": "The program needed more memory than allowed.",
         "crash": "The grading process crashed.",
+        "rejected": "The submission was not graded (see below).",
     }
     if result.status in status_words:
         lines += ["", status_words[result.status]]
     if result.message:
-        lines += ["", result.message]
+        lines += ["", md_line(result.message)]
     if result.files:
-        lines += ["", "Files: " + ", ".join(f"`{f}`" for f in result.files)]
+        lines += ["", "Files: " + ", ".join(md_code(f) for f in result.files[:MAX_FILES])
+                  + (f" and {len(result.files) - MAX_FILES} more"
+                     if len(result.files) > MAX_FILES else "")]
     if result.diagnostics:
         errors = [d for d in result.diagnostics if " error " in f" {d} "]
         head = "Compiler errors" if errors else "Compiler warnings"
@@ -204,7 +210,7 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
         more = len(result.diagnostics) - len(shown)
         if more:
             shown = shown + [f"... and {more} more"]
-        lines += ["", f"## {head}", "", "```text", *shown, "```"]
+        lines += ["", f"## {head}", "", *md_fence([clean_text(d, 4000) for d in shown])]
     by_sc: dict[str, list[Any]] = {}
     for t in result.tests:
         by_sc.setdefault(t.scenario, []).append(t)
@@ -222,9 +228,9 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
         tag = "" if visible else " (hidden)"
         lines += ["", f"## Scenario `{name}`{tag}{desc}", "", f"{_pts(got)} / {_pts(mx)} points"]
         if run and run.error and not run.ran:
-            lines += ["", f"**{run.error}**"]
+            lines += ["", f"**{md_line(run.error)}**"]
         for note in (run.notes if run else []):
-            lines += ["", f"**{note}**"]
+            lines += ["", f"**{md_line(note)}**"]
         lines += ["", "| | Criterion | Points | What happened |", "|---|---|---|---|"]
         for t in tests:
             mark = "PASS" if t.passed else "FAIL"

@@ -17,10 +17,15 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import multiprocessing
 import os
+import shutil
+import signal
+import stat
 import sys
+import tempfile
 import time
 from collections import deque
 from collections.abc import Callable
@@ -29,25 +34,38 @@ from multiprocessing.connection import wait
 from pathlib import Path
 from typing import Any
 
-from .engine import Result, ScenarioRun, TestResult, failed_result, read_submission, source_hash
+from plclab.errors import PlcError
+
+from .engine import Result, failed_result, read_submission, source_hash
 from .errors import grade_error
 from .feedback import render_feedback
 from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
+from .protocol import LIMITS, MEDIA_NAME, Inbox, Rejected
+from .safety import clean_text, output_dirname
 
-GRADER_VERSION = "1"
+GRADER_VERSION = "2"
 SIDECAR = ".plclab-result.json"
 LOG = ".plclab-grade.log"
+CPU_MARGIN = 5.0
+"""CPU seconds a child may use beyond the wall-clock limit before the kernel stops it."""
 
 
 @dataclass
 class Submission:
-    """One student's files."""
+    """One student's files.
+
+    ``student`` is the printable id shown everywhere, ``dirname`` the folder of the student's
+    outputs (:func:`plclab.grade.safety.output_dirname`), ``files`` the display names of the
+    sources and ``error`` the reason a submission is rejected without being run."""
 
     student: str
     paths: list[Path]
     sources: list[tuple[str, str]] = field(default_factory=list)
     hash: str = ""
+    dirname: str = ""
+    files: list[str] = field(default_factory=list)
+    error: PlcError | None = None
 
 
 @dataclass
@@ -57,10 +75,27 @@ class Outcome:
     result: Result
     skipped: bool = False
     wall_s: float = 0.0
+    dirname: str = ""
+
+
+def _group_key(p: Path) -> str | None:
+    """The student id of an entry of the submissions folder (None: not a submission).
+    Decided on the entry itself (``lstat``): a link is never followed, only reported."""
+    try:
+        mode = os.lstat(p).st_mode
+    except OSError:
+        return None
+    suffix = p.suffix.lower()
+    if stat.S_ISDIR(mode) or (stat.S_ISLNK(mode) and not suffix):
+        return p.name
+    if suffix in SOURCE_EXTS:
+        return p.stem
+    return None
 
 
 def discover(folder: str | os.PathLike, exclude: Path | None = None) -> list[Submission]:
-    """The submissions in a folder, sorted by student id."""
+    """The submissions in a folder, sorted by student id (nothing is followed or run; each
+    is read once, with every cap, to hash it)."""
     root = Path(folder)
     if not root.is_dir():
         raise grade_error("PLC5026", f"{root} is not a folder of submissions; give a folder "
@@ -71,18 +106,37 @@ def discover(folder: str | os.PathLike, exclude: Path | None = None) -> list[Sub
             continue
         if exclude is not None and p.resolve() == exclude.resolve():
             continue
-        if p.is_dir():
-            groups.setdefault(p.name, []).append(p)
-        elif p.suffix.lower() in SOURCE_EXTS:
-            groups.setdefault(p.stem, []).append(p)
+        key = _group_key(p)
+        if key is not None:
+            groups.setdefault(key, []).append(p)
     subs = []
-    for student, paths in sorted(groups.items()):
-        sources: list[tuple[str, str]] = []
-        for p in paths:
-            s, _ = read_submission(p)
-            sources += s
-        subs.append(Submission(student, paths, sources, source_hash(sources)))
+    shown: set[str] = set()
+    dirs: set[str] = set()
+    for raw, paths in sorted(groups.items()):
+        student = clean_text(raw)
+        while student in shown:
+            student += "~"
+        shown.add(student)
+        sub = Submission(student, paths, dirname=output_dirname(student, dirs))
+        _read(sub)
+        subs.append(sub)
     return subs
+
+
+def _read(sub: Submission) -> None:
+    """Read a submission's files (texts kept in ``sub.sources``) or note why it is rejected."""
+    sources: list[tuple[str, str]] = []
+    try:
+        for p in sub.paths:
+            got, _ = read_submission(p)
+            sources += got
+    except PlcError as e:
+        sub.error, sub.sources, sub.files = e, [], []
+        sub.hash = "rejected"
+        return
+    sub.sources = sources
+    sub.files = [n for _, n in sources]
+    sub.hash = source_hash(sources)
 
 
 def _context() -> Any:
@@ -90,16 +144,27 @@ def _context() -> Any:
     if "forkserver" in methods:
         ctx = multiprocessing.get_context("forkserver")
         ctx.set_forkserver_preload(["__main__", "plclab.grade._preload"])
+        _start_forkserver()
         return ctx
     return multiprocessing.get_context("spawn")
+
+
+def _start_forkserver() -> None:
+    """Start the forkserver (if it is not running) with the minimal environment, so neither
+    it nor the children it forks ever hold the instructor's variables."""
+    from multiprocessing import forkserver
+
+    from .sandbox import environ_as, minimal_env
+
+    tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
+    with environ_as(minimal_env(None, "forkserver")):
+        forkserver.ensure_running()
 
 
 def _signame(code: int | None) -> str:
     if code is None:
         return "still running"
     if code < 0:
-        import signal
-
         try:
             return f"killed by {signal.Signals(-code).name}"
         except ValueError:
@@ -108,38 +173,44 @@ def _signame(code: int | None) -> str:
 
 
 class _Running:
-    def __init__(self, sub: Submission, proc: Any, conn: Any, media: Path) -> None:
+    """A child at work: its process, pipe, working folder and what it sent (checked)."""
+
+    def __init__(self, sub: Submission, proc: Any, conn: Any, media: Path, workdir: Path,
+                 inbox: Inbox) -> None:
         self.sub = sub
         self.proc = proc
         self.conn = conn
         self.media = media
+        self.workdir = workdir
+        self.inbox = inbox
         self.start = time.monotonic()
-        self.diags: list[str] | None = None
-        self.scenarios: list[ScenarioRun] = []
-        self.tests: list[TestResult] = []
-        self.done: Result | None = None
-        self.failure: tuple[str, str] | None = None
+        self.rejected = ""
         self.eof = False
 
+    @property
+    def final(self) -> bool:
+        return (self.inbox.done is not None or self.inbox.failure is not None
+                or bool(self.rejected))
+
     def drain(self) -> None:
-        while not self.eof:
+        """Take every message waiting on the pipe; a bad one rejects the child's results."""
+        while not self.eof and not self.rejected:
             try:
                 if not self.conn.poll():
                     return
-                msg = self.conn.recv()
-            except (EOFError, OSError):
+                raw = self.conn.recv_bytes(LIMITS["message"])
+            except EOFError:
                 self.eof = True
                 return
-            kind = msg[0]
-            if kind == "compiled":
-                self.diags = list(msg[1])
-            elif kind == "scenario":
-                self.scenarios.append(ScenarioRun.from_json(msg[1]))
-                self.tests += [TestResult.from_json(t) for t in msg[2]]
-            elif kind == "done":
-                self.done = Result.from_json(msg[1])
-            else:
-                self.failure = (kind, msg[1])
+            except OSError as e:
+                if "message length" in str(e):
+                    self.rejected = "a message larger than the grader accepts"
+                self.eof = True
+                return
+            try:
+                self.inbox.receive(raw)
+            except Rejected as e:
+                self.rejected = str(e)
 
 
 class Grader:
@@ -177,6 +248,7 @@ class Grader:
         self.media = media
         self.progress = progress
         self.selftest_crash = os.environ.get("PLCLAB_GRADE_SELFTEST_CRASH", "")
+        self._payload: tuple[Any, dict[str, str]] | None = None
 
     # ------------------------------------------------------------------ the run
     def grade_folder(self, folder: str | os.PathLike) -> list[Outcome]:
@@ -185,11 +257,14 @@ class Grader:
         outcomes: dict[str, Outcome] = {}
         todo: deque[Submission] = deque()
         for s in subs:
-            prev = None if self.force else self._previous(s)
+            prev = None if self.force or s.error else self._previous(s)
             if prev is not None:
-                outcomes[s.student] = Outcome(prev, skipped=True)
+                outcomes[s.student] = Outcome(prev, skipped=True, dirname=s.dirname)
+            elif s.error is not None:
+                outcomes[s.student] = self._rejected(s)
             else:
                 todo.append(s)
+            s.sources = []  # read again when it is its turn: memory stays small
         total = len(subs)
         done_n = len(outcomes)
         if self.progress:
@@ -203,18 +278,29 @@ class Grader:
         return results
 
     def _previous(self, s: Submission) -> Result | None:
-        d = self.out / s.student
+        """The result of an earlier run, if the submission, lab and grader are unchanged and
+        the stored result still passes the same checks as a child's."""
+        d = self.out / s.dirname
         side = d / SIDECAR
-        if not side.is_file() or not (d / "results.json").is_file():
-            return None
         try:
+            if not side.is_file() or side.is_symlink() or not (d / "results.json").is_file():
+                return None
+            if side.stat().st_size > 4 * LIMITS["message"]:
+                return None
             data = json.loads(side.read_text(encoding="utf-8"))
             if (data.get("submission_hash") != s.hash or data.get("lab_hash") != self.lab.hash
                     or data.get("grader") != GRADER_VERSION):
                 return None
-            return Result.from_json(data["result"])
-        except (OSError, ValueError, KeyError, TypeError):
+            inbox = Inbox(self.lab, None)
+            inbox.media = {p.name for p in d.iterdir() if MEDIA_NAME.match(p.name)}
+            inbox.receive(json.dumps(["done", data["result"]]).encode())
+            res = inbox.done
+            exec_s = data["result"].get("execution_time", 0.0)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
             return None
+        assert res is not None
+        self._stamp(res, s, exec_s if isinstance(exec_s, float | int) else 0.0)
+        return res
 
     def _run(self, todo: deque[Submission], total: int, done_n: int) -> list[Outcome]:
         ctx = _context()
@@ -223,18 +309,23 @@ class Grader:
         try:
             while todo or running:
                 while todo and len(running) < self.jobs:
-                    running.append(self._start(ctx, todo.popleft()))
+                    sub = todo.popleft()
+                    started = self._start(ctx, sub)
+                    if isinstance(started, Outcome):  # changed since discover: rejected now
+                        finished.append(started)
+                        done_n += 1
+                        continue
+                    running.append(started)
                 objs = [r.conn for r in running if not r.eof] + [r.proc.sentinel
                                                                    for r in running]
                 wait(objs, timeout=0.05)
                 now = time.monotonic()
                 for r in list(running):
                     r.drain()
-                    final = r.done is not None or r.failure is not None
-                    timed_out = now - r.start > self.timeout and not final
-                    if r.proc.exitcode is None and not final and not timed_out:
+                    timed_out = now - r.start > self.timeout and not r.final
+                    if r.proc.exitcode is None and not r.final and not timed_out:
                         continue
-                    if timed_out and r.proc.exitcode is None:
+                    if (timed_out or r.rejected) and r.proc.exitcode is None:
                         r.proc.kill()
                     r.proc.join(timeout=5)
                     if r.proc.exitcode is None:
@@ -252,76 +343,155 @@ class Grader:
                 if r.proc.exitcode is None:
                     r.proc.kill()
                 r.proc.join(timeout=5)
+                shutil.rmtree(r.workdir, ignore_errors=True)
             raise
         return finished
 
-    def _start(self, ctx: Any, sub: Submission) -> _Running:
-        d = self.out / sub.student
+    def _lab_payload(self) -> tuple[Any, dict[str, str]]:
+        if self._payload is None:
+            from .worker import lab_payload
+
+            self._payload = lab_payload(self.lab)
+        return self._payload
+
+    def _start(self, ctx: Any, sub: Submission) -> _Running | Outcome:
+        if not sub.sources:
+            _read(sub)
+            if sub.error is not None:
+                return self._rejected(sub)
+        d = self.out / sub.dirname
         d.mkdir(parents=True, exist_ok=True)
         for old in list(d.glob("*.png")) + list(d.glob("*.rrd")):
             old.unlink()
-        job = {"lab": str(self.lab.path), "paths": [str(p) for p in sub.paths],
-               "student": sub.student, "media_dir": str(d) if self.media else None,
-               "rrd": self.media, "memory_mb": self.memory_mb,
-               "selftest_crash": self.selftest_crash, "log": str(d / LOG)}
+        workdir = Path(tempfile.mkdtemp(prefix="plclab-grade-"))
+        lab, checks = self._lab_payload()
+        job = {"lab": lab, "checks": checks, "sources": sub.sources, "student": sub.student,
+               "workdir": str(workdir), "media": self.media, "memory_mb": self.memory_mb,
+               "cpu_seconds": self.timeout + CPU_MARGIN, "grader_pid": os.getpid(),
+               "selftest_crash": bool(self.selftest_crash) and self.selftest_crash == sub.student}
+        sub.sources = []
         from .worker import child_main
 
         parent, child = ctx.Pipe(duplex=False)
         proc = ctx.Process(target=child_main, args=(job, child), daemon=True,
-                           name=f"plclab-grade-{sub.student}")
+                           name=f"plclab-grade-{sub.dirname}")
         proc.start()
         child.close()
-        return _Running(sub, proc, parent, d)
+        return _Running(sub, proc, parent, d, workdir, Inbox(self.lab, d if self.media else None))
+
+    def _rejected(self, sub: Submission) -> Outcome:
+        """A submission that was not run: links, sizes, special files (PLC5030..PLC5033)."""
+        err = sub.error
+        assert err is not None
+        msg = (f"This submission was not graded: {err.message} ({err.code}). Nothing of it "
+               "was run; fix it and submit again.")
+        res = failed_result(self.lab, "rejected", msg, self.lab.scenarios)
+        self._stamp(res, sub, 0.0)
+        self._write_student(res, sub.dirname)
+        return Outcome(res, False, 0.0, sub.dirname)
+
+    def _stamp(self, res: Result, sub: Submission, wall: float) -> None:
+        """What only the grader knows: who, which files, hashes, time."""
+        res.student = sub.student
+        res.files = list(sub.files)
+        res.submission_hash = sub.hash
+        res.lab_hash = self.lab.hash
+        res.lab_title = self.lab.title
+        res.execution_time = float(wall)
 
     def _finish(self, r: _Running, timed_out: bool) -> Outcome:
         wall = time.monotonic() - r.start
         lab = self.lab
-        if r.done is not None and not timed_out:
-            res = r.done
+        box = r.inbox
+        code = r.proc.exitcode
+        cpu = code == -getattr(signal, "SIGXCPU", 0)  # RLIMIT_CPU: a late wall-clock kill
+        if r.rejected:
+            res = failed_result(lab, "rejected", "The grading process sent results the grader "
+                                f"does not accept ({clean_text(r.rejected, 300)}; PLC5034): "
+                                "nothing it sent counts. Please tell your instructor.",
+                                lab.scenarios)
+            for p in list(r.media.glob("*.png")) + list(r.media.glob("*.rrd")):
+                p.unlink()
+        elif box.done is not None and not timed_out:
+            res = box.done
+            self._complete(res, box.diags)
         else:
-            if timed_out:
+            if timed_out or cpu:
                 status = "timeout"
+                why = ("time limit, PLC5023" if timed_out else
+                       f"CPU time limit of {self.timeout + CPU_MARGIN:g} s, PLC5035")
                 msg = (f"The grading of this submission was stopped after {self.timeout:g} s "
-                       "(time limit, PLC5023). Scenarios that finished count; the others score "
+                       f"({why}). Scenarios that finished count; the others score "
                        "0. Is there a loop that runs a very long time in every scan?")
-            elif r.failure is not None and r.failure[0] == "memory":
+            elif box.failure is not None and box.failure[0] == "memory":
                 status = "memory"
                 msg = (f"The program needs more than {self.memory_mb} MB of memory (PLC5024): "
                        "are there huge arrays? Scenarios that finished count.")
-            elif r.failure is not None:
+            elif box.failure is not None:
                 status = "crash"
-                msg = (f"The grading process failed: {r.failure[1]} (PLC5025). Scenarios that "
+                msg = (f"The grading process failed: {box.failure[1]} (PLC5025). Scenarios that "
                        "finished count; please tell your instructor.")
             else:
                 status = "crash"
-                msg = (f"The grading process crashed ({_signame(r.proc.exitcode)}, PLC5025). "
+                msg = (f"The grading process crashed ({_signame(code)}, PLC5025). "
                        "Scenarios that finished count; please tell your instructor.")
-            got = {s.name for s in r.scenarios}
-            rest = [s for s in lab.scenarios if s.name not in got]
-            res = failed_result(lab, status, msg, rest, r.diags or [])
-            res.scenarios = r.scenarios + res.scenarios
-            res.tests = r.tests + res.tests
-            order = {s.name: i for i, s in enumerate(lab.scenarios)}
-            res.scenarios.sort(key=lambda s: order.get(s.name, 0))
-            res.tests.sort(key=lambda t: order.get(t.scenario, 0))
-            res.files = [n for _, n in r.sub.sources]
-        res.student = r.sub.student
-        res.submission_hash = r.sub.hash
-        res.lab_hash = lab.hash
-        res.execution_time = wall
-        self._write_student(res)
+            res = failed_result(lab, status, msg, [], box.diags or [])
+            res.scenarios = list(box.scenarios)
+            res.tests = list(box.tests)
+            self._complete(res, box.diags)
+        self._stamp(res, r.sub, wall)
+        self._write_student(res, r.sub.dirname)
+        self._keep_log(r)
         with_conn_closed(r.conn)
+        shutil.rmtree(r.workdir, ignore_errors=True)
+        return Outcome(res, False, wall, r.sub.dirname)
+
+    def _complete(self, res: Result, diags: list[str] | None) -> None:
+        """Add the lab's scenarios a child did not report (0 points, "not run") and put
+        scenarios and tests in the lab's order."""
+        lab = self.lab
+        got = {s.name for s in res.scenarios}
+        rest = [s for s in lab.scenarios if s.name not in got]
+        if rest:
+            why = res.status if res.status != "ok" else "crash"
+            filler = failed_result(lab, why, "", rest)
+            res.scenarios += filler.scenarios
+            res.tests += filler.tests
+        if not res.diagnostics and diags:
+            res.diagnostics = list(diags)
+        order = {s.name: i for i, s in enumerate(lab.scenarios)}
+        res.scenarios.sort(key=lambda s: order.get(s.name, 0))
+        res.tests.sort(key=lambda t: order.get(t.scenario, 0))
+
+    def _keep_log(self, r: _Running) -> None:
+        """The end of the child's stdout/stderr, if it wrote any (read without following a
+        link, at most LIMITS["log"] bytes)."""
+        from .worker import LOG_NAME
+
         log = r.media / LOG
+        text = ""
         try:
-            if log.is_file() and log.stat().st_size == 0:
-                log.unlink()
+            fd = os.open(r.workdir / LOG_NAME, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
+                         | getattr(os, "O_NONBLOCK", 0))
         except OSError:
-            pass
-        return Outcome(res, False, wall)
+            fd = -1
+        if fd >= 0:
+            try:
+                st = os.fstat(fd)
+                if stat.S_ISREG(st.st_mode) and st.st_size:
+                    os.lseek(fd, max(0, st.st_size - LIMITS["log"]), os.SEEK_SET)
+                    text = os.read(fd, LIMITS["log"]).decode("utf-8", "replace")
+            finally:
+                os.close(fd)
+        if text.strip():
+            write_atomic(log, text)
+        else:
+            with contextlib.suppress(OSError):
+                log.unlink()
 
     # ------------------------------------------------------------------ files
-    def _write_student(self, res: Result) -> None:
-        d = self.out / res.student
+    def _write_student(self, res: Result, dirname: str) -> None:
+        d = self.out / dirname
         write_json(d / "results.json", results_json(res))
         write_atomic(d / "feedback.md", render_feedback(res))
         write_json(d / SIDECAR, {"grader": GRADER_VERSION, "lab": self.lab.id,

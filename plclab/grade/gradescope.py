@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from .feedback import hidden_output
+from .safety import clean_text, csv_cell, md_fence
 
 VISIBILITIES = ("hidden", "after_due_date", "after_published", "visible")
 STATUSES = ("passed", "failed")
@@ -92,8 +93,8 @@ def results_json(result: Any) -> dict[str, Any]:
     if result.diagnostics:
         shown = result.diagnostics[:20]
         more = len(result.diagnostics) - len(shown)
-        head.append("```text\n" + "\n".join(shown + ([f"... and {more} more"] if more else []))
-                    + "\n```")
+        head.append("\n".join(md_fence([clean_text(d, 4000) for d in shown]
+                                        + ([f"... and {more} more"] if more else []))))
     for s in result.scenarios:
         if s.visible:
             head += s.notes
@@ -167,17 +168,29 @@ def write_atomic(path: str | os.PathLike, text: str) -> None:
     os.replace(tmp, p)
 
 
+def write_bytes_atomic(path: str | os.PathLike, data: bytes) -> None:
+    """Write bytes to ``path`` through a temporary file and ``os.replace``."""
+    p = Path(path)
+    tmp = p.with_name(f".{p.name}.{os.getpid()}.tmp")
+    with open(tmp, "wb") as fh:
+        fh.write(data)
+    os.replace(tmp, p)
+
+
 def write_json(path: str | os.PathLike, data: Any) -> None:
     write_atomic(path, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
 
 
 def gradebook_csv(results: Iterable[Any], test_names: list[str]) -> str:
-    """The class gradebook: student, score, max, status, then one column per test."""
+    """The class gradebook: student, score, max, status, then one column per test.
+
+    Text cells never start a spreadsheet formula (:func:`~plclab.grade.safety.csv_cell`)."""
     buf = io.StringIO()
     w = csv.writer(buf)
-    w.writerow(["student", "score", "max", "status"] + test_names)
+    w.writerow(["student", "score", "max", "status"] + [csv_cell(n) for n in test_names])
     for r in sorted(results, key=lambda r: r.student):
         by_name = {t.name: t.score for t in r.tests}
-        w.writerow([r.student, f"{r.score:g}", f"{r.max_score:g}", r.status]
+        w.writerow([csv_cell(clean_text(r.student)), f"{r.score:g}", f"{r.max_score:g}",
+                    csv_cell(r.status)]
                    + [f"{by_name[n]:g}" if n in by_name else "" for n in test_names])
     return buf.getvalue()

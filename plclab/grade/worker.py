@@ -4,6 +4,10 @@ The autograder (:mod:`plclab.grade.grader`) starts one process per submission th
 multiprocessing *forkserver* that has already imported NumPy, the simulator, the plants and
 matplotlib (:func:`preload`), so a child starts in milliseconds. The child
 
+0. confines itself (:mod:`plclab.grade.sandbox`): an empty temporary working folder, a minimal
+   environment, death with its parent, a CPU-time limit; it gets the submission's text and the
+   lab's data, not paths, and only sends results (JSON) -- the grader validates and writes them
+   (:mod:`plclab.grade.protocol`);
 1. limits its address space (``RLIMIT_AS``: what it has after start-up plus the memory limit)
    while it compiles and simulates -- a program with huge arrays gets ``MemoryError`` (PLC2009)
    instead of taking the machine down; the limit is lifted again to draw the feedback;
@@ -25,6 +29,7 @@ import os
 import signal
 import sys
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
@@ -98,7 +103,7 @@ def _redirect_output(log: str | None) -> None:
     """Send the child's stdout/stderr to a log file (or nowhere): warnings of one submission
     must not garble the parent's progress bar."""
     try:
-        fd = os.open(log or os.devnull, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        fd = os.open(log or os.devnull, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
     except OSError:
         return
     for std in (1, 2):
@@ -107,46 +112,153 @@ def _redirect_output(log: str | None) -> None:
     os.close(fd)
 
 
+def lab_payload(lab: Any) -> tuple[Any, dict[str, str]]:
+    """What a child needs of a lab: a copy without paths into the lab folder and without the
+    imported check functions, and the text of the lab's check modules (``{module: text}``)."""
+    import copy
+    import dataclasses
+
+    crits = [dataclasses.replace(c, function=None) for c in lab.criteria]
+    wiring = copy.deepcopy(lab.wiring)
+    _base_names(wiring)
+    clone = dataclasses.replace(lab, criteria=crits, path=Path(lab.id), wiring=wiring,
+                                wiring_source=os.path.basename(lab.wiring_source))
+    checks: dict[str, str] = {}
+    for c in lab.criteria:
+        mod = c.python.partition(":")[0]
+        if c.python and mod not in checks:
+            checks[mod] = (lab.path / f"{mod}.py").read_text(encoding="utf-8")
+    return clone, checks
+
+
+def _base_names(obj: Any, depth: int = 0) -> None:
+    """Replace file paths in the wiring's locations by their base names (a child names the
+    file in a message; it never needs to open it)."""
+    import dataclasses
+
+    from plclab.errors import Location
+
+    if depth > 6:
+        return
+
+    def put(key: Any, value: Any) -> None:
+        if isinstance(obj, dict | list):
+            obj[key] = value
+        else:
+            object.__setattr__(obj, key, value)
+
+    items = (obj.items() if isinstance(obj, dict) else enumerate(obj)
+             if isinstance(obj, list) else vars(obj).items() if hasattr(obj, "__dict__")
+             else ())
+    for key, v in list(items):
+        if isinstance(v, Location) and v.file:
+            put(key, dataclasses.replace(v, file=os.path.basename(v.file)))
+        elif key == "source" and isinstance(v, str):
+            put(key, os.path.basename(v))
+        elif isinstance(v, dict | list) or hasattr(v, "__dict__"):
+            _base_names(v, depth + 1)
+
+
+def lab_from_payload(lab: Any, checks: dict[str, str]) -> Any:
+    """The lab of :func:`lab_payload` with its check functions bound again. The check
+    modules are the instructor's code (trusted, as in the grader); they are compiled from the
+    text the grader sent, not imported from the lab folder."""
+    import types
+
+    mods: dict[str, Any] = {}
+    for name, text in checks.items():
+        mod = types.ModuleType(f"plclab_lab_check_{name}")
+        mod.__file__ = f"<lab {lab.id}>/{name}.py"
+        exec(compile(text, mod.__file__, "exec"), mod.__dict__)  # noqa: S102 - instructor code
+        mods[name] = mod
+    for c in lab.criteria:
+        if c.python:
+            mod, _, fn = c.python.partition(":")
+            c.function = getattr(mods[mod], fn)
+    return lab
+
+
+class _Outbox:
+    """The child's side of the pipe: JSON messages, pictures sent as capped bytes."""
+
+    def __init__(self, conn: Any, media_dir: Path | None) -> None:
+        self.conn = conn
+        self.media_dir = media_dir
+        self.dropped: set[str] = set()
+
+    def send(self, kind: str, *payload: Any) -> None:
+        from .protocol import encode
+
+        self.conn.send_bytes(encode(kind, *payload))
+
+    def send_media(self) -> None:
+        """Send (then delete) every picture drawn so far; over-size ones are dropped."""
+        from .protocol import encode_media
+
+        if self.media_dir is None or not self.media_dir.is_dir():
+            return
+        for f in sorted(self.media_dir.iterdir()):
+            msg = encode_media(f) if f.is_file() and not f.is_symlink() else None
+            if msg is None:
+                self.dropped.add(f.name)
+            else:
+                self.conn.send_bytes(msg)
+            with contextlib.suppress(OSError):
+                f.unlink()
+
+    def scenario(self, run: Any, tests: list[Any]) -> None:
+        self.send_media()
+        for t in tests:
+            if t.diagram in self.dropped:
+                t.diagram = None
+        if run.rrd in self.dropped:
+            run.rrd, run.rrd_note = None, "no .rrd recording (larger than the grader accepts)"
+        self.send("scenario", run.to_json(), [t.to_json() for t in tests])
+
+
 def child_main(job: dict[str, Any], conn: Any) -> None:
-    """Grade one submission (``job`` from the grader) and report through ``conn``."""
+    """Grade one submission (``job`` from the grader) and report through ``conn``.
+
+    The job holds the submission's text and the lab's data, never paths: the child confines
+    itself (:func:`plclab.grade.sandbox.confine`) to the empty folder ``job["workdir"]``,
+    draws its pictures there and sends everything to the grader, which alone writes results.
+    """
+    from .sandbox import confine
+
     with contextlib.suppress(ValueError, OSError):
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
-    _redirect_output(job.get("log"))
-    failure: tuple[str, str] | None = None
+    _redirect_output(os.path.join(job["workdir"], LOG_NAME))  # first: no trace on the terminal
+    confine(job["workdir"], job.get("grader_pid"), job.get("cpu_seconds"))
+    media = Path(job["workdir"]) / "media" if job.get("media") else None
+    out = _Outbox(conn, media)
+    failure: tuple[str, ...] | None = None
     try:
-        from .engine import grade_sources, read_submission
-        from .lab import load_lab
+        from .engine import grade_sources
 
-        lab = load_lab(job["lab"])
-        sources: list[tuple[str, str]] = []
-        for p in job["paths"]:
-            s, _ = read_submission(p)
-            sources += s
-
-        def on_compiled(diags: list[str]) -> None:
-            conn.send(("compiled", diags))
-
-        def on_scenario(run: Any, tests: list[Any]) -> None:
-            conn.send(("scenario", run.to_json(), [t.to_json() for t in tests]))
-
-        res = grade_sources(lab, sources, student=job["student"],
-                            media_dir=job.get("media_dir"), rrd=job.get("rrd", True),
-                            on_scenario=on_scenario, on_compiled=on_compiled,
+        lab = lab_from_payload(job["lab"], job.get("checks", {}))
+        res = grade_sources(lab, [tuple(s) for s in job["sources"]], student=job["student"],
+                            media_dir=media, rrd=bool(job.get("media")),
+                            on_scenario=out.scenario,
+                            on_compiled=lambda diags: out.send("compiled", diags),
                             guard=lambda: memory_limit(job.get("memory_mb")))
-        if job.get("selftest_crash") == job["student"]:
+        if job.get("selftest_crash"):
             import faulthandler
 
             faulthandler._sigsegv()  # a real crash, for the grader's own tests
-        conn.send(("done", res.to_json()))
+        out.send("done", res.to_json())
     except MemoryError:
-        failure = ("memory", "")
+        failure = ("memory",)
     except BaseException as e:  # noqa: BLE001 - report anything, never a traceback
         failure = ("error", f"{type(e).__name__}: {e}")
     if failure is not None:
         with contextlib.suppress(Exception):
-            conn.send(failure)
+            out.send(*failure)
     with contextlib.suppress(Exception):
         conn.close()
+
+
+LOG_NAME = "child.log"
+"""The child's stdout and stderr, in its working folder (the grader keeps the end of it)."""
 
 
 def main(argv: list[str] | None = None) -> int:
