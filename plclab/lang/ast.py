@@ -332,21 +332,25 @@ class SourceFile:
 
 
 def walk_stmts(stmts: list[Stmt]):
-    """Yield every statement of a body, nested ones included (pre-order)."""
-    for s in stmts:
+    """Yield every statement of a body, nested ones included (pre-order).
+
+    A loop over an explicit stack, not recursion: bodies may be nested thousands deep."""
+    stack = [iter(stmts)]
+    while stack:
+        s = next(stack[-1], None)
+        if s is None:
+            stack.pop()
+            continue
         yield s
         if isinstance(s, If):
-            for _, body in s.branches:
-                yield from walk_stmts(body)
-            if s.orelse:
-                yield from walk_stmts(s.orelse)
+            bodies = [body for _, body in s.branches] + ([s.orelse] if s.orelse else [])
         elif isinstance(s, Case):
-            for b in s.branches:
-                yield from walk_stmts(b.body)
-            if s.orelse:
-                yield from walk_stmts(s.orelse)
+            bodies = [b.body for b in s.branches] + ([s.orelse] if s.orelse else [])
         elif isinstance(s, (For, While, Repeat)):
-            yield from walk_stmts(s.body)
+            bodies = [s.body]
+        else:
+            continue
+        stack.append(x for body in bodies for x in body)
 
 
 def expr_text(e: Expr | None) -> str:
