@@ -18,7 +18,7 @@ from .builtins import BUILTINS, Builtin, conversion
 from .limits import (
     MAX_BLOCK_NESTING,
     MAX_EXPR_NESTING,
-    deep_recursion,
+    compiler_guard,
     nesting_violation,
     too_deep_message,
 )
@@ -107,7 +107,7 @@ class Checker:
 
     # -- driver -------------------------------------------------------------------------------
     def run(self) -> Project:
-        with deep_recursion():  # nesting recurses; the limits are checked (plclab.lang.limits)
+        with compiler_guard():  # nesting recurses; the limits are checked (plclab.lang.limits)
             return self._run()
 
     def _run(self) -> Project:
@@ -773,6 +773,9 @@ class Checker:
 
     def lvalue(self, e: A.Expr) -> T.Type:
         t = self.expr(e, None, write=True)
+        e.is_target = True  # type: ignore[attr-defined]  # never moved into a temporary
+        if isinstance(e, A.Member) and e.field_name.startswith("%"):
+            e.obj.is_target = True  # type: ignore[attr-defined]  # x.3 := ... assigns x
         root = e
         while isinstance(root, A.Member | A.Index):
             root = root.obj

@@ -16,13 +16,14 @@ actually used, so the raised limit is never the thing that stops a program. Rewr
 recursive descent with explicit stacks would make the code much harder to read for no gain in
 what a PLC program can express (no PLC accepts 2,000 nested IFs either).
 
->>> with deep_recursion():
+>>> with compiler_guard():
 ...     sys.getrecursionlimit() >= RECURSION_LIMIT
 True
 """
 
 from __future__ import annotations
 
+import gc
 import sys
 from contextlib import contextmanager
 
@@ -37,17 +38,23 @@ RECURSION_LIMIT = 60_000
 
 
 @contextmanager
-def deep_recursion():
-    """Raise Python's recursion limit to :data:`RECURSION_LIMIT` for the block, then restore it.
+def compiler_guard(recursion_limit: int = RECURSION_LIMIT):
+    """For the block: Python's recursion limit at least ``recursion_limit``, and the cyclic
+    garbage collector paused (parsing a large program makes hundreds of thousands of objects
+    and no cycles; collecting while they are made doubles the time). Both are restored after.
 
-    Nested use is fine; the limit only ever goes up inside the block."""
+    Nested use is fine."""
     old = sys.getrecursionlimit()
-    if old < RECURSION_LIMIT:
-        sys.setrecursionlimit(RECURSION_LIMIT)
+    if old < recursion_limit:
+        sys.setrecursionlimit(recursion_limit)
+    collecting = gc.isenabled()
+    gc.disable()
     try:
         yield
     finally:
-        if old < RECURSION_LIMIT:
+        if collecting:
+            gc.enable()
+        if old < recursion_limit:
             sys.setrecursionlimit(old)
 
 
@@ -70,35 +77,41 @@ def nesting_violation(stmts: list) -> tuple[str, object] | None:
     loops), an index, an argument, the object of ``.member`` / ``[index]`` / ``(call)``."""
     from . import ast as A
 
-    stack: list[tuple[object, int, int]] = [(s, 1, 0) for s in reversed(stmts)]
-    while stack:
-        node, blocks, depth = stack.pop()
-        if isinstance(node, A.Expr):
-            if depth > MAX_EXPR_NESTING:
-                return "expressions", node.loc
-            stack.extend((c, blocks, depth + inc) for c, inc in _expr_children(node, A))
-            continue
+    leaves = (A.Literal, A.Name, A.DirectAddr)
+    exprs: list[tuple[object, int]] = []  # (expression, depth)
+    stmts_todo: list[tuple[object, int]] = [(s, 1) for s in reversed(stmts)]
+    while stmts_todo:
+        s, blocks = stmts_todo.pop()
         if blocks > MAX_BLOCK_NESTING + 1:
-            return "blocks", node.loc
-        for e in _stmt_exprs(node, A):
-            stack.append((e, blocks, 1))
-        for body in _stmt_bodies(node, A):
-            stack.extend((s, blocks + 1, 0) for s in reversed(body))
+            return "blocks", s.loc
+        exprs.extend((e, 1) for e in _stmt_exprs(s, A) if not isinstance(e, leaves))
+        for body in _stmt_bodies(s, A):
+            stmts_todo.extend((x, blocks + 1) for x in reversed(body))
+    while exprs:
+        e, depth = exprs.pop()
+        if depth > MAX_EXPR_NESTING:
+            return "expressions", e.loc
+        t = type(e)
+        if t is A.Binary:
+            while type(e) is A.Binary:  # the left spine: same depth
+                if not isinstance(e.right, leaves):
+                    exprs.append((e.right, depth + 1))
+                e = e.left
+            if not isinstance(e, leaves):
+                exprs.append((e, depth))
+            continue
+        if t is A.Unary:
+            kids = [e.operand]
+        elif t is A.Member:
+            kids = [e.obj]
+        elif t is A.Index:
+            kids = [e.obj, *e.indices]
+        elif t is A.Call:
+            kids = [e.func] + [a.value for a in e.args if a.value is not None]
+        else:
+            continue
+        exprs.extend((k, depth + 1) for k in kids if not isinstance(k, leaves))
     return None
-
-
-def _expr_children(e, A) -> list:
-    if isinstance(e, A.Binary):
-        return [(e.left, 0), (e.right, 1)]
-    if isinstance(e, A.Unary):
-        return [(e.operand, 1)]
-    if isinstance(e, A.Member):
-        return [(e.obj, 1)]
-    if isinstance(e, A.Index):
-        return [(e.obj, 1)] + [(i, 1) for i in e.indices]
-    if isinstance(e, A.Call):
-        return [(e.func, 1)] + [(a.value, 1) for a in e.args if a.value is not None]
-    return []
 
 
 def _stmt_exprs(s, A) -> list:

@@ -16,7 +16,7 @@ import re
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
 from .lexer import KEYWORDS, Lexer, Token
-from .limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, deep_recursion, too_deep_message
+from .limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
@@ -896,8 +896,8 @@ def parse_st_collect(text: str, file: str = "<input>",
 
     IL bodies found in the file are translated at the end; with ``defer=True`` that is left to
     the caller (:func:`plclab.project.parse_sources` does it once all files are parsed)."""
-    p = Parser(text, file)
-    with deep_recursion():
+    with compiler_guard():
+        p = Parser(text, file)
         out = p.parse_file()
     diags = p.diagnostics
     if not defer and any(hasattr(pou, "_lower") for pou in out.pous):
