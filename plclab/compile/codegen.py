@@ -1354,7 +1354,7 @@ class Codegen:
 OUTLINE_INDENT = 40  # Python allows 100 levels of indentation
 OUTLINE_LOOPS = 12  # ... and 20 nested loops
 MAX_ELIF = 8  # ... and a few hundred elif (they nest in its syntax tree)
-CASE_CHUNK = 256  # branches of a large CASE per helper function
+CASE_CHUNK = 128  # branches of a large CASE per helper function
 SMALL_CASE = 16  # up to this many labels a CASE is an if/elif chain (fastest when small)
 SPILL_LEVEL = 12  # expression nesting between temporaries (Python allows 200 parentheses)
 NORMAL, EXIT, CONTINUE, RETURN = 0, 1, 2, 3  # how an outlined block ended
