@@ -7,6 +7,7 @@ which language a POU came from.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -351,6 +352,21 @@ def walk_stmts(stmts: list[Stmt]):
         else:
             continue
         stack.append(x for body in bodies for x in body)
+
+
+def copy_expr(e: Expr) -> Expr:
+    """A deep copy of an expression; the left spine of an operator chain (``a + b + c ...``,
+    IL's current result after 10,000 lines) is copied with a loop, not recursion."""
+    spine: list[Binary] = []
+    while isinstance(e, Binary):
+        spine.append(e)
+        e = e.left
+    out = copy.deepcopy(e)
+    for node in reversed(spine):
+        top = copy.copy(node)
+        top.left, top.right = out, copy.deepcopy(node.right)
+        out = top
+    return out
 
 
 def expr_text(e: Expr | None) -> str:

@@ -350,3 +350,20 @@ def test_the_checker_limits_trees_from_any_front_end():
     ck = Checker(files)
     ck.run()
     assert [d.code for d in ck.diags if d.severity == "error"] == ["PLC0190"]
+
+
+def test_a_long_il_accumulation():
+    """IL keeps one current result across lines: 5,000 operators make one deep left chain."""
+    n = 5000
+    ops = [("ADD", lambda a, b: a + b), ("SUB", lambda a, b: a - b), ("MUL", lambda a, b: a * b)]
+    lines, want = ["LD x"], 3
+    for i in range(n):
+        name, fn = ops[i % 3] if i % 7 else ops[0]
+        v = i % 5 + 1 if name == "MUL" else i % 11
+        lines.append(f"{name} {v}")
+        want = (fn(want, v) + 2**63) % 2**64 - 2**63
+    src = "PROGRAM P\nVAR x, s : LINT; END_VAR\n" + "\n".join(lines) + "\nST s\nEND_PROGRAM\n"
+    plc = plclab.loads(src, "chain.il")
+    plc["x"] = 3
+    plc.scan()
+    assert plc["s"] == want
