@@ -103,6 +103,16 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "localId, a feedback loop, or a continuation without its connector."),
     "PLC0183": ("bad value in PLCopen XML", "Not an identifier, a missing type or returnType, a "
                 "bad address or an unknown pouType."),
+    "PLC0190": ("nested too deeply", "More than 2,000 levels of IF, CASE, FOR, WHILE or REPEAT "
+                "inside each other, or an expression with more than 2,000 levels of parentheses, "
+                "calls, indices or unary operators inside each other. Move inner blocks into a "
+                "FUNCTION or FUNCTION_BLOCK, or compute parts of the expression into intermediate "
+                "variables. Long chains (a + b + c + ..., AND/OR chains, CASE labels) have no "
+                "limit."),
+    "PLC0191": ("program too large to compile", "A part of the program is too large or too "
+                "deeply nested for the compiler although it is within the documented limits "
+                "(please report it with the program). Split the POU named in the message into "
+                "smaller FUNCTIONs or FUNCTION_BLOCKs."),
     "PLC0200": ("unused variable", "A declared variable is never used (warning)."),
     "PLC0201": ("unreachable code", "Statements after RETURN, EXIT or CONTINUE never run "
                 "(warning)."),

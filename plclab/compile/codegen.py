@@ -11,14 +11,17 @@ Design rules (DESIGN.md, principle 2):
 
 from __future__ import annotations
 
+import bisect
+import heapq
 import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..errors import Location
+from ..errors import Location, PlcError
 from ..lang import ast as A
 from ..lang import types as T
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
+from ..lang.limits import compiler_guard
 from ..runtime.rt import _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
@@ -73,6 +76,14 @@ class Codegen:
         self.tests: list[tuple[str, str, Location]] = []
         self.jump_labels: dict[str, int] | None = None  # label -> state while in a jump body
         self.seg_index = 0
+        # size handling (see "-- sizes" below)
+        self._levels = [0]  # expression nesting since the last temporary, per open ex() call
+        self._memo: dict[int, tuple[str, int]] = {}  # code of chain nodes made ahead, by id
+        self.helpers: list[tuple[list[str], list[int]]] = []  # outlined blocks (module level)
+        self.tables: list[str] = []  # module-level CASE tables
+        self.locals: set[str] = set()  # Python locals (v_X) of the function being generated
+        self.has_self = False  # the function being generated is a method (self.X members)
+        self.helper: _Helper | None = None  # the outlined block being generated, if any
 
     # -- emission -----------------------------------------------------------------------------
     def where(self, loc: Location | None) -> int:
@@ -98,8 +109,38 @@ class Codegen:
         self.tmp += 1
         return f"{stem}{self.tmp}"
 
+    def emit_init(self, lhs: str, d: A.VarDecl) -> None:
+        """``lhs = <initial value of d>``, after the temporaries the value needs."""
+        code = self.init_code(d.init, d.ty)
+        self.flush_pre()
+        self.emit(f"{lhs} = {code}")
+
     # -- driver -------------------------------------------------------------------------------
     def generate(self) -> Compiled:
+        with compiler_guard():  # nesting recurses; the checker enforced the limits
+            try:
+                self.generate_source()
+            except RecursionError:  # a safety net: the limits should prevent it
+                raise PlcError("PLC0191", "this part of the program is too large or too deeply "
+                               "nested to compile; split it into smaller parts (FUNCTIONs, "
+                               "intermediate variables)",
+                               self.locations[self.where_now]) from None
+        src = "\n".join(self.lines) + "\n"
+        try:  # Python's own compiler recursion stays at its normal limit (no C stack overflow)
+            with compiler_guard(recursion_limit=0):
+                code = compile(src, self.filename, "exec")
+        except (SyntaxError, RecursionError, MemoryError) as exc:
+            line = getattr(exc, "lineno", None) or 0
+            loc = self.locations[self.line_where[line - 1]] if 0 < line <= len(
+                self.line_where) else None
+            raise PlcError("PLC0191", "this part of the program is too large or too deeply "
+                           f"nested to compile ({type(exc).__name__}: {exc}); split it into "
+                           "smaller parts (FUNCTIONs, intermediate variables)", loc) from None
+        return Compiled(src, code, self.filename, self.line_where, self.locations, self.p,
+                        self.natives, self.tests, self.assert_texts,
+                        [a for d, _ in self.located() for a in [d.address]])
+
+    def generate_source(self) -> None:
         for name, t in self.p.types.items():
             rt = t
             if isinstance(rt, T.StructType):
@@ -120,11 +161,12 @@ class Codegen:
         self.sync_functions()
         for i, t in enumerate(self.p.tests):
             self.test_function(i, t)
-        src = "\n".join(self.lines) + "\n"
-        code = compile(src, self.filename, "exec")
-        return Compiled(src, code, self.filename, self.line_where, self.locations, self.p,
-                        self.natives, self.tests, self.assert_texts,
-                        [a for d, _ in self.located() for a in [d.address]])
+        self.where_now = 0
+        for line in self.tables:
+            self.emit(line)
+        for lines, where in self.helpers:
+            self.lines.extend(lines)
+            self.line_where.extend(where)
 
     # -- defaults and initial values ----------------------------------------------------------
     def default_code(self, ty: T.Type) -> str:
@@ -183,7 +225,7 @@ class Codegen:
         self.ind += 1
         for d in fields:
             self.where_now = self.where(d.loc)
-            self.emit(f"self.{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+            self.emit_init(f"self.{ident(d.name)}", d)
         if not fields:
             self.emit("pass")
         self.ind -= 1
@@ -221,7 +263,7 @@ class Codegen:
         self.ind += 1
         for d in members:
             self.where_now = self.where(d.loc)
-            self.emit(f"self.{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+            self.emit_init(f"self.{ident(d.name)}", d)
         self.emit("pass")
         self.ind -= 1
         self.emit("def _copy(self):")
@@ -236,8 +278,8 @@ class Codegen:
         self.where_now = self.where(pou.loc)
         for d in pou.decls:
             if d.section == "VAR_TEMP":
-                self.emit(f"v_{ident(d.name)} = {self.init_code(d.init, d.ty)}")
-        self.block(pou.body)
+                self.emit_init(f"v_{ident(d.name)}", d)
+        self.function_body(pou.body, [d.name for d in pou.decls if d.section == "VAR_TEMP"], True)
         self.emit("return")
         self.ind -= 2
         self.emit("")
@@ -256,8 +298,9 @@ class Codegen:
         for d in pou.decls:
             if d.section in ("VAR", "VAR_TEMP", "VAR_OUTPUT"):
                 self.where_now = self.where(d.loc)
-                self.emit(f"v_{ident(d.name)} = {self.init_code(d.init, d.ty)}")
-        self.block(pou.body)
+                self.emit_init(f"v_{ident(d.name)}", d)
+        self.function_body(pou.body, [pou.name] + [d.name for d in pou.decls
+                                                    if d.section != "VAR_EXTERNAL"], False)
         self.emit(self.function_return(pou))
         self.ind -= 1
         self.emit("")
@@ -280,7 +323,7 @@ class Codegen:
         self.ind += 1
         for d in gl:
             self.where_now = self.where(d.loc)
-            self.emit(f"self.{ident(d.name)} = {self.init_code(d.init, d.ty)}")
+            self.emit_init(f"self.{ident(d.name)}", d)
         self.emit("pass")
         self.ind -= 2
         self.emit("")
@@ -374,16 +417,26 @@ class Codegen:
         self.ind += 1
         for d in t.decls:
             self.where_now = self.where(d.loc)
-            self.emit(f"v_{ident(d.name)} = {self.init_code(d.init, d.ty)}")
-        self.block(t.body)
+            self.emit_init(f"v_{ident(d.name)}", d)
+        self.function_body(t.body, [d.name for d in t.decls], False)
         self.emit("return")
         self.ind -= 1
         self.emit("")
 
     # -- statements ---------------------------------------------------------------------------
+    def function_body(self, stmts: list[A.Stmt], local_names: list[str], has_self: bool) -> None:
+        """The statements of a generated function whose ST locals are ``v_X`` Python locals."""
+        self.locals = {f"v_{ident(n)}" for n in local_names}
+        self.has_self = has_self
+        self.block(stmts)
+        self.locals = set()
+
     def block(self, stmts: list[A.Stmt]) -> None:
         if self.jump_labels is None and any(isinstance(s, A.Jump) for s in stmts):
             self.jump_block(stmts)
+            return
+        if stmts and (self.ind >= OUTLINE_INDENT or len(self.loops) >= OUTLINE_LOOPS):
+            self.outline(stmts)
             return
         n = len(self.lines)
         for s in stmts:
@@ -549,6 +602,9 @@ class Codegen:
             self.emit(f"_assert_near({args[0]}, {args[1]}, {args[2]}, {w})")
 
     def s_If(self, s: A.If) -> None:
+        if len(s.branches) > MAX_ELIF:
+            self.if_flag(s)
+            return
         first = True
         depth = 0
         for cond, body in s.branches:
@@ -576,11 +632,37 @@ class Codegen:
             self.ind -= 1
         self.ind -= depth
 
+    def if_flag(self, s: A.If) -> None:
+        """A long IF/ELSIF chain without nesting: a flag says that no branch was taken yet
+        (``elif`` nests in Python's tree, and thousands of them overflow its compiler)."""
+        todo = self.new_tmp("_m")
+        self.emit(f"{todo} = True")
+        for i, (cond, body) in enumerate(s.branches):
+            self.where_now = self.where(s.loc)
+            if i:
+                self.emit(f"if {todo}:")
+                self.ind += 1
+            code = self.ex(cond)
+            self.flush_pre()
+            self.emit(f"if {code}:")
+            self.ind += 1
+            self.emit(f"{todo} = False")
+            self.block(body)
+            self.ind -= 2 if i else 1
+        if s.orelse:
+            self.where_now = self.where(s.loc)
+            self.emit(f"if {todo}:")
+            self.ind += 1
+            self.block(s.orelse)
+            self.ind -= 1
+
     def s_Case(self, s: A.Case) -> None:
         sel = self.ex(s.selector)
         self.flush_pre()
         tmp = self.new_tmp("_c")
         self.emit(f"{tmp} = {sel}")
+        if sum(len(b.labels) for b in s.branches) > SMALL_CASE and self.case_table(s, tmp):
+            return
         kw = "if"
         for b in s.branches:
             tests = []
@@ -641,9 +723,15 @@ class Codegen:
         self.ind -= 1
 
     def s_Exit(self, s: A.Exit) -> None:
+        if self.helper is not None and not self.loops:  # the loop is outside this helper
+            self.helper_return(EXIT)
+            return
         self.emit("break")
 
     def s_Continue(self, s: A.Continue) -> None:
+        if self.helper is not None and not self.loops:
+            self.helper_return(CONTINUE)
+            return
         kind, cond = self.loops[-1] if self.loops else ("while", None)
         if kind == "repeat" and cond is not None:
             c = self.ex(cond)
@@ -652,6 +740,9 @@ class Codegen:
         self.emit("continue")
 
     def s_Return(self, s: A.Return) -> None:
+        if self.helper is not None:
+            self.helper_return(RETURN)
+            return
         if self.pou is not None and self.pou.kind == "FUNCTION":
             self.emit(self.function_return(self.pou))
         else:
@@ -707,6 +798,147 @@ class Codegen:
             self.safe[var] = saved
         else:
             self.safe.pop(var, None)
+
+    # -- sizes: deep blocks, large CASEs ------------------------------------------------------
+    # Python limits what it compiles: 100 levels of indentation, 20 nested loops, nesting of
+    # its own syntax tree (each ``elif`` is one level deeper), 200 nested parentheses. The
+    # generated code stays under those limits whatever the size of the ST program:
+    # * a block nested deeper than OUTLINE_INDENT (or inside OUTLINE_LOOPS loops) becomes a
+    #   module-level helper function ``_hN`` (see :meth:`outline`);
+    # * a CASE with many labels dispatches through a table and a binary tree of ifs;
+    # * a long IF/ELSIF chain uses a flag instead of nested ``elif``;
+    # * an expression gets a temporary every SPILL_LEVEL levels of nesting (see :meth:`ex`).
+    def outline(self, stmts: list[A.Stmt]) -> None:
+        """Emit ``stmts`` as a helper function at module level, and its call here.
+
+        The helper takes ``self`` (in a method) and the ``v_X`` locals its code uses, and
+        returns ``(signal, *locals)``: the locals it may have changed, and whether the block
+        ended normally or by EXIT, CONTINUE or RETURN of a loop or function outside it; the
+        call site then does the same in its own context (which may be another helper)."""
+        self.outline_code(lambda: self.block(stmts), stmts[0].loc)
+
+    def outline_code(self, make, loc: Location, extra: tuple[str, ...] = ()) -> None:
+        """Like :meth:`outline` for the code that ``make()`` emits; ``extra`` are temporaries
+        it reads (passed in, not returned)."""
+        name = self.new_tmp("_h")
+        call_where = self.where_now
+        outer = (self.lines, self.line_where, self.ind, self.loops, self.helper, self.pre)
+        self.lines, self.line_where, self.ind, self.loops, self.pre = [], [], 1, [], []
+        helper = self.helper = _Helper()
+        self.where_now = self.where(loc)
+        make()
+        self.helper_return(NORMAL)
+        lines, where = self.lines, self.line_where
+        self.lines, self.line_where, self.ind, self.loops, self.helper, self.pre = outer
+        used = sorted(self.locals & set(_LOCAL_NAME.findall("\n".join(lines))))
+        params = (["self"] if self.has_self else []) + list(extra) + used
+        tail = "".join(f", {v}" for v in used)
+        lines = [line.replace(_LOCALS, tail) for line in lines]
+        self.helpers.append(([f"def {name}({', '.join(params)}):"] + lines + [""],
+                             [where[0] if where else call_where] + where + [0]))
+        self.where_now = call_where
+        sig = self.new_tmp("_s")
+        self.emit(f"{sig}{tail} = {name}({', '.join(params)})")
+        for signal, stmt in ((EXIT, A.Exit), (CONTINUE, A.Continue), (RETURN, A.Return)):
+            if signal in helper.signals:
+                self.emit(f"if {sig} == {signal}:")
+                self.ind += 1
+                self.stmt(stmt(self.locations[call_where] or Location()))
+                self.ind -= 1
+                self.where_now = call_where
+
+    def helper_return(self, signal: int) -> None:
+        """Leave the helper being generated with ``signal`` (the locals are filled in later)."""
+        assert self.helper is not None
+        self.helper.signals.add(signal)
+        self.emit(f"return {signal}{_LOCALS}")
+
+    def case_table(self, s: A.Case, sel: str) -> bool:
+        """A large CASE: the branch number from a dict (single values) or a binary search
+        (ranges), then a balanced tree of ``if`` on that number. False if a label is not a
+        known constant (the checker reports that), so the plain if-chain is used."""
+        singles: dict[int, int] = {}
+        ranges: list[tuple[int, int, int]] = []
+        for k, b in enumerate(s.branches):
+            for lab in b.labels:
+                if isinstance(lab, tuple):
+                    lo, hi = self.label_const(lab[0]), self.label_const(lab[1])
+                    if lo is None or hi is None:
+                        return False
+                    if lo <= hi:
+                        ranges.append((lo, hi, k))
+                else:
+                    v = self.label_const(lab)
+                    if v is None:
+                        return False
+                    singles.setdefault(v, k)
+        segments = _segments(ranges)
+        if segments:  # a value in an earlier branch's range is not the later single's
+            starts = [lo for lo, _, _ in segments]
+            for v, k in list(singles.items()):
+                i = bisect.bisect_right(starts, v) - 1
+                if i >= 0 and v <= segments[i][1] and segments[i][2] < k:
+                    del singles[v]
+        nb = len(s.branches)
+        table = self.new_tmp("_CASE")
+        self.tables.append(f"{table} = dict(zip({tuple(singles)!r}, {tuple(singles.values())!r}))")
+        k = self.new_tmp("_k")
+        if segments:
+            rng = self.new_tmp("_CASE")
+            self.tables.append(f"{rng} = ({tuple(x[0] for x in segments)!r}, "
+                               f"{tuple(x[1] for x in segments)!r}, "
+                               f"{tuple(x[2] for x in segments)!r})")
+            self.emit(f"{k} = {table}.get({sel})")
+            self.emit(f"if {k} is None: {k} = _case_range({sel}, {rng}, {nb})")
+        else:
+            self.emit(f"{k} = {table}.get({sel}, {nb})")
+        bodies = [b.body for b in s.branches] + ([s.orelse] if s.orelse else [])
+        self.case_tree(s, k, bodies, 0, len(bodies))
+        return True
+
+    def case_tree(self, s: A.Case, k: str, bodies: list[list[A.Stmt]], lo: int, hi: int,
+                  top: bool = True) -> None:
+        """Branches ``lo..hi-1``: halve the range until a few are left, then test each. Parts
+        of CASE_CHUNK branches go into helper functions (Python compiles many medium-sized
+        functions faster than one huge one)."""
+        self.where_now = self.where(s.loc)
+        if top and hi - lo <= CASE_CHUNK < len(bodies):
+            self.outline_code(lambda: self.case_tree(s, k, bodies, lo, hi, False), s.loc, (k,))
+            return
+        if hi - lo <= 8:
+            for i in range(lo, hi):
+                self.emit(f"{'if' if i == lo else 'elif'} {k} == {i}:")
+                self.ind += 1
+                self.block(bodies[i])
+                self.ind -= 1
+                self.where_now = self.where(s.loc)
+            return
+        mid = (lo + hi) // 2
+        self.emit(f"if {k} < {mid}:")
+        self.ind += 1
+        self.case_tree(s, k, bodies, lo, mid, top)
+        self.ind -= 1
+        self.emit("else:")
+        self.ind += 1
+        self.case_tree(s, k, bodies, mid, hi, top)
+        self.ind -= 1
+
+    def label_const(self, e: A.Expr) -> int | None:
+        """The value of a CASE label: a literal, an enumeration value or a constant."""
+        if isinstance(e, A.Unary) and e.op == "-":
+            v = self.label_const(e.operand)
+            return None if v is None else -v
+        if isinstance(e, A.Literal):
+            if e.kind == "ENUM":
+                return getattr(e, "enum_value", None)
+            v = e.value
+        elif isinstance(e, A.Name) and isinstance(e.sym, EnumSym):
+            v = e.sym.value
+        elif isinstance(e, A.Name) and isinstance(e.sym, VarSym) and e.sym.decl.constant:
+            v = self.p.const_values.get(id(e.sym.decl))
+        else:
+            return None
+        return int(v) if isinstance(v, int) else None
 
     # -- coercion on store --------------------------------------------------------------------
     def coerce(self, code: str, src: T.Type | None, dst: T.Type | None, e: A.Expr | None) -> str:
@@ -774,7 +1006,43 @@ class Codegen:
 
     # -- expressions --------------------------------------------------------------------------
     def ex(self, e: A.Expr) -> str:
-        return getattr(self, "e_" + type(e).__name__)(e)
+        """The Python code of ``e``. Long left chains (``a + b + c + ...``) are generated
+        bottom-up with a loop (:meth:`chain`); every SPILL_LEVEL levels of nesting the code
+        so far goes into a temporary (a line in ``self.pre``), so no generated line nests
+        deeper than Python can parse. Targets of assignments are never moved."""
+        made = self._memo.pop(id(e), None)
+        if made is None:
+            if isinstance(e, A.Binary) and isinstance(e.left, A.Binary):
+                self.chain(e.left)
+            made = self.ex_node(e)
+        code, level = made
+        if self._levels[-1] < level:
+            self._levels[-1] = level
+        return code
+
+    def ex_node(self, e: A.Expr) -> tuple[str, int]:
+        """(code, nesting since the last temporary) of one node."""
+        self._levels.append(0)
+        try:
+            code = getattr(self, "e_" + type(e).__name__)(e)
+        finally:
+            level = self._levels.pop() + 1
+        if level >= SPILL_LEVEL and not getattr(e, "is_target", False):
+            tmp = self.new_tmp()
+            self.pre.append(f"{tmp} = {code}")
+            return tmp, 0
+        return code, level
+
+    def chain(self, e: A.Expr) -> None:
+        """Make the code of a long left spine of binary operators ahead, deepest first, so
+        that each node finds its left operand made (no recursion along the chain)."""
+        spine = []
+        while isinstance(e, A.Binary) and id(e) not in self._memo:
+            spine.append(e)
+            e = e.left
+        if len(spine) >= 8:
+            for node in reversed(spine):
+                self._memo[id(node)] = self.ex_node(node)
 
     def e_Literal(self, e: A.Literal) -> str:
         v = e.value
@@ -1080,6 +1348,52 @@ class Codegen:
         fn = {"LEFT": "_left", "RIGHT": "_right", "MID": "_mid", "INSERT": "_insert",
               "DELETE": "_delete", "REPLACE": "_replace", "FIND": "_find"}[name]
         return f"{fn}({', '.join(codes)})"
+
+
+# limits of the generated code (see "-- sizes" in Codegen)
+OUTLINE_INDENT = 40  # Python allows 100 levels of indentation
+OUTLINE_LOOPS = 12  # ... and 20 nested loops
+MAX_ELIF = 8  # ... and a few hundred elif (they nest in its syntax tree)
+CASE_CHUNK = 128  # branches of a large CASE per helper function
+SMALL_CASE = 16  # up to this many labels a CASE is an if/elif chain (fastest when small)
+SPILL_LEVEL = 12  # expression nesting between temporaries (Python allows 200 parentheses)
+NORMAL, EXIT, CONTINUE, RETURN = 0, 1, 2, 3  # how an outlined block ended
+_LOCALS = "\x00"  # placeholder for the locals a helper returns (repr() never writes a NUL)
+_LOCAL_NAME = re.compile(r"\bv_[A-Z0-9_]+\b")
+
+
+@dataclass
+class _Helper:
+    """An outlined block being generated: the signals its code may return."""
+
+    signals: set[int] = field(default_factory=set)
+
+
+def _segments(ranges: list[tuple[int, int, int]]) -> list[tuple[int, int, int]]:
+    """Disjoint sorted (lo, hi, branch) from CASE ranges (lo, hi, branch) that may overlap;
+    where they do, the first branch wins, as in the if-chain.
+
+    >>> _segments([(1, 10, 0), (5, 20, 1)])
+    [(1, 10, 0), (11, 20, 1)]
+    """
+    points = sorted({lo for lo, _, _ in ranges} | {hi + 1 for _, hi, _ in ranges})
+    starts = sorted(ranges)
+    active: list[tuple[int, int]] = []  # heap of (branch, hi)
+    out: list[tuple[int, int, int]] = []
+    i = 0
+    for a, b in zip(points, points[1:], strict=False):
+        while i < len(starts) and starts[i][0] <= a:
+            heapq.heappush(active, (starts[i][2], starts[i][1]))
+            i += 1
+        while active and active[0][1] < a:
+            heapq.heappop(active)
+        if active:
+            k = active[0][0]
+            if out and out[-1][1] == a - 1 and out[-1][2] == k:
+                out[-1] = (out[-1][0], b - 1, k)
+            else:
+                out.append((a, b - 1, k))
+    return out
 
 
 def _from_native(e: A.Expr | None) -> bool:

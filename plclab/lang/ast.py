@@ -7,6 +7,7 @@ which language a POU came from.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -332,21 +333,40 @@ class SourceFile:
 
 
 def walk_stmts(stmts: list[Stmt]):
-    """Yield every statement of a body, nested ones included (pre-order)."""
-    for s in stmts:
+    """Yield every statement of a body, nested ones included (pre-order).
+
+    A loop over an explicit stack, not recursion: bodies may be nested thousands deep."""
+    stack = [iter(stmts)]
+    while stack:
+        s = next(stack[-1], None)
+        if s is None:
+            stack.pop()
+            continue
         yield s
         if isinstance(s, If):
-            for _, body in s.branches:
-                yield from walk_stmts(body)
-            if s.orelse:
-                yield from walk_stmts(s.orelse)
+            bodies = [body for _, body in s.branches] + ([s.orelse] if s.orelse else [])
         elif isinstance(s, Case):
-            for b in s.branches:
-                yield from walk_stmts(b.body)
-            if s.orelse:
-                yield from walk_stmts(s.orelse)
+            bodies = [b.body for b in s.branches] + ([s.orelse] if s.orelse else [])
         elif isinstance(s, (For, While, Repeat)):
-            yield from walk_stmts(s.body)
+            bodies = [s.body]
+        else:
+            continue
+        stack.append(x for body in bodies for x in body)
+
+
+def copy_expr(e: Expr) -> Expr:
+    """A deep copy of an expression; the left spine of an operator chain (``a + b + c ...``,
+    IL's current result after 10,000 lines) is copied with a loop, not recursion."""
+    spine: list[Binary] = []
+    while isinstance(e, Binary):
+        spine.append(e)
+        e = e.left
+    out = copy.deepcopy(e)
+    for node in reversed(spine):
+        top = copy.copy(node)
+        top.left, top.right = out, copy.deepcopy(node.right)
+        out = top
+    return out
 
 
 def expr_text(e: Expr | None) -> str:

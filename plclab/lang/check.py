@@ -15,6 +15,13 @@ from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
 from . import types as T
 from .builtins import BUILTINS, Builtin, conversion
+from .limits import (
+    MAX_BLOCK_NESTING,
+    MAX_EXPR_NESTING,
+    compiler_guard,
+    nesting_violation,
+    too_deep_message,
+)
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
 _ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
@@ -89,6 +96,7 @@ class Checker:
         self.in_test = False
         self.loop_depth = 0
         self.for_vars: list[A.VarDecl] = []
+        self.stmt_loc: Location | None = None  # the statement being checked (for PLC0191)
 
     # -- reporting ----------------------------------------------------------------------------
     def err(self, code: str, msg: str, loc: Location | None) -> None:
@@ -99,6 +107,10 @@ class Checker:
 
     # -- driver -------------------------------------------------------------------------------
     def run(self) -> Project:
+        with compiler_guard():  # nesting recurses; the limits are checked (plclab.lang.limits)
+            return self._run()
+
+    def _run(self) -> Project:
         for f in self.files:
             for td in f.types:
                 self._declare("type", td.name, td.loc, self.type_decls, td)
@@ -486,7 +498,7 @@ class Checker:
         self.pou = p
         self.scope = p.scope  # type: ignore[attr-defined]
         self.calls.setdefault(p.name, set())
-        self.body(p.body)
+        self.checked_body(p.body, p.loc)
         self.check_labels(p.body)
         if p.kind == "FUNCTION" and p.native is None and p.return_type is not None:
             assigned = any(
@@ -536,7 +548,7 @@ class Checker:
         self.scope = scope
         for d in t.decls:
             self.check_init(d, scope)
-        self.body(t.body)
+        self.checked_body(t.body, t.loc)
         self.scope = {}
         self.in_test = False
 
@@ -564,6 +576,24 @@ class Checker:
                 visit(n)
 
     # -- statements ---------------------------------------------------------------------------
+    def checked_body(self, stmts: list[A.Stmt], loc: Location) -> None:
+        """Check a POU or TEST body whose nesting is within the limits (else PLC0190: the
+        checker and the compiler recurse once per nesting level)."""
+        bad = nesting_violation(stmts)
+        if bad is not None:
+            what, where = bad
+            limit = MAX_BLOCK_NESTING if what == "blocks" else MAX_EXPR_NESTING
+            self.err("PLC0190", too_deep_message(what, limit), where or loc)
+            return
+        self.stmt_loc = loc
+        try:
+            self.body(stmts)
+        except RecursionError:  # a safety net: the limits above should prevent it
+            self.loop_depth = 0
+            self.err("PLC0191", "this part of the program is too large or too deeply nested to "
+                     "check; split it into smaller parts (FUNCTIONs, intermediate variables)",
+                     self.stmt_loc)
+
     def body(self, stmts: list[A.Stmt]) -> None:
         returned = None
         for s in stmts:
@@ -578,6 +608,7 @@ class Checker:
                 returned = s
 
     def stmt(self, s: A.Stmt) -> None:
+        self.stmt_loc = s.loc
         if isinstance(s, A.Assign):
             tt = self.lvalue(s.target)
             vt = self.expr(s.value, tt)
@@ -742,6 +773,9 @@ class Checker:
 
     def lvalue(self, e: A.Expr) -> T.Type:
         t = self.expr(e, None, write=True)
+        e.is_target = True  # type: ignore[attr-defined]  # never moved into a temporary
+        if isinstance(e, A.Member) and e.field_name.startswith("%"):
+            e.obj.is_target = True  # type: ignore[attr-defined]  # x.3 := ... assigns x
         root = e
         while isinstance(root, A.Member | A.Index):
             root = root.obj
@@ -988,13 +1022,26 @@ class Checker:
         return T.ANY
 
     def binary(self, e: A.Binary, expected: T.Type | None) -> T.Type:
+        """A chain ``a + b + c + ...`` is a left-deep tree: walk its left spine with a loop
+        (expected types flow down, result types up), so its length costs no recursion."""
+        spine = [(e, expected)]
+        while isinstance(spine[-1][0].left, A.Binary):
+            node, exp = spine[-1]
+            spine.append((node.left, _left_expected(node, exp)))
+        bottom, exp = spine[-1]
+        lt = self.expr(bottom.left, _left_expected(bottom, exp))
+        for node, exp in reversed(spine):
+            lt = self.binary_node(node, exp, lt)
+            node.ty = lt
+        return lt
+
+    def binary_node(self, e: A.Binary, expected: T.Type | None, lt: T.Type) -> T.Type:
+        """The type of ``e`` whose left operand (of type ``lt``) is checked already."""
         op = e.op
         if op in ("AND", "OR", "XOR"):
-            lt = self.expr(e.left, expected if expected is not None else None)
             rt = self.expr(e.right, lt if lt not in (T.ANY_INT_LIT,) else expected)
         else:
             sub_exp = expected if op in ("+", "-", "*", "/", "MOD") else None
-            lt = self.expr(e.left, sub_exp)
             rt = self.expr(e.right, lt if T.resolve(lt).kind in ("enum",) else sub_exp)
             if T.resolve(rt).kind == "enum" and isinstance(e.left, A.Name) and \
                     isinstance(e.left.sym, EnumSym):
@@ -1378,6 +1425,13 @@ class Checker:
         close = difflib.get_close_matches(name.upper(), [str(c).upper() for c in candidates],
                                           n=1, cutoff=0.7)
         return f"; did you mean {close[0]}?" if close else ""
+
+
+def _left_expected(e: A.Binary, expected: T.Type | None) -> T.Type | None:
+    """The type expected of the left operand of ``e`` when ``e`` is expected to be ``expected``."""
+    if e.op in ("AND", "OR", "XOR") or e.op in ("+", "-", "*", "/", "MOD"):
+        return expected
+    return None
 
 
 def _range_text(t: T.Type) -> str:

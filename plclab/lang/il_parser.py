@@ -30,7 +30,6 @@ must survive a store, a label or a jump it is kept in a hidden ``VAR_TEMP`` name
 
 from __future__ import annotations
 
-import copy
 import difflib
 from dataclasses import dataclass, field
 from functools import cache
@@ -41,6 +40,7 @@ from . import ast as A
 from . import types as T
 from .builtins import BUILTINS, conversion
 from .lexer import Token
+from .limits import compiler_guard
 
 IL_OPERATORS = (
     "LD", "LDN", "ST", "STN", "S", "R", "AND", "ANDN", "OR", "ORN", "XOR", "XORN", "NOT",
@@ -453,11 +453,12 @@ def lower_pending(files: list[A.SourceFile]) -> list[Diagnostic]:
     with every declaration known; return their diagnostics."""
     env = Env(files)
     diags: list[Diagnostic] = []
-    for f in files:
-        for pou in f.pous:
-            fn = pou.__dict__.pop("_lower", None)
-            if fn is not None:
-                diags.extend(fn(env))
+    with compiler_guard():  # translations recurse once per nesting level (see limits)
+        for f in files:
+            for pou in f.pous:
+                fn = pou.__dict__.pop("_lower", None)
+                if fn is not None:
+                    diags.extend(fn(env))
     return diags
 
 
@@ -682,12 +683,12 @@ class _Lowering:
         kept = True
         if live:
             kept = self.materialize(x)
-        value = copy.deepcopy(self.cr)
+        value = A.copy_expr(self.cr)
         if x.op == "STN":
             value = A.Unary(x.loc, "NOT", value)
         self.emit(A.Assign(x.loc, target, value))
         if live and not kept:  # type unknown: the stored variable now holds the CR
-            self.cr = copy.deepcopy(target)
+            self.cr = A.copy_expr(target)
             if x.op == "STN":
                 self.cr = A.Unary(x.loc, "NOT", self.cr)
 
@@ -710,7 +711,7 @@ class _Lowering:
             return
         if self.live_after(k):
             self.materialize(x)
-        self.emit(A.Assign(x.loc, target, copy.deepcopy(self.cr), "S=" if x.op == "S" else "R="))
+        self.emit(A.Assign(x.loc, target, A.copy_expr(self.cr), "S=" if x.op == "S" else "R="))
 
     def combine(self, x: Instr, op: str, neg: bool, left: A.Expr, lty: Any,
                 right: A.Expr, rty: Any, loc: Location, rtext: str) -> tuple[A.Expr, Any]:
@@ -854,7 +855,7 @@ class _Lowering:
                          f"result, but none is loaded {self.why_undefined}", x.loc)
             self.carry(label, x)
         if x.op != "JMP":
-            cond = copy.deepcopy(self.cr)
+            cond = A.copy_expr(self.cr)
             if x.op == "JMPCN":
                 cond = A.Unary(x.loc, "NOT", cond)
         self.emit(A.Jump(x.loc, label, cond))
@@ -872,7 +873,7 @@ class _Lowering:
             if category(self.cty) not in ("BOOL", None):
                 self.mismatch(x, f"but {x.op} calls only on a BOOL current result")
                 return
-            cond = copy.deepcopy(self.cr)
+            cond = A.copy_expr(self.cr)
             if x.op == "CALCN":
                 cond = A.Unary(x.loc, "NOT", cond)
             stmt = A.If(x.loc, [(cond, [stmt])])
@@ -891,7 +892,7 @@ class _Lowering:
         if category(self.cty) not in ("BOOL", None):
             self.mismatch(x, f"but {x.op} returns only on a BOOL current result")
             return
-        cond = copy.deepcopy(self.cr)
+        cond = A.copy_expr(self.cr)
         if x.op == "RETCN":
             cond = A.Unary(x.loc, "NOT", cond)
         self.emit(A.If(x.loc, [(cond, [A.Return(x.loc)])]))
@@ -905,7 +906,7 @@ class _Lowering:
             return
         inst = x.args[0]
         self.emit(A.CallStmt(x.loc, A.Call(inst.loc, inst, [A.Arg(x.loc, x.op,
-                                                                   copy.deepcopy(self.cr))])))
+                                                                   A.copy_expr(self.cr))])))
 
     def op_function(self, x: Instr) -> None:
         name = x.op

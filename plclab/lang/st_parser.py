@@ -16,6 +16,7 @@ import re
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
 from .lexer import KEYWORDS, Lexer, Token
+from .limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
@@ -35,6 +36,14 @@ _STMT_END = {"END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNT
 _POU_START = {"PROGRAM", "FUNCTION", "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION",
               "TEST"}
 _CMP = {"=": "=", "<>": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+# binary operator token -> (precedence, AST operator); higher binds tighter
+_BINARY = {
+    "OR": (1, "OR"), "XOR": (2, "XOR"), "AND": (3, "AND"), "&": (3, "AND"),
+    "=": (4, "="), "<>": (4, "<>"), "==": (4, "="), "!=": (4, "<>"),
+    "<": (5, "<"), "<=": (5, "<="), ">": (5, ">"), ">=": (5, ">="),
+    "+": (6, "+"), "-": (6, "-"), "*": (7, "*"), "/": (7, "/"), "MOD": (7, "MOD"),
+    "**": (8, "**"),
+}
 _NATIVE_RE = re.compile(r"^native\s+'([A-Z][A-Z0-9_]*)'$")
 _NATIVE_WORD = re.compile(r"^native\b", re.IGNORECASE)
 
@@ -43,10 +52,18 @@ class _Bail(Exception):
     """Internal: abandon the current statement/declaration after an error."""
 
 
+class _TooDeep(_Bail):
+    """Internal: nesting beyond the limits (PLC0190 is reported). Statements do not recover
+    from it one by one (that would report every level again): the body is skipped."""
+
+
 class Parser:
     """``library=True`` only for plclab's own library files (see :mod:`plclab.runtime.natives`):
     there a ``{native 'NAME'}`` pragma binds a block to its registered implementation. In any
     other file the pragma is an error (PLC0131), so user text never selects Python code."""
+
+    expr_depth = 0  # nesting of expr() calls (class defaults: IL builds sub-parsers by __new__)
+    block_depth = 0  # nesting of statement lists
 
     def __init__(self, text: str, file: str = "<input>", library: bool = False) -> None:
         lexer = Lexer(text, file)
@@ -160,7 +177,11 @@ class Parser:
                     self.error(code, f"expected PROGRAM, FUNCTION, FUNCTION_BLOCK, TYPE, "
                                f"VAR_GLOBAL, CONFIGURATION or TEST, found {_found(t)}{hint}")
                     raise _Bail
-            except _Bail:
+            except (_Bail, RecursionError) as exc:
+                if isinstance(exc, RecursionError):  # a safety net: the limits should prevent it
+                    self.error("PLC0191", "this part of the program is too deeply nested to "
+                               "parse; split it into smaller parts (FUNCTIONs, intermediate "
+                               "variables)", self.toks[start])
                 if self.i == start:
                     self.advance()
                 while not self.at("EOF") and self.tok.kind not in _POU_START:
@@ -490,13 +511,25 @@ class Parser:
 
     # -- statements ---------------------------------------------------------------------------
     def stmt_list(self, stops: set[str]) -> list[A.Stmt]:
-        out: list[A.Stmt] = []
-        stop = stops | _STMT_END
-        while self.tok.kind not in stop:
-            if self.tok.kind in _POU_START and self.tok.kind != "TYPE":
-                break
-            self._guarded_statement(out, stop)
-        return out
+        self.block_depth += 1
+        try:
+            if self.block_depth > MAX_BLOCK_NESTING + 1:  # + 1: the POU body itself
+                self._too_deep("blocks", MAX_BLOCK_NESTING)
+            out: list[A.Stmt] = []
+            stop = stops | _STMT_END
+            while self.tok.kind not in stop:
+                if self.tok.kind in _POU_START and self.tok.kind != "TYPE":
+                    break
+                self._guarded_statement(out, stop)
+            return out
+        except _TooDeep:
+            if self.block_depth > 1:
+                raise
+            while not self.at("EOF") and self.tok.kind not in stops | _POU_START:
+                self.advance()
+            return []
+        finally:
+            self.block_depth -= 1
 
     def _guarded_statement(self, out: list[A.Stmt], stop: set[str]) -> None:
         """Parse one statement into ``out``; after a syntax error skip to a safe point."""
@@ -505,6 +538,8 @@ class Parser:
             s = self.statement()
             if s is not None:
                 out.append(s)
+        except _TooDeep:
+            raise
         except _Bail:
             if self.i == start:
                 self.advance()
@@ -701,65 +736,68 @@ class Parser:
         return A.For(self.loc(t), var, start, end, step, body)
 
     # -- expressions (IEC 61131-3 precedence, lowest first) -----------------------------------
+    # Operator chains are parsed with loops (an explicit operand/operator stack, precedence
+    # climbing), so a 10,000-term sum costs no recursion; only nesting (parentheses, calls,
+    # indices) recurses, counted in expr() and limited to MAX_EXPR_NESTING (PLC0190).
     def expr(self) -> A.Expr:
-        return self.or_expr()
+        self.expr_depth += 1
+        try:
+            if self.expr_depth > MAX_EXPR_NESTING:
+                self._too_deep("expressions", MAX_EXPR_NESTING)
+            return self._operator_chain()
+        finally:
+            self.expr_depth -= 1
 
-    def _binary(self, sub, ops: dict[str, str]) -> A.Expr:
-        left = sub()
-        while self.tok.kind in ops:
+    def _operator_chain(self) -> A.Expr:
+        """Operands joined by binary operators, left-associative at each precedence level."""
+        operands = [self.unary()]
+        ops: list[tuple[int, str, Token]] = []
+        while self.tok.kind in _BINARY:
             t = self.advance()
-            right = sub()
-            left = A.Binary(self.loc(t), ops[t.kind], left, right)
-        return left
-
-    def or_expr(self) -> A.Expr:
-        return self._binary(self.xor_expr, {"OR": "OR"})
-
-    def xor_expr(self) -> A.Expr:
-        return self._binary(self.and_expr, {"XOR": "XOR"})
-
-    def and_expr(self) -> A.Expr:
-        return self._binary(self.eq_expr, {"AND": "AND", "&": "AND"})
-
-    def eq_expr(self) -> A.Expr:
-        left = self.cmp_expr()
-        while self.tok.kind in ("=", "<>", "==", "!="):
-            t = self.advance()
+            prec, op = _BINARY[t.kind]
             if t.kind == "==":
                 self.error("PLC0012", "'==' is not an ST operator; compare with '='", t)
-            if t.kind == "!=":
+            elif t.kind == "!=":
                 self.error("PLC0012", "'!=' is not an ST operator; write '<>'", t)
-            op = "=" if t.kind in ("=", "==") else "<>"
-            left = A.Binary(self.loc(t), op, left, self.cmp_expr())
-        return left
+            while ops and ops[-1][0] >= prec:
+                self._reduce(operands, ops)
+            ops.append((prec, op, t))
+            operands.append(self.unary())
+        while ops:
+            self._reduce(operands, ops)
+        return operands[0]
 
-    def cmp_expr(self) -> A.Expr:
-        return self._binary(self.add_expr, {"<": "<", "<=": "<=", ">": ">", ">=": ">="})
+    def _reduce(self, operands: list[A.Expr], ops: list[tuple[int, str, Token]]) -> None:
+        _, op, t = ops.pop()
+        right = operands.pop()
+        operands[-1] = A.Binary(self.loc(t), op, operands[-1], right)
 
-    def add_expr(self) -> A.Expr:
-        return self._binary(self.mul_expr, {"+": "+", "-": "-"})
-
-    def mul_expr(self) -> A.Expr:
-        return self._binary(self.pow_expr, {"*": "*", "/": "/", "MOD": "MOD"})
-
-    def pow_expr(self) -> A.Expr:
-        return self._binary(self.unary, {"**": "**"})
+    def _too_deep(self, what: str, limit: int) -> None:
+        self.error("PLC0190", too_deep_message(what, limit))
+        raise _TooDeep
 
     def unary(self) -> A.Expr:
-        t = self.tok
-        if t.kind in ("-", "+", "NOT"):
-            self.advance()
-            operand = self.unary()
-            if t.kind == "-" and isinstance(operand, A.Literal) and operand.kind in ("INT", "REAL",
-                                                                                     "TIME"):
-                operand.value = -operand.value
-                operand.loc = self.loc(t)
-                operand.text = "-" + operand.text
-                return operand
-            if t.kind == "+":
-                return operand
-            return A.Unary(self.loc(t), t.kind, operand)
-        return self.postfix(self.primary())
+        """Prefix operators (a loop, not recursion: NOT NOT NOT x is fine), then the operand."""
+        prefix: list[Token] = []
+        while self.tok.kind in ("-", "+", "NOT"):
+            prefix.append(self.advance())
+            if self.expr_depth + len(prefix) > MAX_EXPR_NESTING:
+                self._too_deep("expressions", MAX_EXPR_NESTING)
+        operand = self.postfix(self.primary())
+        for t in reversed(prefix):
+            operand = self._apply_unary(t, operand)
+        return operand
+
+    def _apply_unary(self, t: Token, operand: A.Expr) -> A.Expr:
+        if t.kind == "-" and isinstance(operand, A.Literal) and operand.kind in ("INT", "REAL",
+                                                                                 "TIME"):
+            operand.value = -operand.value
+            operand.loc = self.loc(t)
+            operand.text = "-" + operand.text
+            return operand
+        if t.kind == "+":
+            return operand
+        return A.Unary(self.loc(t), t.kind, operand)
 
     def primary(self) -> A.Expr:
         t = self.tok
@@ -800,7 +838,14 @@ class Parser:
         raise AssertionError
 
     def postfix(self, e: A.Expr) -> A.Expr:
+        """``.member``, ``[index]`` and ``(arguments)`` after an operand, in a loop; each one
+        nests the operand one level deeper for the checker and the compiler."""
+        chain = 0
         while True:
+            if self.at(".", "[", "("):
+                chain += 1
+                if self.expr_depth + chain > MAX_EXPR_NESTING:
+                    self._too_deep("expressions", MAX_EXPR_NESTING)
             if self.at("."):
                 dot = self.advance()
                 if self.at("INT"):  # bit access x.3
@@ -873,8 +918,9 @@ def parse_st_collect(text: str, file: str = "<input>", defer: bool = False,
     IL bodies found in the file are translated at the end; with ``defer=True`` that is left to
     the caller (:func:`plclab.project.parse_sources` does it once all files are parsed).
     ``library`` is for plclab's own library files only (see :class:`Parser`)."""
-    p = Parser(text, file, library)
-    out = p.parse_file()
+    with compiler_guard():
+        p = Parser(text, file, library)
+        out = p.parse_file()
     diags = p.diagnostics
     if not defer and any(hasattr(pou, "_lower") for pou in out.pous):
         from .il_parser import lower_pending

@@ -7,6 +7,7 @@ Runtime faults raise :class:`Fault`; the PLC turns them into located
 
 from __future__ import annotations
 
+import bisect
 import math
 import struct
 
@@ -297,6 +298,15 @@ def _str_to_time(s: str) -> int:
             break
     ns = parse_duration(t.lower())
     return (ns or 0) // 1_000_000
+
+
+def _case_range(x: int, table: tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]],
+                default: int) -> int:
+    """The branch of a large CASE whose label range holds ``x`` (table: sorted disjoint
+    starts, ends, branches), or ``default``."""
+    starts, ends, branches = table
+    i = bisect.bisect_right(starts, x) - 1
+    return branches[i] if i >= 0 and x <= ends[i] else default
 
 
 HELPERS = {
