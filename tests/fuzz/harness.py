@@ -35,8 +35,11 @@ LANGS = {".st": "st", ".il": "il", ".ld": "ld", ".xml": "xml"}
 class Runner:
     """One worker process; restarted after it is killed for a hang or dies."""
 
-    def __init__(self, soft_timeout: float = SOFT_TIMEOUT) -> None:
+    def __init__(self, soft_timeout: float = SOFT_TIMEOUT, hard_margin: float = HARD_MARGIN,
+                 argv: list[str] | None = None) -> None:
         self.soft = soft_timeout
+        self.hard = hard_margin
+        self.argv = argv or [sys.executable, str(HERE / "worker.py")]
         self.proc: subprocess.Popen | None = None
         self.n = 0
 
@@ -44,7 +47,7 @@ class Runner:
         env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
         env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")]).rstrip(
             os.pathsep)
-        return subprocess.Popen([sys.executable, str(HERE / "worker.py")], stdin=subprocess.PIPE,
+        return subprocess.Popen(self.argv, stdin=subprocess.PIPE,
                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
                                 env=env, cwd=str(HERE))
 
@@ -61,7 +64,7 @@ class Runner:
         except BrokenPipeError:
             self.close()
             return {"outcome": "crash", "stage": "?", "sig": "crash:?:worker-died", "msg": ""}
-        ready, _, _ = select.select([self.proc.stdout], [], [], self.soft + HARD_MARGIN)
+        ready, _, _ = select.select([self.proc.stdout], [], [], self.soft + self.hard)
         line = self.proc.stdout.readline() if ready else ""
         if not line:
             died = self.proc.poll() is not None
