@@ -32,7 +32,7 @@ RUNTIME_NAMES = {"_B", "_CTX", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc", "n", 
                  "_body", "_copy", "_math"}
 BUILTINS = {"abs", "float", "int", "len", "list", "max", "min", "range", "bool", "str", "round"}
 METHODS = {"__new__", "_body", "_copy", "advance_ns", "from_bytes", "to_bytes", "left", "start",
-           "step", "now", "now_ns", "first_scan", "scan_count", "left", "limit"}
+           "step", "now", "now_ns", "first_scan", "scan_count", "limit"}
 FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "compile",
                    "globals", "locals", "vars", "breakpoint", "input", "delattr"}
 

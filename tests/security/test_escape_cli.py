@@ -62,7 +62,7 @@ def test_the_audit_sees_an_escape(box):
     """The harness can fail: a program that does import the sentinel is reported."""
     run = box.run(["explain", "PLC0100"])
     _clean(run, box)
-    code = "import pwned_sentinel; open(%r).read()" % str(box.secret)
+    code = f"import pwned_sentinel; open({str(box.secret)!r}).read()"
     evil = box.cwd / "evil.py"
     evil.write_text(code)
     import os
