@@ -32,15 +32,16 @@ def _on_alarm(signum, frame):
     raise Hang()
 
 
-def _where(tb) -> str:
-    """The innermost frame inside plclab (or generated code) of a traceback: ``file:function``."""
+def _where(tb, function: bool = True) -> str:
+    """The innermost frame inside plclab or the generated code (``<plclab>``) of a traceback:
+    ``file:function`` (``file`` alone for hangs, whose innermost frame varies)."""
     best = "?"
     for fs in traceback.extract_tb(tb):
         fn = fs.filename.replace(os.sep, "/")
         if "/plclab/" in fn:
-            best = fn[fn.rindex("/plclab/") + 1:] + ":" + fs.name
-        elif fn.startswith("<"):
-            best = "generated:" + fs.name
+            best = fn[fn.rindex("/plclab/") + 1:] + (":" + fs.name if function else "")
+        elif fn == "<plclab>":
+            best = "generated" + (":" + fs.name if function else "")
     return best
 
 
@@ -98,8 +99,8 @@ def run_case(text: str, name: str, seed: int, scans: int) -> dict:
                 stage = "scan"
         return {"outcome": "ok", "stage": stage}
     except Hang as e:
-        return {"outcome": "hang", "stage": stage, "sig": f"hang:{stage}:{_where(e.__traceback__)}",
-                "msg": ""}
+        where = _where(e.__traceback__, function=False)
+        return {"outcome": "hang", "stage": stage, "sig": f"hang:{stage}:{where}", "msg": ""}
     except PlcError as e:
         if e.code == "PLC9999":  # an internal error dressed as a PlcError is still a bug
             kind = e.message.partition("(")[2].partition(":")[0] or "?"

@@ -37,8 +37,13 @@ FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "
                    "globals", "locals", "vars", "breakpoint", "input", "delattr"}
 
 
+# hidden variables of the IL and LD front ends (``__CR_INT``, ``__LD_M3``): private names, which
+# work only because nothing outside their class reads them
+HIDDEN = re.compile(r"^__(?:CR|LD)_[A-Z0-9_]+$")
+
+
 def _private(name: str) -> bool:
-    return name.startswith("__") and not name.endswith("__")
+    return name.startswith("__") and not name.endswith("__") and not HIDDEN.match(name)
 
 
 def problems(source: str, words: tuple[str, ...] = ("pwned_sentinel",)) -> list[str]:
