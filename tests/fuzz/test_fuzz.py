@@ -37,7 +37,7 @@ known_issues = _load("known_issues")
 
 SEED = int(os.environ.get("PLCLAB_FUZZ_SEED", "20261"))
 SECONDS = float(os.environ.get("PLCLAB_FUZZ_SECONDS", "0") or 0)
-CASES = int(os.environ.get("PLCLAB_FUZZ_CASES", "1200"))
+CASES = int(os.environ.get("PLCLAB_FUZZ_CASES", "1500"))
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,7 @@ import json
 import os
 import subprocess
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -77,6 +77,7 @@ class Run:
     stderr: str
     events: list[dict]
     cwd: Path
+    created: list[Path] = field(default_factory=list)  # new files and folders in the sandbox
 
     @property
     def output(self) -> str:
@@ -114,10 +115,15 @@ class Sandbox:
                    HOME=str(self.home), TMPDIR=str(self.tmpdir),
                    MPLCONFIGDIR=str(self.home / "mpl"), MPLBACKEND="Agg")
         code = "import sys, plclab.cli; sys.exit(plclab.cli.main(sys.argv[1:]))"
+        before = self._snapshot()
         r = subprocess.run([sys.executable, "-c", code, *args], cwd=self.cwd, env=env,
                            capture_output=True, text=True, timeout=timeout)
         events = [json.loads(line) for line in self.log.read_text().splitlines() if line]
-        return Run(r.returncode, r.stdout, r.stderr, events, self.cwd)
+        created = sorted(self._snapshot() - before)
+        return Run(r.returncode, r.stdout, r.stderr, events, self.cwd, created)
+
+    def _snapshot(self) -> set[Path]:
+        return {p for p in self.tmp.rglob("*") if p != self.log}
 
 
 def _inside(path: str, roots: list[Path]) -> bool:
@@ -147,6 +153,8 @@ def violations(run: Run, box: Sandbox, reads: list[Path], writes: list[Path]) ->
     bad: list[str] = []
     if box.marker.exists():
         bad.append(f"{SENTINEL} was imported (marker file {box.marker})")
+    write_roots = _roots([box.tmpdir, box.home, *writes])
+    bad += [f"created {p}" for p in run.created if not _inside(str(p), write_roots)]
     read_ok = SYSTEM_READ_ROOTS + _roots([ROOT / "plclab", ROOT / "plants", ROOT / "labs",
                                           box.hook / "sitecustomize.py", box.tmpdir,
                                           box.home, *reads, *writes])
