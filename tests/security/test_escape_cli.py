@@ -82,17 +82,10 @@ def test_check_every_hostile_file(box, group):
     cases = {"st": payloads.st_cases(), "il-ld": payloads.il_cases() + payloads.ld_cases(),
              "xml": payloads.xml_cases()}[group]
     files = _write_cases(box.cwd / "src", cases)
-    # one file at a time would be slow: check them in batches of files that do not clash
-    for batch in (files[i:i + 40] for i in range(0, len(files), 40)):
-        for f in batch:
-            run = box.run(["check", str(f)]) if f.suffix == ".xml" else None
-            if run is not None:
-                _clean(run, box, reads=[box.cwd])
-        run = box.run(["check", *map(str, (f for f in batch if f.suffix != ".xml"))]) \
-            if any(f.suffix != ".xml" for f in batch) else None
-        if run is not None:
-            assert run.returncode in (0, 1), run.output[-2000:]
-            _clean(run, box, reads=[box.cwd])
+    # all at once: the cases reuse POU names, which only adds diagnostics
+    run = box.run(["check", *map(str, files)])
+    assert run.returncode in (0, 1) and "error(s)" in run.stdout, run.output[-2000:]
+    _clean(run, box, reads=[box.cwd])
 
 
 RUN_CASES = ["string-0", "string-1", "string-2", "string-4", "string-5", "wstring-0",
