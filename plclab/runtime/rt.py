@@ -95,32 +95,110 @@ def _frange(s: int, e: int, st: int, where: int) -> range:
 
 
 def _round(x: float) -> int:
-    """REAL -> integer conversion: round half away from zero (as CODESYS)."""
+    """REAL -> integer conversion: round half away from zero (as CODESYS).
+
+    Exact for every double: ``x - int(x)`` is the exact fraction, unlike ``floor(x + 0.5)``,
+    which rounds 0.49999999999999994 up and 2**52 + 1 to 2**52 + 2.
+    """
     if x != x or x in (math.inf, -math.inf):
-        raise Fault("PLC2006", f"cannot convert {x} to an integer")
-    return int(math.floor(x + 0.5)) if x >= 0 else -int(math.floor(-x + 0.5))
+        raise Fault("PLC2006", f"cannot convert {x} to an integer; check for a division by zero "
+                    "or an overflow before converting")
+    n = int(x)
+    f = x - n
+    if f >= 0.5:
+        return n + 1
+    if f <= -0.5:
+        return n - 1
+    return n
 
 
 def _trunc(x: float) -> int:
     if x != x or x in (math.inf, -math.inf):
-        raise Fault("PLC2006", f"cannot convert {x} to an integer")
+        raise Fault("PLC2006", f"cannot convert {x} to an integer; check for a division by zero "
+                    "or an overflow before converting")
     return int(x)
 
 
-def _expt(a, b):
+def _i2r(x: int) -> float:
+    """An exact integer to REAL, rounded once to nearest-even (not twice, through a double)."""
+    if -0x20000000000000 <= x <= 0x20000000000000:
+        return _f32(x)  # exact in a double, so a single rounding
+    n = abs(x)
+    drop = n.bit_length() - 26  # keep 24 bits, the rounding bit and a sticky bit
+    m = (n >> drop) | (1 if n & ((1 << drop) - 1) else 0)
     try:
-        r = a ** b
-    except ZeroDivisionError:
-        return math.inf
+        y = math.ldexp(float(m), drop)
     except OverflowError:
-        return math.inf
-    if isinstance(r, complex):
+        y = math.inf
+    return _f32(y if x > 0 else -y)
+
+
+def _fl(x) -> float:
+    """An exact integer widened to LREAL: nearest double, or +-inf beyond its range (IEEE)."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
+
+
+def _odd(y: float) -> bool:
+    return math.isfinite(y) and y == int(y) and int(y) % 2 == 1
+
+
+def _expt(a, b):
+    """EXPT and '**' (result REAL/LREAL) with IEEE 754 results (C99 Annex F): 0 ** -1 = inf,
+    (-8) ** 0.5 = NaN, overflow = +-inf. Two integers give the exact power rounded once, with
+    bounded work: a power beyond the double range is never computed."""
+    if type(a) is int and type(b) is int:
+        return _ipow(a, b)
+    a, b = _fl(a), _fl(b)
+    try:
+        return math.pow(a, b)
+    except OverflowError:
+        return -math.inf if a < 0 and _odd(b) else math.inf
+    except ValueError:  # 0 ** negative, or a negative base and a fractional exponent
+        if a == 0:
+            return math.copysign(math.inf, a) if _odd(b) else math.inf
         return math.nan
-    return float(r)
+
+
+def _ipow(a: int, b: int) -> float:
+    neg = a < 0 and b % 2 == 1
+    big = abs(a) >= 2 and abs(b) * (abs(a).bit_length() - 1) > 1100  # |a ** b| > 2 ** 1100
+    if b >= 0:
+        if big:
+            return -math.inf if neg else math.inf
+        return _fl(a ** b)
+    if a == 0:
+        return math.inf
+    if big:
+        return -0.0 if neg else 0.0
+    return 1 / a ** -b  # int / int is correctly rounded
 
 
 def _sqrt(x):
     return math.sqrt(x) if x >= 0 else math.nan
+
+
+def _sin(x):
+    try:
+        return math.sin(x)
+    except ValueError:  # SIN(+-inf)
+        return math.nan
+
+
+def _cos(x):
+    try:
+        return math.cos(x)
+    except ValueError:
+        return math.nan
+
+
+def _tan(x):
+    try:
+        return math.tan(x)
+    except ValueError:
+        return math.nan
 
 
 def _ln(x):
@@ -153,21 +231,42 @@ def _limit(mn, x, mx):
     return mx if x > mx else x
 
 
-def _mux(k, items, where):
-    if 0 <= k < len(items):
-        return items[k]
-    raise Fault("PLC2002", f"MUX selector K = {k} is outside 0..{len(items) - 1}", where)
+def _mux(k: int, n: int, where: int):
+    raise Fault("PLC2002", f"MUX selector K = {k} is outside 0..{n - 1}", where)
+
+
+def _count(n: int) -> None:
+    if n < 0:
+        raise Fault("PLC2020", f"shift count N = {n} is negative; SHL, SHR, ROL and ROR shift "
+                    "by 0 or more bits")
+
+
+def _shl(x: int, n: int, bits: int) -> int:
+    """SHL: zeros come in from the right; a count of the width or more gives 0."""
+    _count(n)
+    return (x << n) & ((1 << bits) - 1) if n < bits else 0
+
+
+def _shr(x: int, n: int, bits: int) -> int:
+    """SHR: zeros come in from the left (also for signed types: the bit pattern shifts)."""
+    _count(n)
+    return (x & ((1 << bits) - 1)) >> n if n < bits else 0
 
 
 def _rol(x: int, n: int, bits: int) -> int:
+    """ROL: rotate left; the count is taken modulo the width."""
+    _count(n)
     n %= bits
     m = (1 << bits) - 1
+    x &= m
     return ((x << n) | (x >> (bits - n))) & m
 
 
 def _ror(x: int, n: int, bits: int) -> int:
+    _count(n)
     n %= bits
     m = (1 << bits) - 1
+    x &= m
     return ((x >> n) | (x << (bits - n))) & m
 
 
