@@ -659,18 +659,28 @@ class Codegen:
             self.emit("return")
 
     def s_For(self, s: A.For) -> None:
+        """FOR as the hardware runs it: ``v := v + step`` wraps at the variable's type limits.
+        When the bounds and a literal step prove that the loop ends without wrapping, it is a
+        plain Python ``range`` charged to the watchdog up front; otherwise ``_frange`` decides
+        at run time (a ``range``, or a wrapping iterator that charges each pass)."""
         var = self.ex(s.var)
         start = self.coerce(self.ex(s.start), s.start.ty, s.var.ty, s.start)
         end = self.coerce(self.ex(s.end), s.end.ty, s.var.ty, s.end)
         self.flush_pre()
         w = self.where(s.loc)
+        vt = T.base_of(s.var.ty)
+        lo, hi = (vt.lo, vt.hi) if isinstance(vt, T.Elementary) and vt.bits else (None, None)
         step_v = None
         if s.step is None:
             step_v = 1
         elif isinstance(s.step, A.Literal) and isinstance(s.step.value, int):
             step_v = s.step.value
+        has_exit = any(isinstance(x, A.Exit | A.Return) for x in A.walk_stmts(s.body))
         rng = self.new_tmp("_r")
-        if step_v is not None and step_v != 0:
+        r_end = self._bound_range(s.end)
+        proven = step_v is not None and step_v != 0 and (lo is None or r_end is not None and (
+            r_end[1] + step_v <= hi if step_v > 0 else r_end[0] + step_v >= lo))
+        if proven:
             stop = f"{end} + 1" if step_v > 0 else f"{end} - 1"
             if step_v == 1:
                 self.emit(f"{rng} = range({start}, {stop})")
@@ -679,15 +689,15 @@ class Codegen:
         else:
             step = self.ex(s.step) if s.step is not None else "1"
             self.flush_pre()
-            self.emit(f"{rng} = _frange({start}, {end}, {step}, {w})")
-        has_exit = any(isinstance(x, A.Exit | A.Return) for x in A.walk_stmts(s.body))
+            budget = "None" if has_exit else "_B"
+            self.emit(f"{rng} = _frange({start}, {end}, {step}, {lo}, {hi}, {w}, {budget})")
         if not has_exit:
             self.emit(f"_B.left -= len({rng})")
             self.emit(f"if _B.left < 0: _wd({w})")
         # a known range for the loop variable lets array indexing skip its bounds check
         r_start, r_end = self.interval(s.start), self.interval(s.end)
         saved = self.safe.get(var)
-        if r_start is not None and r_end is not None and step_v is not None and step_v != 0:
+        if proven and r_start is not None and r_end is not None:
             # inside the body the variable lies between start and end, whatever the step
             self.safe[var] = (min(r_start[0], r_end[0]), max(r_start[1], r_end[1]))
         else:
@@ -702,12 +712,27 @@ class Codegen:
         self.ind -= 1
         self.emit("else:")
         self.ind += 1
-        self.emit(f"{var} = {rng}.start + len({rng}) * {rng}.step")
+        if proven:
+            self.emit(f"{var} = {rng}.start + len({rng}) * {rng}.step")
+        else:
+            self.emit(f"{var} = _fend({rng})")
         self.ind -= 1
         if saved is not None:
             self.safe[var] = saved
         else:
             self.safe.pop(var, None)
+
+    def _bound_range(self, e: A.Expr) -> tuple[int, int] | None:
+        """The values a FOR bound can take: a known interval, or its type's range when it is
+        a stored value (stored integers always lie in their type)."""
+        r = self.interval(e)
+        if r is not None:
+            return r
+        t = T.resolve(e.ty) if e.ty is not None else None
+        if isinstance(e, _SIMPLE) and isinstance(t, T.Elementary | T.Subrange) and \
+                t.kind == "int":
+            return (t.lo, t.hi)
+        return None
 
     # -- coercion on store --------------------------------------------------------------------
     def coerce(self, code: str, src: T.Type | None, dst: T.Type | None, e: A.Expr | None) -> str:
