@@ -135,6 +135,8 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC2008": ("numeric overflow", "Run time: a value became too large to represent."),
     "PLC2009": ("out of memory", "Run time: the program allocated too much memory."),
     "PLC2010": ("test assertion failed", "An ASSERT_* in a TEST block did not hold."),
+    "PLC2020": ("negative shift count", "Run time: SHL, SHR, ROL and ROR shift by N >= 0 bits; "
+                "check N before shifting (a count of the width or more gives 0 for SHL/SHR)."),
     "PLC3001": ("unknown variable path", "The name, member or index does not exist in the "
                 "loaded program."),
     "PLC3002": ("bad value", "A value given from Python or the command line does not fit the "

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import bisect
 import heapq
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Any
@@ -749,18 +750,28 @@ class Codegen:
             self.emit("return")
 
     def s_For(self, s: A.For) -> None:
+        """FOR as the hardware runs it: ``v := v + step`` wraps at the variable's type limits.
+        When the bounds and a literal step prove that the loop ends without wrapping, it is a
+        plain Python ``range`` charged to the watchdog up front; otherwise ``_frange`` decides
+        at run time (a ``range``, or a wrapping iterator that charges each pass)."""
         var = self.ex(s.var)
         start = self.coerce(self.ex(s.start), s.start.ty, s.var.ty, s.start)
         end = self.coerce(self.ex(s.end), s.end.ty, s.var.ty, s.end)
         self.flush_pre()
         w = self.where(s.loc)
+        vt = T.base_of(s.var.ty)
+        lo, hi = (vt.lo, vt.hi) if isinstance(vt, T.Elementary) and vt.bits else (None, None)
         step_v = None
         if s.step is None:
             step_v = 1
         elif isinstance(s.step, A.Literal) and isinstance(s.step.value, int):
             step_v = s.step.value
+        has_exit = any(isinstance(x, A.Exit | A.Return) for x in A.walk_stmts(s.body))
         rng = self.new_tmp("_r")
-        if step_v is not None and step_v != 0:
+        r_end = self._bound_range(s.end)
+        proven = step_v is not None and step_v != 0 and (lo is None or r_end is not None and (
+            r_end[1] + step_v <= hi if step_v > 0 else r_end[0] + step_v >= lo))
+        if proven:
             stop = f"{end} + 1" if step_v > 0 else f"{end} - 1"
             if step_v == 1:
                 self.emit(f"{rng} = range({start}, {stop})")
@@ -769,15 +780,15 @@ class Codegen:
         else:
             step = self.ex(s.step) if s.step is not None else "1"
             self.flush_pre()
-            self.emit(f"{rng} = _frange({start}, {end}, {step}, {w})")
-        has_exit = any(isinstance(x, A.Exit | A.Return) for x in A.walk_stmts(s.body))
+            budget = "None" if has_exit else "_B"
+            self.emit(f"{rng} = _frange({start}, {end}, {step}, {lo}, {hi}, {w}, {budget})")
         if not has_exit:
             self.emit(f"_B.left -= len({rng})")
             self.emit(f"if _B.left < 0: _wd({w})")
         # a known range for the loop variable lets array indexing skip its bounds check
         r_start, r_end = self.interval(s.start), self.interval(s.end)
         saved = self.safe.get(var)
-        if r_start is not None and r_end is not None and step_v is not None and step_v != 0:
+        if proven and r_start is not None and r_end is not None:
             # inside the body the variable lies between start and end, whatever the step
             self.safe[var] = (min(r_start[0], r_end[0]), max(r_start[1], r_end[1]))
         else:
@@ -792,7 +803,10 @@ class Codegen:
         self.ind -= 1
         self.emit("else:")
         self.ind += 1
-        self.emit(f"{var} = {rng}.start + len({rng}) * {rng}.step")
+        if proven:
+            self.emit(f"{var} = {rng}.start + len({rng}) * {rng}.step")
+        else:
+            self.emit(f"{var} = _fend({rng})")
         self.ind -= 1
         if saved is not None:
             self.safe[var] = saved
@@ -940,6 +954,18 @@ class Codegen:
             return None
         return int(v) if isinstance(v, int) else None
 
+    def _bound_range(self, e: A.Expr) -> tuple[int, int] | None:
+        """The values a FOR bound can take: a known interval, or its type's range when it is
+        a stored value (stored integers always lie in their type)."""
+        r = self.interval(e)
+        if r is not None:
+            return r
+        t = T.resolve(e.ty) if e.ty is not None else None
+        if isinstance(e, _SIMPLE) and isinstance(t, T.Elementary | T.Subrange) and \
+                t.kind == "int":
+            return (t.lo, t.hi)
+        return None
+
     # -- coercion on store --------------------------------------------------------------------
     def coerce(self, code: str, src: T.Type | None, dst: T.Type | None, e: A.Expr | None) -> str:
         if dst is None or src is None:
@@ -967,7 +993,7 @@ class Codegen:
                 if s is T.BOOL or sb is T.BOOL:
                     return f"int({code})"
                 if k == "time" and d is T.LTIME and sb is T.TIME:
-                    return f"({code} * 1000000)"
+                    return f"({code} * 1000000)" if simple else self.wrap(f"{code} * 1000000", d)
                 if simple and (sb is d or (T.can_widen(sb, d) and sb.kind in ("int", "bits"))):
                     return code
                 if isinstance(s, T.EnumType):
@@ -978,16 +1004,18 @@ class Codegen:
             if d is T.REAL:
                 if isinstance(e, A.Literal) and isinstance(e.value, int | float) and not \
                         isinstance(e.value, bool):
-                    return repr(_f32(float(e.value)))
+                    return _float_code(e.value, single=True)
                 if T.base_of(s) is T.REAL and simple and not _from_native(e):
                     return code
+                if T.base_of(s).kind in ("int", "bits"):
+                    return f"_i2r({code})"
                 return f"_f32({code})"
             if d is T.LREAL:
                 if isinstance(e, A.Literal) and isinstance(e.value, int | float):
-                    return repr(float(e.value))
+                    return _float_code(e.value, single=False)
                 if T.base_of(s).kind == "real":
                     return code
-                return f"float({code})"
+                return f"_fl({code})"
             return code
         if isinstance(d, T.StringType):
             if isinstance(s, T.StringType) and s.length <= d.length:
@@ -1058,11 +1086,9 @@ class Codegen:
         if k == "ENUM":
             return repr(getattr(e, "enum_value", 0))
         if k == "REAL":
-            if T.resolve(e.ty) is T.REAL:
-                return repr(_f32(float(v)))
-            return repr(float(v))
+            return _float_code(v, single=T.resolve(e.ty) is T.REAL)
         if k == "INT" and e.ty is not None and T.resolve(e.ty).kind == "real":
-            return repr(float(v))
+            return _float_code(v, single=False)
         return repr(v)
 
     def e_Name(self, e: A.Name) -> str:
@@ -1256,9 +1282,9 @@ class Codegen:
         if d is T.BOOL:
             return f"({code} != 0)"
         if d.kind == "real":
-            if d is T.REAL:
-                return f"_f32({code})"
-            return f"float({code})"
+            if s.kind == "real":
+                return f"_f32({code})" if d is T.REAL else code
+            return f"_i2r({code})" if d is T.REAL else f"_fl({code})"
         if d.kind in ("int", "bits", "time", "date", "tod", "dt"):
             if s.kind == "real":
                 return self.wrap(f"_round({code})", d)
@@ -1274,12 +1300,41 @@ class Codegen:
             return self.wrap(code, d)
         return code
 
+    def shift(self, name: str, codes: list[str], args: list[A.Expr], t: T.Type) -> str:
+        """SHL/SHR/ROL/ROR on the bit pattern of IN's type; a signed result is reinterpreted
+        (SHL(INT#-1, 1) = -2). A negative count is a fault, a count >= the width gives 0."""
+        bits = getattr(t, "bits", 32) or 32
+        mask = (1 << bits) - 1
+        n = _const_int(args[1])
+        if name == "SHL" and n is not None and 0 <= n < bits:
+            r = f"(({codes[0]} << {n}) & {mask})"
+        elif name == "SHR" and n is not None and 0 <= n < bits:
+            r = f"(({codes[0]} & {mask}) >> {n})"
+        else:
+            r = f"_{name.lower()}({codes[0]}, {codes[1]}, {bits})"
+        return self.wrap(r, t) if getattr(t, "signed", False) and t.kind == "int" else r
+
+    @staticmethod
+    def widen(code: str, src: T.Type | None, dst: T.Type | None) -> str:
+        """An implicit widening inside an expression (MIN, SEL, GT...): the value stays exact,
+        but an integer becomes a float for a REAL result and TIME becomes LTIME nanoseconds."""
+        if src is None or dst is None:
+            return code
+        s, d = T.base_of(src), T.base_of(dst)
+        if s is d:
+            return code
+        if d.kind == "real" and s.kind in ("int", "bits") and s is not T.ANY_INT_LIT:
+            return f"_fl({code})"
+        if d is T.LTIME and s is T.TIME:
+            return f"({code} * 1000000)"
+        return code
+
     def builtin(self, name: str, args: list[A.Expr], e: A.Call) -> str:
         codes = [self.ex(a) for a in args]
         t = T.base_of(e.ty) if e.ty is not None else T.ANY
         w = self.where(e.loc)
-        simple = {"SQRT": "_sqrt", "LN": "_ln", "LOG": "_log", "EXP": "_exp", "SIN": "_math.sin",
-                  "COS": "_math.cos", "TAN": "_math.tan", "ASIN": "_asin", "ACOS": "_acos",
+        simple = {"SQRT": "_sqrt", "LN": "_ln", "LOG": "_log", "EXP": "_exp", "SIN": "_sin",
+                  "COS": "_cos", "TAN": "_tan", "ASIN": "_asin", "ACOS": "_acos",
                   "ATAN": "_math.atan"}
         if name in simple:
             r = f"{simple[name]}({codes[0]})"
@@ -1289,11 +1344,10 @@ class Codegen:
         if name == "NEG":
             return f"(-{codes[0]})"
         if name == "ATAN2":
-            return f"_math.atan2({codes[0]}, {codes[1]})"
-        if name == "TRUNC":
-            return f"_trunc({codes[0]})"
-        if name == "ROUND":
-            return f"_round({codes[0]})"
+            r = f"_math.atan2({codes[0]}, {codes[1]})"
+            return f"_f32({r})" if t is T.REAL else r
+        if name in ("TRUNC", "ROUND"):  # a conversion to DINT: wraps like TRUNC_DINT
+            return self.wrap(f"_{name.lower()}({codes[0]})", T.DINT)
         if name == "MOVE":
             return self.copy_code(codes[0], args[0].ty)
         if name == "EXPT":
@@ -1307,27 +1361,40 @@ class Codegen:
             return f"{fn}({codes[0]}, {codes[1]})"
         if name == "MOD":
             return f"_imod({codes[0]}, {codes[1]})"
+        if name in ("MIN", "MAX", "LIMIT", "SEL", "MUX"):
+            first = 1 if name in ("SEL", "MUX") else 0  # G and K are not values
+            codes[first:] = [self.widen(c, a.ty, t) for c, a in zip(codes[first:], args[first:],
+                                                                    strict=True)]
         if name in ("MIN", "MAX"):
             if len(codes) == 1:
                 return codes[0]
             return f"{name.lower()}({', '.join(codes)})"
         if name == "LIMIT":
             return f"_limit({codes[0]}, {codes[1]}, {codes[2]})"
-        if name == "SEL":
+        if name == "SEL":  # only the selected input is evaluated (as CODESYS documents)
             return f"({codes[2]} if {codes[0]} else {codes[1]})"
-        if name == "MUX":
-            return f"_mux({codes[0]}, ({', '.join(codes[1:])},), {w})"
+        if name == "MUX":  # likewise: a binary decision on K, no tuple of every input
+            k = self.new_tmp()
+            n = len(codes) - 1
+            return (f"({_mux_tree(k, codes[1:], 0, n)} if 0 <= ({k} := {codes[0]}) < {n} "
+                    f"else _mux({k}, {n}, {w}))")
         if name in ("SHL", "SHR", "ROL", "ROR"):
-            bits = getattr(t, "bits", 32) or 32
-            mask = (1 << bits) - 1
-            if name == "SHL":
-                return f"(({codes[0]} << {codes[1]}) & {mask})"
-            if name == "SHR":
-                return f"(({codes[0]} & {mask}) >> {codes[1]})"
-            return f"_{name.lower()}({codes[0]} & {mask}, {codes[1]}, {bits})"
+            return self.shift(name, codes, args, t)
         if name in ("GT", "GE", "EQ", "LE", "LT", "NE"):
             pyop = {"GT": ">", "GE": ">=", "EQ": "==", "LE": "<=", "LT": "<", "NE": "!="}[name]
-            return "(" + f" {pyop} ".join(codes) + ")"
+            common = _common([a.ty for a in args])
+            codes = [self.widen(c, a.ty, common) for c, a in zip(codes, args, strict=True)]
+            if len(codes) == 2:
+                return f"({codes[0]} {pyop} {codes[1]})"
+            # GT(a, b, c) = a > b AND b > c with every input evaluated once (no short cut)
+            tmps = [self.new_tmp() for _ in codes[1:-1]]
+            left = codes[0]
+            parts = []
+            for tmp, c in zip(tmps, codes[1:-1], strict=True):
+                parts.append(f"({left} {pyop} ({tmp} := {c}))")
+                left = tmp
+            parts.append(f"({left} {pyop} {codes[-1]})")
+            return "(" + " & ".join(parts) + ")"
         if name == "LEN":
             return f"len({codes[0]})"
         if name == "CONCAT":
@@ -1395,6 +1462,37 @@ def _segments(ranges: list[tuple[int, int, int]]) -> list[tuple[int, int, int]]:
                 out.append((a, b - 1, k))
     return out
 
+def _float_code(v: int | float, single: bool) -> str:
+    """A REAL/LREAL literal as Python: an overflowing literal is infinity, as in IEEE."""
+    try:
+        x = float(v)
+    except OverflowError:
+        x = math.inf if v > 0 else -math.inf
+    if single:
+        x = _f32(x)
+    if x in (math.inf, -math.inf):
+        return "_math.inf" if x > 0 else "(-_math.inf)"
+    return repr(x)
+
+
+def _mux_tree(k: str, items: list[str], lo: int, hi: int) -> str:
+    """Choose items[k] for lo <= k < hi with nested conditionals (depth log2 of the count)."""
+    if hi - lo == 1:
+        return items[lo]
+    mid = (lo + hi) // 2
+    return (f"({_mux_tree(k, items, lo, mid)} if {k} < {mid} else "
+            f"{_mux_tree(k, items, mid, hi)})")
+
+
+def _common(types: list[T.Type | None]) -> T.Type | None:
+    """The common type of a comparison's inputs (None when unknown)."""
+    cur = types[0]
+    for x in types[1:]:
+        if cur is None or x is None:
+            return None
+        cur = T.common_type(cur, x)
+    return cur
+
 
 def _from_native(e: A.Expr | None) -> bool:
     """A value read from a native block or function: Python code that may hand back doubles,
@@ -1418,7 +1516,10 @@ def _in_range_builtin(e: A.Call) -> bool:
     if name in ("LEN", "FIND"):
         return all(getattr(T.resolve(x.ty), "length", 99999) <= 32767 for x in args)
     if name in ("MIN", "MAX", "LIMIT", "MOVE", "SEL"):
-        return all(isinstance(x, _SIMPLE) for x in args)
+        vals = args[1:] if name == "SEL" else args
+        t = T.base_of(e.ty) if e.ty is not None else None
+        return all(isinstance(x, _SIMPLE) and x.ty is not None and T.base_of(x.ty) is t
+                   for x in vals) and isinstance(args[0], _SIMPLE)
     return False
 
 

@@ -89,39 +89,172 @@ def _subr(x: int, lo: int, hi: int, where: int) -> int:
     raise Fault("PLC2004", f"value {x} is outside the subrange {lo}..{hi}", where)
 
 
-def _frange(s: int, e: int, st: int, where: int) -> range:
+def _frange(s: int, e: int, st: int, lo: int, hi: int, where: int, budget: Budget | None):
+    """The values of ``FOR v := s TO e BY st`` for a variable of range lo..hi, as the hardware
+    runs it (``v := v + st`` wraps): a ``range`` when the loop ends without wrapping (the fast
+    path), else a :class:`_ForWrap`, which charges ``budget`` per pass."""
     if st == 0:
         raise Fault("PLC2005", "FOR ... BY 0 never ends; use a step other than 0", where)
-    return range(s, e + (1 if st > 0 else -1), st)
+    if (e - s) * st < 0:  # no pass at all
+        return range(s, s)
+    last = s + (e - s) // st * st
+    if lo <= last + st <= hi:
+        return range(s, e + (1 if st > 0 else -1), st)
+    return _ForWrap(s, e, st, lo, hi, where, budget)
+
+
+class _ForWrap:
+    """A FOR loop whose variable wraps at its type's limits (SINT 127 + 1 = -128), so it ends
+    late or never; ``len()`` is 0 because each pass is charged to the watchdog as it runs."""
+
+    def __init__(self, s: int, e: int, st: int, lo: int, hi: int, where: int,
+                 budget: Budget | None) -> None:
+        self.s, self.e, self.st, self.lo, self.hi = s, e, st, lo, hi
+        self.where, self.budget = where, budget
+        self.final = s
+        self.wrapped: tuple[int, int] | None = None  # the last wrap: value before, after
+
+    def __len__(self) -> int:
+        return 0
+
+    def __iter__(self):
+        v, e, st, lo, hi, budget = self.s, self.e, self.st, self.lo, self.hi, self.budget
+        while v <= e if st > 0 else v >= e:
+            if budget is not None:
+                budget.left -= 1
+                if budget.left < 0:
+                    self.overrun()
+            yield v
+            if not lo <= v + st <= hi:
+                self.wrapped = (v, (v + st - lo) % (hi - lo + 1) + lo)
+                v = self.wrapped[1]
+            else:
+                v += st
+        self.final = v
+
+    def overrun(self):
+        if self.wrapped is None:
+            _wd(self.where)
+        a, b = self.wrapped
+        step = f"+ {self.st}" if self.st > 0 else f"- {-self.st}"
+        raise Fault("PLC2003", f"watchdog: this FOR loop never ends: its variable wraps around "
+                    f"at the limit of its type ({a} {step} gives {b}, range {self.lo}.."
+                    f"{self.hi}), so it never passes the end value {self.e}; use a wider type for "
+                    "the variable", self.where)
+
+
+def _fend(r) -> int:
+    """The FOR variable's value after the loop ended normally: one step past the last pass."""
+    if type(r) is range:
+        return r.start + len(r) * r.step
+    return r.final
 
 
 def _round(x: float) -> int:
-    """REAL -> integer conversion: round half away from zero (as CODESYS)."""
+    """REAL -> integer conversion: round half away from zero (as CODESYS).
+
+    Exact for every double: ``x - int(x)`` is the exact fraction, unlike ``floor(x + 0.5)``,
+    which rounds 0.49999999999999994 up and 2**52 + 1 to 2**52 + 2.
+    """
     if x != x or x in (math.inf, -math.inf):
-        raise Fault("PLC2006", f"cannot convert {x} to an integer")
-    return int(math.floor(x + 0.5)) if x >= 0 else -int(math.floor(-x + 0.5))
+        raise Fault("PLC2006", f"cannot convert {x} to an integer; check for a division by zero "
+                    "or an overflow before converting")
+    n = int(x)
+    f = x - n
+    if f >= 0.5:
+        return n + 1
+    if f <= -0.5:
+        return n - 1
+    return n
 
 
 def _trunc(x: float) -> int:
     if x != x or x in (math.inf, -math.inf):
-        raise Fault("PLC2006", f"cannot convert {x} to an integer")
+        raise Fault("PLC2006", f"cannot convert {x} to an integer; check for a division by zero "
+                    "or an overflow before converting")
     return int(x)
 
 
-def _expt(a, b):
+def _i2r(x: int) -> float:
+    """An exact integer to REAL, rounded once to nearest-even (not twice, through a double)."""
+    if -0x20000000000000 <= x <= 0x20000000000000:
+        return _f32(x)  # exact in a double, so a single rounding
+    n = abs(x)
+    drop = n.bit_length() - 26  # keep 24 bits, the rounding bit and a sticky bit
+    m = (n >> drop) | (1 if n & ((1 << drop) - 1) else 0)
     try:
-        r = a ** b
-    except ZeroDivisionError:
-        return math.inf
+        y = math.ldexp(float(m), drop)
     except OverflowError:
-        return math.inf
-    if isinstance(r, complex):
+        y = math.inf
+    return _f32(y if x > 0 else -y)
+
+
+def _fl(x) -> float:
+    """An exact integer widened to LREAL: nearest double, or +-inf beyond its range (IEEE)."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
+
+
+def _odd(y: float) -> bool:
+    return math.isfinite(y) and y == int(y) and int(y) % 2 == 1
+
+
+def _expt(a, b):
+    """EXPT and '**' (result REAL/LREAL) with IEEE 754 results (C99 Annex F): 0 ** -1 = inf,
+    (-8) ** 0.5 = NaN, overflow = +-inf. Two integers give the exact power rounded once, with
+    bounded work: a power beyond the double range is never computed."""
+    if type(a) is int and type(b) is int:
+        return _ipow(a, b)
+    a, b = _fl(a), _fl(b)
+    try:
+        return math.pow(a, b)
+    except OverflowError:
+        return -math.inf if a < 0 and _odd(b) else math.inf
+    except ValueError:  # 0 ** negative, or a negative base and a fractional exponent
+        if a == 0:
+            return math.copysign(math.inf, a) if _odd(b) else math.inf
         return math.nan
-    return float(r)
+
+
+def _ipow(a: int, b: int) -> float:
+    neg = a < 0 and b % 2 == 1
+    big = abs(a) >= 2 and abs(b) * (abs(a).bit_length() - 1) > 1100  # |a ** b| > 2 ** 1100
+    if b >= 0:
+        if big:
+            return -math.inf if neg else math.inf
+        return _fl(a ** b)
+    if a == 0:
+        return math.inf
+    if big:
+        return -0.0 if neg else 0.0
+    return 1 / a ** -b  # int / int is correctly rounded
 
 
 def _sqrt(x):
     return math.sqrt(x) if x >= 0 else math.nan
+
+
+def _sin(x):
+    try:
+        return math.sin(x)
+    except ValueError:  # SIN(+-inf)
+        return math.nan
+
+
+def _cos(x):
+    try:
+        return math.cos(x)
+    except ValueError:
+        return math.nan
+
+
+def _tan(x):
+    try:
+        return math.tan(x)
+    except ValueError:
+        return math.nan
 
 
 def _ln(x):
@@ -154,21 +287,42 @@ def _limit(mn, x, mx):
     return mx if x > mx else x
 
 
-def _mux(k, items, where):
-    if 0 <= k < len(items):
-        return items[k]
-    raise Fault("PLC2002", f"MUX selector K = {k} is outside 0..{len(items) - 1}", where)
+def _mux(k: int, n: int, where: int):
+    raise Fault("PLC2002", f"MUX selector K = {k} is outside 0..{n - 1}", where)
+
+
+def _count(n: int) -> None:
+    if n < 0:
+        raise Fault("PLC2020", f"shift count N = {n} is negative; SHL, SHR, ROL and ROR shift "
+                    "by 0 or more bits")
+
+
+def _shl(x: int, n: int, bits: int) -> int:
+    """SHL: zeros come in from the right; a count of the width or more gives 0."""
+    _count(n)
+    return (x << n) & ((1 << bits) - 1) if n < bits else 0
+
+
+def _shr(x: int, n: int, bits: int) -> int:
+    """SHR: zeros come in from the left (also for signed types: the bit pattern shifts)."""
+    _count(n)
+    return (x & ((1 << bits) - 1)) >> n if n < bits else 0
 
 
 def _rol(x: int, n: int, bits: int) -> int:
+    """ROL: rotate left; the count is taken modulo the width."""
+    _count(n)
     n %= bits
     m = (1 << bits) - 1
+    x &= m
     return ((x << n) | (x >> (bits - n))) & m
 
 
 def _ror(x: int, n: int, bits: int) -> int:
+    _count(n)
     n %= bits
     m = (1 << bits) - 1
+    x &= m
     return ((x >> n) | (x << (bits - n))) & m
 
 
