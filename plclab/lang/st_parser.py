@@ -34,6 +34,9 @@ _STMT_END = {"END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNT
              "END_REPEAT", "END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_TEST", "EOF"}
 _POU_START = {"PROGRAM", "FUNCTION", "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION",
               "TEST"}
+# tokens where a declaration cannot continue: a new section, a new POU, the end of a body
+_DECL_STOP = set(_VAR_SECTIONS) | _POU_START | _STMT_END | {"END_TYPE", "END_STRUCT",
+                                                             "END_CONFIGURATION", "END_RESOURCE"}
 _CMP = {"=": "=", "<>": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 _NATIVE_RE = re.compile(r"^native\s+'([A-Za-z0-9_.]+:[A-Za-z0-9_]+)'$")
 
@@ -103,6 +106,14 @@ class Parser:
             raise _Bail
         self.error("PLC0010", f"expected {what}, found {found}")
         raise _Bail
+
+    def ensure_progress(self, start: int) -> None:
+        """Safety net of every recovery loop: if nothing was consumed since ``start``, report
+        the token and skip it, so that no loop can run twice on the same token."""
+        if self.i == start and not self.at("EOF"):
+            self.error("PLC0010", f"unexpected {_found(self.tok)} here; remove it or check the "
+                       "structure around it")
+            self.advance()
 
     def sync(self, stops: set[str]) -> None:
         """Skip tokens until after a ';' or before one of ``stops``."""
@@ -179,11 +190,13 @@ class Parser:
                     self.advance()
         decls: list[A.VarDecl] = []
         while self.tok.kind in _VAR_SECTIONS:
+            start = self.i
             try:
                 decls.extend(self.var_section())
             except _Bail:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
+                self.ensure_progress(start)
         body, language, lower = self.pou_body(end_kw)
         end_loc = self.loc()
         if not self.accept(end_kw):
@@ -303,14 +316,19 @@ class Parser:
             retain |= k in ("RETAIN", "PERSISTENT")
         out: list[A.VarDecl] = []
         while not self.at("END_VAR"):
-            if self.at("EOF") or self.tok.kind in _POU_START - {"VAR_GLOBAL"} or (
-                self.tok.kind in _STMT_END
-            ):
-                self.fail_expected("END_VAR")
+            if self.tok.kind in _DECL_STOP:
+                # a section or POU starts before this one is closed: report it and let the
+                # caller go on from here (never loop on the same token)
+                self.error("PLC0010", f"expected END_VAR to close the {section} section opened "
+                           f"at line {sec_tok.line}, found {_found(self.tok)}; add END_VAR "
+                           "before it")
+                raise _Bail
+            start = self.i
             try:
                 out.extend(self.var_decl(section, constant, retain))
             except _Bail:
-                self.sync({"END_VAR"} | _POU_START)
+                self.sync({"END_VAR"} | _DECL_STOP)
+                self.ensure_progress(start)
         self.expect("END_VAR")
         return out
 
@@ -379,6 +397,7 @@ class Parser:
         while not self.at("END_TYPE"):
             if self.at("EOF") or self.tok.kind in _POU_START:
                 self.fail_expected("END_TYPE")
+            start = self.i
             try:
                 n = self.expect("IDENT", "a type name")
                 self.expect(":")
@@ -390,6 +409,7 @@ class Parser:
                 out.append(A.TypeDecl(self.loc(n), n.value, tref, init, n.text))
             except _Bail:
                 self.sync({"END_TYPE"} | _POU_START)
+                self.ensure_progress(start)
         self.expect("END_TYPE")
         return out
 
