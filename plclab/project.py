@@ -15,6 +15,7 @@ from typing import Any
 
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
+from .lang.lexer import cap_per_file
 
 STDLIB_FILES = ("stdlib.st", "ctrllib.st")
 
@@ -86,7 +87,7 @@ def check_sources(sources: list[tuple[str, str]]):
         all_diags.sort(key=lambda d: (d.location.file, d.location.line, d.location.col)
                        if d.location else ("", 0, 0))
     has_err = any(d.severity == "error" for d in all_diags)
-    return (None if has_err else project), all_diags
+    return (None if has_err else project), cap_per_file(all_diags)
 
 
 def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>"):

@@ -79,6 +79,43 @@ _UNIT_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000
 _ESCAPES = {"$": "$", "'": "'", '"': '"', "L": "\n", "N": "\n", "P": "\f", "R": "\r", "T": "\t"}
 
 
+# At most this many diagnostics are kept per file; then one PLC0128 says there are more.
+MAX_DIAGNOSTICS_PER_FILE = 100
+
+
+def too_many_diagnostics(file: str, where: Location | None) -> Diagnostic:
+    """The one diagnostic that replaces everything beyond the cap of a file (located at the
+    first one left out)."""
+    return Diagnostic("PLC0128", f"too many errors in {file}; only the first "
+                      f"{MAX_DIAGNOSTICS_PER_FILE} are shown: fix these first", where)
+
+
+def add_capped(diags: list[Diagnostic], d: Diagnostic, file: str) -> None:
+    """Append ``d`` unless the file already has its cap of diagnostics."""
+    if len(diags) < MAX_DIAGNOSTICS_PER_FILE:
+        diags.append(d)
+    elif len(diags) == MAX_DIAGNOSTICS_PER_FILE:
+        diags.append(too_many_diagnostics(file, d.location))
+
+
+def cap_per_file(diags: list[Diagnostic]) -> list[Diagnostic]:
+    """Keep at most :data:`MAX_DIAGNOSTICS_PER_FILE` diagnostics of each file (in order),
+    then one PLC0128 for the file."""
+    counts: dict[str, int] = {}
+    out: list[Diagnostic] = []
+    for d in diags:
+        f = d.location.file if d.location is not None else ""
+        n = counts.get(f, 0)
+        if d.code == "PLC0128":
+            n = max(n, MAX_DIAGNOSTICS_PER_FILE)
+        if n < MAX_DIAGNOSTICS_PER_FILE:
+            out.append(d)
+        elif n == MAX_DIAGNOSTICS_PER_FILE:
+            out.append(d if d.code == "PLC0128" else too_many_diagnostics(f, d.location))
+        counts[f] = n + 1
+    return out
+
+
 class Lexer:
     """Turns one source file into a token list, collecting diagnostics on the way."""
 
@@ -89,7 +126,22 @@ class Lexer:
         self.pragmas: list[tuple[int, str]] = []
 
     def error(self, code: str, msg: str, line: int, col: int) -> None:
-        self.diagnostics.append(Diagnostic(code, msg, Location(self.file, line, col)))
+        add_capped(self.diagnostics, Diagnostic(code, msg, Location(self.file, line, col)),
+                   self.file)
+
+    def _bad_run(self, pos: int, line: int, col: int) -> int:
+        """Report a run of characters that start no token as one diagnostic; return its end."""
+        text, n, match = self.text, len(self.text), _TOKEN_RE.match
+        end = pos + 1
+        while end < n and match(text, end) is None:
+            end += 1
+        ch = text[pos]
+        more = f" (and {end - pos - 1} more up to column {col + end - pos - 1})" \
+            if end - pos > 1 else ""
+        self.error("PLC0001", f"unexpected character {ch!r}{more}; remove it (ST uses only "
+                   "ASCII letters, digits, operators and quotes outside comments and strings)",
+                   line, col)
+        return end
 
     def tokens(self) -> list[Token]:
         text, pos, line, line_start = self.text, 0, 1, 0
@@ -100,11 +152,7 @@ class Lexer:
             m = match(text, pos)
             col = pos - line_start + 1
             if m is None:
-                ch = text[pos]
-                self.error("PLC0001", f"unexpected character {ch!r}; remove it (ST uses only ASCII "
-                           "letters, digits, operators and quotes outside comments and strings)",
-                           line, col)
-                pos += 1
+                pos = self._bad_run(pos, line, col)
                 continue
             kind = m.lastgroup
             s = m.group()

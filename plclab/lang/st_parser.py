@@ -15,7 +15,7 @@ import re
 
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
-from .lexer import KEYWORDS, Lexer, Token
+from .lexer import KEYWORDS, Lexer, Token, add_capped
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
@@ -83,7 +83,7 @@ class Parser:
         return None
 
     def error(self, code: str, msg: str, tok: Token | None = None) -> None:
-        self.diagnostics.append(Diagnostic(code, msg, self.loc(tok)))
+        add_capped(self.diagnostics, Diagnostic(code, msg, self.loc(tok)), self.file)
 
     def expect(self, kind: str, what: str | None = None) -> Token:
         if self.tok.kind == kind:
