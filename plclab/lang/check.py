@@ -8,6 +8,7 @@ collected; :func:`check` raises one :class:`~plclab.errors.PlcError` carrying ev
 from __future__ import annotations
 
 import difflib
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -17,6 +18,7 @@ from . import types as T
 from .builtins import BUILTINS, Builtin, conversion
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
+_CONST_BITS = 128  # constant folding stops beyond this (no IEC integer has more than 64)
 _ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
 
 
@@ -82,7 +84,17 @@ class Checker:
         self.globals: dict[str, A.VarDecl] = {}
         self.enum_members: dict[str, list[EnumSym]] = {}
         self.consts: dict[int, Any] = {}
-        self._resolving: set[str] = set()
+        # what is being evaluated or resolved right now (constants, types, enumeration values):
+        # meeting one of them again is a cycle (PLC0122)
+        self._chain: list[tuple[Any, str, Location | None]] = []
+        self._chain_keys: set[Any] = set()
+        self._cycles_seen: set[frozenset] = set()
+        self._const_memo: dict[int, Any] = {}  # id(VarDecl) -> folded value
+        self._broken: set[int] = set()  # constants whose value has a reported error
+        self._broken_hits = 0  # uses of such constants (their users need no second error)
+        self._global_consts: dict[str, A.VarDecl] = {}  # visible to TYPEs before globals are
+        self._enum_index: dict[str, str] = {}  # member name -> TYPE not yet resolved
+        self._enum_pending: dict[int, tuple[A.Expr | None, EnumSym | None, Location]] = {}
         self.calls: dict[str, set[str]] = {}  # pou -> pous it calls (for recursion)
         self.pou: A.Pou | None = None
         self.scope: dict[str, Any] = {}
@@ -96,6 +108,35 @@ class Checker:
 
     def warn(self, code: str, msg: str, loc: Location | None) -> None:
         self.diags.append(Diagnostic(code, msg, loc, "warning"))
+
+    # -- cycles among constants, enumeration values and types ---------------------------------
+    def _enter(self, key: Any, label: str, loc: Location | None) -> bool:
+        """Start evaluating ``key``; False (and PLC0122 once) if it is already under way."""
+        if key in self._chain_keys:
+            i = next(k for k, (ck, _, _) in enumerate(self._chain) if ck == key)
+            cyc = self._chain[i:]
+            ident = frozenset(ck for ck, _, _ in cyc)
+            if ident not in self._cycles_seen:
+                self._cycles_seen.add(ident)
+                names = " -> ".join([lab for _, lab, _ in cyc] + [label])
+                structs = [ck[1] for ck, _, _ in cyc if isinstance(ck, tuple) and
+                           isinstance(self.type_decls[ck[1]].type, A.StructTypeRef)]
+                if structs:
+                    self.err("PLC0123", f"structure {structs[0]} contains itself ({names}): it "
+                             "would be infinitely large; remove the field that closes the "
+                             "circle", cyc[0][2])
+                else:
+                    self.err("PLC0122", f"{names}: these are defined in terms of each other; "
+                             "give one of them a value that does not depend on the others",
+                             cyc[0][2])
+            return False
+        self._chain.append((key, label, loc))
+        self._chain_keys.add(key)
+        return True
+
+    def _leave(self) -> None:
+        key, _, _ = self._chain.pop()
+        self._chain_keys.discard(key)
 
     # -- driver -------------------------------------------------------------------------------
     def run(self) -> Project:
@@ -114,15 +155,22 @@ class Checker:
                     self.pous[p.name] = p
                     continue
                 self._declare("POU", p.name, p.loc, self.pous, p)
+        configs = [c for f in self.files for c in f.configs]
+        gdecls = [d for f in self.files for g in f.globals for d in g.decls]
+        gdecls += [d for c in configs for d in c.globals]
+        for d in gdecls:  # global constants may size types declared before them
+            if d.constant:
+                self._global_consts.setdefault(d.name, d)
+        for name, td in self.type_decls.items():
+            if isinstance(td.type, A.EnumTypeRef):
+                for mname, _, _ in td.type.members:
+                    self._enum_index.setdefault(mname, name)
         for name in self.type_decls:
             self.named_type(name, self.type_decls[name].loc)
         for p in self.pous.values():
             if p.kind != "FUNCTION":
                 self.types.setdefault(p.name, T.FBType(p.name, p))
         # globals
-        configs = [c for f in self.files for c in f.configs]
-        gdecls = [d for f in self.files for g in f.globals for d in g.decls]
-        gdecls += [d for c in configs for d in c.globals]
         for d in gdecls:
             d.section = "VAR_GLOBAL"
             self.decl_type(d)
@@ -184,17 +232,17 @@ class Checker:
         if name in self.types:
             return self.types[name]
         if name in self.type_decls:
-            if name in self._resolving:
-                self.err("PLC0102", f"type {name} is defined in terms of itself", loc)
-                return T.ANY
-            self._resolving.add(name)
             td = self.type_decls[name]
-            ty = self.type_ref(td.type, td.name)
+            if not self._enter(("type", name), td.spelling or name, td.loc):
+                return T.ANY
+            try:
+                ty = self.type_ref(td.type, td.name)
+            finally:
+                self._leave()
             if isinstance(ty, T.Elementary | T.StringType | T.ArrayType | T.Subrange | T.FBType):
                 ty = T.AliasType(name, ty) if not isinstance(ty, T.Subrange) else ty
-            self.types[name] = ty
-            self._resolving.discard(name)
-            return ty
+            self.types.setdefault(name, ty)
+            return self.types[name]
         if name in self.pous and self.pous[name].kind != "FUNCTION":
             t2 = self.types.setdefault(name, T.FBType(name, self.pous[name]))
             return t2
@@ -219,16 +267,19 @@ class Checker:
             return T.StringType(r.wide, n)
         if isinstance(r, A.ArrayTypeRef):
             dims = []
+            known = True
             for lo_e, hi_e in r.ranges:
                 lo, hi = self.const_int(lo_e), self.const_int(hi_e)
                 if lo is None or hi is None:
-                    lo, hi = 0, 0
+                    lo, hi, known = 0, 0, False
                 elif hi < lo:
                     self.err("PLC0109", f"array range {lo}..{hi} is empty; write the lower bound "
                              "first", lo_e.loc)
                     hi = lo
                 dims.append((lo, hi))
             elem = self.type_ref(r.elem)
+            if not known:  # reported: no follow-up errors about its elements
+                return T.ANY
             at = T.ArrayType(dims, elem)
             if at.size > 10_000_000:
                 self.err("PLC0109", f"array of {at.size} elements is too large for a PLC "
@@ -255,16 +306,22 @@ class Checker:
                 if isinstance(b, T.Elementary) and b.kind in ("int", "bits"):
                     base = b
             et = T.EnumType(name or f"enum@{r.loc.line}", {}, base, dict(r.spellings))
-            nxt = 0
+            if name is not None:
+                self.types.setdefault(name, et)  # its values may name each other
+            syms: list[EnumSym] = []
+            prev: EnumSym | None = None
             for mname, mval, mloc in r.members:
-                if mval is not None:
-                    v = self.const_int(mval)
-                    nxt = v if v is not None else nxt
                 if mname in et.members:
                     self.err("PLC0101", f"enumeration value {mname} appears twice", mloc)
-                et.members[mname] = nxt
-                self.enum_members.setdefault(mname, []).append(EnumSym(et, nxt, mname))
-                nxt += 1
+                sym = EnumSym(et, 0, mname)
+                et.members[mname] = 0
+                self._enum_pending[id(sym)] = (mval, prev, mloc)
+                self.enum_members.setdefault(mname, []).append(sym)
+                syms.append(sym)
+                prev = sym
+            for sym in syms:  # in order: an implicit value is the one before plus 1
+                self._enum_value(sym)
+                et.members[sym.member] = sym.value
             return et
         if isinstance(r, A.StructTypeRef):
             st = T.StructType(name or f"struct@{r.loc.line}", {})
@@ -314,6 +371,70 @@ class Checker:
             self.err("PLC0120", f"{d.spelling or d.name} is {t.name} but {addr} holds "
                      f"{bits} bit(s); declare it as {need}", d.loc)
 
+    def _enum_value(self, sym: EnumSym) -> int | None:
+        """The value of an enumeration member, evaluated on first use (values may refer to
+        constants and to other members; a circle among them is PLC0122)."""
+        walked: list[EnumSym] = []  # implicit values, from ``sym`` back to an explicit one
+        s: EnumSym | None = sym
+        while s is not None and id(s) in self._enum_pending and \
+                self._enum_pending[id(s)][0] is None:
+            walked.append(s)
+            s = self._enum_pending[id(s)][1]
+        entered = 0
+        try:
+            for w in walked:
+                if not self._enter(id(w), f"{w.type.name}.{w.member}",
+                                   self._enum_pending[id(w)][2]):
+                    return None
+                entered += 1
+            if s is None:
+                base: int | None = -1
+            elif id(s) not in self._enum_pending:
+                base = s.value
+            else:  # an explicit value still to evaluate
+                expr, _, loc = self._enum_pending[id(s)]
+                if not self._enter(id(s), f"{s.type.name}.{s.member}", loc):
+                    return None
+                try:
+                    base = self.const_int(expr)
+                finally:
+                    self._leave()
+                self._enum_pending.pop(id(s), None)
+                s.value = base if base is not None else 0
+                s.type.members[s.member] = s.value
+        finally:
+            for _ in range(entered):
+                self._leave()
+        if base is None:
+            return None
+        for k, w in enumerate(reversed(walked)):
+            w.value = base + k + 1
+            w.type.members[w.member] = w.value
+            self._enum_pending.pop(id(w), None)
+        return sym.value
+
+    def _const_of(self, d: A.VarDecl, scope: dict[str, Any]) -> Any:
+        """The folded value of constant ``d`` (evaluated once, in its own ``scope``)."""
+        key = id(d)
+        if key in self._const_memo:
+            if key in self._broken:
+                self._broken_hits += 1
+            return self._const_memo[key]
+        if not self._enter(key, d.spelling or d.name, d.loc):
+            self._broken_hits += 1
+            return None
+        old, before = self.scope, (len(self.diags), self._broken_hits)
+        self.scope = scope
+        try:
+            v = self.const_value(d.init) if d.init is not None else None
+        finally:
+            self.scope = old
+            self._leave()
+        if (len(self.diags), self._broken_hits) != before:
+            self._broken.add(key)  # its error is reported: users of it need no second one
+        self._const_memo[key] = v
+        return v
+
     # -- constants ----------------------------------------------------------------------------
     def const_value(self, e: A.Expr) -> Any:
         """Evaluate a constant expression (literals, constants, arithmetic); None if not."""
@@ -324,15 +445,21 @@ class Checker:
                 return e.value
             return e.value
         if isinstance(e, A.Name):
-            d = self.scope.get(e.name)
-            d = d.decl if isinstance(d, VarSym) else None
-            if d is None:
-                d = self.globals.get(e.name)
+            sym = self.scope.get(e.name)
+            d, scope = None, self.scope
+            if isinstance(sym, VarSym):
+                d = sym.decl
+                scope = {} if sym.storage == "global" else self.scope
+            else:
+                d, scope = self.globals.get(e.name) or self._global_consts.get(e.name), {}
             if d is not None and d.constant and d.init is not None:
                 d.used = True
-                return self.const_value(d.init)
+                return self._const_of(d, scope)
+            if e.name not in self.enum_members and e.name in self._enum_index:
+                tname = self._enum_index.pop(e.name)  # declared later: resolve it now
+                self.named_type(tname, e.loc)
             if e.name in self.enum_members and len(self.enum_members[e.name]) == 1:
-                return self.enum_members[e.name][0].value
+                return self._enum_value(self.enum_members[e.name][0])
             return None
         if isinstance(e, A.Unary):
             v = self.const_value(e.operand)
@@ -350,25 +477,50 @@ class Checker:
             try:
                 match e.op:
                     case "+":
-                        return a + b
+                        r = a + b
                     case "-":
-                        return a - b
+                        r = a - b
                     case "*":
-                        return a * b
+                        r = a * b
                     case "/":
                         if isinstance(a, int) and isinstance(b, int):
                             q = abs(a) // abs(b)
-                            return q if (a >= 0) == (b >= 0) else -q
-                        return a / b
+                            r = q if (a >= 0) == (b >= 0) else -q
+                        else:
+                            r = a / b
                     case "MOD":
-                        return a - b * int(a / b)
-            except ZeroDivisionError:
+                        r = a - b * (abs(a) // abs(b)) * (1 if (a >= 0) == (b >= 0) else -1) \
+                            if isinstance(a, int) and isinstance(b, int) else math.fmod(a, b)
+                    case _:
+                        return None
+            except (ZeroDivisionError, ValueError):
                 self.err("PLC2001", "division by zero in a constant expression", e.loc)
                 return None
+            except OverflowError:
+                r = math.inf
+            return self._bounded(r, e)
         return None
 
+    def _bounded(self, v: Any, e: A.Expr) -> Any:
+        """A folded value no IEC type can hold (integers beyond 128 bits, floats beyond LREAL)
+        is PLC0125, so that folding never builds huge numbers."""
+        if isinstance(v, bool):
+            return v
+        if isinstance(v, int) and v.bit_length() > _CONST_BITS:
+            self.err("PLC0125", f"this constant expression is larger than any integer type "
+                     f"(more than {_CONST_BITS} bits); use smaller values", e.loc)
+            return None
+        if isinstance(v, float) and not math.isfinite(v):
+            self.err("PLC0125", "this constant expression overflows LREAL (beyond "
+                     "1.8E308); use smaller values", e.loc)
+            return None
+        return v
+
     def const_int(self, e: A.Expr) -> int | None:
+        before = (len(self.diags), self._broken_hits)
         v = self.const_value(e)
+        if (len(self.diags), self._broken_hits) != before:  # explained (a cycle, an overflow)
+            return v if isinstance(v, int) and not isinstance(v, bool) else None
         if isinstance(v, bool) or not isinstance(v, int):
             self.err("PLC0109", "a constant integer expression is needed here (a literal or a "
                      "VAR CONSTANT)", e.loc)
@@ -441,7 +593,7 @@ class Checker:
         self.scope = scope
         self.init_value(d.init, d.ty, d.loc)
         if d.constant:
-            self.consts[id(d)] = self.const_value(d.init)
+            self.consts[id(d)] = self._const_of(d, scope)
         self.scope = old
 
     def init_value(self, e: A.Expr, ty: T.Type, loc: Location) -> None:

@@ -1,0 +1,207 @@
+"""Bounded work and hostile declarations: the parsers always make progress, diagnostics are
+capped per file, and cycles, sizes, literals, addresses and tasks beyond the limits are
+compile-time errors with a code, a message that says what to do and a location."""
+
+from __future__ import annotations
+
+import signal
+from contextlib import contextmanager
+
+import pytest
+
+import plclab
+from plclab.errors import PlcError
+from plclab.lang.lexer import MAX_DIAGNOSTICS_PER_FILE
+from plclab.problems import PROBLEMS
+from plclab.project import check_sources
+
+
+@contextmanager
+def within(seconds: int):
+    """Fail (instead of hanging the suite) if the block runs longer than ``seconds``."""
+
+    def boom(*_):
+        raise TimeoutError(f"no answer within {seconds} s")
+
+    old = signal.signal(signal.SIGALRM, boom)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def diags_of(src: str, name: str = "b.st"):
+    with within(20):
+        _, diags = check_sources([(src, name)])
+    return diags
+
+
+def errors(src: str, name: str = "b.st", code: str | None = None):
+    out = [d for d in diags_of(src, name) if d.severity == "error"]
+    return [d for d in out if code is None or d.code == code]
+
+
+def one(src: str, code: str, name: str = "b.st"):
+    """The single diagnostic ``code`` of ``src``: catalogued, located in the file, explained."""
+    found = errors(src, name, code)
+    assert found, f"{code} not reported; got {[str(d) for d in diags_of(src, name)]}"
+    d = found[0]
+    assert code in PROBLEMS
+    assert d.location is not None and d.location.file == name and d.location.line >= 1
+    assert len(d.message) > 20
+    return d
+
+
+# -- parser progress ------------------------------------------------------------------------
+
+TRUNCATED = [
+    "PROGRAM P VAR VAR_GLOBAL END_VAR END_PROGRAM",  # the fuzzer's 78 hangs
+    "PROGRAM P VAR VAR_INPUT x : INT; END_VAR END_PROGRAM",
+    "PROGRAM P VAR x : INT; VAR_TEMP y : INT; END_VAR END_PROGRAM",
+    "FUNCTION_BLOCK F VAR_INPUT VAR_OUTPUT q : BOOL; END_VAR END_FUNCTION_BLOCK",
+    "PROGRAM P VAR x : INT; END_PROGRAM",
+    "PROGRAM P VAR x : INT;",
+    "PROGRAM P VAR",
+    "VAR_GLOBAL x : INT; PROGRAM P END_PROGRAM",
+    "VAR_GLOBAL VAR_GLOBAL VAR_GLOBAL",
+    "TYPE T : STRUCT a : INT; END_TYPE PROGRAM P END_PROGRAM",
+    "TYPE T : STRUCT a : INT; VAR x : INT; END_VAR END_STRUCT; END_TYPE",
+    "TYPE T : (A, B; VAR_GLOBAL x : T; END_VAR",
+    "TYPE VAR END_TYPE",
+    "PROGRAM P VAR a : ARRAY[1.. OF INT; END_VAR END_PROGRAM",
+    "CONFIGURATION C VAR_GLOBAL RESOURCE R ON X TASK t(INTERVAL := T#1s); END_RESOURCE",
+    "CONFIGURATION C RESOURCE R ON X TASK t(INTERVAL := ; END_RESOURCE END_CONFIGURATION",
+    "TEST 'x' VAR VAR_GLOBAL END_VAR END_TEST",
+    "PROGRAM P VAR x : INT; END_VAR CASE x OF 1: VAR END_CASE END_PROGRAM",
+    "PROGRAM P END_VAR END_VAR END_STRUCT END_TYPE END_PROGRAM",
+    "FUNCTION F : INT VAR_INPUT VAR_IN_OUT VAR_OUTPUT VAR_EXTERNAL VAR_TEMP VAR",
+]
+
+
+@pytest.mark.parametrize("src", TRUNCATED)
+@pytest.mark.parametrize("name", ["t.st", "t.il"])
+def test_truncated_and_misplaced_sections_return_at_once_with_an_error(src, name):
+    errs = errors(src, name)
+    assert errs, "a broken file must give an error"
+    assert all(d.code in PROBLEMS and d.location is not None for d in errs)
+
+
+def test_the_typo_names_the_section_to_close():
+    d = one("PROGRAM P VAR VAR_GLOBAL END_VAR END_PROGRAM", "PLC0010")
+    assert "END_VAR" in d.message and "VAR_GLOBAL" in d.message
+    assert (d.location.line, d.location.col) == (1, 15)
+
+
+def test_a_section_left_open_still_checks_the_rest_of_the_file():
+    src = ("PROGRAM P VAR x : INT;\nVAR_TEMP y : INT; END_VAR\nx := y + 1;\nEND_PROGRAM\n"
+           "PROGRAM Q VAR z : INT; END_VAR z := undeclared; END_PROGRAM")
+    codes = [(d.code, d.location.line) for d in errors(src)]
+    assert ("PLC0010", 2) in codes and ("PLC0100", 5) in codes
+
+
+def test_ladder_text_with_misplaced_sections_returns():
+    src = "PROGRAM P\nVAR VAR_GLOBAL a : BOOL; END_VAR\n|--[ a ]--( b )--|\nEND_PROGRAM"
+    assert errors(src, "l.ld")
+
+
+# -- diagnostics capped per file ------------------------------------------------------------
+
+def test_a_megabyte_of_nul_bytes_is_one_diagnostic():
+    diags = diags_of("\x00" * 1_000_000, "nul.st")
+    assert len(diags) == 1 and diags[0].code == "PLC0001"
+    assert "999999 more" in diags[0].message
+
+
+def test_diagnostics_are_capped_per_file_with_one_note():
+    diags = diags_of("@ " * 100_000, "at.st") + diags_of(
+        "PROGRAM P VAR x : INT; END_VAR\n" + "x := TRUE;\n" * 300 + "END_PROGRAM", "m.st")
+    for f in ("at.st", "m.st"):
+        mine = [d for d in diags if d.location.file == f]
+        assert len(mine) == MAX_DIAGNOSTICS_PER_FILE + 1
+        assert mine[-1].code == "PLC0128" and "fix these first" in mine[-1].message
+        assert mine[-1].location.line >= 1
+
+
+def test_the_cap_is_per_file():
+    bad = "PROGRAM P VAR x : INT; END_VAR\n" + "x := TRUE;\n" * 150 + "END_PROGRAM"
+    _, diags = check_sources([(bad, "a.st"), (bad.replace("PROGRAM P", "PROGRAM Q"), "b.st")])
+    for f in ("a.st", "b.st"):
+        assert len([d for d in diags if d.location.file == f]) == MAX_DIAGNOSTICS_PER_FILE + 1
+
+
+def test_check_command_output_is_bounded(tmp_path, capsys):
+    from plclab.cli import main
+
+    f = tmp_path / "many.st"
+    f.write_text("PROGRAM P VAR x : INT; END_VAR\n" + "x := TRUE;\n" * 5000 + "END_PROGRAM")
+    assert main(["check", str(f)]) == 1
+    out = capsys.readouterr()
+    text = out.out + out.err
+    assert text.count("PLC0118") == MAX_DIAGNOSTICS_PER_FILE and "PLC0128" in text
+
+
+# -- cycles among constants, enumeration values and types ----------------------------------
+
+@pytest.mark.parametrize("src, chain", [
+    ("VAR_GLOBAL CONSTANT A : INT := B; B : INT := A; END_VAR\n"
+     "PROGRAM P VAR x : INT; END_VAR x := A; END_PROGRAM", "A -> B -> A"),
+    ("PROGRAM P VAR CONSTANT N : INT := N + 1; END_VAR\nVAR a : ARRAY[1..N] OF INT; END_VAR\n"
+     "a[1] := 1; END_PROGRAM", "N -> N"),
+    ("TYPE E : (A := B, B := A); END_TYPE\nPROGRAM P VAR e : E; END_VAR e := A; END_PROGRAM",
+     "E.A -> E.B -> E.A"),
+    ("TYPE E : (A := C, B, C); END_TYPE\nPROGRAM P VAR e : E; END_VAR e := A; END_PROGRAM",
+     "E.A -> E.C -> E.B -> E.A"),
+    ("TYPE E1 : (A := B + 1); END_TYPE TYPE E2 : (B := A); END_TYPE\n"
+     "PROGRAM P VAR e : E1; END_VAR e := A; END_PROGRAM", "E1.A -> E2 -> E2.B -> E1.A"),
+    ("TYPE E : (A := K); END_TYPE VAR_GLOBAL CONSTANT K : E := A; END_VAR\n"
+     "PROGRAM P END_PROGRAM", "E.A -> K -> E.A"),
+    ("TYPE S : STRING[L]; END_TYPE VAR_GLOBAL CONSTANT L : INT := M; M : INT := L; END_VAR\n"
+     "PROGRAM P VAR s : S; END_VAR s := 'a'; END_PROGRAM", "L -> M -> L"),
+    ("TYPE R : INT(0..HI); END_TYPE VAR_GLOBAL CONSTANT HI : INT := HI * 2; END_VAR\n"
+     "PROGRAM P VAR r : R; END_VAR r := 1; END_PROGRAM", "HI -> HI"),
+    ("TYPE A1 : B1; B1 : A1; END_TYPE\nPROGRAM P VAR e : A1; END_VAR END_PROGRAM",
+     "A1 -> B1 -> A1"),
+])
+def test_cycles_are_named_once_at_compile_time(src, chain):
+    d = one(src, "PLC0122")
+    assert chain in d.message
+    assert len(errors(src)) == 1, [str(x) for x in errors(src)]
+
+
+def test_constants_fold_once_each_and_stay_bounded():
+    # each constant doubles the one before: evaluated naively this is 2**60 steps
+    src = ("VAR_GLOBAL CONSTANT A0 : LINT := 1;" +
+           "".join(f"A{i + 1} : LINT := A{i} + A{i};" for i in range(60)) +
+           "END_VAR PROGRAM P VAR x : LINT; END_VAR x := A60; END_PROGRAM")
+    plc = plclab.loads(src)
+    plc.scan()
+    assert plc["x"] == 2 ** 60
+    # squaring: the numbers would grow without limit
+    src = ("VAR_GLOBAL CONSTANT A0 : LINT := 3;" +
+           "".join(f"A{i + 1} : LINT := A{i} * A{i};" for i in range(200)) +
+           "END_VAR PROGRAM P VAR a : ARRAY[1..A200] OF INT; END_VAR a[1] := 1; END_PROGRAM")
+    d = one(src, "PLC0125")
+    assert "128 bits" in d.message
+    assert len(errors(src)) == 1
+
+
+def test_enumeration_values_may_refer_to_later_types_and_constants():
+    plc = plclab.loads("""
+        TYPE E : (A, B := 5, C); E2 : (X := N * 2, Y := LAST + 1); E3 : (LAST := 40); END_TYPE
+        TYPE Arr : ARRAY[1..N] OF INT; END_TYPE
+        VAR_GLOBAL CONSTANT N : INT := 3; END_VAR
+        PROGRAM P VAR a : Arr; e : E; f : E2; i : INT; j : INT; END_VAR
+        e := C; f := Y; a[3] := 7;
+        CASE e OF C: i := 1; END_CASE
+        CASE f OF Y: j := 9; END_CASE
+        END_PROGRAM""")
+    plc.scan()
+    assert (plc["a"], plc["e"], plc["f"], plc["i"], plc["j"]) == ([0, 0, 7], 6, 41, 1, 9)
+
+
+def test_a_constant_overflowing_lreal_is_an_error():
+    src = ("VAR_GLOBAL CONSTANT R : LREAL := 1.0E300 * 1.0E300; END_VAR\n"
+           "PROGRAM P VAR x : LREAL; END_VAR x := R; END_PROGRAM")
+    assert "LREAL" in one(src, "PLC0125").message
