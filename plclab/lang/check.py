@@ -14,10 +14,13 @@ from typing import Any
 
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
+from . import datasize
 from . import types as T
 from .builtins import BUILTINS, Builtin, conversion
+from .datasize import DataSizes
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
+_CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep
 _CONST_BITS = 128  # constant folding stops beyond this (no IEC integer has more than 64)
 _ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
 
@@ -89,6 +92,7 @@ class Checker:
         self._chain: list[tuple[Any, str, Location | None]] = []
         self._chain_keys: set[Any] = set()
         self._cycles_seen: set[frozenset] = set()
+        self._too_deep = False
         self._const_memo: dict[int, Any] = {}  # id(VarDecl) -> folded value
         self._broken: set[int] = set()  # constants whose value has a reported error
         self._broken_hits = 0  # uses of such constants (their users need no second error)
@@ -186,6 +190,7 @@ class Checker:
         tests = [t for f in self.files for t in f.tests]
         for t in tests:
             self.check_test(t)
+        self.check_data(programs, tests)
         return Project(self.files, self.types, self.pous, self.globals, programs, tasks, tests,
                        self.diags, self.consts)
 
@@ -233,6 +238,14 @@ class Checker:
             return self.types[name]
         if name in self.type_decls:
             td = self.type_decls[name]
+            if len(self._chain) >= _CHAIN_LIMIT:
+                if not self._too_deep:
+                    self._too_deep = True
+                    path = " -> ".join(lab for _, lab, _ in self._chain[:4])
+                    self.err("PLC0124", f"types, constants and enumeration values are defined "
+                             f"in terms of each other more than {_CHAIN_LIMIT} levels deep "
+                             f"({path} -> ...); declare them with fewer levels", loc)
+                return T.ANY
             if not self._enter(("type", name), td.spelling or name, td.loc):
                 return T.ANY
             try:
@@ -420,6 +433,15 @@ class Checker:
             if key in self._broken:
                 self._broken_hits += 1
             return self._const_memo[key]
+        if len(self._chain) >= _CHAIN_LIMIT:
+            self._broken_hits += 1
+            if not self._too_deep:
+                self._too_deep = True
+                path = " -> ".join(lab for _, lab, _ in self._chain[:4])
+                self.err("PLC0124", f"constants are defined in terms of each other more than "
+                         f"{_CHAIN_LIMIT} levels deep ({path} -> ...); give some of them "
+                         "literal values", d.loc)
+            return None
         if not self._enter(key, d.spelling or d.name, d.loc):
             self._broken_hits += 1
             return None
@@ -714,6 +736,72 @@ class Checker:
         for n in list(self.calls):
             if n not in state:
                 visit(n)
+
+    # -- data: containment cycles, nesting, size ----------------------------------------------
+    def check_data(self, programs: list, tests: list[A.TestBlock]) -> None:
+        """Blocks and structures must not contain themselves; every POU's and TEST's data and
+        the program's whole data must stay within :data:`datasize.DATA_LIMIT` bytes and
+        :data:`datasize.NESTING_LIMIT` levels (PLC0123, PLC0124)."""
+        ds = DataSizes()
+        for p in self.pous.values():
+            if p.kind != "FUNCTION":
+                ds.ensure(p)
+        for t in list(self.types.values()):
+            if isinstance(T.resolve(t), T.StructType):
+                ds.ensure(T.resolve(t))
+        seen: set[frozenset] = set()
+        for closing, text, ring in ds.cycles:
+            key = frozenset(id(c) for c in ring)
+            if key not in seen:
+                seen.add(key)
+                self.err("PLC0123", f"{text}: {datasize.container_name(ring[0])} contains an "
+                         "instance of itself, which would be infinitely large; remove "
+                         f"{closing.spelling or closing.name} or pass the block as VAR_IN_OUT",
+                         closing.loc)
+        if seen:
+            return  # sizes are meaningless until the circle is gone
+        scopes: list[tuple[str, list[A.VarDecl], Location]] = [
+            (f"{p.kind} {p.spelling or p.name}", datasize.members(p), p.loc)
+            for p in self.pous.values() if not p.loc.file.startswith("<plclab>/")]
+        scopes += [(f"TEST '{t.title}'", t.decls, t.loc) for t in tests]
+        for what, decls, loc in scopes:
+            if self._data_fits(ds, what, decls, loc, None):
+                continue
+            return
+        top = list(self.globals.values())
+        total, depth, _ = ds.decls_cost(top)
+        big, big_bytes, owner = None, -1, None
+        for d in top:
+            b, _ = ds.type_cost(d.ty)
+            if b > big_bytes:
+                big, big_bytes, owner = d, b, None
+        for inst, p, _ in programs:
+            b, dep = ds.type_cost(self.types.get(p.name))
+            total += b
+            if b > big_bytes:
+                big, big_bytes, owner = ds.biggest.get(id(p)), b, inst
+        if total > datasize.DATA_LIMIT and big is not None:
+            self.err("PLC0124", f"the program's data takes {total:,} bytes, more than the limit "
+                     f"of {datasize.DATA_LIMIT:,} (16 MiB); the largest part: "
+                     f"{ds.chain(big, owner)}. Use smaller arrays", big.loc)
+
+    def _data_fits(self, ds: DataSizes, what: str, decls: list[A.VarDecl], loc: Location,
+                   owner: str | None) -> bool:
+        size, depth, big = ds.decls_cost(decls)
+        if big is None:
+            return True
+        name = what.split(" ", 1)[1].strip("'")
+        if depth > datasize.NESTING_LIMIT:
+            self.err("PLC0124", f"the data of {what} nests {depth} levels deep (arrays, "
+                     f"structures and instances inside each other; the limit is "
+                     f"{datasize.NESTING_LIMIT}): {ds.chain(big, name)}", big.loc)
+            return False
+        if size > datasize.DATA_LIMIT:
+            self.err("PLC0124", f"the data of {what} takes {size:,} bytes, more than the limit "
+                     f"of {datasize.DATA_LIMIT:,} (16 MiB): {ds.chain(big, name)}; use smaller "
+                     "arrays", big.loc)
+            return False
+        return True
 
     # -- statements ---------------------------------------------------------------------------
     def body(self, stmts: list[A.Stmt]) -> None:

@@ -99,21 +99,24 @@ def add_capped(diags: list[Diagnostic], d: Diagnostic, file: str) -> None:
 
 
 def cap_per_file(diags: list[Diagnostic]) -> list[Diagnostic]:
-    """Keep at most :data:`MAX_DIAGNOSTICS_PER_FILE` diagnostics of each file (in order),
-    then one PLC0128 for the file."""
-    counts: dict[str, int] = {}
-    out: list[Diagnostic] = []
+    """Keep at most :data:`MAX_DIAGNOSTICS_PER_FILE` diagnostics of each file, errors before
+    warnings, in their order; then one PLC0128 for each file that had more."""
+    by_file: dict[str, list[Diagnostic]] = {}
     for d in diags:
-        f = d.location.file if d.location is not None else ""
-        n = counts.get(f, 0)
-        if d.code == "PLC0128":
-            n = max(n, MAX_DIAGNOSTICS_PER_FILE)
-        if n < MAX_DIAGNOSTICS_PER_FILE:
-            out.append(d)
-        elif n == MAX_DIAGNOSTICS_PER_FILE:
-            out.append(d if d.code == "PLC0128" else too_many_diagnostics(f, d.location))
-        counts[f] = n + 1
-    return out
+        by_file.setdefault(d.location.file if d.location is not None else "", []).append(d)
+    keep: set[int] = set()
+    notes: list[Diagnostic] = []
+    for f, ds in by_file.items():
+        if len(ds) <= MAX_DIAGNOSTICS_PER_FILE:
+            keep.update(id(d) for d in ds)
+            continue
+        ranked = [d for d in ds if d.severity == "error" and d.code != "PLC0128"]
+        ranked += [d for d in ds if d.severity != "error"]
+        shown = ranked[:MAX_DIAGNOSTICS_PER_FILE]
+        keep.update(id(d) for d in shown)
+        first_left_out = next(d for d in ds if id(d) not in keep)
+        notes.append(too_many_diagnostics(f, first_left_out.location))
+    return [d for d in diags if id(d) in keep] + notes
 
 
 class Lexer:

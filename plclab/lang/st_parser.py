@@ -12,9 +12,11 @@ from __future__ import annotations
 
 import difflib
 import re
+from contextlib import contextmanager
 
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
+from .datasize import NESTING_LIMIT
 from .lexer import KEYWORDS, Lexer, Token, add_capped
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
@@ -46,6 +48,8 @@ class _Bail(Exception):
 
 
 class Parser:
+    depth = 0  # also for the sub-parsers the IL and LD front ends build without __init__
+
     def __init__(self, text: str, file: str = "<input>") -> None:
         lexer = Lexer(text, file)
         self.toks: list[Token] = lexer.tokens()
@@ -53,6 +57,7 @@ class Parser:
         self.pragmas = lexer.pragmas
         self.file = file
         self.i = 0
+        self.depth = 0  # nesting of types and initial values (see nested())
         self.il_default = file.lower().endswith(".il")  # a .il file: bodies are IL unless ST
 
     # -- token helpers ------------------------------------------------------------------------
@@ -357,9 +362,11 @@ class Parser:
 
     def initializer(self) -> A.Expr:
         if self.at("["):
-            return self.array_init()
+            with self.nested("initial value"):
+                return self.array_init()
         if self.at("(") and self.peek().kind == "IDENT" and self.peek(2).kind == ":=":
-            return self.struct_init()
+            with self.nested("initial value"):
+                return self.struct_init()
         return self.expr()
 
     def array_init(self) -> A.ArrayInit:
@@ -414,6 +421,24 @@ class Parser:
         return out
 
     def type_ref(self, allow_decl: bool = True) -> A.TypeRef:
+        with self.nested("type"):
+            return self._type_ref(allow_decl)
+
+    @contextmanager
+    def nested(self, what: str):
+        """Count nesting of types and initial values written inside each other; beyond
+        :data:`NESTING_LIMIT` levels report PLC0124 and give up the declaration."""
+        if self.depth >= NESTING_LIMIT:
+            self.error("PLC0124", f"this {what} is nested more than {NESTING_LIMIT} levels "
+                       "deep; declare the inner levels as named TYPEs with fewer levels")
+            raise _Bail
+        self.depth += 1
+        try:
+            yield
+        finally:
+            self.depth -= 1
+
+    def _type_ref(self, allow_decl: bool = True) -> A.TypeRef:
         t = self.tok
         loc = self.loc()
         if t.kind in ("STRING", "WSTRING"):

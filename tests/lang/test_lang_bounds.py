@@ -10,7 +10,6 @@ from contextlib import contextmanager
 import pytest
 
 import plclab
-from plclab.errors import PlcError
 from plclab.lang.lexer import MAX_DIAGNOSTICS_PER_FILE
 from plclab.problems import PROBLEMS
 from plclab.project import check_sources
@@ -205,3 +204,96 @@ def test_a_constant_overflowing_lreal_is_an_error():
     src = ("VAR_GLOBAL CONSTANT R : LREAL := 1.0E300 * 1.0E300; END_VAR\n"
            "PROGRAM P VAR x : LREAL; END_VAR x := R; END_PROGRAM")
     assert "LREAL" in one(src, "PLC0125").message
+
+
+# -- instances that contain themselves, data size, nesting ---------------------------------
+
+@pytest.mark.parametrize("src, chain", [
+    ("FUNCTION_BLOCK F VAR x : F; END_VAR END_FUNCTION_BLOCK\nPROGRAM P END_PROGRAM", "F.x -> F"),
+    ("FUNCTION_BLOCK F VAR g : ARRAY[1..3] OF G; END_VAR END_FUNCTION_BLOCK\n"
+     "FUNCTION_BLOCK G VAR s : S; END_VAR END_FUNCTION_BLOCK\n"
+     "TYPE S : STRUCT f : F; END_STRUCT; END_TYPE\n"
+     "PROGRAM P VAR f : F; END_VAR f(); END_PROGRAM", "F.g -> G.s -> S.f -> F"),
+    ("PROGRAM P VAR me : P; END_VAR END_PROGRAM", "P.me -> P"),
+])
+def test_a_block_containing_itself_is_a_compile_error_naming_the_chain(src, chain):
+    d = one(src, "PLC0123")
+    assert chain in d.message and "VAR_IN_OUT" in d.message
+
+
+@pytest.mark.parametrize("src, chain", [
+    ("TYPE S : STRUCT a : S; END_STRUCT; END_TYPE\nPROGRAM P VAR e : S; END_VAR END_PROGRAM",
+     "S -> S"),
+    ("TYPE S : STRUCT a : T; END_STRUCT; END_TYPE\n"
+     "TYPE T : STRUCT b : ARRAY[1..2] OF S; END_STRUCT; END_TYPE\n"
+     "PROGRAM P VAR e : S; END_VAR END_PROGRAM", "S -> T -> S"),
+])
+def test_a_structure_containing_itself_is_a_compile_error(src, chain):
+    assert chain in one(src, "PLC0123").message
+
+
+def test_a_block_passed_in_out_is_no_cycle():
+    plclab.loads("FUNCTION_BLOCK F VAR_IN_OUT other : F; END_VAR END_FUNCTION_BLOCK\n"
+                 "PROGRAM P VAR a : INT; END_VAR a := 1; END_PROGRAM")
+
+
+def test_nested_small_arrays_are_rejected_by_their_total_size():
+    # each level passes the per-array limit; together 4**24 bytes
+    src = "PROGRAM P VAR a : " + "ARRAY[1..4] OF " * 24 + "BOOL; END_VAR\nEND_PROGRAM"
+    d = one(src, "PLC0124")
+    assert f"{4 ** 24:,} bytes" in d.message and "P.a" in d.message
+    assert (d.location.line, d.location.col) == (1, 15)
+    src = "PROGRAM P VAR a : " + "ARRAY[1..2] OF " * 40 + "BOOL; END_VAR\nEND_PROGRAM"
+    assert "32 levels" in one(src, "PLC0124").message
+    src = "".join(f"TYPE T{i + 1} : ARRAY[1..2] OF T{i}; END_TYPE\n" for i in range(40))
+    src += "TYPE T0 : BOOL; END_TYPE\nPROGRAM P VAR a : T40; END_VAR\nEND_PROGRAM"
+    d = one(src, "PLC0124")
+    assert "40 levels" in d.message and d.location.line == 42
+
+
+def test_total_data_names_the_chain_that_makes_it_big():
+    src = ("TYPE M : STRUCT buf : ARRAY[1..10000] OF LREAL; END_STRUCT; END_TYPE\n"
+           "PROGRAM P VAR big : ARRAY[1..1000] OF M; END_VAR END_PROGRAM")
+    d = one(src, "PLC0124")
+    assert "80,008,000 bytes" in d.message
+    assert "P.big : ARRAY[1..1000] OF M" in d.message and "M.buf" in d.message
+    assert d.location.line == 2
+
+
+def test_globals_and_programs_add_up():
+    m = "TYPE M : STRUCT buf : ARRAY[1..1000] OF LREAL; END_STRUCT; END_TYPE\n"
+    fits = m + ("VAR_GLOBAL g : ARRAY[1..1000] OF M; END_VAR\n"
+                "PROGRAM P VAR big : ARRAY[1..1000] OF M; END_VAR big[1].buf[1] := 1.0; "
+                "g[1].buf[1] := 2.0; END_PROGRAM")
+    assert not errors(fits)
+    too_much = fits.replace("PROGRAM P", "PROGRAM Q VAR b : ARRAY[1..200] OF M; END_VAR\n"
+                            "b[1].buf[1] := 1.0; END_PROGRAM\nPROGRAM P")
+    assert "the program's data" in one(too_much, "PLC0124").message
+
+
+@pytest.mark.parametrize("decls", [
+    "FUNCTION F : INT VAR a : ARRAY[1..3000] OF STRING[9999]; END_VAR F := 1; END_FUNCTION",
+    "TEST 'big' VAR a : ARRAY[1..3000] OF STRING[9999]; END_VAR END_TEST",
+    "FUNCTION_BLOCK F VAR a : ARRAY[1..3000] OF WSTRING[4999]; END_VAR END_FUNCTION_BLOCK",
+])
+def test_functions_tests_and_unused_blocks_are_checked_too(decls):
+    assert "30,000,000 bytes" in one(decls + "\nPROGRAM P END_PROGRAM", "PLC0124").message
+
+
+@pytest.mark.parametrize("src", [
+    "".join(f"FUNCTION_BLOCK F{i} VAR x : F{i + 1}; END_VAR END_FUNCTION_BLOCK\n"
+            for i in range(1000)) + "FUNCTION_BLOCK F1000 END_FUNCTION_BLOCK\n"
+    "PROGRAM P VAR f : F0; END_VAR END_PROGRAM",
+    "".join(f"TYPE T{i + 1} : ARRAY[1..1] OF T{i}; END_TYPE\n" for i in reversed(range(1000))) +
+    "TYPE T0 : INT; END_TYPE PROGRAM P VAR f : T1000; END_VAR END_PROGRAM",
+    "".join(f"TYPE S{i} : STRUCT x : S{i + 1}; END_STRUCT; END_TYPE\n" for i in range(1000)) +
+    "TYPE S1000 : INT; END_TYPE PROGRAM P VAR f : S0; END_VAR END_PROGRAM",
+    "VAR_GLOBAL CONSTANT\n" + "".join(f"C{i} : INT := C{i + 1};\n" for i in range(2000)) +
+    "C2000 : INT := 1; END_VAR PROGRAM P VAR a : ARRAY[1..C0] OF INT; END_VAR END_PROGRAM",
+    "PROGRAM P VAR a : " + "ARRAY[1..2] OF " * 1000 + "INT; END_VAR END_PROGRAM",
+    "PROGRAM P VAR b : INT := " + "[" * 1000 + "]" * 1000 + "; END_VAR END_PROGRAM",
+    "PROGRAM P VAR a : " + "STRUCT x : " * 1000 + "INT; END_STRUCT" * 1000 + "; END_VAR "
+    "END_PROGRAM",
+])
+def test_deep_declarations_are_an_error_not_a_recursion_error(src):
+    assert one(src, "PLC0124")
