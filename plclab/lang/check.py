@@ -100,6 +100,7 @@ class Checker:
         self._enum_index: dict[str, str] = {}  # member name -> TYPE not yet resolved
         self._enum_pending: dict[int, tuple[A.Expr | None, EnumSym | None, Location]] = {}
         self.calls: dict[str, set[str]] = {}  # pou -> pous it calls (for recursion)
+        self.call_sites: dict[tuple[str, str], Location] = {}  # (caller, callee) -> 1st call
         self.pou: A.Pou | None = None
         self.scope: dict[str, Any] = {}
         self.in_test = False
@@ -715,27 +716,35 @@ class Checker:
         self.in_test = False
 
     def check_recursion(self) -> None:
+        """PLC0110 at the call that closes each circle of calls, naming it (F -> G -> F).
+        Iterative depth-first walk: long call chains are fine."""
         state: dict[str, int] = {}
-        stack: list[str] = []
-
-        def visit(n: str) -> None:
-            state[n] = 1
-            stack.append(n)
-            for m in sorted(self.calls.get(n, ())):
+        for root in list(self.calls):
+            if root in state:
+                continue
+            state[root] = 1
+            path = [root]
+            stack = [iter(sorted(self.calls.get(root, ())))]
+            while stack:
+                m = next(stack[-1], None)
+                if m is None:
+                    stack.pop()
+                    state[path.pop()] = 2
+                    continue
                 if state.get(m) == 1:
-                    cyc = stack[stack.index(m):] + [m]
-                    p = self.pous[m]
+                    n = path[-1]
+                    cyc = path[path.index(m):] + [m]
+                    names = [self.pous[x].spelling or x for x in cyc]
+                    if len(names) > 9:
+                        names = names[:4] + [f"({len(names) - 8} more)"] + names[-4:]
+                    where = self.call_sites.get((n, m), self.pous[m].loc)
                     self.err("PLC0110", "recursion is not allowed in IEC 61131-3 (a PLC has no "
-                             "dynamic stack): " + " -> ".join(cyc) + "; rewrite it as a loop",
-                             p.loc)
-                elif state.get(m) is None:
-                    visit(m)
-            stack.pop()
-            state[n] = 2
-
-        for n in list(self.calls):
-            if n not in state:
-                visit(n)
+                             f"dynamic stack): {' -> '.join(names)}; this call closes the "
+                             "circle: rewrite it as a loop", where)
+                elif m not in state:
+                    state[m] = 1
+                    path.append(m)
+                    stack.append(iter(sorted(self.calls.get(m, ()))))
 
     # -- data: containment cycles, nesting, size ----------------------------------------------
     def check_data(self, programs: list, tests: list[A.TestBlock]) -> None:
@@ -1424,9 +1433,14 @@ class Checker:
                          "call", c.loc)
         return inputs, outputs, inouts
 
-    def call_function(self, c: A.Call, pou: A.Pou) -> T.Type:
+    def _called(self, pou: A.Pou, loc: Location) -> None:
+        """Remember that the POU being checked calls ``pou`` here (for recursion)."""
         if self.pou is not None:
             self.calls.setdefault(self.pou.name, set()).add(pou.name)
+            self.call_sites.setdefault((self.pou.name, pou.name), loc)
+
+    def call_function(self, c: A.Call, pou: A.Pou) -> T.Type:
+        self._called(pou, c.loc)
         ins, outs, inouts = self._bind(c, pou.decls, f"function {pou.spelling or pou.name}")
         c.target = CallInfo("function", pou, ins, outs, inouts)
         rd = getattr(pou, "return_decl", None)
@@ -1436,8 +1450,7 @@ class Checker:
         if not statement:
             self.err("PLC0106", f"a function block call is a statement: call {pou.name} on its "
                      "own line, then read its outputs (inst.Q)", c.loc)
-        if self.pou is not None:
-            self.calls.setdefault(self.pou.name, set()).add(pou.name)
+        self._called(pou, c.loc)
         ins, outs, inouts = self._bind(c, pou.decls, f"{pou.name}")
         c.target = CallInfo("program" if program else "fb", pou, ins, outs, inouts)
         return T.VOID

@@ -297,3 +297,28 @@ def test_functions_tests_and_unused_blocks_are_checked_too(decls):
 ])
 def test_deep_declarations_are_an_error_not_a_recursion_error(src):
     assert one(src, "PLC0124")
+
+
+# -- recursion is reported at the call -------------------------------------------------------
+
+@pytest.mark.parametrize("src, chain, at", [
+    ("FUNCTION F : INT VAR_INPUT n : INT; END_VAR\nF := F(n - 1);\nEND_FUNCTION", "F -> F",
+     (2, 6)),
+    ("FUNCTION F : INT VAR_INPUT n : INT; END_VAR\nF := 1;\nIF n > 0 THEN F := G(n); END_IF\n"
+     "END_FUNCTION\nFUNCTION G : INT VAR_INPUT n : INT; END_VAR\nG := F(n - 1);\n"
+     "END_FUNCTION", "F -> G -> F", (6, 6)),
+    ("FUNCTION_BLOCK A VAR b : B; END_VAR\nb();\nEND_FUNCTION_BLOCK\n"
+     "FUNCTION_BLOCK B VAR_IN_OUT a : A; END_VAR\n  a();\nEND_FUNCTION_BLOCK", "A -> B -> A",
+     (5, 3)),
+])
+def test_recursion_points_at_the_call_that_closes_the_circle(src, chain, at):
+    d = one(src, "PLC0110")
+    assert chain in d.message
+    assert (d.location.line, d.location.col) == at
+
+
+def test_a_long_call_chain_is_checked_without_recursion_error():
+    src = "".join(f"FUNCTION F{i} : INT F{i} := F{i + 1}(); END_FUNCTION\n" for i in range(1500))
+    src += "FUNCTION F1500 : INT F1500 := F0(); END_FUNCTION"
+    d = one(src, "PLC0110")
+    assert d.location.line == 1501 and "F0 -> F1" in d.message and "more)" in d.message
