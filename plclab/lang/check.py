@@ -20,6 +20,7 @@ from .builtins import BUILTINS, Builtin, conversion
 from .datasize import DataSizes
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
+_REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
 _CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep
 _CONST_BITS = 128  # constant folding stops beyond this (no IEC integer has more than 64)
 _ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
@@ -958,6 +959,11 @@ class Checker:
             self.err("PLC0103", f"cannot assign {rs} to {rd}: enumerations only take their own "
                      "values", loc)
             return
+        if T.base_of(rd) is T.REAL and isinstance(e, A.Literal) and e.prefix is None and \
+                e.kind in ("REAL", "INT") and abs(e.value) > _REAL_MAX:
+            self.err("PLC0111", f"{e.text} does not fit in REAL (at most about 3.4E38); use "
+                     "LREAL", e.loc)
+            return
         if T.can_widen(rs, rd):
             if T.base_of(rs).name in ("DINT", "UDINT", "LINT") and T.base_of(rd) is T.REAL:
                 self.warn("PLC0202", f"{rs} to REAL may lose precision (REAL has 24 bits of "
@@ -1067,6 +1073,9 @@ class Checker:
                 return T.BOOL
             if rt.kind == "real":
                 e.kind, e.value = "REAL", float(e.value)
+                if rt is T.REAL and abs(e.value) > _REAL_MAX:
+                    self.err("PLC0111", f"{e.text} does not fit in REAL (at most about "
+                             "3.4E38); use LREAL", e.loc)
                 return t
             if isinstance(rt, T.EnumType):
                 return rt
@@ -1083,6 +1092,11 @@ class Checker:
             if expected is not None and T.resolve(expected) is T.LTIME:
                 t = T.LTIME
             e.tyname = t.name  # type: ignore[attr-defined]
+            ms = abs(e.value) // 1_000_000 * (-1 if e.value < 0 else 1)
+            if t is T.TIME and not (T.TIME.lo <= ms <= T.TIME.hi):
+                self.err("PLC0126", f"{e.text} is out of TIME's range (T#-24d20h31m23s648ms.."
+                         "T#24d20h31m23s647ms, 32 bits of ms); use LTIME# for longer durations",
+                         e.loc)
             return t
         if k in ("DATE", "TOD", "DT"):
             return {"DATE": T.DATE, "TOD": T.TOD, "DT": T.DT}[k]

@@ -322,3 +322,50 @@ def test_a_long_call_chain_is_checked_without_recursion_error():
     src += "FUNCTION F1500 : INT F1500 := F0(); END_FUNCTION"
     d = one(src, "PLC0110")
     assert d.location.line == 1501 and "F0 -> F1" in d.message and "more)" in d.message
+
+
+# -- literals ----------------------------------------------------------------------------------
+
+LIT = ("PROGRAM P VAR x : LINT; r : LREAL; t : TIME; lt : LTIME; d : DATE; dt1 : DT; re : REAL;"
+       " END_VAR\n{} END_PROGRAM")
+
+
+@pytest.mark.parametrize("body, code, words", [
+    ("r := 1.0E400;", "PLC0125", "LREAL"),
+    ("r := LREAL#-1E999;", "PLC0125", "LREAL"),
+    ("x := " + "9" * 5000 + ";", "PLC0125", "5000 digits"),
+    ("x := LINT#" + "9" * 5000 + ";", "PLC0125", "5000 digits"),
+    ("x := 16#" + "F" * 5000 + ";", "PLC0125", "5000 digits"),
+    ("re := 1.0E39;", "PLC0111", "REAL"),
+    ("re := REAL#-1.0E39;", "PLC0111", "REAL"),
+    ("t := T#25d;", "PLC0126", "LTIME"),
+    ("t := T#-24d20h31m23s649ms;", "PLC0126", "TIME"),
+    ("t := T#" + "9" * 5000 + "s;", "PLC0126", "out of range"),
+    ("lt := LTIME#106752d;", "PLC0126", "106751 days"),
+    ("d := D#1969-12-31;", "PLC0126", "1970-01-01"),
+    ("d := D#2106-02-08;", "PLC0126", "2106-02-07"),
+    ("dt1 := DT#1960-01-01-00:00:00;", "PLC0126", "1970-01-01"),
+])
+def test_literals_beyond_their_range_are_located_errors(body, code, words):
+    src = LIT.format(body)
+    d = one(src, code)
+    assert words in d.message and len(d.message) < 300
+    assert d.location.line == 2
+    assert len(errors(src)) == 1
+
+
+@pytest.mark.parametrize("body, var, value", [
+    ("t := T#24d20h31m23s647ms;", "t", 2_147_483_647),
+    ("t := T#-24d20h31m23s648ms;", "t", -2_147_483_648),
+    ("lt := T#30d;", "lt", 30 * 86_400 * 10 ** 9),
+    ("lt := LTIME#106751d;", "lt", 106_751 * 86_400 * 10 ** 9),
+    ("re := 3.0E38;", "re", pytest.approx(3.0e38, rel=1e-6)),
+    ("r := 1.0E308;", "r", 1.0e308),
+    ("d := D#2106-02-07;", "d", 4_294_944_000),
+    ("x := 9223372036854775807;", "x", 9_223_372_036_854_775_807),
+    ("t := T#1.5" + "0" * 400 + "ms;", "t", 1),
+])
+def test_literals_at_their_limits_still_work(body, var, value):
+    plc = plclab.loads(LIT.format(body))
+    plc.scan()
+    assert plc[var] == value
