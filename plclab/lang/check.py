@@ -20,6 +20,8 @@ from .builtins import BUILTINS, Builtin, conversion
 from .datasize import DataSizes
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
+MAX_IMAGE_BYTES = 65536  # the largest process image a Plc may have (image_size)
+_MAX_PRIORITY = 31  # task priorities 0..31 (CODESYS)
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
 _CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep
 _CONST_BITS = 128  # constant folding stops beyond this (no IEC integer has more than 64)
@@ -76,6 +78,8 @@ class Project:
     tests: list[A.TestBlock]
     diagnostics: list[Diagnostic]
     const_values: dict[int, Any] = field(default_factory=dict)  # id(VarDecl) -> value
+    # the process image the addresses need: (bytes, the address that needs most, where)
+    image_needed: tuple[int, str, Location] | None = None
 
 
 class Checker:
@@ -101,6 +105,7 @@ class Checker:
         self._enum_index: dict[str, str] = {}  # member name -> TYPE not yet resolved
         self._enum_pending: dict[int, tuple[A.Expr | None, EnumSym | None, Location]] = {}
         self.calls: dict[str, set[str]] = {}  # pou -> pous it calls (for recursion)
+        self.image_needed: tuple[int, str, Location] | None = None  # (bytes, address, where)
         self.call_sites: dict[tuple[str, str], Location] = {}  # (caller, callee) -> 1st call
         self.pou: A.Pou | None = None
         self.scope: dict[str, Any] = {}
@@ -194,7 +199,7 @@ class Checker:
             self.check_test(t)
         self.check_data(programs, tests)
         return Project(self.files, self.types, self.pous, self.globals, programs, tasks, tests,
-                       self.diags, self.consts)
+                       self.diags, self.consts, self.image_needed)
 
     def _declare(self, what: str, name: str, loc: Location, table: dict, item: Any) -> None:
         if name in table:
@@ -212,8 +217,7 @@ class Checker:
                 tasks.extend(c.tasks)
                 tnames = {t.name for t in c.tasks}
                 for t in c.tasks:
-                    if t.interval is not None:
-                        self.expr(t.interval, None)
+                    self.check_task(t)
                 for inst in c.instances:
                     p = self.pous.get(inst.program)
                     if p is None or p.kind != "PROGRAM":
@@ -230,6 +234,36 @@ class Checker:
                 if p.kind == "PROGRAM":
                     programs.append((p.name, p, None))
         return programs, tasks
+
+    def check_task(self, t: A.TaskDecl) -> None:
+        """INTERVAL a TIME constant > 0, PRIORITY an integer constant 0..31 (PLC0129); both are
+        replaced by their folded literal, which is what the runtime reads."""
+        if t.interval is not None:
+            e = t.interval
+            ty = T.resolve(self.expr(e, None))
+            v = self.const_value(e) if ty.kind == "time" else None
+            if ty.kind != "time" or not isinstance(v, int):
+                self.err("PLC0129", f"the INTERVAL of task {t.name} must be a TIME constant, "
+                         "e.g. INTERVAL := T#10ms", e.loc)
+            elif (v <= 0 if ty is T.LTIME else v < 1_000_000):
+                self.err("PLC0129", f"the INTERVAL of task {t.name} must be greater than zero "
+                         f"(at least T#1ms, or LTIME#... for shorter), not "
+                         f"{getattr(e, 'text', '') or v}; e.g. INTERVAL := T#10ms", e.loc)
+            else:
+                t.interval = A.Literal(e.loc, v if ty is T.LTIME else v // 1_000_000 * 1_000_000,
+                                       "TIME", None, getattr(e, "text", ""))
+                t.interval.ty = ty
+        if t.priority is not None:
+            e = t.priority
+            ty = T.resolve(self.expr(e, None))
+            v = self.const_value(e)
+            if ty.kind != "int" or isinstance(v, bool) or not isinstance(v, int) or \
+                    not 0 <= v <= _MAX_PRIORITY:
+                self.err("PLC0129", f"the PRIORITY of task {t.name} must be an integer constant "
+                         f"0..{_MAX_PRIORITY} (0 is the most urgent)", e.loc)
+            else:
+                t.priority = A.Literal(e.loc, v, "INT", None, str(v))
+                t.priority.ty = ty
 
     # -- types --------------------------------------------------------------------------------
     def named_type(self, name: str, loc: Location) -> T.Type:
@@ -357,6 +391,20 @@ class Checker:
                 self.check_address(d)
         return d.ty
 
+    def image_extent(self, addr: str, loc: Location) -> None:
+        """Check that ``addr`` lies inside the largest process image (PLC0127) and remember
+        the largest extent: :class:`~plclab.runtime.plc.Plc` compares it with its
+        ``image_size``."""
+        size_ch = addr[2] if len(addr) > 2 and addr[2].isalpha() else "X"
+        parts = addr[3 if addr[2:3].isalpha() else 2:].split(".")
+        byte = int(parts[0]) if len(parts[0]) <= 9 else MAX_IMAGE_BYTES
+        end = byte + max(1, _ADDR_SIZES[size_ch] // 8)
+        if end > MAX_IMAGE_BYTES:
+            self.err("PLC0127", f"{addr[:30]} lies beyond the largest process image ({MAX_IMAGE_BYTES:,}"
+                     " bytes, %..0 to %..65535); use a smaller address", loc)
+        elif self.image_needed is None or end > self.image_needed[0]:
+            self.image_needed = (end, addr, loc)
+
     def check_address(self, d: A.VarDecl) -> None:
         addr = d.address or ""
         if addr.endswith("*"):
@@ -367,13 +415,15 @@ class Checker:
         if size_ch == "X" and len(parts) != 2:
             self.err("PLC0120", f"bit address {addr} needs byte.bit, e.g. %IX0.3", d.loc)
             return
-        if size_ch == "X" and int(parts[1]) > 7:
-            self.err("PLC0120", f"bit number {parts[1]} in {addr} is out of range 0..7", d.loc)
+        if size_ch == "X" and (len(parts[1]) > 1 or int(parts[1]) > 7):
+            self.err("PLC0120", f"bit number {parts[1][:12]} in {addr[:30]} is out of range 0..7",
+                     d.loc)
             return
         if size_ch != "X" and len(parts) != 1:
             self.err("PLC0120", f"{addr}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
                      d.loc)
             return
+        self.image_extent(addr, d.loc)
         t = T.resolve(d.ty)
         if t is T.ANY:
             return
@@ -1160,9 +1210,14 @@ class Checker:
         a = e.address
         size = a[2] if len(a) > 2 and a[2].isalpha() else "X"
         parts = a[3 if a[2:3].isalpha() else 2:].split(".")
-        if size == "X" and (len(parts) != 2 or int(parts[1]) > 7):
-            self.err("PLC0120", f"bit address {a} needs byte.bit with bit 0..7, e.g. %IX0.3",
+        if size == "X" and (len(parts) != 2 or len(parts[1]) > 1 or int(parts[1]) > 7):
+            self.err("PLC0120", f"bit address {a[:30]} needs byte.bit with bit 0..7, e.g. %IX0.3",
                      e.loc)
+        elif size != "X" and len(parts) != 1:
+            self.err("PLC0120", f"{a[:30]}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
+                     e.loc)
+        else:
+            self.image_extent(a, e.loc)
         return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
 
     def member(self, e: A.Member, write: bool) -> T.Type:

@@ -10,6 +10,7 @@ from contextlib import contextmanager
 import pytest
 
 import plclab
+from plclab.errors import PlcError
 from plclab.lang.lexer import MAX_DIAGNOSTICS_PER_FILE
 from plclab.problems import PROBLEMS
 from plclab.project import check_sources
@@ -369,3 +370,72 @@ def test_literals_at_their_limits_still_work(body, var, value):
     plc = plclab.loads(LIT.format(body))
     plc.scan()
     assert plc[var] == value
+
+
+# -- addresses -----------------------------------------------------------------------------------
+
+ADDR = "PROGRAM P VAR x : WORD; b : BOOL; END_VAR\n{} END_PROGRAM"
+
+
+@pytest.mark.parametrize("body, code", [
+    ("x := %MW70000;", "PLC0127"),
+    ("x := %MW65535;", "PLC0127"),  # its second byte is 65536
+    ("x := %MW" + "9" * 5000 + ";", "PLC0127"),
+    ("b := %IX0.8;", "PLC0120"),
+    ("%QX1." + "9" * 5000 + " := b;", "PLC0120"),
+    ("x := %MW1.2;", "PLC0120"),
+])
+def test_direct_addresses_beyond_the_image_are_compile_errors(body, code):
+    d = one(ADDR.format(body), code)
+    assert d.location.line == 2 and len(d.message) < 200
+
+
+@pytest.mark.parametrize("decl, code", [
+    ("v AT %MW70000 : WORD;", "PLC0127"),
+    ("v AT %IX1.99 : BOOL;", "PLC0120"),
+    ("v AT %QD65533 : DWORD;", "PLC0127"),
+])
+def test_located_variables_beyond_the_image_are_compile_errors(decl, code):
+    one(f"PROGRAM P VAR {decl} END_VAR\nEND_PROGRAM", code)
+
+
+def test_the_plc_checks_addresses_against_its_image_size():
+    src = "PROGRAM P VAR v AT %MW5000 : WORD; x : WORD; END_VAR\nv := 1; x := %IW6000; END_PROGRAM"
+    with pytest.raises(PlcError) as ei:
+        plclab.loads(src)
+    e = ei.value
+    assert e.code == "PLC0127" and "image_size=6002" in e.message
+    assert e.location is not None and e.location.line == 2
+    plc = plclab.loads(src, image_size=6002)
+    plc.scan()
+    assert plc["%MW5000"] == 1
+    plclab.loads(ADDR.format("x := %IW1022;"))  # the last word of the default image
+
+
+# -- tasks ---------------------------------------------------------------------------------------
+
+CONF = ("CONFIGURATION C RESOURCE R ON PLC\nTASK t ({});\nPROGRAM i WITH t : P;\n"
+        "END_RESOURCE END_CONFIGURATION\nPROGRAM P VAR n : INT; END_VAR n := n + 1; END_PROGRAM\n"
+        "VAR_GLOBAL CONSTANT CT : TIME := T#20ms; END_VAR")
+
+
+@pytest.mark.parametrize("props", [
+    "INTERVAL := T#0ms", "INTERVAL := T#-5ms", "INTERVAL := 5", "INTERVAL := T#0.5ms",
+    "INTERVAL := 'fast'", "INTERVAL := T#10ms, PRIORITY := 40",
+    "INTERVAL := T#10ms, PRIORITY := -1", "INTERVAL := T#10ms, PRIORITY := TRUE",
+    "INTERVAL := T#10ms, PRIORITY := CT",
+])
+def test_bad_task_intervals_and_priorities_are_errors_at_the_task(props):
+    d = one(CONF.format(props), "PLC0129")
+    assert d.location.line == 2
+    with pytest.raises(PlcError) as ei:
+        plclab.loads(CONF.format(props))
+    assert ei.value.code == "PLC0129"
+
+
+def test_task_interval_and_priority_may_be_constants():
+    plc = plclab.loads(CONF.format("INTERVAL := CT, PRIORITY := 2"))
+    (task,) = plc.tasks
+    assert (task.interval_ns, task.priority) == (20_000_000, 2)
+    plc = plclab.loads(CONF.format("INTERVAL := LTIME#500us"))
+    assert plc.tasks[0].interval_ns == 500_000
