@@ -114,8 +114,15 @@ def test_a_megabyte_of_nul_bytes_is_one_diagnostic():
     assert "999999 more" in diags[0].message
 
 
+def test_bad_characters_separated_by_blanks_are_one_run():
+    diags = diags_of("@ " * 500_000, "at.st")
+    assert len(diags) == 1 and "999998 more" in diags[0].message
+    d = one("PROGRAM P VAR x : INT; END_VAR\nx := 1 @ @ $ 2; END_PROGRAM", "PLC0001")
+    assert (d.location.line, d.location.col) == (2, 8) and "4 more up to column 12" in d.message
+
+
 def test_diagnostics_are_capped_per_file_with_one_note():
-    diags = diags_of("@ " * 100_000, "at.st") + diags_of(
+    diags = diags_of("@\n" * 100_000, "at.st") + diags_of(
         "PROGRAM P VAR x : INT; END_VAR\n" + "x := TRUE;\n" * 300 + "END_PROGRAM", "m.st")
     for f in ("at.st", "m.st"):
         mine = [d for d in diags if d.location.file == f]
