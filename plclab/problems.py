@@ -60,6 +60,30 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "the variable is not in a PROGRAM or VAR_GLOBAL."),
     "PLC0121": ("internal variable of a function block", "From outside, only inputs and outputs "
                 "of an instance are visible."),
+    "PLC0122": ("defined in terms of itself", "Constants, enumeration values or types refer to "
+                "each other in a circle (A := B; B := A); the message names the circle. Give one "
+                "of them a value that does not depend on the others."),
+    "PLC0123": ("an instance or structure contains itself", "A function block, program or "
+                "structure holds an instance of itself, directly or through other blocks, "
+                "structures or arrays; the message names the chain. Such data would be "
+                "infinitely large: pass the other block as VAR_IN_OUT instead."),
+    "PLC0124": ("data too large or nested too deeply", "The data of the program (globals, "
+                "program instances and everything nested in them, counted as a PLC stores it) "
+                "may take at most 16 MiB, and types may nest at most 32 levels; the message "
+                "names the declarations that make it big. Use smaller arrays."),
+    "PLC0125": ("number too large", "A REAL literal beyond LREAL's range (1.0E400), an integer "
+                "literal of more than 100 digits, or a constant expression whose value no "
+                "integer type holds. Use a smaller value."),
+    "PLC0126": ("time or date out of range", "TIME holds -24d20h31m23s648ms..24d20h31m23s647ms "
+                "(signed 32 bits of milliseconds; use LTIME for more), LTIME about +-106751 days, "
+                "DATE and DT 1970-01-01..2106-02-07."),
+    "PLC0127": ("address outside the process image", "The byte of a located variable or a direct "
+                "address lies beyond the process image (1024 bytes by default, at most 65536), "
+                "or a bit number is not 0..7. Use a smaller address or a larger image_size."),
+    "PLC0128": ("too many errors", "A file gave more than 100 diagnostics; only the first are "
+                "shown. Fix those (often the first error causes the others) and check again."),
+    "PLC0129": ("bad task", "A TASK's INTERVAL must be a TIME constant greater than zero (e.g. "
+                "T#10ms) and its PRIORITY an integer constant 0..31."),
     "PLC0130": ("unknown native block", "plclab's own library names a block that has no "
                 "registered Python implementation (plclab/runtime/natives.py). This is a bug in "
                 "plclab, not in your program: please report it."),

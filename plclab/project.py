@@ -15,6 +15,7 @@ from typing import Any
 
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
+from .lang.lexer import cap_per_file
 
 STDLIB_FILES = ("stdlib.st", "ctrllib.st")
 
@@ -83,10 +84,12 @@ def check_sources(sources: list[tuple[str, str]]):
         bad = {(d.location.file, d.location.line) for d in diags if d.location is not None}
         all_diags = diags + [d for d in ck.diags if d.location is None or
                              (d.location.file, d.location.line) not in bad]
-        all_diags.sort(key=lambda d: (d.location.file, d.location.line, d.location.col)
-                       if d.location else ("", 0, 0))
+    # errors before warnings, each in source order (the checks of a whole program, like the
+    # data size, run last; a student must see them before the warnings)
+    all_diags.sort(key=lambda d: (d.severity != "error",) + (
+        (d.location.file, d.location.line, d.location.col) if d.location else ("", 0, 0)))
     has_err = any(d.severity == "error" for d in all_diags)
-    return (None if has_err else project), all_diags
+    return (None if has_err else project), cap_per_file(all_diags)
 
 
 def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>"):

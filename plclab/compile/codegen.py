@@ -322,6 +322,8 @@ class Codegen:
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in gl) + ")")
         self.emit("def __init__(self):")
         self.ind += 1
+        self.emit("global _G")  # a global's initial value may name the globals above it
+        self.emit("_G = self")
         for d in gl:
             self.where_now = self.where(d.loc)
             self.emit_init(f"self.{ident(d.name)}", d)

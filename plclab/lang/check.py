@@ -8,13 +8,16 @@ collected; :func:`check` raises one :class:`~plclab.errors.PlcError` carrying ev
 from __future__ import annotations
 
 import difflib
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
+from . import datasize
 from . import types as T
 from .builtins import BUILTINS, Builtin, conversion
+from .datasize import DataSizes
 from .limits import (
     MAX_BLOCK_NESTING,
     MAX_EXPR_NESTING,
@@ -24,6 +27,11 @@ from .limits import (
 )
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
+MAX_IMAGE_BYTES = 65536  # the largest process image a Plc may have (image_size)
+_MAX_PRIORITY = 31  # task priorities 0..31 (CODESYS)
+_REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
+_CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep
+_CONST_BITS = 128  # constant folding stops beyond this (no IEC integer has more than 64)
 _ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
 
 
@@ -77,6 +85,8 @@ class Project:
     tests: list[A.TestBlock]
     diagnostics: list[Diagnostic]
     const_values: dict[int, Any] = field(default_factory=dict)  # id(VarDecl) -> value
+    # the process image the addresses need: (bytes, the address that needs most, where)
+    image_needed: tuple[int, str, Location] | None = None
 
 
 class Checker:
@@ -89,8 +99,21 @@ class Checker:
         self.globals: dict[str, A.VarDecl] = {}
         self.enum_members: dict[str, list[EnumSym]] = {}
         self.consts: dict[int, Any] = {}
-        self._resolving: set[str] = set()
+        # what is being evaluated or resolved right now (constants, types, enumeration values):
+        # meeting one of them again is a cycle (PLC0122)
+        self._chain: list[tuple[Any, str, Location | None]] = []
+        self._chain_keys: set[Any] = set()
+        self._cycles_seen: set[frozenset] = set()
+        self._too_deep = False
+        self._const_memo: dict[int, Any] = {}  # id(VarDecl) -> folded value
+        self._broken: set[int] = set()  # constants whose value has a reported error
+        self._broken_hits = 0  # uses of such constants (their users need no second error)
+        self._global_consts: dict[str, A.VarDecl] = {}  # visible to TYPEs before globals are
+        self._enum_index: dict[str, str] = {}  # member name -> TYPE not yet resolved
+        self._enum_pending: dict[int, tuple[A.Expr | None, EnumSym | None, Location]] = {}
         self.calls: dict[str, set[str]] = {}  # pou -> pous it calls (for recursion)
+        self.image_needed: tuple[int, str, Location] | None = None  # (bytes, address, where)
+        self.call_sites: dict[tuple[str, str], Location] = {}  # (caller, callee) -> 1st call
         self.pou: A.Pou | None = None
         self.scope: dict[str, Any] = {}
         self.in_test = False
@@ -104,6 +127,35 @@ class Checker:
 
     def warn(self, code: str, msg: str, loc: Location | None) -> None:
         self.diags.append(Diagnostic(code, msg, loc, "warning"))
+
+    # -- cycles among constants, enumeration values and types ---------------------------------
+    def _enter(self, key: Any, label: str, loc: Location | None) -> bool:
+        """Start evaluating ``key``; False (and PLC0122 once) if it is already under way."""
+        if key in self._chain_keys:
+            i = next(k for k, (ck, _, _) in enumerate(self._chain) if ck == key)
+            cyc = self._chain[i:]
+            ident = frozenset(ck for ck, _, _ in cyc)
+            if ident not in self._cycles_seen:
+                self._cycles_seen.add(ident)
+                names = " -> ".join([lab for _, lab, _ in cyc] + [label])
+                structs = [ck[1] for ck, _, _ in cyc if isinstance(ck, tuple) and
+                           isinstance(self.type_decls[ck[1]].type, A.StructTypeRef)]
+                if structs:
+                    self.err("PLC0123", f"structure {structs[0]} contains itself ({names}): it "
+                             "would be infinitely large; remove the field that closes the "
+                             "circle", cyc[0][2])
+                else:
+                    self.err("PLC0122", f"{names}: these are defined in terms of each other; "
+                             "give one of them a value that does not depend on the others",
+                             cyc[0][2])
+            return False
+        self._chain.append((key, label, loc))
+        self._chain_keys.add(key)
+        return True
+
+    def _leave(self) -> None:
+        key, _, _ = self._chain.pop()
+        self._chain_keys.discard(key)
 
     # -- driver -------------------------------------------------------------------------------
     def run(self) -> Project:
@@ -126,15 +178,22 @@ class Checker:
                     self.pous[p.name] = p
                     continue
                 self._declare("POU", p.name, p.loc, self.pous, p)
+        configs = [c for f in self.files for c in f.configs]
+        gdecls = [d for f in self.files for g in f.globals for d in g.decls]
+        gdecls += [d for c in configs for d in c.globals]
+        for d in gdecls:  # global constants may size types declared before them
+            if d.constant:
+                self._global_consts.setdefault(d.name, d)
+        for name, td in self.type_decls.items():
+            if isinstance(td.type, A.EnumTypeRef):
+                for mname, _, _ in td.type.members:
+                    self._enum_index.setdefault(mname, name)
         for name in self.type_decls:
             self.named_type(name, self.type_decls[name].loc)
         for p in self.pous.values():
             if p.kind != "FUNCTION":
                 self.types.setdefault(p.name, T.FBType(p.name, p))
         # globals
-        configs = [c for f in self.files for c in f.configs]
-        gdecls = [d for f in self.files for g in f.globals for d in g.decls]
-        gdecls += [d for c in configs for d in c.globals]
         for d in gdecls:
             d.section = "VAR_GLOBAL"
             self.decl_type(d)
@@ -150,8 +209,9 @@ class Checker:
         tests = [t for f in self.files for t in f.tests]
         for t in tests:
             self.check_test(t)
+        self.check_data(programs, tests)
         return Project(self.files, self.types, self.pous, self.globals, programs, tasks, tests,
-                       self.diags, self.consts)
+                       self.diags, self.consts, self.image_needed)
 
     def _declare(self, what: str, name: str, loc: Location, table: dict, item: Any) -> None:
         if name in table:
@@ -169,8 +229,7 @@ class Checker:
                 tasks.extend(c.tasks)
                 tnames = {t.name for t in c.tasks}
                 for t in c.tasks:
-                    if t.interval is not None:
-                        self.expr(t.interval, None)
+                    self.check_task(t)
                 for inst in c.instances:
                     p = self.pous.get(inst.program)
                     if p is None or p.kind != "PROGRAM":
@@ -188,6 +247,36 @@ class Checker:
                     programs.append((p.name, p, None))
         return programs, tasks
 
+    def check_task(self, t: A.TaskDecl) -> None:
+        """INTERVAL a TIME constant > 0, PRIORITY an integer constant 0..31 (PLC0129); both are
+        replaced by their folded literal, which is what the runtime reads."""
+        if t.interval is not None:
+            e = t.interval
+            ty = T.resolve(self.expr(e, None))
+            v = self.const_value(e) if ty.kind == "time" else None
+            if ty.kind != "time" or not isinstance(v, int):
+                self.err("PLC0129", f"the INTERVAL of task {t.name} must be a TIME constant, "
+                         "e.g. INTERVAL := T#10ms", e.loc)
+            elif (v <= 0 if ty is T.LTIME else v < 1_000_000):
+                self.err("PLC0129", f"the INTERVAL of task {t.name} must be greater than zero "
+                         f"(at least T#1ms, or LTIME#... for shorter), not "
+                         f"{getattr(e, 'text', '') or v}; e.g. INTERVAL := T#10ms", e.loc)
+            else:
+                t.interval = A.Literal(e.loc, v if ty is T.LTIME else v // 1_000_000 * 1_000_000,
+                                       "TIME", None, getattr(e, "text", ""))
+                t.interval.ty = ty
+        if t.priority is not None:
+            e = t.priority
+            ty = T.resolve(self.expr(e, None))
+            v = self.const_value(e)
+            if ty.kind != "int" or isinstance(v, bool) or not isinstance(v, int) or \
+                    not 0 <= v <= _MAX_PRIORITY:
+                self.err("PLC0129", f"the PRIORITY of task {t.name} must be an integer constant "
+                         f"0..{_MAX_PRIORITY} (0 is the most urgent)", e.loc)
+            else:
+                t.priority = A.Literal(e.loc, v, "INT", None, str(v))
+                t.priority.ty = ty
+
     # -- types --------------------------------------------------------------------------------
     def named_type(self, name: str, loc: Location) -> T.Type:
         t = T.lookup_elementary(name)
@@ -196,17 +285,25 @@ class Checker:
         if name in self.types:
             return self.types[name]
         if name in self.type_decls:
-            if name in self._resolving:
-                self.err("PLC0102", f"type {name} is defined in terms of itself", loc)
-                return T.ANY
-            self._resolving.add(name)
             td = self.type_decls[name]
-            ty = self.type_ref(td.type, td.name)
+            if len(self._chain) >= _CHAIN_LIMIT:
+                if not self._too_deep:
+                    self._too_deep = True
+                    path = " -> ".join(lab for _, lab, _ in self._chain[:4])
+                    self.err("PLC0124", f"types, constants and enumeration values are defined "
+                             f"in terms of each other more than {_CHAIN_LIMIT} levels deep "
+                             f"({path} -> ...); declare them with fewer levels", loc)
+                return T.ANY
+            if not self._enter(("type", name), td.spelling or name, td.loc):
+                return T.ANY
+            try:
+                ty = self.type_ref(td.type, td.name)
+            finally:
+                self._leave()
             if isinstance(ty, T.Elementary | T.StringType | T.ArrayType | T.Subrange | T.FBType):
                 ty = T.AliasType(name, ty) if not isinstance(ty, T.Subrange) else ty
-            self.types[name] = ty
-            self._resolving.discard(name)
-            return ty
+            self.types.setdefault(name, ty)
+            return self.types[name]
         if name in self.pous and self.pous[name].kind != "FUNCTION":
             t2 = self.types.setdefault(name, T.FBType(name, self.pous[name]))
             return t2
@@ -231,16 +328,19 @@ class Checker:
             return T.StringType(r.wide, n)
         if isinstance(r, A.ArrayTypeRef):
             dims = []
+            known = True
             for lo_e, hi_e in r.ranges:
                 lo, hi = self.const_int(lo_e), self.const_int(hi_e)
                 if lo is None or hi is None:
-                    lo, hi = 0, 0
+                    lo, hi, known = 0, 0, False
                 elif hi < lo:
                     self.err("PLC0109", f"array range {lo}..{hi} is empty; write the lower bound "
                              "first", lo_e.loc)
                     hi = lo
                 dims.append((lo, hi))
             elem = self.type_ref(r.elem)
+            if not known:  # reported: no follow-up errors about its elements
+                return T.ANY
             at = T.ArrayType(dims, elem)
             if at.size > 10_000_000:
                 self.err("PLC0109", f"array of {at.size} elements is too large for a PLC "
@@ -267,16 +367,22 @@ class Checker:
                 if isinstance(b, T.Elementary) and b.kind in ("int", "bits"):
                     base = b
             et = T.EnumType(name or f"enum@{r.loc.line}", {}, base, dict(r.spellings))
-            nxt = 0
+            if name is not None:
+                self.types.setdefault(name, et)  # its values may name each other
+            syms: list[EnumSym] = []
+            prev: EnumSym | None = None
             for mname, mval, mloc in r.members:
-                if mval is not None:
-                    v = self.const_int(mval)
-                    nxt = v if v is not None else nxt
                 if mname in et.members:
                     self.err("PLC0101", f"enumeration value {mname} appears twice", mloc)
-                et.members[mname] = nxt
-                self.enum_members.setdefault(mname, []).append(EnumSym(et, nxt, mname))
-                nxt += 1
+                sym = EnumSym(et, 0, mname)
+                et.members[mname] = 0
+                self._enum_pending[id(sym)] = (mval, prev, mloc)
+                self.enum_members.setdefault(mname, []).append(sym)
+                syms.append(sym)
+                prev = sym
+            for sym in syms:  # in order: an implicit value is the one before plus 1
+                self._enum_value(sym)
+                et.members[sym.member] = sym.value
             return et
         if isinstance(r, A.StructTypeRef):
             st = T.StructType(name or f"struct@{r.loc.line}", {})
@@ -297,6 +403,20 @@ class Checker:
                 self.check_address(d)
         return d.ty
 
+    def image_extent(self, addr: str, loc: Location) -> None:
+        """Check that ``addr`` lies inside the largest process image (PLC0127) and remember
+        the largest extent: :class:`~plclab.runtime.plc.Plc` compares it with its
+        ``image_size``."""
+        size_ch = addr[2] if len(addr) > 2 and addr[2].isalpha() else "X"
+        parts = addr[3 if addr[2:3].isalpha() else 2:].split(".")
+        byte = int(parts[0]) if len(parts[0]) <= 9 else MAX_IMAGE_BYTES
+        end = byte + max(1, _ADDR_SIZES[size_ch] // 8)
+        if end > MAX_IMAGE_BYTES:
+            self.err("PLC0127", f"{addr[:30]} lies beyond the largest process image ({MAX_IMAGE_BYTES:,}"
+                     " bytes, %..0 to %..65535); use a smaller address", loc)
+        elif self.image_needed is None or end > self.image_needed[0]:
+            self.image_needed = (end, addr, loc)
+
     def check_address(self, d: A.VarDecl) -> None:
         addr = d.address or ""
         if addr.endswith("*"):
@@ -307,13 +427,15 @@ class Checker:
         if size_ch == "X" and len(parts) != 2:
             self.err("PLC0120", f"bit address {addr} needs byte.bit, e.g. %IX0.3", d.loc)
             return
-        if size_ch == "X" and int(parts[1]) > 7:
-            self.err("PLC0120", f"bit number {parts[1]} in {addr} is out of range 0..7", d.loc)
+        if size_ch == "X" and (len(parts[1]) > 1 or int(parts[1]) > 7):
+            self.err("PLC0120", f"bit number {parts[1][:12]} in {addr[:30]} is out of range 0..7",
+                     d.loc)
             return
         if size_ch != "X" and len(parts) != 1:
             self.err("PLC0120", f"{addr}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
                      d.loc)
             return
+        self.image_extent(addr, d.loc)
         t = T.resolve(d.ty)
         if t is T.ANY:
             return
@@ -326,6 +448,79 @@ class Checker:
             self.err("PLC0120", f"{d.spelling or d.name} is {t.name} but {addr} holds "
                      f"{bits} bit(s); declare it as {need}", d.loc)
 
+    def _enum_value(self, sym: EnumSym) -> int | None:
+        """The value of an enumeration member, evaluated on first use (values may refer to
+        constants and to other members; a circle among them is PLC0122)."""
+        walked: list[EnumSym] = []  # implicit values, from ``sym`` back to an explicit one
+        s: EnumSym | None = sym
+        while s is not None and id(s) in self._enum_pending and \
+                self._enum_pending[id(s)][0] is None:
+            walked.append(s)
+            s = self._enum_pending[id(s)][1]
+        entered = 0
+        try:
+            for w in walked:
+                if not self._enter(id(w), f"{w.type.name}.{w.member}",
+                                   self._enum_pending[id(w)][2]):
+                    return None
+                entered += 1
+            if s is None:
+                base: int | None = -1
+            elif id(s) not in self._enum_pending:
+                base = s.value
+            else:  # an explicit value still to evaluate
+                expr, _, loc = self._enum_pending[id(s)]
+                if not self._enter(id(s), f"{s.type.name}.{s.member}", loc):
+                    return None
+                try:
+                    base = self.const_int(expr)
+                finally:
+                    self._leave()
+                self._enum_pending.pop(id(s), None)
+                s.value = base if base is not None else 0
+                s.type.members[s.member] = s.value
+        finally:
+            for _ in range(entered):
+                self._leave()
+        if base is None:
+            return None
+        for k, w in enumerate(reversed(walked)):
+            w.value = base + k + 1
+            w.type.members[w.member] = w.value
+            self._enum_pending.pop(id(w), None)
+        return sym.value
+
+    def _const_of(self, d: A.VarDecl, scope: dict[str, Any]) -> Any:
+        """The folded value of constant ``d`` (evaluated once, in its own ``scope``)."""
+        key = id(d)
+        if key in self._const_memo:
+            if key in self._broken:
+                self._broken_hits += 1
+            return self._const_memo[key]
+        if len(self._chain) >= _CHAIN_LIMIT:
+            self._broken_hits += 1
+            if not self._too_deep:
+                self._too_deep = True
+                path = " -> ".join(lab for _, lab, _ in self._chain[:4])
+                self.err("PLC0124", f"constants are defined in terms of each other more than "
+                         f"{_CHAIN_LIMIT} levels deep ({path} -> ...); give some of them "
+                         "literal values", d.loc)
+            return None
+        if not self._enter(key, d.spelling or d.name, d.loc):
+            self._broken_hits += 1
+            return None
+        old, before = self.scope, (len(self.diags), self._broken_hits)
+        self.scope = scope
+        try:
+            v = self.const_value(d.init) if d.init is not None else None
+        finally:
+            self.scope = old
+            self._leave()
+        if (len(self.diags), self._broken_hits) != before:
+            self._broken.add(key)  # its error is reported: users of it need no second one
+        self._const_memo[key] = v
+        return v
+
     # -- constants ----------------------------------------------------------------------------
     def const_value(self, e: A.Expr) -> Any:
         """Evaluate a constant expression (literals, constants, arithmetic); None if not."""
@@ -336,15 +531,21 @@ class Checker:
                 return e.value
             return e.value
         if isinstance(e, A.Name):
-            d = self.scope.get(e.name)
-            d = d.decl if isinstance(d, VarSym) else None
-            if d is None:
-                d = self.globals.get(e.name)
+            sym = self.scope.get(e.name)
+            d, scope = None, self.scope
+            if isinstance(sym, VarSym):
+                d = sym.decl
+                scope = {} if sym.storage == "global" else self.scope
+            else:
+                d, scope = self.globals.get(e.name) or self._global_consts.get(e.name), {}
             if d is not None and d.constant and d.init is not None:
                 d.used = True
-                return self.const_value(d.init)
+                return self._const_of(d, scope)
+            if e.name not in self.enum_members and e.name in self._enum_index:
+                tname = self._enum_index.pop(e.name)  # declared later: resolve it now
+                self.named_type(tname, e.loc)
             if e.name in self.enum_members and len(self.enum_members[e.name]) == 1:
-                return self.enum_members[e.name][0].value
+                return self._enum_value(self.enum_members[e.name][0])
             return None
         if isinstance(e, A.Unary):
             v = self.const_value(e.operand)
@@ -362,25 +563,50 @@ class Checker:
             try:
                 match e.op:
                     case "+":
-                        return a + b
+                        r = a + b
                     case "-":
-                        return a - b
+                        r = a - b
                     case "*":
-                        return a * b
+                        r = a * b
                     case "/":
                         if isinstance(a, int) and isinstance(b, int):
                             q = abs(a) // abs(b)
-                            return q if (a >= 0) == (b >= 0) else -q
-                        return a / b
+                            r = q if (a >= 0) == (b >= 0) else -q
+                        else:
+                            r = a / b
                     case "MOD":
-                        return a - b * int(a / b)
-            except ZeroDivisionError:
+                        r = a - b * (abs(a) // abs(b)) * (1 if (a >= 0) == (b >= 0) else -1) \
+                            if isinstance(a, int) and isinstance(b, int) else math.fmod(a, b)
+                    case _:
+                        return None
+            except (ZeroDivisionError, ValueError):
                 self.err("PLC2001", "division by zero in a constant expression", e.loc)
                 return None
+            except OverflowError:
+                r = math.inf
+            return self._bounded(r, e)
         return None
 
+    def _bounded(self, v: Any, e: A.Expr) -> Any:
+        """A folded value no IEC type can hold (integers beyond 128 bits, floats beyond LREAL)
+        is PLC0125, so that folding never builds huge numbers."""
+        if isinstance(v, bool):
+            return v
+        if isinstance(v, int) and v.bit_length() > _CONST_BITS:
+            self.err("PLC0125", f"this constant expression is larger than any integer type "
+                     f"(more than {_CONST_BITS} bits); use smaller values", e.loc)
+            return None
+        if isinstance(v, float) and not math.isfinite(v):
+            self.err("PLC0125", "this constant expression overflows LREAL (beyond "
+                     "1.8E308); use smaller values", e.loc)
+            return None
+        return v
+
     def const_int(self, e: A.Expr) -> int | None:
+        before = (len(self.diags), self._broken_hits)
         v = self.const_value(e)
+        if (len(self.diags), self._broken_hits) != before:  # explained (a cycle, an overflow)
+            return v if isinstance(v, int) and not isinstance(v, bool) else None
         if isinstance(v, bool) or not isinstance(v, int):
             self.err("PLC0109", "a constant integer expression is needed here (a literal or a "
                      "VAR CONSTANT)", e.loc)
@@ -453,7 +679,7 @@ class Checker:
         self.scope = scope
         self.init_value(d.init, d.ty, d.loc)
         if d.constant:
-            self.consts[id(d)] = self.const_value(d.init)
+            self.consts[id(d)] = self._const_of(d, scope)
         self.scope = old
 
     def init_value(self, e: A.Expr, ty: T.Type, loc: Location) -> None:
@@ -553,27 +779,101 @@ class Checker:
         self.in_test = False
 
     def check_recursion(self) -> None:
+        """PLC0110 at the call that closes each circle of calls, naming it (F -> G -> F).
+        Iterative depth-first walk: long call chains are fine."""
         state: dict[str, int] = {}
-        stack: list[str] = []
-
-        def visit(n: str) -> None:
-            state[n] = 1
-            stack.append(n)
-            for m in sorted(self.calls.get(n, ())):
+        for root in list(self.calls):
+            if root in state:
+                continue
+            state[root] = 1
+            path = [root]
+            stack = [iter(sorted(self.calls.get(root, ())))]
+            while stack:
+                m = next(stack[-1], None)
+                if m is None:
+                    stack.pop()
+                    state[path.pop()] = 2
+                    continue
                 if state.get(m) == 1:
-                    cyc = stack[stack.index(m):] + [m]
-                    p = self.pous[m]
+                    n = path[-1]
+                    cyc = path[path.index(m):] + [m]
+                    names = [self.pous[x].spelling or x for x in cyc]
+                    if len(names) > 9:
+                        names = names[:4] + [f"({len(names) - 8} more)"] + names[-4:]
+                    where = self.call_sites.get((n, m), self.pous[m].loc)
                     self.err("PLC0110", "recursion is not allowed in IEC 61131-3 (a PLC has no "
-                             "dynamic stack): " + " -> ".join(cyc) + "; rewrite it as a loop",
-                             p.loc)
-                elif state.get(m) is None:
-                    visit(m)
-            stack.pop()
-            state[n] = 2
+                             f"dynamic stack): {' -> '.join(names)}; this call closes the "
+                             "circle: rewrite it as a loop", where)
+                elif m not in state:
+                    state[m] = 1
+                    path.append(m)
+                    stack.append(iter(sorted(self.calls.get(m, ()))))
 
-        for n in list(self.calls):
-            if n not in state:
-                visit(n)
+    # -- data: containment cycles, nesting, size ----------------------------------------------
+    def check_data(self, programs: list, tests: list[A.TestBlock]) -> None:
+        """Blocks and structures must not contain themselves; every POU's and TEST's data and
+        the program's whole data must stay within :data:`datasize.DATA_LIMIT` bytes and
+        :data:`datasize.NESTING_LIMIT` levels (PLC0123, PLC0124)."""
+        ds = DataSizes()
+        for p in self.pous.values():
+            if p.kind != "FUNCTION":
+                ds.ensure(p)
+        for t in list(self.types.values()):
+            if isinstance(T.resolve(t), T.StructType):
+                ds.ensure(T.resolve(t))
+        seen: set[frozenset] = set()
+        for closing, text, ring in ds.cycles:
+            key = frozenset(id(c) for c in ring)
+            if key not in seen:
+                seen.add(key)
+                self.err("PLC0123", f"{text}: {datasize.container_name(ring[0])} contains an "
+                         "instance of itself, which would be infinitely large; remove "
+                         f"{closing.spelling or closing.name} or pass the block as VAR_IN_OUT",
+                         closing.loc)
+        if seen:
+            return  # sizes are meaningless until the circle is gone
+        scopes: list[tuple[str, list[A.VarDecl], Location]] = [
+            (f"{p.kind} {p.spelling or p.name}", datasize.members(p), p.loc)
+            for p in self.pous.values() if not p.loc.file.startswith("<plclab>/")]
+        scopes += [(f"TEST '{t.title}'", t.decls, t.loc) for t in tests]
+        for what, decls, loc in scopes:
+            if self._data_fits(ds, what, decls, loc, None):
+                continue
+            return
+        top = list(self.globals.values())
+        total, depth, _ = ds.decls_cost(top)
+        big, big_bytes, owner = None, -1, None
+        for d in top:
+            b, _ = ds.type_cost(d.ty)
+            if b > big_bytes:
+                big, big_bytes, owner = d, b, None
+        for inst, p, _ in programs:
+            b, dep = ds.type_cost(self.types.get(p.name))
+            total += b
+            if b > big_bytes:
+                big, big_bytes, owner = ds.biggest.get(id(p)), b, inst
+        if total > datasize.DATA_LIMIT and big is not None:
+            self.err("PLC0124", f"the program's data takes {total:,} bytes, more than the limit "
+                     f"of {datasize.DATA_LIMIT:,} (16 MiB); the largest part: "
+                     f"{ds.chain(big, owner)}. Use smaller arrays", big.loc)
+
+    def _data_fits(self, ds: DataSizes, what: str, decls: list[A.VarDecl], loc: Location,
+                   owner: str | None) -> bool:
+        size, depth, big = ds.decls_cost(decls)
+        if big is None:
+            return True
+        name = what.split(" ", 1)[1].strip("'")
+        if depth > datasize.NESTING_LIMIT:
+            self.err("PLC0124", f"the data of {what} nests {depth} levels deep (arrays, "
+                     f"structures and instances inside each other; the limit is "
+                     f"{datasize.NESTING_LIMIT}): {ds.chain(big, name)}", big.loc)
+            return False
+        if size > datasize.DATA_LIMIT:
+            self.err("PLC0124", f"the data of {what} takes {size:,} bytes, more than the limit "
+                     f"of {datasize.DATA_LIMIT:,} (16 MiB): {ds.chain(big, name)}; use smaller "
+                     "arrays", big.loc)
+            return False
+        return True
 
     # -- statements ---------------------------------------------------------------------------
     def checked_body(self, stmts: list[A.Stmt], loc: Location) -> None:
@@ -740,6 +1040,11 @@ class Checker:
             self.err("PLC0103", f"cannot assign {rs} to {rd}: enumerations only take their own "
                      "values", loc)
             return
+        if T.base_of(rd) is T.REAL and isinstance(e, A.Literal) and e.prefix is None and \
+                e.kind in ("REAL", "INT") and abs(e.value) > _REAL_MAX:
+            self.err("PLC0111", f"{e.text} does not fit in REAL (at most about 3.4E38); use "
+                     "LREAL", e.loc)
+            return
         if T.can_widen(rs, rd):
             if T.base_of(rs).name in ("DINT", "UDINT", "LINT") and T.base_of(rd) is T.REAL:
                 self.warn("PLC0202", f"{rs} to REAL may lose precision (REAL has 24 bits of "
@@ -852,6 +1157,9 @@ class Checker:
                 return T.BOOL
             if rt.kind == "real":
                 e.kind, e.value = "REAL", float(e.value)
+                if rt is T.REAL and abs(e.value) > _REAL_MAX:
+                    self.err("PLC0111", f"{e.text} does not fit in REAL (at most about "
+                             "3.4E38); use LREAL", e.loc)
                 return t
             if isinstance(rt, T.EnumType):
                 return rt
@@ -868,6 +1176,11 @@ class Checker:
             if expected is not None and T.resolve(expected) is T.LTIME:
                 t = T.LTIME
             e.tyname = t.name  # type: ignore[attr-defined]
+            ms = abs(e.value) // 1_000_000 * (-1 if e.value < 0 else 1)
+            if t is T.TIME and not (T.TIME.lo <= ms <= T.TIME.hi):
+                self.err("PLC0126", f"{e.text} is out of TIME's range (T#-24d20h31m23s648ms.."
+                         "T#24d20h31m23s647ms, 32 bits of ms); use LTIME# for longer durations",
+                         e.loc)
             return t
         if k in ("DATE", "TOD", "DT"):
             return {"DATE": T.DATE, "TOD": T.TOD, "DT": T.DT}[k]
@@ -931,9 +1244,14 @@ class Checker:
         a = e.address
         size = a[2] if len(a) > 2 and a[2].isalpha() else "X"
         parts = a[3 if a[2:3].isalpha() else 2:].split(".")
-        if size == "X" and (len(parts) != 2 or int(parts[1]) > 7):
-            self.err("PLC0120", f"bit address {a} needs byte.bit with bit 0..7, e.g. %IX0.3",
+        if size == "X" and (len(parts) != 2 or len(parts[1]) > 1 or int(parts[1]) > 7):
+            self.err("PLC0120", f"bit address {a[:30]} needs byte.bit with bit 0..7, e.g. %IX0.3",
                      e.loc)
+        elif size != "X" and len(parts) != 1:
+            self.err("PLC0120", f"{a[:30]}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
+                     e.loc)
+        else:
+            self.image_extent(a, e.loc)
         return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
 
     def member(self, e: A.Member, write: bool) -> T.Type:
@@ -1231,9 +1549,14 @@ class Checker:
                          "call", c.loc)
         return inputs, outputs, inouts
 
-    def call_function(self, c: A.Call, pou: A.Pou) -> T.Type:
+    def _called(self, pou: A.Pou, loc: Location) -> None:
+        """Remember that the POU being checked calls ``pou`` here (for recursion)."""
         if self.pou is not None:
             self.calls.setdefault(self.pou.name, set()).add(pou.name)
+            self.call_sites.setdefault((self.pou.name, pou.name), loc)
+
+    def call_function(self, c: A.Call, pou: A.Pou) -> T.Type:
+        self._called(pou, c.loc)
         ins, outs, inouts = self._bind(c, pou.decls, f"function {pou.spelling or pou.name}")
         c.target = CallInfo("function", pou, ins, outs, inouts)
         rd = getattr(pou, "return_decl", None)
@@ -1243,8 +1566,7 @@ class Checker:
         if not statement:
             self.err("PLC0106", f"a function block call is a statement: call {pou.name} on its "
                      "own line, then read its outputs (inst.Q)", c.loc)
-        if self.pou is not None:
-            self.calls.setdefault(self.pou.name, set()).add(pou.name)
+        self._called(pou, c.loc)
         ins, outs, inouts = self._bind(c, pou.decls, f"{pou.name}")
         c.target = CallInfo("program" if program else "fb", pou, ins, outs, inouts)
         return T.VOID

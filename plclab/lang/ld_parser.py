@@ -936,9 +936,11 @@ class _NetLowering:
         v = self.value(refs, e.loc)
         stmt: A.Stmt = A.Assign(e.loc, copy.deepcopy(e.var), v)
         ref = refs[0] if len(refs) == 1 else (-1, "")
+        hops = 0  # a chain of connectors visits each element at most once
         while ref[0] >= 0 and self.elems[ref[0]].kind == "conn" and \
-                len(self.elems[ref[0]].inputs.get("", [])) == 1:
+                len(self.elems[ref[0]].inputs.get("", [])) == 1 and hops <= len(self.elems):
             ref = self.elems[ref[0]].inputs[""][0]  # through connector/continuation pairs
+            hops += 1
         if ref[0] >= 0:
             src = self.elems[ref[0]]
             if src.kind == "func" and "EN" in src.inputs and ref[1] != "ENO":

@@ -9,6 +9,7 @@ folded to upper case in ``Token.value`` while ``Token.text`` keeps the spelling.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 
@@ -73,10 +74,56 @@ _TOKEN_RE = re.compile(
     re.VERBOSE,
 )
 
+# characters that can never start a token (a superset would be wrong, a subset only slower)
+_NEVER_TOKEN = re.compile(r"[^\sA-Za-z0-9_%'\"{}()\[\]+\-*/<>=,;:.&^#!]+")
+_BLANKS = re.compile(r"[ \t]+")
+MAX_DIGITS = 100  # an integer literal with more digits is an error (PLC0125)
+_LTIME_MAX = (1 << 63) - 1  # ns
+_DATE_MAX_S = (1 << 32) - 1  # DATE and DT: unsigned 32-bit seconds since 1970, as on S7/CODESYS
 _DURATION_RE = re.compile(r"([0-9][0-9_]*(?:\.[0-9_]+)?)(d|h|ms|m|s|us|ns)", re.IGNORECASE)
 _UNIT_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
             "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
 _ESCAPES = {"$": "$", "'": "'", '"': '"', "L": "\n", "N": "\n", "P": "\f", "R": "\r", "T": "\t"}
+
+
+# At most this many diagnostics are kept per file; then one PLC0128 says there are more.
+MAX_DIAGNOSTICS_PER_FILE = 100
+
+
+def too_many_diagnostics(file: str, where: Location | None) -> Diagnostic:
+    """The one diagnostic that replaces everything beyond the cap of a file (located at the
+    first one left out)."""
+    return Diagnostic("PLC0128", f"too many errors in {file}; only the first "
+                      f"{MAX_DIAGNOSTICS_PER_FILE} are shown: fix these first", where)
+
+
+def add_capped(diags: list[Diagnostic], d: Diagnostic, file: str) -> None:
+    """Append ``d`` unless the file already has its cap of diagnostics."""
+    if len(diags) < MAX_DIAGNOSTICS_PER_FILE:
+        diags.append(d)
+    elif len(diags) == MAX_DIAGNOSTICS_PER_FILE:
+        diags.append(too_many_diagnostics(file, d.location))
+
+
+def cap_per_file(diags: list[Diagnostic]) -> list[Diagnostic]:
+    """Keep at most :data:`MAX_DIAGNOSTICS_PER_FILE` diagnostics of each file, errors before
+    warnings, in their order; then one PLC0128 for each file that had more."""
+    by_file: dict[str, list[Diagnostic]] = {}
+    for d in diags:
+        by_file.setdefault(d.location.file if d.location is not None else "", []).append(d)
+    keep: set[int] = set()
+    notes: list[Diagnostic] = []
+    for f, ds in by_file.items():
+        if len(ds) <= MAX_DIAGNOSTICS_PER_FILE:
+            keep.update(id(d) for d in ds)
+            continue
+        ranked = [d for d in ds if d.severity == "error" and d.code != "PLC0128"]
+        ranked += [d for d in ds if d.severity != "error"]
+        shown = ranked[:MAX_DIAGNOSTICS_PER_FILE]
+        keep.update(id(d) for d in shown)
+        first_left_out = next(d for d in ds if id(d) not in keep)
+        notes.append(too_many_diagnostics(f, first_left_out.location))
+    return [d for d in diags if id(d) in keep] + notes
 
 
 class Lexer:
@@ -89,7 +136,33 @@ class Lexer:
         self.pragmas: list[tuple[int, str]] = []
 
     def error(self, code: str, msg: str, line: int, col: int) -> None:
-        self.diagnostics.append(Diagnostic(code, msg, Location(self.file, line, col)))
+        add_capped(self.diagnostics, Diagnostic(code, msg, Location(self.file, line, col)),
+                   self.file)
+
+    def _bad_run(self, pos: int, line: int, col: int) -> int:
+        """Report a run of characters that start no token (blanks between them included) as
+        one diagnostic; return where the run ends."""
+        text, n, match = self.text, len(self.text), _TOKEN_RE.match
+        end, last = pos + 1, pos
+        while end < n:
+            m = _NEVER_TOKEN.match(text, end)  # fast path: many at once
+            if m is not None:
+                last, end = m.end() - 1, m.end()
+                continue
+            blank = _BLANKS.match(text, end)
+            j = blank.end() if blank else end
+            if j < n and match(text, j) is None:
+                end, last = j + 1, j
+                continue
+            break
+        end = last + 1
+        ch = text[pos]
+        more = f" (and {end - pos - 1} more up to column {col + end - pos - 1})" \
+            if end - pos > 1 else ""
+        self.error("PLC0001", f"unexpected character {ch!r}{more}; remove it (ST uses only "
+                   "ASCII letters, digits, operators and quotes outside comments and strings)",
+                   line, col)
+        return end
 
     def tokens(self) -> list[Token]:
         text, pos, line, line_start = self.text, 0, 1, 0
@@ -100,11 +173,7 @@ class Lexer:
             m = match(text, pos)
             col = pos - line_start + 1
             if m is None:
-                ch = text[pos]
-                self.error("PLC0001", f"unexpected character {ch!r}; remove it (ST uses only ASCII "
-                           "letters, digits, operators and quotes outside comments and strings)",
-                           line, col)
-                pos += 1
+                pos = self._bad_run(pos, line, col)
                 continue
             kind = m.lastgroup
             s = m.group()
@@ -159,12 +228,12 @@ class Lexer:
                 up = s.upper()
                 out.append(Token(up if up in KEYWORDS else "IDENT", up, s, line, col))
             elif kind == "int":
-                out.append(Token("INT", int(s.replace("_", "")), s, line, col))
+                out.append(Token("INT", self._int(s, s, line, col), s, line, col))
             elif kind == "based":
                 base, digits = s.split("#", 1)
                 out.append(self._based(int(base), digits, s, line, col))
             elif kind == "real":
-                out.append(Token("REAL", float(s.replace("_", "")), s, line, col))
+                out.append(Token("REAL", self._real(s, s, line, col), s, line, col))
             elif kind == "addr":
                 out.append(Token("ADDR", s.upper(), s, line, col))
             else:
@@ -241,8 +310,34 @@ class Lexer:
                    line, col)
         return None, i, False
 
+    def _int(self, digits: str, text: str, line: int, col: int) -> int:
+        """A decimal literal's value; more than :data:`MAX_DIGITS` digits is PLC0125 (and
+        would exceed Python's int-from-text limit)."""
+        clean = digits.replace("_", "")
+        if len(clean) > MAX_DIGITS:
+            self._too_long(text, len(clean), line, col)
+            return 0
+        return int(clean)
+
+    def _too_long(self, text: str, n: int, line: int, col: int) -> None:
+        self.error("PLC0125", f"'{text[:20]}...' has {n} digits; no integer type holds more "
+                   "than 20 decimal digits (ULINT: 18446744073709551615)", line, col)
+
+    def _real(self, digits: str, text: str, line: int, col: int) -> float:
+        """A REAL literal's value; beyond LREAL's range is PLC0125 (it would become inf)."""
+        v = float(digits.replace("_", ""))
+        if math.isinf(v):
+            shown = text if len(text) <= 24 else text[:20] + "..."
+            self.error("PLC0125", f"{shown} is too large for LREAL (at most about 1.8E308); use "
+                       "a smaller value", line, col)
+            return 0.0
+        return v
+
     def _based(self, base: int, digits: str, s: str, line: int, col: int, prefix=None) -> Token:
         clean = digits.replace("_", "")
+        if len(clean) > MAX_DIGITS:
+            self._too_long(s, len(clean), line, col)
+            return Token("INT", 0, s, line, col, prefix)
         try:
             value = int(clean, base)
         except ValueError:
@@ -261,8 +356,14 @@ class Lexer:
                 return Token("TIME", 0, head, line, col, TIME_PREFIXES[prefix]), pos
             s = m.group()
             ns = parse_duration(s)
-            if ns is None:
-                self.error("PLC0005", f"'{head}{s}' is not a valid duration; write e.g. T#1h2m3s4ms, "
+            if ns is not None and not (-_LTIME_MAX - 1 <= ns <= _LTIME_MAX):
+                shown = head + (s if len(s) <= 30 else s[:26] + "...")
+                self.error("PLC0126", f"'{shown}' is out of range: durations reach at most "
+                           "about 106751 days (LTIME, 64 bits of ns) and TIME "
+                           "24d20h31m23s647ms", line, col)
+                ns = 0
+            elif ns is None:
+                self.error("PLC0005", f"'{head}{s[:30]}' is not a valid duration; write e.g. T#1h2m3s4ms, "
                            "T#2s_200ms or T#-5s (units d, h, m, s, ms, us, ns)", line, col)
                 ns = 0
             return Token("TIME", ns, head + s, line, col, TIME_PREFIXES[prefix]), m.end()
@@ -286,15 +387,22 @@ class Lexer:
                 except ValueError:
                     self.error("PLC0005", f"'{head}{s}' is not a valid calendar value", line, col)
                     value = 0
+                if kind in ("DATE", "DT") and not _date_in_range(kind, value):
+                    self.error("PLC0126", f"'{head}{s}' is out of range: {kind} holds "
+                               "1970-01-01 to 2106-02-07 (32-bit seconds, as on the PLC)",
+                               line, col)
+                    value = 0
                 return Token(kind, value, head + s, line, col, table[prefix]), m.end()
         # numeric or boolean or enum with a type prefix
         m = _TOKEN_RE.match(text, pos)
         if m and m.lastgroup in ("int", "real", "based"):
             s = m.group()
             if m.lastgroup == "int":
-                tok = Token("INT", int(s.replace("_", "")), head + s, line, col, prefix)
+                tok = Token("INT", self._int(s, head + s, line, col), head + s, line, col,
+                            prefix)
             elif m.lastgroup == "real":
-                tok = Token("REAL", float(s.replace("_", "")), head + s, line, col, prefix)
+                tok = Token("REAL", self._real(s, head + s, line, col), head + s, line, col,
+                            prefix)
             else:
                 b, d = s.split("#", 1)
                 tok = self._based(int(b), d, head + s, line, col, prefix)
@@ -302,8 +410,10 @@ class Lexer:
         if m and m.lastgroup == "op" and m.group() in "+-":
             m2 = _TOKEN_RE.match(text, m.end())
             if m2 and m2.lastgroup in ("int", "real"):
-                s = m2.group().replace("_", "")
-                v = int(s) if m2.lastgroup == "int" else float(s)
+                s = m2.group()
+                text = head + m.group() + s
+                v = self._int(s, text, line, col) if m2.lastgroup == "int" else \
+                    self._real(s, text, line, col)
                 if m.group() == "-":
                     v = -v
                 kind = "INT" if m2.lastgroup == "int" else "REAL"
@@ -342,11 +452,20 @@ def parse_duration(s: str) -> int | None:
         if m.start() != pos:
             return None
         num, unit = m.group(1), m.group(2).lower()
+        whole, _, frac = num.partition(".")
+        if len(whole.lstrip("0")) > 30:  # far beyond any duration; no big arithmetic
+            return (1 << 70) * (-1 if neg else 1)
+        num = whole + ("." + frac[:30] if frac else "")
         total += round(float(num) * _UNIT_NS[unit]) if "." in num else int(num) * _UNIT_NS[unit]
         pos = m.end()
     if pos != len(body) or pos == 0:
         return None
     return -total if neg else total
+
+
+def _date_in_range(kind: str, value: int) -> bool:
+    seconds = value if kind == "DATE" else value // 1000
+    return 0 <= seconds <= _DATE_MAX_S
 
 
 def parse_datetime_literal(kind: str, s: str) -> int:

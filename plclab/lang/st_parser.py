@@ -12,10 +12,12 @@ from __future__ import annotations
 
 import difflib
 import re
+from contextlib import contextmanager
 
 from ..errors import Diagnostic, Location, PlcError
 from . import ast as A
-from .lexer import KEYWORDS, Lexer, Token
+from .datasize import NESTING_LIMIT
+from .lexer import KEYWORDS, Lexer, Token, add_capped
 from .limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
@@ -35,6 +37,9 @@ _STMT_END = {"END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNT
              "END_REPEAT", "END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_TEST", "EOF"}
 _POU_START = {"PROGRAM", "FUNCTION", "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION",
               "TEST"}
+# tokens where a declaration cannot continue: a new section, a new POU, the end of a body
+_DECL_STOP = set(_VAR_SECTIONS) | _POU_START | _STMT_END | {"END_TYPE", "END_STRUCT",
+                                                             "END_CONFIGURATION", "END_RESOURCE"}
 _CMP = {"=": "=", "<>": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 # binary operator token -> (precedence, AST operator); higher binds tighter
 _BINARY = {
@@ -62,6 +67,8 @@ class Parser:
     there a ``{native 'NAME'}`` pragma binds a block to its registered implementation. In any
     other file the pragma is an error (PLC0131), so user text never selects Python code."""
 
+    depth = 0  # type nesting; like the two below, a class default for the sub-parsers
+    # the IL and LD front ends build without __init__
     expr_depth = 0  # nesting of expr() calls (class defaults: IL builds sub-parsers by __new__)
     block_depth = 0  # nesting of statement lists
 
@@ -73,6 +80,7 @@ class Parser:
         self.file = file
         self.library = library
         self.i = 0
+        self.depth = 0  # nesting of types and initial values (see nested())
         self.il_default = file.lower().endswith(".il")  # a .il file: bodies are IL unless ST
         if not library:
             self._reject_native_pragmas(text)
@@ -116,7 +124,7 @@ class Parser:
         return None
 
     def error(self, code: str, msg: str, tok: Token | None = None) -> None:
-        self.diagnostics.append(Diagnostic(code, msg, self.loc(tok)))
+        add_capped(self.diagnostics, Diagnostic(code, msg, self.loc(tok)), self.file)
 
     def expect(self, kind: str, what: str | None = None) -> Token:
         if self.tok.kind == kind:
@@ -139,6 +147,14 @@ class Parser:
             raise _Bail
         self.error("PLC0010", f"expected {what}, found {found}")
         raise _Bail
+
+    def ensure_progress(self, start: int) -> None:
+        """Safety net of every recovery loop: if nothing was consumed since ``start``, report
+        the token and skip it, so that no loop can run twice on the same token."""
+        if self.i == start and not self.at("EOF"):
+            self.error("PLC0010", f"unexpected {_found(self.tok)} here; remove it or check the "
+                       "structure around it")
+            self.advance()
 
     def sync(self, stops: set[str]) -> None:
         """Skip tokens until after a ';' or before one of ``stops``."""
@@ -221,11 +237,13 @@ class Parser:
                     self.advance()
         decls: list[A.VarDecl] = []
         while self.tok.kind in _VAR_SECTIONS:
+            start = self.i
             try:
                 decls.extend(self.var_section())
             except _Bail:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
+                self.ensure_progress(start)
         body, language, lower = self.pou_body(end_kw)
         end_loc = self.loc()
         if not self.accept(end_kw):
@@ -345,14 +363,19 @@ class Parser:
             retain |= k in ("RETAIN", "PERSISTENT")
         out: list[A.VarDecl] = []
         while not self.at("END_VAR"):
-            if self.at("EOF") or self.tok.kind in _POU_START - {"VAR_GLOBAL"} or (
-                self.tok.kind in _STMT_END
-            ):
-                self.fail_expected("END_VAR")
+            if self.tok.kind in _DECL_STOP:
+                # a section or POU starts before this one is closed: report it and let the
+                # caller go on from here (never loop on the same token)
+                self.error("PLC0010", f"expected END_VAR to close the {section} section opened "
+                           f"at line {sec_tok.line}, found {_found(self.tok)}; add END_VAR "
+                           "before it")
+                raise _Bail
+            start = self.i
             try:
                 out.extend(self.var_decl(section, constant, retain))
             except _Bail:
-                self.sync({"END_VAR"} | _POU_START)
+                self.sync({"END_VAR"} | _DECL_STOP)
+                self.ensure_progress(start)
         self.expect("END_VAR")
         return out
 
@@ -381,9 +404,11 @@ class Parser:
 
     def initializer(self) -> A.Expr:
         if self.at("["):
-            return self.array_init()
+            with self.nested("initial value"):
+                return self.array_init()
         if self.at("(") and self.peek().kind == "IDENT" and self.peek(2).kind == ":=":
-            return self.struct_init()
+            with self.nested("initial value"):
+                return self.struct_init()
         return self.expr()
 
     def array_init(self) -> A.ArrayInit:
@@ -421,6 +446,7 @@ class Parser:
         while not self.at("END_TYPE"):
             if self.at("EOF") or self.tok.kind in _POU_START:
                 self.fail_expected("END_TYPE")
+            start = self.i
             try:
                 n = self.expect("IDENT", "a type name")
                 self.expect(":")
@@ -432,10 +458,29 @@ class Parser:
                 out.append(A.TypeDecl(self.loc(n), n.value, tref, init, n.text))
             except _Bail:
                 self.sync({"END_TYPE"} | _POU_START)
+                self.ensure_progress(start)
         self.expect("END_TYPE")
         return out
 
     def type_ref(self, allow_decl: bool = True) -> A.TypeRef:
+        with self.nested("type"):
+            return self._type_ref(allow_decl)
+
+    @contextmanager
+    def nested(self, what: str):
+        """Count nesting of types and initial values written inside each other; beyond
+        :data:`NESTING_LIMIT` levels report PLC0124 and give up the declaration."""
+        if self.depth >= NESTING_LIMIT:
+            self.error("PLC0124", f"this {what} is nested more than {NESTING_LIMIT} levels "
+                       "deep; declare the inner levels as named TYPEs with fewer levels")
+            raise _Bail
+        self.depth += 1
+        try:
+            yield
+        finally:
+            self.depth -= 1
+
+    def _type_ref(self, allow_decl: bool = True) -> A.TypeRef:
         t = self.tok
         loc = self.loc()
         if t.kind in ("STRING", "WSTRING"):

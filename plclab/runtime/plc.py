@@ -115,6 +115,11 @@ class Plc:
             raise PlcError("PLC3002", "the cycle time must be positive")
         self.watchdog = watchdog
         self.image_size = image_size
+        need = getattr(self.project, "image_needed", None)
+        if need is not None and need[0] > image_size:
+            raise PlcError("PLC0127", f"{need[1]} lies beyond the process image of {image_size} "
+                           f"bytes; use a smaller address or Plc(..., image_size={need[0]})",
+                           need[2])
         # S7-style system and clock memory bytes (001 lines 2494-2540), off unless asked for
         self.system_memory_byte = system_memory_byte
         self.clock_memory_byte = clock_memory_byte

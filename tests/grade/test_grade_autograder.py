@@ -106,7 +106,8 @@ def test_scores_and_messages(graded):
     assert broken.status == "compile_error" and broken.score == 0
     assert "broken.st:9:1: error PLC0010" in feedback(out, "broken")
     assert res["loop"].result.score == 0 and "PLC2003" in feedback(out, "loop")
-    assert res["hog"].result.status == "memory" and "memory" in feedback(out, "hog")
+    # 2.4 GB of arrays: rejected at compile time (PLC0124), before any memory is taken
+    assert res["hog"].result.status == "compile_error" and "PLC0124" in feedback(out, "hog")
     crash = res["crash"].result
     assert "PLC2001" in feedback(out, "crash") and crash.score < full
     slow = res["slow"].result

@@ -142,10 +142,10 @@ def test_real_power_special_cases():
 
 
 def test_math_functions_give_ieee_values_not_python_errors():
-    plc = run("inf : REAL; big : REAL := 3.0E38; s, l, q, a, lg : REAL; o : REAL := 1.0E39;",
+    plc = run("inf : REAL; big : REAL := 3.0E38; s, l, q, a, lg : REAL;",
               "inf := big * 10.0; s := SIN(inf); l := LN(REAL#0.0); q := SQRT(REAL#-1.0);"
               "a := ACOS(REAL#2.0); lg := LOG(REAL#-1.0);")
-    assert plc["inf"] == math.inf and plc["o"] == math.inf
+    assert plc["inf"] == math.inf
     assert math.isnan(plc["s"]) and plc["l"] == -math.inf and math.isnan(plc["q"])
     assert math.isnan(plc["a"]) and math.isnan(plc["lg"])
     f = fault("big : REAL := 3.0E38; inf : REAL; x : INT;",

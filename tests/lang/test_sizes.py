@@ -121,13 +121,13 @@ def test_deep_index_and_member_chains():
         nested = f"a[{nested}]"
         want = idx[want]
     types = "TYPE S0 : STRUCT v : DINT; END_STRUCT; END_TYPE\n" + "".join(
-        f"TYPE S{i} : STRUCT n : S{i - 1}; END_STRUCT; END_TYPE\n" for i in range(1, 60))
-    path = "z" + ".n" * 59 + ".v"
+        f"TYPE S{i} : STRUCT n : S{i - 1}; END_STRUCT; END_TYPE\n" for i in range(1, 30))  # data nests at most 32 levels (PLC0124)
+    path = "z" + ".n" * 29 + ".v"
     deep_42 = "42"
     for _ in range(200):
         deep_42 = f"1 * ({deep_42})"
     src = (types + f"PROGRAM P VAR a : ARRAY[0..99] OF DINT := [{', '.join(map(str, idx))}];\n"
-           f"b : ARRAY[0..99] OF DINT; z : S59; s, m : DINT; END_VAR\n"
+           f"b : ARRAY[0..99] OF DINT; z : S29; s, m : DINT; END_VAR\n"
            f"s := {nested};\n{path} := s + 7;\nm := {path} * 2;\nb[{deep_42}] := m;\n"
            "END_PROGRAM\n")
     plc = load(src)

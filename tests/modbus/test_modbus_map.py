@@ -30,7 +30,7 @@ END_PROGRAM
 
 @pytest.fixture(scope="module")
 def plc():
-    return plclab.loads(PROG)
+    return plclab.loads(PROG, image_size=4096)  # %MW2000 is in the image, not in the map
 
 
 def test_bits_follow_the_openplc_convention():
