@@ -90,10 +90,13 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "missing instance or operand."),
     "PLC0166": ("ladder layout", "Rails misaligned, tabs, rungs outside a POU body, or rungs "
                 "mixed with ST."),
-    "PLC0180": ("not a PLCopen XML project", "Malformed XML, or the wrong root element or "
-                "namespace (TC6 XML v2.01 expected)."),
+    "PLC0180": ("not a PLCopen XML project", "Malformed XML, the wrong root element or "
+                "namespace (TC6 XML v2.01 expected), or a <!DOCTYPE>/<!ENTITY> declaration, "
+                "which plclab refuses: remove it or export the project again."),
     "PLC0181": ("unsupported PLCopen element", "The message names the element and its localId "
-                "(SFC, jumps, inOutVariable, negated or edge block pins, ...)."),
+                "(SFC, jumps, inOutVariable, negated or edge block pins, ...), or a network "
+                "chains more than 100 function boxes: store an intermediate result in a "
+                "variable."),
     "PLC0182": ("broken PLCopen connection", "A refLocalId to a missing element, a duplicate "
                 "localId, a feedback loop, or a continuation without its connector."),
     "PLC0183": ("bad value in PLCopen XML", "Not an identifier, a missing type or returnType, a "
