@@ -129,6 +129,16 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "variable's type."),
     "PLC3003": ("file problem", "A source file is missing, not UTF-8, or of an unknown kind."),
     "PLC3004": ("PLC in fault", "The PLC stopped on a fault; restart it."),
+    "PLC3010": ("address beyond the process image", "A direct address (plc[\"%QX5000.0\"], a "
+                "force, an AT declaration, a wiring row or a Modbus map) lies outside the process "
+                "image (image_size bytes per area, default 1024: %IB0..%IB1023), or names bit 8 "
+                "or more. Use a lower address or create the PLC with a larger image_size."),
+    "PLC3011": ("bad cycle time or run length", "Cycle times and task intervals lie between "
+                "0.1 ms and 1 day; run(seconds=...) needs a finite duration >= 0; scan(n) and "
+                "run(cycles=n) a whole number; one call runs at most 100,000,000 scans (split "
+                "longer runs)."),
+    "PLC3012": ("bad PLC option", "image_size is 8..65536 bytes, watchdog a positive whole "
+                "number, system_memory_byte and clock_memory_byte a %M byte inside the image."),
     "PLC4001": ("wiring or scenario file cannot be read",
                 "The file is missing, is not UTF-8, or is not valid TOML. The message gives the "
                 "parser's line and column."),
