@@ -82,8 +82,8 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "or a bit number is not 0..7. Use a smaller address or a larger image_size."),
     "PLC0128": ("too many errors", "A file gave more than 100 diagnostics; only the first are "
                 "shown. Fix those (often the first error causes the others) and check again."),
-    "PLC0129": ("bad task", "A TASK's INTERVAL must be a TIME constant greater than zero (e.g. "
-                "T#10ms) and its PRIORITY an integer constant 0..31."),
+    "PLC0129": ("bad task", "A TASK's INTERVAL must be a TIME constant between 0.1 ms and 1 day "
+                "(e.g. T#10ms) and its PRIORITY an integer constant 0..31."),
     "PLC0130": ("unknown native block", "plclab's own library names a block that has no "
                 "registered Python implementation (plclab/runtime/natives.py). This is a bug in "
                 "plclab, not in your program: please report it."),
@@ -119,10 +119,13 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "missing instance or operand."),
     "PLC0166": ("ladder layout", "Rails misaligned, tabs, rungs outside a POU body, or rungs "
                 "mixed with ST."),
-    "PLC0180": ("not a PLCopen XML project", "Malformed XML, or the wrong root element or "
-                "namespace (TC6 XML v2.01 expected)."),
+    "PLC0180": ("not a PLCopen XML project", "Malformed XML, the wrong root element or "
+                "namespace (TC6 XML v2.01 expected), or a <!DOCTYPE>/<!ENTITY> declaration, "
+                "which plclab refuses: remove it or export the project again."),
     "PLC0181": ("unsupported PLCopen element", "The message names the element and its localId "
-                "(SFC, jumps, inOutVariable, negated or edge block pins, ...)."),
+                "(SFC, jumps, inOutVariable, negated or edge block pins, ...), or a network "
+                "chains more than 100 function boxes: store an intermediate result in a "
+                "variable."),
     "PLC0182": ("broken PLCopen connection", "A refLocalId to a missing element, a duplicate "
                 "localId, a feedback loop, or a continuation without its connector."),
     "PLC0183": ("bad value in PLCopen XML", "Not an identifier, a missing type or returnType, a "
@@ -167,6 +170,16 @@ PROBLEMS: dict[str, tuple[str, str]] = {
                 "variable's type."),
     "PLC3003": ("file problem", "A source file is missing, not UTF-8, or of an unknown kind."),
     "PLC3004": ("PLC in fault", "The PLC stopped on a fault; restart it."),
+    "PLC3010": ("address beyond the process image", "A direct address (plc[\"%QX5000.0\"], a "
+                "force, an AT declaration, a wiring row or a Modbus map) lies outside the process "
+                "image (image_size bytes per area, default 1024: %IB0..%IB1023), or names bit 8 "
+                "or more. Use a lower address or create the PLC with a larger image_size."),
+    "PLC3011": ("bad cycle time or run length", "Cycle times and task intervals lie between "
+                "0.1 ms and 1 day; run(seconds=...) needs a finite duration >= 0; scan(n) and "
+                "run(cycles=n) a whole number; one call runs at most 100,000,000 scans (split "
+                "longer runs)."),
+    "PLC3012": ("bad PLC option", "image_size is 8..65536 bytes, watchdog a positive whole "
+                "number, system_memory_byte and clock_memory_byte a %M byte inside the image."),
     "PLC4001": ("wiring or scenario file cannot be read",
                 "The file is missing, is not UTF-8, or is not valid TOML. The message gives the "
                 "parser's line and column."),

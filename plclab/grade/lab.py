@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib.util
+import math
 import os
 import re
 import tomllib
@@ -25,6 +26,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import Location, PlcError
+from plclab.runtime.plc import MAX_CYCLE_NS, MIN_CYCLE_NS
 
 from .criteria import CHECKS, Verdict, condition, condition_names, run_check, signals_of
 from .errors import did_you_mean, grade_error
@@ -105,6 +107,12 @@ class _Locator:
                 if m:
                     col = len(self.lines[j]) - len(self.lines[j].lstrip()) + 1
                     return Location(self.file, j + 1, col)
+            # a key of an inline table: diagram = { window = "20s" }
+            inline = re.compile(rf"[{{,]\s*(\"?{re.escape(key)}\"?)\s*=")
+            for j in range(a, b):
+                m = inline.search(self.lines[j])
+                if m:
+                    return Location(self.file, j + 1, m.start(1) + 1)
         if section is not None:
             return Location(self.file, a + 1, 1)
         return Location(self.file)
@@ -433,6 +441,9 @@ class _Builder:
         plant, params, plant_obj = self.plant(d)
         scan = d.get("scan", "10ms")
         scan_s = self.seconds(scan, "scan", "lab.toml", allow_zero=False)
+        if not MIN_CYCLE_NS <= round(scan_s * 1e9) <= MAX_CYCLE_NS:
+            raise self.err("PLC5004", f"scan = {scan!r}: a PLC cycle lies between 0.1 ms and "
+                           "1 day (e.g. \"10ms\")", key="scan")
         langs = self.strings(d, "languages", "lab.toml") or list(LANGUAGES)
         for lg in langs:
             if lg not in LANGUAGES:
@@ -489,6 +500,9 @@ class _Builder:
             obj = get_plant(plant, **params)
         except (PlantError, TypeError, ValueError) as e:
             raise self.err("PLC5005", f"plant_params: {e}", key="plant_params") from None
+        bad = _bad_plant_param(plant, params)
+        if bad:
+            raise self.err("PLC5004", f"plant_params: {bad}", key="plant_params")
         return plant, dict(params), obj
 
     def wiring(self, d: Mapping[str, Any], plant: str, plant_obj: Any) -> tuple[Any, str]:
@@ -634,6 +648,10 @@ class _Builder:
             except (PlantError, TypeError, ValueError) as e:
                 raise self.err("PLC5005", f"{what}: plant_params: {e}", "scenario", i,
                                "plant_params") from None
+            bad = _bad_plant_param(plant_obj.name, pp)
+            if bad:
+                raise self.err("PLC5004", f"{what}: plant_params: {bad}", "scenario", i,
+                               "plant_params")
             acts = s.get("action", s.get("actions", []))
             if not isinstance(acts, list) or not all(isinstance(a, Mapping) for a in acts):
                 raise self.err("PLC5008", f"{what}: actions are [[scenario.action]] tables or "
@@ -655,8 +673,16 @@ class _Builder:
         return out
 
     def check_actions(self, sc: Any, plant_obj: Any, what: str, i: int) -> None:
+        from plclab.sim.simulation import Simulation
+
         sigs = plant_obj.signals
         for a in sc.actions:
+            if a.verb in ("set", "ramp") and a.target in sigs and a.value is not None:
+                try:
+                    Simulation._plant_value(sigs[a.target], a.value)
+                except PlcError as e:
+                    raise self.err("PLC5008", f"{what}, action {a.index + 1}: {e.message}",
+                                   "scenario", i, "actions") from None
             if a.verb in ("press", "set", "ramp") and a.target not in sigs:
                 raise self.err("PLC5008", f"{what}, action {a.index + 1}: '{plant_obj.name}' has "
                                f"no signal '{a.target}'.{did_you_mean(a.target, sigs)}",
@@ -869,6 +895,35 @@ def load_check_function(file: Path, fn: str, err: Callable[[str], PlcError]) -> 
     return f
 
 
+def _bad_plant_param(plant: str, params: Mapping[str, Any]) -> str:
+    """Why one of ``params`` does not fit the plant's parameter (by the type of its default:
+    a number, a switch or a name), or "" when they all fit."""
+    import inspect
+
+    from plants import PLANTS
+
+    sig = inspect.signature(PLANTS[plant].__init__).parameters
+    for key, v in params.items():
+        if key not in sig:
+            continue
+        default, note = sig[key].default, str(sig[key].annotation)
+        if isinstance(default, bool):
+            if not isinstance(v, bool):
+                return f"{key} is true or false, not {v!r}"
+        elif isinstance(default, str):
+            if not isinstance(v, str) or not v:
+                return f"{key} is a name in quotes, e.g. {default!r}, not {v!r}"
+        elif isinstance(default, int | float) or re.fullmatch(r"(int|float)( \| None)?", note):
+            if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+                return f"{key} is a finite number, not {v!r}"
+        elif isinstance(v, float) and not math.isfinite(v):
+            return f"{key} must be finite, not {v!r}"
+    return ""
+
+
+MAX_MEMORY_MB = 1024 * 1024  # 1 TB
+
+
 def parse_memory(v: Any) -> int:
     """``1536`` (MB), ``"1.5GB"``, ``"800MB"`` -> megabytes."""
     if isinstance(v, int | float) and not isinstance(v, bool):
@@ -877,7 +932,15 @@ def parse_memory(v: Any) -> int:
         m = re.match(r"^\s*([\d.]+)\s*(gb|g|mb|m)?\s*$", str(v), re.IGNORECASE)
         if not m:
             raise ValueError(f"'{v}' is not a size; write 1536, \"1.5GB\" or \"800MB\"")
-        mb = float(m.group(1)) * (1024 if (m.group(2) or "mb").lower().startswith("g") else 1)
+        try:
+            mb = float(m.group(1)) * (1024 if (m.group(2) or "mb").lower().startswith("g")
+                                      else 1)
+        except ValueError:
+            raise ValueError(f"'{v}' is not a size; write 1536, \"1.5GB\" or \"800MB\"") \
+                from None
+    if not math.isfinite(mb) or mb > MAX_MEMORY_MB:
+        raise ValueError(f"{v!r} is not a memory size a grader can give; write at most "
+                         f"{MAX_MEMORY_MB} (MB) or \"1024GB\"")
     if mb < 64:
         raise ValueError(f"{mb:g} MB is too little to run Python; give at least 64 MB")
     return int(mb)

@@ -28,6 +28,8 @@ from .limits import (
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
 MAX_IMAGE_BYTES = 65536  # the largest process image a Plc may have (image_size)
+_MIN_INTERVAL_NS = 100_000  # task intervals: 0.1 ms .. 1 day, as Plc accepts (PLC3011)
+_MAX_INTERVAL_NS = 86_400 * 10**9
 _MAX_PRIORITY = 31  # task priorities 0..31 (CODESYS)
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
 _CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep
@@ -257,10 +259,14 @@ class Checker:
             if ty.kind != "time" or not isinstance(v, int):
                 self.err("PLC0129", f"the INTERVAL of task {t.name} must be a TIME constant, "
                          "e.g. INTERVAL := T#10ms", e.loc)
-            elif (v <= 0 if ty is T.LTIME else v < 1_000_000):
-                self.err("PLC0129", f"the INTERVAL of task {t.name} must be greater than zero "
-                         f"(at least T#1ms, or LTIME#... for shorter), not "
-                         f"{getattr(e, 'text', '') or v}; e.g. INTERVAL := T#10ms", e.loc)
+            elif ty is not T.LTIME and v % 1_000_000 and v < 1_000_000:
+                self.err("PLC0129", f"the INTERVAL of task {t.name} is less than 1 ms, which a "
+                         "TIME (whole milliseconds) cannot hold; write LTIME#500us or more than "
+                         "T#1ms", e.loc)
+            elif not _MIN_INTERVAL_NS <= v <= _MAX_INTERVAL_NS:
+                self.err("PLC0129", f"the INTERVAL of task {t.name} is {v / 1e6:g} ms; it must "
+                         "lie between 0.1 ms (LTIME#100us) and 1 day, e.g. INTERVAL := T#10ms",
+                         e.loc)
             else:
                 t.interval = A.Literal(e.loc, v if ty is T.LTIME else v // 1_000_000 * 1_000_000,
                                        "TIME", None, getattr(e, "text", ""))

@@ -703,6 +703,9 @@ def _simple(e: A.Expr) -> bool:
     return isinstance(e, A.Name | A.Literal | A.Member | A.DirectAddr)
 
 
+_CHAIN = 32  # series elements lowered into one expression before a temporary splits it
+
+
 class _NetLowering:
     def __init__(self, pou: A.Pou, elems: list[Elem], env, file: str) -> None:
         self.pou = pou
@@ -719,6 +722,7 @@ class _NetLowering:
         self.n = 0
         self.conds: dict[int, A.Expr] = {}
         self.pins: dict[int, tuple[str, str]] = {}
+        self.nesting = 0
         for e in elems:
             for refs in e.inputs.values():
                 for ref in refs:
@@ -744,7 +748,36 @@ class _NetLowering:
 
     # -- values -----------------------------------------------------------------------------
     def value(self, refs: list[Ref], loc: Location) -> A.Expr:
-        return _or(loc, [self.out_value(r, loc) for r in refs])
+        self.nesting += 1
+        try:
+            if self.nesting == 1:
+                for r in refs:
+                    self.break_chains(r, loc)
+            return _or(loc, [self.out_value(r, loc) for r in refs])
+        finally:
+            self.nesting -= 1
+
+    def break_chains(self, ref: Ref, loc: Location) -> None:
+        """Store every _CHAIN-th contact of a long series in a temporary, upstream first, so
+        that one rung of thousands of contacts lowers without deep recursion (iterative)."""
+        depth: dict[int, int] = {}
+        stack: list[tuple[int, bool]] = [(ref[0], False)]
+        while stack:
+            i, done = stack.pop()
+            if i < 0 or (i, "") in self.memo or (not done and i in depth):
+                continue
+            e = self.elems[i]
+            ups = [j for refs in e.inputs.values() for j, _ in refs if j >= 0]
+            if not done:
+                depth[i] = -1  # on the way
+                stack.append((i, True))
+                stack.extend((j, False) for j in ups)
+                continue
+            d = 1 + max((depth.get(j, 0) for j in ups if (j, "") not in self.memo), default=0)
+            if d >= _CHAIN and e.kind in ("contact", "cmp", "conn") and e.mode not in ("P", "N"):
+                self.materialize((i, ""), self.out_value((i, ""), e.loc), e.loc)
+                d = 0
+            depth[i] = d
 
     def out_value(self, ref: Ref, loc: Location) -> A.Expr:
         if ref[0] < 0:

@@ -48,10 +48,19 @@ _SECTIONS = {"inputVars": "VAR_INPUT", "outputVars": "VAR_OUTPUT", "inOutVars": 
 _POU_KINDS = {"program": "PROGRAM", "functionBlock": "FUNCTION_BLOCK", "function": "FUNCTION"}
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _IGNORED = {"documentation", "addData", "comment"}
+MAX_BOX_CHAIN = 100  # function boxes feeding each other directly in one LD/FBD network
 
 
 class _Bad(Exception):
     """Abandon the current item (a diagnostic was recorded)."""
+
+
+class _Doctype(Exception):
+    """The XML text has a <!DOCTYPE> or an <!ENTITY> declaration (refused)."""
+
+    def __init__(self, line: int, col: int) -> None:
+        super().__init__(line, col)
+        self.line, self.col = line, col
 
 
 def _local(tag: str) -> str:
@@ -61,7 +70,9 @@ def _local(tag: str) -> str:
 def parse_xml_positions(text: str) -> tuple[ET.Element, dict[int, tuple[int, int]],
                                              dict[int, tuple[int, int]]]:
     """Parse XML keeping, for each element, where its start tag and its first text are
-    (1-based line and column). Raises :class:`expat.ExpatError` on malformed XML."""
+    (1-based line and column). Raises :class:`expat.ExpatError` on malformed XML and
+    :class:`_Doctype` on a document type declaration: PLCopen files need none, and refusing it
+    shuts out entity expansion ("billion laughs") and external entities."""
     p = expat.ParserCreate(encoding="utf-8", namespace_separator="}")
     p.buffer_text = False
     tb = ET.TreeBuilder()
@@ -86,11 +97,38 @@ def parse_xml_positions(text: str) -> tuple[ET.Element, dict[int, tuple[int, int
             texts[id(stack[-1])] = (p.CurrentLineNumber, p.CurrentColumnNumber + 1)
         tb.data(s)
 
+    def doctype(name, *_):
+        raise _Doctype(p.CurrentLineNumber, p.CurrentColumnNumber + 1)
+
+    p.StartDoctypeDeclHandler = doctype  # no DTD: no entity expansion, no external files
+    p.EntityDeclHandler = doctype
+    p.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
     p.StartElementHandler = start
     p.EndElementHandler = end
     p.CharacterDataHandler = data
     p.Parse(text.encode("utf-8"), True)
     return tb.close(), starts, texts
+
+
+def parse_xml_safely(text: str | bytes, file: str = "<input>.xml") -> ET.Element:
+    """Parse XML text refusing DOCTYPE and ENTITY declarations; any problem is a
+    :class:`PlcError` PLC0180."""
+    from ..errors import PlcError
+
+    if isinstance(text, bytes):
+        text = text.decode("utf-8", errors="replace")
+    try:
+        return parse_xml_positions(text)[0]
+    except expat.ExpatError as exc:
+        raise PlcError("PLC0180", f"not well-formed XML: {exc}; fix the file or export it again",
+                       Location(file, exc.lineno, exc.offset + 1)) from None
+    except _Doctype as exc:
+        raise PlcError("PLC0180", _DOCTYPE_MSG, Location(file, exc.line, exc.col)) from None
+
+
+_DOCTYPE_MSG = ("the file has a <!DOCTYPE> or <!ENTITY> declaration; PLCopen XML needs none and "
+                "plclab refuses them (entities could expand without bound or read other files): "
+                "remove the declaration or export the project again")
 
 
 class _Importer:
@@ -145,7 +183,7 @@ class _Importer:
             line, col = self.texts[id(el)]
         else:  # an attribute value: located at its element
             line, col = self.starts.get(id(el), (1, 1))
-        return Parser("\n" * (line - 1) + " " * (col - 1) + text, self.file)
+        return _placed(Parser(text, self.file), line, col)
 
     def expr(self, text: str | None, el: ET.Element, what: str) -> A.Expr:
         from .st_parser import _Bail
@@ -174,6 +212,10 @@ class _Importer:
             self.diags.append(Diagnostic("PLC0180", f"not well-formed XML: {exc}; fix the file "
                                          "or export it again", Location(self.file, exc.lineno,
                                                                         exc.offset + 1)))
+            return self.out
+        except _Doctype as exc:
+            self.diags.append(Diagnostic("PLC0180", _DOCTYPE_MSG,
+                                         Location(self.file, exc.line, exc.col)))
             return self.out
         ns = root.tag[1:].split("}")[0] if root.tag.startswith("{") else ""
         if _local(root.tag) != "project" or ns not in _NAMESPACES:
@@ -510,6 +552,11 @@ class _Importer:
             self.err("PLC0182", f"the {tag} network of this POU has a feedback loop; plclab "
                      "evaluates networks without feedback (store the value in a variable)", lang)
             ok = False
+        if ok and _box_depth(elems) > MAX_BOX_CHAIN:
+            self.err("PLC0181", f"the {tag} network of this POU chains more than {MAX_BOX_CHAIN} "
+                     "function boxes, each feeding the next; store an intermediate result in a "
+                     "variable (an outVariable, then an inVariable) to split the chain", lang)
+            ok = False
         return elems if ok else None
 
     def refs_all(self, el: ET.Element):
@@ -551,21 +598,28 @@ class _Importer:
                       "not supported", iov)
 
     def acyclic(self, elems: list[Elem]) -> bool:
+        """True when no element feeds itself (an iterative depth-first search: a rung of
+        thousands of contacts in series must not exhaust Python's stack)."""
         state: dict[int, int] = {}
-
-        def visit(e: Elem) -> bool:
-            state[e.id] = 1
-            for refs in e.inputs.values():
-                for i, _ in refs:
-                    if i < 0:
-                        continue
-                    s = state.get(i)
-                    if s == 1 or (s is None and not visit(elems[i])):
-                        return False
-            state[e.id] = 2
-            return True
-
-        return all(state.get(e.id) == 2 or visit(e) for e in elems)
+        for root in elems:
+            if root.id in state:
+                continue
+            state[root.id] = 1
+            stack = [(root.id, _feeds(root))]
+            while stack:
+                eid, it = stack[-1]
+                nxt = next(it, None)
+                if nxt is None:
+                    state[eid] = 2
+                    stack.pop()
+                    continue
+                s = state.get(nxt)
+                if s == 1:
+                    return False
+                if s is None:
+                    state[nxt] = 1
+                    stack.append((nxt, _feeds(elems[nxt])))
+        return True
 
     # -- configurations -------------------------------------------------------------------------
     def configuration(self, c: ET.Element) -> None:
@@ -603,6 +657,29 @@ class _Importer:
         return A.ProgramInstance(self.loc(pi), n.upper(), task, t.upper())
 
 
+def _placed(p, line: int, col: int):
+    """Move the tokens and diagnostics of a parser over a snippet to where the snippet stands
+    in the XML file (line and column of its first character). Shifting costs the snippet's
+    length only; padding the text with ``line`` newlines made an import quadratic."""
+    if line <= 1 and col <= 1:
+        return p
+    for t in p.toks:
+        if t.line == 1:
+            t.col += col - 1
+        t.line += line - 1
+    p.diagnostics[:] = [_shift(d, line, col) for d in p.diagnostics]
+    p.pragmas[:] = [(ln + line - 1, body) for ln, body in p.pragmas]
+    return p
+
+
+def _shift(d: Diagnostic, line: int, col: int) -> Diagnostic:
+    loc = d.location
+    if loc is None or loc.line <= 0:
+        return d
+    c = loc.col + col - 1 if loc.line == 1 else loc.col
+    return Diagnostic(d.code, d.message, Location(loc.file, loc.line + line - 1, c), d.severity)
+
+
 class _Wrap:
     """Makes one ``<globalVars>`` element look like an interface holding it."""
 
@@ -611,6 +688,32 @@ class _Wrap:
 
     def __iter__(self):
         return iter([self.el])
+
+
+def _box_depth(elems: list[Elem]) -> int:
+    """The longest chain of function boxes feeding each other (connectors pass through;
+    other elements start a new chain). Iterative: the network is acyclic when this runs."""
+    depth: dict[int, int] = {}
+    for root in elems:
+        stack = [(root.id, False)]
+        while stack:
+            i, done = stack.pop()
+            if i in depth and depth[i] >= 0:
+                continue
+            e = elems[i]
+            if not done:
+                depth[i] = -1
+                stack.append((i, True))
+                stack.extend((j, False) for j in _feeds(e) if j not in depth)
+                continue
+            up = max((depth[j] for j in _feeds(e)), default=0)
+            depth[i] = up + 1 if e.kind == "func" else up if e.kind == "conn" else 0
+    return max(depth.values(), default=0)
+
+
+def _feeds(e: Elem):
+    """The ids of the elements wired into ``e``."""
+    return (i for refs in e.inputs.values() for i, _ in refs if i >= 0)
 
 
 def _num(s: str | None) -> float:

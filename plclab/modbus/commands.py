@@ -115,14 +115,20 @@ def _say(text: str) -> None:
      "timeout, wall seconds (default 0.5)")
 @arg("--io-status", default=None, metavar="%IXn.m", help="input bit that carries the "
      "remote-I/O status too (a BOOL named IO_OK always does)")
+@arg("--max-clients", type=int, default=16, metavar="N", help="Modbus clients served at "
+     "once (default 16); more are disconnected at once")
+@arg("--idle-timeout", type=float, default=60.0, metavar="S", help="disconnect a client "
+     "that sends nothing for S wall seconds (default 60)")
 def cmd_serve(ns: argparse.Namespace) -> int:
     from ..project import load
     from ._deps import need_pymodbus
     from .addressing import format_map, map_rows, overlaps, write_map
+    from .limits import check_limits
     from .server import PlcServer
 
     need_pymodbus()
     _check_endpoint(ns.host, ns.port)
+    check_limits(ns.max_clients, ns.idle_timeout)
     if ns.duration is not None and not ns.duration > 0:
         raise PlcError("PLC3002", "--duration must be positive (seconds)")
     if ns.wiring and not ns.plant:
@@ -139,7 +145,8 @@ def cmd_serve(ns: argparse.Namespace) -> int:
                        allow_coil_writes=ns.allow_coil_writes,
                        read_only_inputs=ns.read_only_inputs, plant=plant, io=ns.io,
                        io_period=ns.io_period, io_timeout=ns.io_timeout,
-                       io_status=ns.io_status, on_message=_say)
+                       io_status=ns.io_status, on_message=_say,
+                       max_clients=ns.max_clients, idle_timeout=ns.idle_timeout)
     rows, unmapped = map_rows(plc, allow_coil_writes=ns.allow_coil_writes,
                               read_only_inputs=ns.read_only_inputs)
     if ns.map_file:
@@ -177,17 +184,24 @@ def cmd_serve(ns: argparse.Namespace) -> int:
 @arg("--seed", type=int, default=0, help="plant seed (default 0)")
 @arg("--duration", type=float, default=None, metavar="S",
      help="stop after S wall-clock seconds (default: run until Ctrl-C)")
+@arg("--max-clients", type=int, default=16, metavar="N", help="Modbus clients served at "
+     "once (default 16); more are disconnected at once")
+@arg("--idle-timeout", type=float, default=60.0, metavar="S", help="disconnect a client "
+     "that sends nothing for S wall seconds (default 60)")
 def cmd_plant_serve(ns: argparse.Namespace) -> int:
     from ._deps import need_pymodbus
+    from .limits import check_limits
     from .plant_server import PlantServer
     from .plantmap import format_plant_map
 
     need_pymodbus()
     _check_endpoint(ns.host, ns.port)
+    check_limits(ns.max_clients, ns.idle_timeout)
     if ns.duration is not None and not ns.duration > 0:
         raise PlcError("PLC3002", "--duration must be positive (seconds)")
     plant = _make_plant(ns.plant, _params(ns.param, "--param"), ns.seed)
-    server = PlantServer(plant, host=ns.host, port=ns.port, speed=ns.speed, on_message=_say)
+    server = PlantServer(plant, host=ns.host, port=ns.port, speed=ns.speed, on_message=_say,
+                         max_clients=ns.max_clients, idle_timeout=ns.idle_timeout)
     print(format_plant_map(plant, server.layout), flush=True)
     _run(server, ns.duration)
     print(f"stopped: plant time {plant.time:.3f} s", flush=True)

@@ -14,6 +14,7 @@ from typing import Any
 
 from ..errors import PlcError
 from .addressing import from_register, to_register
+from .limits import DEFAULT_IDLE_TIMEOUT, DEFAULT_MAX_CLIENTS, bounded_server, check_limits
 from .plantmap import INFO_BASE, INFO_COUNT, PANEL_BASE, plant_layout
 
 _FC_COILS = (1, 5, 15)
@@ -24,9 +25,13 @@ class PlantServer:
     """Serve ``plant`` over Modbus TCP and step it with the wall clock times ``speed``."""
 
     def __init__(self, plant, *, host: str = "127.0.0.1", port: int = 5021, speed: float = 1.0,
-                 device_id: int = 1, on_message: Callable[[str], None] | None = None) -> None:
-        if not speed > 0:
-            raise PlcError("PLC3002", f"--speed must be positive, not {speed}")
+                 device_id: int = 1, on_message: Callable[[str], None] | None = None,
+                 max_clients: int = DEFAULT_MAX_CLIENTS,
+                 idle_timeout: float = DEFAULT_IDLE_TIMEOUT) -> None:
+        from .server import check_speed
+
+        check_speed(speed)
+        self.max_clients, self.idle_timeout = check_limits(max_clients, idle_timeout)
         self.plant = plant
         self.host, self.port, self.speed, self.device_id = host, port, float(speed), device_id
         self.layout = plant_layout(plant)
@@ -136,9 +141,9 @@ class PlantServer:
 
         need_pymodbus()
         self._stop = asyncio.Event()
-        from pymodbus.server import ModbusTcpServer
-
-        self.server = ModbusTcpServer(self.device(), address=(self.host, self.port))
+        self.server = bounded_server(self.device(), (self.host, self.port),
+                                     max_clients=self.max_clients,
+                                     idle_timeout=self.idle_timeout, notify=self.on_message)
         try:
             await self.server.serve_forever(background=True)
         except (RuntimeError, OSError) as exc:

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..errors import PlcError
 from .addressing import MAPPED_BYTES, from_register, parse_address, to_register
 
 PANEL_BASE = 1000  # coils / holding registers of panel signals
@@ -135,9 +136,10 @@ def register_covered(covered: set, k: int) -> bool:
 
 # -- process-image helpers (used by local coupling and by remote I/O) ------------------------
 def set_bit(buf: bytearray, k: int, value: bool) -> None:
-    """Set bit ``k`` (``%?X k//8 . k%8``) if it lies in the digital bytes 0..63."""
+    """Set bit ``k`` (``%?X k//8 . k%8``) if it lies in the digital bytes 0..63 (and in
+    ``buf``: an image smaller than the map never grows or raises)."""
     byte, bit = divmod(k, 8)
-    if byte >= ANALOG_BYTE:
+    if byte >= min(len(buf), ANALOG_BYTE):
         return
     if value:
         buf[byte] |= 1 << bit
@@ -179,6 +181,11 @@ class PlantCoupling:
                     if register_covered(covered, k)]
         self._di = [(k, s.name) for k, s in enumerate(lay.di)]
         self._ir = [(k, s.name, s.range[0], s.range[1]) for k, s in enumerate(lay.ir)]
+        need = ANALOG_BYTE + 2 * len(lay.ir) if lay.ir else (len(lay.di) + 7) // 8
+        if need > plc.image_size:
+            raise PlcError("PLC3010", f"plant {plant.name!r} in signal order needs the first "
+                           f"{need} bytes of the process image, but the PLC has "
+                           f"{plc.image_size}; load the program with a larger image_size")
 
     def to_plc(self) -> None:
         p, inp = self.plant, self.plc.inputs

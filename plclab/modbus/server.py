@@ -33,6 +33,7 @@ from .addressing import (
     MAPPED_WORDS,
     STATUS_COUNT,
 )
+from .limits import DEFAULT_IDLE_TIMEOUT, DEFAULT_MAX_CLIENTS, bounded_server, check_limits
 
 _FC_COILS = (1, 5, 15)
 _FC_HOLDING = (3, 6, 16, 22, 23)
@@ -241,16 +242,23 @@ class PlcServer:
     io_status : str, optional
         A ``%IX`` address that also carries the remote-I/O status bit.
     on_message : callable, optional
-        Receives one line of text for each notable event (faults, I/O lost/back).
+        Receives one line of text for each notable event (faults, I/O lost/back, refused
+        and idle clients).
+    max_clients : int
+        Connections served at once (default 16); more are closed as soon as they open.
+    idle_timeout : float
+        Wall-clock seconds after which a client that sent nothing is disconnected (60).
     """
 
     def __init__(self, plc, *, host: str = "127.0.0.1", port: int = 5020, speed: float = 1.0,
                  allow_coil_writes: bool = False, read_only_inputs: bool = False,
                  plant=None, io: str | None = None, io_period: float = 0.02,
                  io_timeout: float = 0.5, io_status: str | None = None,
-                 device_id: int = 1, on_message: Callable[[str], None] | None = None) -> None:
-        if not speed > 0:
-            raise PlcError("PLC3002", f"--speed must be positive, not {speed}")
+                 device_id: int = 1, on_message: Callable[[str], None] | None = None,
+                 max_clients: int = DEFAULT_MAX_CLIENTS,
+                 idle_timeout: float = DEFAULT_IDLE_TIMEOUT) -> None:
+        check_speed(speed)
+        self.max_clients, self.idle_timeout = check_limits(max_clients, idle_timeout)
         if io_status and io is None:
             raise PlcError("PLC3002", "--io-status goes with remote I/O (--io modbus://...)")
         if plant is not None and io is not None:
@@ -293,10 +301,9 @@ class PlcServer:
         need_pymodbus()
         self._stop = asyncio.Event()
         if self.port:
-            from pymodbus.server import ModbusTcpServer
-
-            self.server = ModbusTcpServer(self.bridge.device(self.device_id),
-                                          address=(self.host, self.port))
+            self.server = bounded_server(self.bridge.device(self.device_id),
+                                         (self.host, self.port), max_clients=self.max_clients,
+                                         idle_timeout=self.idle_timeout, notify=self._message)
             try:
                 await self.server.serve_forever(background=True)
             except (RuntimeError, OSError) as exc:
@@ -383,6 +390,15 @@ class PlcServer:
                 t0, v0 = loop.time(), plc.ctx.now_ns
             due = t0 + (plc.ctx.now_ns - v0) / rate
             await asyncio.sleep(max(0.0, due - loop.time()))
+
+
+def check_speed(speed: Any) -> float:
+    """``--speed``: virtual seconds per wall second, a finite positive number (PLC3002)."""
+    if isinstance(speed, bool) or not isinstance(speed, int | float) or \
+            not 0 < speed < float("inf"):
+        raise PlcError("PLC3002", f"--speed must be a positive number of virtual seconds per "
+                       f"wall second (e.g. 1 or 50), not {speed!r}")
+    return float(speed)
 
 
 def io_status_vars(plc, io_status: str | None) -> list[Callable[[bool], None]]:

@@ -75,7 +75,10 @@ def to_ns(value: Any) -> int:
     """Accept 0.01 (seconds), '10ms', 'T#10ms' or a timedelta and return nanoseconds."""
     if isinstance(value, _dt.timedelta):
         return round(value.total_seconds() * 1e9)
-    if isinstance(value, int | float):
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        if not math.isfinite(value):
+            raise PlcError("PLC3002", f"{value!r} is not a duration; give a finite number of "
+                           "seconds or e.g. '10ms'")
         return round(value * 1e9)
     if isinstance(value, str):
         s = value.strip()
@@ -91,6 +94,85 @@ def to_ns(value: Any) -> int:
     raise PlcError("PLC3002", f"{value!r} is not a duration")
 
 
+# Bounds of the run-time API (documented in docs and in problems.py PLC3010-PLC3012).
+MIN_CYCLE_NS = 100_000  # 0.1 ms: the fastest task a PLC of the course runs
+MAX_CYCLE_NS = 86_400 * 1_000_000_000  # one day
+MAX_SCANS = 100_000_000  # scans per run()/scan() call
+MAX_IMAGE = 65_536  # bytes of each process image area (%I, %Q, %M)
+_ADDR_RE = re.compile(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?")
+_SIZE_BYTES = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}
+
+
+def check_cycle_ns(ns: int, what: str, location: Location | None = None) -> int:
+    """``ns`` when it is a usable cycle time or task interval; else PlcError PLC3011."""
+    if not MIN_CYCLE_NS <= ns <= MAX_CYCLE_NS:
+        raise PlcError("PLC3011", f"{what} is {_fmt_ns(ns)}; it must lie between 0.1 ms and "
+                       "1 day (e.g. 10ms)", location)
+    return ns
+
+
+def _fmt_ns(ns: int) -> str:
+    if ns <= 0 or ns % 1_000_000:
+        return f"{ns} ns"
+    if ns % 1_000_000_000 == 0:
+        return f"{ns // 1_000_000_000} s"
+    return f"{ns // 1_000_000} ms"
+
+
+def check_address(addr: str, image_size: int, location: Location | None = None,
+                  what: str = "") -> tuple[str, str, int, int | None]:
+    """Split ``%QX1.2``/``%IW4`` into (area, size, byte, bit), checking that it lies inside a
+    process image of ``image_size`` bytes: PlcError PLC3001 (not an address) or PLC3010."""
+    m = _ADDR_RE.fullmatch(addr.strip().upper())
+    if not m:
+        raise PlcError("PLC3001", f"{what}{addr} is not a direct address (e.g. %IX0.0, %QW2, "
+                       "%MD4)", location)
+    area, size, byte = m.group(1), m.group(2) or "X", int(m.group(3))
+    bit = int(m.group(4)) if m.group(4) is not None else None
+    if size == "X" and bit is None:
+        raise PlcError("PLC3001", f"{what}{addr}: a bit address needs byte.bit, e.g. "
+                       f"%{area}X{byte}.0", location)
+    if size != "X" and bit is not None:
+        raise PlcError("PLC3001", f"{what}{addr}: only bit addresses (X) have a .bit part",
+                       location)
+    if bit is not None and bit > 7:
+        raise PlcError("PLC3010", f"{what}{addr}: a byte has bits 0..7, not {bit}", location)
+    n = _SIZE_BYTES[size]
+    if byte + n > image_size:
+        last = image_size - n
+        raise PlcError("PLC3010", f"{what}{addr} is beyond the process image ({image_size} "
+                       f"bytes: %{area}{size}0{'.0' if size == 'X' else ''}..%{area}{size}{last}"
+                       f"{'.7' if size == 'X' else ''}); use a lower address or a larger "
+                       "image_size", location)
+    return area, size, byte, bit
+
+
+def _check_image_size(size: Any) -> int:
+    if isinstance(size, bool) or not isinstance(size, int) or not 8 <= size <= MAX_IMAGE:
+        raise PlcError("PLC3012", f"image_size={size!r}: the process image is a whole number of "
+                       f"bytes from 8 to {MAX_IMAGE} (default 1024)")
+    return size
+
+
+def _check_memory_byte(byte: Any, image_size: int, what: str) -> int | None:
+    if byte is None:
+        return None
+    if isinstance(byte, bool) or not isinstance(byte, int) or not 0 <= byte < image_size:
+        raise PlcError("PLC3012", f"{what}={byte!r}: give a byte number of %M from 0 to "
+                       f"{image_size - 1}, or None")
+    return byte
+
+
+def _check_count(n: Any, what: str) -> int:
+    """A number of scans: a whole number from 0 to MAX_SCANS, else PlcError PLC3011."""
+    if isinstance(n, bool) or not isinstance(n, int):
+        raise PlcError("PLC3011", f"{what}={n!r}: give a whole number of scans")
+    if not 0 <= n <= MAX_SCANS:
+        raise PlcError("PLC3011", f"{what}={n}: one call runs 0 to {MAX_SCANS:,} scans; split a "
+                       "longer run into several calls")
+    return n
+
+
 class Plc:
     """A virtual PLC running a compiled project.
 
@@ -99,9 +181,11 @@ class Plc:
     compiled : Compiled
         The output of :func:`plclab.compile_files`.
     cycle_time : str | float
-        The default cyclic task's period (``"10ms"``, ``0.01``).
+        The default cyclic task's period (``"10ms"``, ``0.01``), 0.1 ms to 1 day.
     watchdog : int
         Loop iterations allowed per scan before a scan-overrun fault (deterministic).
+    image_size : int
+        Bytes of each process image area (%I, %Q, %M), 8 to 65536.
     """
 
     def __init__(self, compiled: Compiled, cycle_time: Any = "10ms",
@@ -110,19 +194,22 @@ class Plc:
                  clock_memory_byte: int | None = None) -> None:
         self.compiled = compiled
         self.project = compiled.project
-        self.cycle_ns = to_ns(cycle_time)
-        if self.cycle_ns <= 0:
-            raise PlcError("PLC3002", "the cycle time must be positive")
+        self.cycle_ns = check_cycle_ns(to_ns(cycle_time), "the cycle time")
+        if isinstance(watchdog, bool) or not isinstance(watchdog, int) or watchdog < 1:
+            raise PlcError("PLC3012", f"watchdog={watchdog!r}: give the loop iterations allowed "
+                           "per scan as a positive whole number (default 2000000)")
         self.watchdog = watchdog
-        self.image_size = image_size
+        self.image_size = _check_image_size(image_size)
         need = getattr(self.project, "image_needed", None)
         if need is not None and need[0] > image_size:
             raise PlcError("PLC0127", f"{need[1]} lies beyond the process image of {image_size} "
                            f"bytes; use a smaller address or Plc(..., image_size={need[0]})",
                            need[2])
         # S7-style system and clock memory bytes (001 lines 2494-2540), off unless asked for
-        self.system_memory_byte = system_memory_byte
-        self.clock_memory_byte = clock_memory_byte
+        self.system_memory_byte = _check_memory_byte(system_memory_byte, image_size,
+                                                     "system_memory_byte")
+        self.clock_memory_byte = _check_memory_byte(clock_memory_byte, image_size,
+                                                    "clock_memory_byte")
         self.inputs = bytearray(image_size)  # the physical input terminals
         self.outputs = bytearray(image_size)  # the physical output terminals
         self.forced: dict[str, Any] = {}
@@ -132,6 +219,10 @@ class Plc:
         self._var_cache: dict[str, Var] = {}
         self.tasks = self._make_tasks()
         self._tick_ns = _gcd_all([t.interval_ns for t in self.tasks] or [self.cycle_ns])
+        if self._tick_ns < MIN_CYCLE_NS:
+            raise PlcError("PLC3011", "the task intervals (" + ", ".join(
+                _fmt_ns(t.interval_ns) for t in self.tasks) + f") share a base period of only "
+                f"{_fmt_ns(self._tick_ns)}; make them multiples of 0.1 ms or more")
         self.cold_restart()
 
     # -- set-up -------------------------------------------------------------------------------
@@ -143,6 +234,7 @@ class Plc:
                 v = getattr(td.interval, "value", None)
                 if isinstance(v, int):
                     iv = v  # TIME literal value is in ns
+                    check_cycle_ns(iv, f"the INTERVAL of task {td.name}", td.loc)
             prio = getattr(td.priority, "value", 0) if td.priority is not None else 0
             tasks[td.name] = Task(td.name, iv, int(prio or 0), [])
         default = Task("__default__", self.cycle_ns, 0, [])
@@ -226,6 +318,8 @@ class Plc:
 
     def scan(self, n: int = 1) -> None:
         """Run ``n`` scan cycles: freeze inputs, run due tasks, write outputs, advance clock."""
+        if n.__class__ is not int or not 0 <= n <= MAX_SCANS:
+            _check_count(n, "scan: n")
         if (self.state != "RUN" or self.forced or self._single is None or n < 1
                 or self._system_bytes):
             for _ in range(n):
@@ -320,7 +414,15 @@ class Plc:
             if seconds is None:
                 raise PlcError("PLC3002", "run() needs seconds= or cycles=")
             ns = to_ns(seconds)
-            cycles = math.ceil(ns / self._tick_ns)
+            if ns < 0:
+                raise PlcError("PLC3011", f"run(seconds={seconds!r}): virtual time only moves "
+                               "forward; give a duration >= 0")
+            cycles = -(-ns // self._tick_ns)
+            if cycles > MAX_SCANS:
+                raise PlcError("PLC3011", f"run(seconds={seconds!r}) is {cycles:,} scans of "
+                               f"{_fmt_ns(self._tick_ns)}; one call runs at most {MAX_SCANS:,}: "
+                               "split the run into several calls")
+        _check_count(cycles, "run: cycles")
         for _ in range(cycles):
             self._scan_once()
 
@@ -530,16 +632,8 @@ class Plc:
 
     def _address_var(self, addr: str) -> Var:
         a = addr.upper()
-        m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", a)
-        if not m:
-            raise PlcError("PLC3001", f"{addr} is not a direct address (e.g. %IX0.0, %QW2, %MD4)")
-        area, size, byte, bit = m.group(1), m.group(2) or "X", int(m.group(3)), m.group(4)
-        if size == "X" and bit is None:
-            raise PlcError("PLC3001", f"{addr}: a bit address needs byte.bit, e.g. %IX0.3")
-        n = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}[size]
-        if byte + n > self.image_size:
-            raise PlcError("PLC3001", f"{addr} is beyond the process image ({self.image_size} "
-                           "bytes)")
+        area, size, byte, bit = check_address(a, self.image_size)
+        n = _SIZE_BYTES[size]
         ty = {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
         # reading %I gives the input terminals, %Q the output terminals, %M the memory
         buf = {"I": lambda: self.inputs, "Q": lambda: self.outputs, "M": lambda: self.memory}[area]

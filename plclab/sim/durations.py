@@ -29,6 +29,7 @@ _UNITS = {
     "second": 1_000_000_000, "seconds": 1_000_000_000,
     "ms": 1_000_000, "msec": 1_000_000, "us": 1_000, "µs": 1_000, "ns": 1,
 }
+MAX_NS = 366 * 86_400_000_000_000  # the longest duration accepted anywhere: a year
 _PART = re.compile(r"([0-9][0-9_]*(?:\.[0-9_]*)?(?:e[+-]?[0-9]+)?)\s*([a-zµ]+)", re.IGNORECASE)
 _NUMBER = re.compile(r"[+]?[0-9][0-9_]*(?:\.[0-9_]*)?(?:e[+-]?[0-9]+)?", re.IGNORECASE)
 
@@ -48,16 +49,22 @@ def parse_ns(value: Any, what: str = "duration", allow_zero: bool = True) -> int
     Raises
     ------
     PlcError
-        PLC4012 for anything that is not a duration, is negative, or is zero when
-        ``allow_zero`` is false.
+        PLC4012 for anything that is not a duration, is negative, is longer than a year, or
+        is zero when ``allow_zero`` is false.
     """
-    ns = _parse(value)
+    try:
+        ns = _parse(value)
+    except OverflowError:  # 1e300 seconds, 1e400ms: beyond any float
+        ns = MAX_NS + 1
     if ns is None:
         raise sim_error("PLC4012", f"{what}: {value!r} is not a duration; write e.g. 10ms, 1.5s, "
                         "90s, 10min, 1h, 1h30m, T#1m30s or a number of seconds")
     if ns < 0 or (ns == 0 and not allow_zero):
         need = "zero or positive" if allow_zero else "positive"
         raise sim_error("PLC4012", f"{what} must be {need}, not {value!r}")
+    if ns > MAX_NS:
+        raise sim_error("PLC4012", f"{what}: {value!r} is longer than a year; give a duration "
+                        "of at most 366d")
     return ns
 
 

@@ -310,7 +310,15 @@ class Scenario:
             raise sim_error("PLC4010", "seed must be a whole number", filename)
         for key in ("duration", "scan", "dt"):
             if key in data:
-                parse_ns(data[key], f"{filename or 'scenario'}: {key}", allow_zero=False)
+                try:
+                    ns = parse_ns(data[key], key, allow_zero=False)
+                    if key == "scan":
+                        from plclab.runtime.plc import check_cycle_ns
+
+                        check_cycle_ns(ns, "scan")
+                except PlcError as e:
+                    raise sim_error("PLC4012", e.message, filename,
+                                    *(_top_line(text, key) if text else (0, 0))) from None
         until = data.get("until")
         if until is not None and not isinstance(until, str):
             raise sim_error("PLC4013", "until must be a condition string such as "

@@ -16,7 +16,6 @@ In a notebook the returned :class:`Svg` displays itself.
 from __future__ import annotations
 
 import os
-import xml.etree.ElementTree as ET
 from xml.sax.saxutils import escape
 
 CW = 11  # width of one character cell of the text format, px
@@ -208,12 +207,9 @@ def _rel(cp, base: tuple[float, float]) -> tuple[float, float]:
 
 def render_xml(text: str, pou: str | None = None) -> Svg:
     """Draw the LD and FBD bodies of a PLCopen XML project (or only POU ``pou``)."""
-    from ..errors import PlcError
+    from ..lang.plcopen import parse_xml_safely
 
-    try:
-        root = ET.fromstring(text.encode("utf-8") if isinstance(text, str) else text)
-    except ET.ParseError as exc:
-        raise PlcError("PLC0180", f"not well-formed XML: {exc}") from None
+    root = parse_xml_safely(text)  # refuses DOCTYPE/ENTITY declarations
     parts: list[str] = []
     y = PAD
     width = 200.0

@@ -30,7 +30,8 @@ END_PROGRAM
 
 @pytest.fixture(scope="module")
 def plc():
-    return plclab.loads(PROG, image_size=4096)  # %MW2000 is in the image, not in the map
+    # a 4 KiB image: %MW2000 is a valid address that lies beyond the Modbus map (1024 bytes)
+    return plclab.loads(PROG, image_size=4096)
 
 
 def test_bits_follow_the_openplc_convention():
