@@ -16,6 +16,9 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC0004": ("bad number", "A based literal has digits its base does not allow (2#102)."),
     "PLC0005": ("bad time or date literal", "Write durations as T#1h2m3s4ms and dates as "
                 "D#2024-01-31, TOD#14:32:07, DT#2024-01-31-14:32:07."),
+    "PLC0006": ("bad identifier", "Identifiers start with a letter or '_' and go on with letters, "
+                "digits and '_', never two '_' in a row (IEC 61131-3; CODESYS keeps '__' for its "
+                "own generated names). Rename it, e.g. __x -> _x or my__var -> my_var."),
     "PLC0010": ("syntax error", "The parser expected something else here; the message says what."),
     "PLC0011": ("misspelled keyword", "A word looks like a keyword (END_WHILLE, ELSEIF); the "
                 "message suggests the right spelling."),

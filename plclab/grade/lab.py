@@ -952,7 +952,7 @@ def parse_memory(v: Any) -> int:
 def stub_program(lab: Lab) -> str:
     """An ST program that declares every I/O table address (to bind scenarios without a
     student program)."""
-    lines = ["PROGRAM LabCheck__", "VAR"]
+    lines = ["PROGRAM LabIoCheck", "VAR"]
     for i, r in enumerate(lab.io):
         lines.append(f"    io{i} AT {r.address} : {r.type};")
     lines += ["END_VAR", "END_PROGRAM"]

@@ -48,7 +48,7 @@ def preload() -> None:
     try:
         import plclab
 
-        plclab.loads("PROGRAM Warm__ VAR x : INT; END_VAR x := x + 1; END_PROGRAM", "warm.st")
+        plclab.loads("PROGRAM WarmUp VAR x : INT; END_VAR x := x + 1; END_PROGRAM", "warm.st")
     except Exception:  # noqa: BLE001 - only a warm-up of the compiler's caches
         pass
     try:

@@ -53,6 +53,31 @@ _OPERATORS = [
     ":=", "=>", "<>", "<=", ">=", "**", "..", "==", "!=",
     "+", "-", "*", "/", "<", ">", "=", "(", ")", "[", "]", ",", ";", ":", ".", "&", "^", "#",
 ]
+# IEC 61131-3 identifiers (and CODESYS's rules): a letter or '_' then letters, digits and '_',
+# never two '_' in a row (CODESYS reserves '__' for its generated code, as plclab does) and not a
+# lone '_'.
+IDENTIFIER_RE = re.compile(r"(?!_$)(?!.*__)[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+def identifier_problem(name: str) -> str | None:
+    """Why ``name`` is not an IEC identifier, or None.
+
+    >>> identifier_problem("Motor_1") is None
+    True
+    >>> identifier_problem("__import__")
+    "'__import__' has two underscores in a row, which identifiers may not have; write '_import_'"
+    """
+    if IDENTIFIER_RE.match(name):
+        return None
+    if "__" in name and re.fullmatch(r"[A-Za-z0-9_]+", name):
+        fixed = re.sub("_+", "_", name)
+        return (f"'{name}' has two underscores in a row, which identifiers may not have; "
+                f"write '{fixed}'")
+    if name == "_":
+        return "'_' alone is not an identifier; add a letter, e.g. '_x'"
+    return f"{name!r} is not an identifier (a letter or '_', then letters, digits and '_')"
+
+
 _TOKEN_RE = re.compile(
     r"""
     (?P<ws>[ \t\r\f\v]+)
@@ -226,6 +251,8 @@ class Lexer:
             pos = m.end()
             if kind == "ident":
                 up = s.upper()
+                if "__" in s or s == "_":
+                    self.error("PLC0006", identifier_problem(s) or "bad identifier", line, col)
                 out.append(Token(up if up in KEYWORDS else "IDENT", up, s, line, col))
             elif kind == "int":
                 out.append(Token("INT", self._int(s, s, line, col), s, line, col))

@@ -36,6 +36,7 @@ import xml.parsers.expat as expat
 from ..errors import Diagnostic, Location
 from . import ast as A
 from .ld_parser import Elem, lower_network
+from .lexer import identifier_problem
 
 NS = "http://www.plcopen.org/xml/tc6_0201"
 _NAMESPACES = (NS, "http://www.plcopen.org/xml/tc6_0200", "http://www.plcopen.org/xml/tc6.xsd")
@@ -46,7 +47,6 @@ _SECTIONS = {"inputVars": "VAR_INPUT", "outputVars": "VAR_OUTPUT", "inOutVars": 
              "localVars": "VAR", "tempVars": "VAR_TEMP", "externalVars": "VAR_EXTERNAL",
              "globalVars": "VAR_GLOBAL"}
 _POU_KINDS = {"program": "PROGRAM", "functionBlock": "FUNCTION_BLOCK", "function": "FUNCTION"}
-_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _IGNORED = {"documentation", "addData", "comment"}
 MAX_BOX_CHAIN = 100  # function boxes feeding each other directly in one LD/FBD network
 
@@ -161,8 +161,9 @@ class _Importer:
         return None
 
     def ident(self, name: str | None, el: ET.Element, what: str) -> str:
-        if not name or not _IDENT.match(name):
-            self.fail("PLC0183", f"{what} {name!r} is not a valid IEC identifier", el)
+        problem = identifier_problem(name) if name else "it is empty"
+        if problem:
+            self.fail("PLC0183", f"the {what} is not a valid IEC identifier: {problem}", el)
         return name  # type: ignore[return-value]
 
     def describe(self, el: ET.Element) -> str:

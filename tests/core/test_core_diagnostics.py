@@ -18,6 +18,7 @@ CASES = {
     "PLC0012": P.format(body="IF x == 1 THEN x := 2; END_IF"),
     "PLC0013": P.format(body="x = 5;"),
     "PLC0014": P.format(body="IF x := 1 THEN x := 2; END_IF"),
+    "PLC0006": "PROGRAM P VAR my__var : INT; END_VAR my__var := 1; END_PROGRAM",
     "PLC0100": P.format(body="x := countr;"),
     "PLC0101": "PROGRAM P VAR x : INT; x : BOOL; END_VAR x := 1; END_PROGRAM",
     "PLC0102": "PROGRAM P VAR x : INTEGER; END_VAR x := 1; END_PROGRAM",

@@ -1,8 +1,9 @@
-"""Known crashes and hangs found by the fuzzers and the escape suite, as minimal reproducers.
+"""Crashes and hangs found by the fuzzers and the escape suite, as minimal reproducers.
 
-Each entry names the area of issue 11 whose fix it waits for. ``test_fuzz.py`` runs every
-reproducer as an ``xfail(strict=False)`` test (it passes for real once the fix is merged) and
-the fuzz campaigns only fail on a failure signature that matches no entry here.
+``KNOWN`` holds what is open: each entry names the area whose fix it waits for; ``test_fuzz.py``
+runs it as an ``xfail(strict=False)`` test and the fuzz campaigns skip its signature. ``FIXED``
+holds what was found and fixed (issue 11): those reproducers are plain regression tests that
+must give diagnostics or PlcErrors only.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ HOSTILE_DECLS = "hostile declarations (parser progress, literal ranges)"
 ARITHMETIC = "arithmetic + FOR (codegen expressions, rt.py)"
 MANGLING = "identifier mangling (codegen ident() / lexer; trust-boundary rule of DESIGN.md)"
 
-KNOWN: list[Known] = [
+FIXED: list[Known] = [
     Known("parser-var-section-typo", HOSTILE_DECLS,
           r"hang:(check|\?):.*", "typo.st",
           "PROGRAM P VAR VAR_GLOBAL END_VAR END_PROGRAM\n",
@@ -60,6 +61,8 @@ KNOWN: list[Known] = [
           "a PlcError)"),
 ]
 
+KNOWN: list[Known] = []
+
 
 def match(sig: str) -> Known | None:
     """The known issue a fuzz failure signature belongs to, if any."""
@@ -70,13 +73,7 @@ def match(sig: str) -> Known | None:
 
 
 # escape-suite case ids (tests/security/payloads.py) that fail for a known reason
-ESCAPES: dict[str, str] = {
-    cid: "double-underscore-identifier" for cid in [
-        "ident-type-0", "ident-type-18", "ident-type-19", "ident-type-20", "ident-type-21",
-        "ident-type-22", "ident-type-23", "ident-var-45", "ident-pou-45", "ident-type-45",
-        "ident-type-47", "ident-type-48", "il-label-0", "il-label-5", "ld-names-3",
-        "xml-var-name-4"]}
-ESCAPES["xml-pou-name-4"] = "double-underscore-pou-xml"
+ESCAPES: dict[str, str] = {}
 
 
 def match_escape(case_id: str) -> Known | None:

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from dataclasses import dataclass, field
@@ -177,7 +178,7 @@ def violations(run: Run, box: Sandbox, reads: list[Path], writes: list[Path]) ->
                     "os.truncate") or ev.startswith("shutil."):
             if ev in ("os.remove", "os.rmdir") and args[-1] not in (-1, None):
                 continue  # relative to a dir_fd: shutil.rmtree, judged by its own event
-            for p in (a for a in args if isinstance(a, str)):
+            for p in (_path_arg(a) for a in args if isinstance(a, str)):
                 if not _inside(os.path.join(str(run.cwd), p), write_ok):
                     bad.append(f"{ev} {p}")
         elif ev in ("subprocess.Popen", "os.system", "os.posix_spawn", "os.spawn", "os.forkpty",
@@ -200,6 +201,12 @@ def violations(run: Run, box: Sandbox, reads: list[Path], writes: list[Path]) ->
 
 # matplotlib runs fc-list (a fixed command line) once, when its font cache is new
 MATPLOTLIB_FC_LIST = ("['fc-list', '--help']", "['fc-list', '--format=%{file}\\\\n']")
+
+
+def _path_arg(a: str) -> str:
+    """An event argument as a path (a logged ``PosixPath('/x')`` is ``/x``)."""
+    m = re.fullmatch(r"""\w*Path\((['"])(.*)\1\)""", a)
+    return m.group(2) if m else a
 
 
 def _multiprocessing_start(args: list) -> bool:

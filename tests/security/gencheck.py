@@ -81,7 +81,9 @@ def problems(source: str, words: tuple[str, ...] = ("pwned_sentinel",)) -> list[
     for w in words:
         if w in text:
             out.append(f"{w!r} appears outside a string literal")
-    for t in code:
+    for i, t in enumerate(code):
+        if t == "global" and code[i + 1:i + 2] == ["_G"]:
+            continue  # _Globals.__init__ publishes the instance so initial values can read it
         if keyword.iskeyword(t) and t in ("import", "lambda", "global", "nonlocal", "async",
                                           "await", "yield", "del"):
             out.append(f"keyword {t!r} in generated code")
