@@ -67,9 +67,9 @@ def deep_index() -> str:
     for _ in range(300):
         nested = f"a[{nested}]"
     types = "TYPE S0 : STRUCT v : DINT; END_STRUCT; END_TYPE\n" + "".join(
-        f"TYPE S{i} : STRUCT n : S{i - 1}; END_STRUCT; END_TYPE\n" for i in range(1, 60))
-    path = "q" + ".n" * 59 + ".v"
-    return program(f"s := {nested};\n{path} := s;\ny := {path} + 1;", ARRAY + " q : S59;", types)
+        f"TYPE S{i} : STRUCT n : S{i - 1}; END_STRUCT; END_TYPE\n" for i in range(1, 30))  # data nests at most 32 levels
+    path = "q" + ".n" * 29 + ".v"
+    return program(f"s := {nested};\n{path} := s;\ny := {path} + 1;", ARRAY + " q : S29;", types)
 
 
 PROGRAMS = {
