@@ -9,7 +9,6 @@ the seed); ``python tests/fuzz/run_long.py`` does the same outside pytest.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import random
 import sys
@@ -20,20 +19,10 @@ import pytest
 HERE = Path(__file__).resolve().parent
 
 
-def _load(name: str):
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, HERE / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
-
-
-gen = _load("gen")
-harness = _load("harness")
-worker = _load("worker")
-known_issues = _load("known_issues")
+import gen  # noqa: E402
+import harness  # noqa: E402
+import known_issues  # noqa: E402
+import worker  # noqa: E402
 
 SEED = int(os.environ.get("PLCLAB_FUZZ_SEED", "20261"))
 SECONDS = float(os.environ.get("PLCLAB_FUZZ_SECONDS", "0") or 0)

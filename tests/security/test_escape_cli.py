@@ -7,7 +7,6 @@ other than plclab's own grading workers; and it prints no Python traceback.
 
 from __future__ import annotations
 
-import importlib.util
 import re
 import sys
 from pathlib import Path
@@ -19,18 +18,8 @@ ROOT = HERE.parents[1]
 MOTOR = ROOT / "labs" / "motor-start-stop"
 
 
-def _load(name: str):
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, HERE / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
-
-
-audit = _load("audit")
-payloads = _load("payloads")
+import audit  # noqa: E402
+import payloads  # noqa: E402
 
 
 @pytest.fixture

@@ -8,7 +8,6 @@ and nothing may import the sentinel module the payloads name.
 
 from __future__ import annotations
 
-import importlib.util
 import sys
 from pathlib import Path
 
@@ -23,19 +22,10 @@ from plclab.testing import run_compiled_tests
 HERE = Path(__file__).resolve().parent
 
 
-def _load(name: str, folder: Path = HERE):
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, folder / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
-
-
-payloads = _load("payloads")
-gencheck = _load("gencheck")
-known_issues = _load("known_issues", HERE.parent / "fuzz")
+import gencheck  # noqa: E402
+import harness  # noqa: E402
+import known_issues  # noqa: E402
+import payloads  # noqa: E402
 
 
 @pytest.fixture
@@ -86,9 +76,8 @@ def test_hostile_source_stays_data(files, sentinel, tmp_path):
 
 def test_the_rule_holds_for_every_example_and_lab_file():
     """The check itself sees real programs pass: every repository program that compiles."""
-    fuzz_harness = _load("harness", HERE.parent / "fuzz")
     compiled = 0
-    for text, name in fuzz_harness.seed_files():
+    for text, name in harness.seed_files():
         try:
             c = compile_sources([(text, name)])
         except PlcError:
