@@ -332,6 +332,18 @@ class SourceFile:
     tests: list[TestBlock] = field(default_factory=list)
 
 
+def child_bodies(s: Stmt) -> list[list[Stmt]]:
+    """The statement lists directly inside ``s`` (IF branches and ELSE, CASE branches and
+    ELSE, loop bodies); empty for a simple statement."""
+    if isinstance(s, If):
+        return [body for _, body in s.branches] + ([s.orelse] if s.orelse else [])
+    if isinstance(s, Case):
+        return [b.body for b in s.branches] + ([s.orelse] if s.orelse else [])
+    if isinstance(s, For | While | Repeat):
+        return [s.body]
+    return []
+
+
 def walk_stmts(stmts: list[Stmt]):
     """Yield every statement of a body, nested ones included (pre-order).
 
@@ -343,15 +355,9 @@ def walk_stmts(stmts: list[Stmt]):
             stack.pop()
             continue
         yield s
-        if isinstance(s, If):
-            bodies = [body for _, body in s.branches] + ([s.orelse] if s.orelse else [])
-        elif isinstance(s, Case):
-            bodies = [b.body for b in s.branches] + ([s.orelse] if s.orelse else [])
-        elif isinstance(s, (For, While, Repeat)):
-            bodies = [s.body]
-        else:
-            continue
-        stack.append(x for body in bodies for x in body)
+        bodies = child_bodies(s)
+        if bodies:
+            stack.append(x for body in bodies for x in body)
 
 
 def copy_expr(e: Expr) -> Expr:

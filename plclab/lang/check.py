@@ -21,6 +21,8 @@ from .datasize import DataSizes
 from .limits import (
     MAX_BLOCK_NESTING,
     MAX_EXPR_NESTING,
+    MAX_INTERVAL_NS,
+    MIN_INTERVAL_NS,
     compiler_guard,
     nesting_violation,
     too_deep_message,
@@ -28,8 +30,6 @@ from .limits import (
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
 MAX_IMAGE_BYTES = 65536  # the largest process image a Plc may have (image_size)
-_MIN_INTERVAL_NS = 100_000  # task intervals: 0.1 ms .. 1 day, as Plc accepts (PLC3011)
-_MAX_INTERVAL_NS = 86_400 * 10**9
 _MAX_PRIORITY = 31  # task priorities 0..31 (CODESYS)
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
 _CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep
@@ -155,6 +155,17 @@ class Checker:
         self._chain_keys.add(key)
         return True
 
+    def _chain_too_deep(self, what: str, remedy: str, loc: Location | None) -> bool:
+        """True when the definitions under way are :data:`_CHAIN_LIMIT` deep (PLC0124, once)."""
+        if len(self._chain) < _CHAIN_LIMIT:
+            return False
+        if not self._too_deep:
+            self._too_deep = True
+            path = " -> ".join(lab for _, lab, _ in self._chain[:4])
+            self.err("PLC0124", f"{what} are defined in terms of each other more than "
+                     f"{_CHAIN_LIMIT} levels deep ({path} -> ...); {remedy}", loc)
+        return True
+
     def _leave(self) -> None:
         key, _, _ = self._chain.pop()
         self._chain_keys.discard(key)
@@ -263,7 +274,7 @@ class Checker:
                 self.err("PLC0129", f"the INTERVAL of task {t.name} is less than 1 ms, which a "
                          "TIME (whole milliseconds) cannot hold; write LTIME#500us or more than "
                          "T#1ms", e.loc)
-            elif not _MIN_INTERVAL_NS <= v <= _MAX_INTERVAL_NS:
+            elif not MIN_INTERVAL_NS <= v <= MAX_INTERVAL_NS:
                 self.err("PLC0129", f"the INTERVAL of task {t.name} is {v / 1e6:g} ms; it must "
                          "lie between 0.1 ms (LTIME#100us) and 1 day, e.g. INTERVAL := T#10ms",
                          e.loc)
@@ -292,13 +303,8 @@ class Checker:
             return self.types[name]
         if name in self.type_decls:
             td = self.type_decls[name]
-            if len(self._chain) >= _CHAIN_LIMIT:
-                if not self._too_deep:
-                    self._too_deep = True
-                    path = " -> ".join(lab for _, lab, _ in self._chain[:4])
-                    self.err("PLC0124", f"types, constants and enumeration values are defined "
-                             f"in terms of each other more than {_CHAIN_LIMIT} levels deep "
-                             f"({path} -> ...); declare them with fewer levels", loc)
+            if self._chain_too_deep("types, constants and enumeration values",
+                                    "declare them with fewer levels", loc):
                 return T.ANY
             if not self._enter(("type", name), td.spelling or name, td.loc):
                 return T.ANY
@@ -503,14 +509,8 @@ class Checker:
             if key in self._broken:
                 self._broken_hits += 1
             return self._const_memo[key]
-        if len(self._chain) >= _CHAIN_LIMIT:
+        if self._chain_too_deep("constants", "give some of them literal values", d.loc):
             self._broken_hits += 1
-            if not self._too_deep:
-                self._too_deep = True
-                path = " -> ".join(lab for _, lab, _ in self._chain[:4])
-                self.err("PLC0124", f"constants are defined in terms of each other more than "
-                         f"{_CHAIN_LIMIT} levels deep ({path} -> ...); give some of them "
-                         "literal values", d.loc)
             return None
         if not self._enter(key, d.spelling or d.name, d.loc):
             self._broken_hits += 1

@@ -33,6 +33,12 @@ MAX_BLOCK_NESTING = 2_000
 MAX_EXPR_NESTING = 2_000
 """Parentheses, calls, array indices and unary operators nested inside each other."""
 
+MIN_INTERVAL_NS = 100_000
+"""The shortest cycle time or task interval, 0.1 ms (PLC0129 in a TASK, PLC3011 in the API)."""
+
+MAX_INTERVAL_NS = 86_400 * 1_000_000_000
+"""The longest cycle time or task interval, one day."""
+
 RECURSION_LIMIT = 60_000
 """Python frames allowed while parsing, checking and generating code (see the module text)."""
 
@@ -85,7 +91,7 @@ def nesting_violation(stmts: list) -> tuple[str, object] | None:
         if blocks > MAX_BLOCK_NESTING + 1:
             return "blocks", s.loc
         exprs.extend((e, 1) for e in _stmt_exprs(s, A) if not isinstance(e, leaves))
-        for body in _stmt_bodies(s, A):
+        for body in A.child_bodies(s):
             stmts_todo.extend((x, blocks + 1) for x in reversed(body))
     while exprs:
         e, depth = exprs.pop()
@@ -131,14 +137,4 @@ def _stmt_exprs(s, A) -> list:
         return [s.cond]
     if isinstance(s, A.Jump) and s.cond is not None:
         return [s.cond]
-    return []
-
-
-def _stmt_bodies(s, A) -> list:
-    if isinstance(s, A.If):
-        return [b for _, b in s.branches] + ([s.orelse] if s.orelse else [])
-    if isinstance(s, A.Case):
-        return [b.body for b in s.branches] + ([s.orelse] if s.orelse else [])
-    if isinstance(s, A.For | A.While | A.Repeat):
-        return [s.body]
     return []

@@ -236,25 +236,23 @@ def _sqrt(x):
     return math.sqrt(x) if x >= 0 else math.nan
 
 
-def _sin(x):
-    try:
-        return math.sin(x)
-    except ValueError:  # SIN(+-inf)
-        return math.nan
+def nan_at_infinity(fn):
+    """``fn`` (sin, cos, tan) giving NaN where Python raises for an infinite argument, as
+    IEEE 754 does (``SIN(inf)`` is NaN)."""
+
+    def f(x):
+        try:
+            return fn(x)
+        except ValueError:
+            return math.nan
+
+    f.__name__ = f"_{fn.__name__}"
+    return f
 
 
-def _cos(x):
-    try:
-        return math.cos(x)
-    except ValueError:
-        return math.nan
-
-
-def _tan(x):
-    try:
-        return math.tan(x)
-    except ValueError:
-        return math.nan
+_sin = nan_at_infinity(math.sin)
+_cos = nan_at_infinity(math.cos)
+_tan = nan_at_infinity(math.tan)
 
 
 def _ln(x):
