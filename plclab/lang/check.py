@@ -415,13 +415,11 @@ class Checker:
                 self.check_address(d)
         return d.ty
 
-    def image_extent(self, addr: str, loc: Location) -> None:
-        """Check that ``addr`` lies inside the largest process image (PLC0127) and remember
-        the largest extent: :class:`~plclab.runtime.plc.Plc` compares it with its
-        ``image_size``."""
-        size_ch = addr[2] if len(addr) > 2 and addr[2].isalpha() else "X"
-        parts = addr[3 if addr[2:3].isalpha() else 2:].split(".")
-        byte = int(parts[0]) if len(parts[0]) <= 9 else MAX_IMAGE_BYTES
+    def image_extent(self, addr: str, size_ch: str, byte_text: str, loc: Location) -> None:
+        """Check that ``addr`` (split by :func:`_split_address`) lies inside the largest
+        process image (PLC0127) and remember the largest extent:
+        :class:`~plclab.runtime.plc.Plc` compares it with its ``image_size``."""
+        byte = int(byte_text) if len(byte_text) <= 9 else MAX_IMAGE_BYTES
         end = byte + max(1, _ADDR_SIZES[size_ch] // 8)
         if end > MAX_IMAGE_BYTES:
             self.err("PLC0127", f"{addr[:30]} lies beyond the largest process image ({MAX_IMAGE_BYTES:,}"
@@ -433,9 +431,8 @@ class Checker:
         addr = d.address or ""
         if addr.endswith("*"):
             return
-        size_ch = addr[2] if len(addr) > 2 and addr[2].isalpha() else "X"
+        size_ch, parts = _split_address(addr)
         bits = _ADDR_SIZES[size_ch]
-        parts = addr[3 if addr[2].isalpha() else 2:].split(".")
         if size_ch == "X" and len(parts) != 2:
             self.err("PLC0120", f"bit address {addr} needs byte.bit, e.g. %IX0.3", d.loc)
             return
@@ -447,7 +444,7 @@ class Checker:
             self.err("PLC0120", f"{addr}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
                      d.loc)
             return
-        self.image_extent(addr, d.loc)
+        self.image_extent(addr, size_ch, parts[0], d.loc)
         t = T.resolve(d.ty)
         if t is T.ANY:
             return
@@ -1248,8 +1245,7 @@ class Checker:
 
     def direct(self, e: A.DirectAddr) -> T.Type:
         a = e.address
-        size = a[2] if len(a) > 2 and a[2].isalpha() else "X"
-        parts = a[3 if a[2:3].isalpha() else 2:].split(".")
+        size, parts = _split_address(a)
         if size == "X" and (len(parts) != 2 or len(parts[1]) > 1 or int(parts[1]) > 7):
             self.err("PLC0120", f"bit address {a[:30]} needs byte.bit with bit 0..7, e.g. %IX0.3",
                      e.loc)
@@ -1257,7 +1253,7 @@ class Checker:
             self.err("PLC0120", f"{a[:30]}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
                      e.loc)
         else:
-            self.image_extent(a, e.loc)
+            self.image_extent(a, size, parts[0], e.loc)
         return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
 
     def member(self, e: A.Member, write: bool) -> T.Type:
@@ -1753,6 +1749,12 @@ class Checker:
         close = difflib.get_close_matches(name.upper(), [str(c).upper() for c in candidates],
                                           n=1, cutoff=0.7)
         return f"; did you mean {close[0]}?" if close else ""
+
+
+def _split_address(addr: str) -> tuple[str, list[str]]:
+    """``%IX1.2`` -> ("X", ["1", "2"]); ``%QW4`` -> ("W", ["4"]) (the lexer checked the form)."""
+    sized = addr[2:3].isalpha()
+    return (addr[2] if sized else "X"), addr[3 if sized else 2:].split(".")
 
 
 def _left_expected(e: A.Binary, expected: T.Type | None) -> T.Type | None:
