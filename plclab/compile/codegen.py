@@ -921,7 +921,7 @@ class Codegen:
         if top and hi - lo <= CASE_CHUNK < len(bodies):
             self.outline_code(lambda: self.case_tree(s, k, bodies, lo, hi, False), s.loc, (k,))
             return
-        if hi - lo <= 8:
+        if hi - lo <= MAX_ELIF:
             for i in range(lo, hi):
                 self.emit(f"{'if' if i == lo else 'elif'} {k} == {i}:")
                 self.ind += 1
