@@ -24,7 +24,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import plclab  # noqa: E402
-from plclab.lang.plcopen import parse_plcopen_collect  # noqa: E402
+from plclab.lang.frontends.plcopen import parse_plcopen_collect  # noqa: E402
 
 HEAD = ('<?xml version="1.0" encoding="utf-8"?>\n'
         '<project xmlns="http://www.plcopen.org/xml/tc6_0201">\n<types><dataTypes/><pous>\n')

@@ -9,65 +9,30 @@
 from __future__ import annotations
 
 import os
-from functools import cache
-from pathlib import Path
 from typing import Any
 
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
+from .lang.frontends import for_file
+from .lang.frontends.st import parse_library
 from .lang.lexer import cap_per_file
-
-STDLIB_FILES = ("stdlib.st", "ctrllib.st")
-
-
-@cache
-def _stdlib_text(name: str) -> str:
-    return (Path(__file__).parent / "runtime" / name).read_text(encoding="utf-8")
-
-
-def _frontend(path: str):
-    """The parser for a file, by extension: ``f(text, filename, defer=False) -> (file, diags)``.
-    ``.st`` files may hold IL POUs too (recognised by their first line)."""
-    ext = os.path.splitext(path)[1].lower()
-    if ext in (".st", ".iecst", ".txt", ""):
-        from .lang.st_parser import parse_st_collect
-
-        return parse_st_collect
-    if ext == ".il":
-        from .lang.il_parser import parse_il_collect
-
-        return parse_il_collect
-    if ext == ".ld":
-        from .lang.ld_parser import parse_ld_collect
-
-        return parse_ld_collect
-    if ext == ".xml":
-        from .lang.plcopen import parse_plcopen_collect
-
-        return parse_plcopen_collect
-    raise PlcError("PLC3003", f"{path}: unknown source type '{ext}'; plclab reads .st, .il, .ld "
-                   "and PLCopen .xml files")
+from .lang.lower import lower_pending
 
 
 def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], list[Diagnostic]]:
-    """Parse (text, filename) pairs plus the standard library; collect every diagnostic."""
-    files: list[A.SourceFile] = []
-    diags: list[Diagnostic] = []
-    for name in STDLIB_FILES:
-        from .lang.st_parser import parse_st_collect
+    """Parse (text, filename) pairs plus the standard library; collect every diagnostic.
 
-        f, d = parse_st_collect(_stdlib_text(name), f"<plclab>/{name}", library=True)
-        assert not d, d
-        files.append(f)
-    for text, filename in sources:
-        f, d = _frontend(filename)(text, filename, defer=True)
+    The order is the pipeline's: parse every file (each by the front end the registry picks for
+    its suffix) -> every declaration known -> lower the pending IL bodies and LD/FBD networks
+    of all files at once (:mod:`plclab.lang.lower`); the checker comes next."""
+    front_ends = [for_file(filename) for _, filename in sources]  # PLC3003 before any parsing
+    files: list[A.SourceFile] = parse_library()
+    diags: list[Diagnostic] = []
+    for (text, filename), fe in zip(sources, front_ends, strict=True):
+        f, d = fe.parse(text, filename)
         files.append(f)
         diags.extend(d)
-    if any(hasattr(p, "_lower") for f in files for p in f.pous):
-        # IL bodies and ladder networks are translated once every declaration is known
-        from .lang.il_parser import lower_pending
-
-        diags.extend(lower_pending(files))
+    diags.extend(lower_pending(files))
     return files, diags
 
 

@@ -7,10 +7,11 @@ import pytest
 
 MODULES = [
     # the core
-    "plclab", "plclab.errors", "plclab.project", "plclab.lang.lexer", "plclab.lang.st_parser",
+    "plclab", "plclab.errors", "plclab.project", "plclab.lang.lexer", "plclab.lang.frontends.st",
     "plclab.lang.types", "plclab.runtime.plc", "plclab.runtime.literals",
     # IL, LD and PLCopen front ends, ladder drawing
-    "plclab.lang.il_parser", "plclab.lang.ld_parser", "plclab.lang.plcopen",
+    "plclab.lang.frontends.registry", "plclab.lang.frontends.il", "plclab.lang.frontends.ld",
+    "plclab.lang.frontends.plcopen",
     "plclab.viz.ladder_svg",
     # I/O modules
     "plclab.io", "plclab.io.scaling", "plclab.io.pt100", "plclab.io.analog",

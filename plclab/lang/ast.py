@@ -271,6 +271,22 @@ class Pou:
     language: str = "ST"
     native: str | None = None  # library blocks only: key in plclab.runtime.natives
     end_loc: Location | None = None
+    # bodies parsed but not yet in core statements; plclab.lang.lower empties the list
+    pending: list[PendingBody] = field(default_factory=list, compare=False, repr=False)
+    # text ladder only: the drawn networks (plclab.lang.frontends.ld.Network), for drawings
+    networks: list[Any] = field(default_factory=list, compare=False, repr=False)
+
+
+@dataclass(eq=False)
+class PendingBody:
+    """A body a front end parsed into data that :mod:`plclab.lang.lower` turns into core
+    statements once every declaration is known. ``kind`` is ``"IL"`` (``payload``: a list of
+    :class:`plclab.lang.lower.il.Instr`) or ``"NETWORK"`` (an LD or FBD network: a list of
+    :class:`plclab.lang.lower.network.Elem`)."""
+
+    kind: str
+    payload: list[Any]
+    loc: Location
 
 
 @dataclass(eq=False)

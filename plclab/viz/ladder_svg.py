@@ -62,9 +62,9 @@ def _line(x1: float, y1: float, x2: float, y2: float, style: str = WIRE) -> str:
 
 def render_ld(text: str, file: str = "<input>.ld", pou: str | None = None) -> Svg:
     """Draw every ladder network of a ``.ld`` source (or only those of POU ``pou``)."""
-    from ..lang.ld_parser import parse_ld_collect
+    from ..lang.frontends.ld import parse as parse_ld
 
-    src, _ = parse_ld_collect(text, file, defer=True)
+    src, _ = parse_ld(text, file)  # the drawn networks; no need to lower them
     parts: list[str] = []
     y = PAD
     width = 200.0
@@ -207,7 +207,7 @@ def _rel(cp, base: tuple[float, float]) -> tuple[float, float]:
 
 def render_xml(text: str, pou: str | None = None) -> Svg:
     """Draw the LD and FBD bodies of a PLCopen XML project (or only POU ``pou``)."""
-    from ..lang.plcopen import parse_xml_safely
+    from ..lang.frontends.plcopen import parse_xml_safely
 
     root = parse_xml_safely(text)  # refuses DOCTYPE/ENTITY declarations
     parts: list[str] = []

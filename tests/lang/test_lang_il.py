@@ -5,7 +5,7 @@ import pytest
 
 import plclab
 from plclab.errors import PlcError, PlcRuntimeFault
-from plclab.lang.st_parser import parse_st
+from plclab.lang.frontends.st import parse_st
 from plclab.project import check_sources
 
 
@@ -310,11 +310,11 @@ END_PROGRAM
     ("x.y := 1;", False), ("a[1] := 2;", False),
 ])
 def test_il_recognition_rule(first, is_il):
-    from plclab.lang.st_parser import Parser
+    from plclab.lang.frontends.st import Parser
 
     p = Parser(f"PROGRAM P\n{first}\nEND_PROGRAM", "r.st")
     p.i = 2
-    from plclab.lang.il_parser import is_il_body
+    from plclab.lang.frontends.il_lines import is_il_body
 
     assert is_il_body(p, "END_PROGRAM") is is_il
 

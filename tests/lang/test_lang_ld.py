@@ -4,7 +4,7 @@ every LD diagnostic (PLC0160-PLC0166) at its line and column."""
 import pytest
 
 import plclab
-from plclab.lang.ld_parser import parse_ld_collect
+from plclab.lang.frontends.ld import parse_ld_collect
 from plclab.project import check_sources
 
 DECLS = ("a, b, c, d, e, x, y, z : BOOL; t1 : TON; c1 : CTU; n, m : INT; level : REAL; "

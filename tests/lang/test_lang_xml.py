@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 import plclab
-from plclab.lang.plcopen import parse_plcopen, parse_plcopen_collect
+from plclab.lang.frontends.plcopen import parse_plcopen, parse_plcopen_collect
 from plclab.project import check_sources
 
 EXAMPLES = Path(__file__).parent.parent.parent / "examples"

@@ -6,7 +6,7 @@ import pytest
 
 import plclab
 from plclab.errors import PlcError
-from plclab.lang.plcopen import MAX_BOX_CHAIN, parse_plcopen_collect, parse_xml_safely
+from plclab.lang.frontends.plcopen import MAX_BOX_CHAIN, parse_plcopen_collect, parse_xml_safely
 from plclab.project import check_sources
 
 HEAD = ('<?xml version="1.0" encoding="utf-8"?>\n'

@@ -24,9 +24,11 @@ examples in ``docs/languages.md``)::
   (power continues when the comparison holds), functions ``[MOVE 5 -> x]``,
   ``[ADD a, b -> c]`` (executed while power flows, EN/ENO).
 
-The 2-D text becomes a small graph (:class:`Elem`, shared with the PLCopen XML importer), and
-the graph becomes statements: coils are assignments (``S=``/``R=`` for set/reset coils), power
-flow is a BOOL expression, boxes are calls. Rungs run top to bottom, elements left to right.
+The 2-D text becomes a small graph (:class:`~plclab.lang.lower.network.Elem`, shared with the
+PLCopen XML importer), kept on the POU as a pending ``"NETWORK"`` body; the lowering stage
+(:mod:`plclab.lang.lower.network`) turns the graph into statements: coils are assignments
+(``S=``/``R=`` for set/reset coils), power flow is a BOOL expression, boxes are calls. Rungs run
+top to bottom, elements left to right.
 
 >>> f, diags = parse_ld_collect('''PROGRAM P VAR a, b, q : BOOL; END_VAR
 ... |   a       b      q  |
@@ -38,46 +40,19 @@ flow is a BOOL expression, boxes are calls. Rungs run top to bottom, elements le
 
 from __future__ import annotations
 
-import copy
 import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..errors import Diagnostic, Location
-from . import ast as A
-from .lexer import Lexer, Token
+from ...errors import Diagnostic, Location
+from .. import ast as A
+from ..lexer import Lexer, Token
+from ..lower.network import COMPARE, Elem, Ref
+from ..parsing import ParseAbort
+from .st import Parser, lower_alone
 
-# the power-flow pins of the standard function blocks: (input fed by the rung, output continuing)
-POWER_PINS = {"TON": ("IN", "Q"), "TOF": ("IN", "Q"), "TP": ("IN", "Q"), "TONR": ("IN", "Q"),
-              "CTU": ("CU", "Q"), "CTD": ("CD", "Q"), "CTUD": ("CU", "QU"),
-              "R_TRIG": ("CLK", "Q"), "F_TRIG": ("CLK", "Q"), "SR": ("S1", "Q1"),
-              "RS": ("S", "Q1")}
-COMPARE = {"GT": ">", "GE": ">=", "EQ": "=", "NE": "<>", "LE": "<=", "LT": "<"}
 CONTACTS = {" ": "", "/": "/", "P": "P", "N": "N"}
 COILS = {" ": "", "/": "/", "S": "S", "R": "R", "P": "P", "N": "N"}
-
-Ref = tuple[int, str]  # (element id, output pin; "" = its power-flow output)
-
-
-@dataclass(eq=False)
-class Elem:
-    """One element of a ladder or FBD network (text or XML)."""
-
-    id: int
-    kind: str  # left contact coil fb func cmp invar outvar conn (XML connector/continuation)
-    loc: Location
-    order: tuple = ()
-    inputs: dict[str, list[Ref]] = field(default_factory=dict)  # pin -> refs ("" = power in)
-    var: A.Expr | None = None  # contact/coil variable; in/out variable expression
-    mode: str = ""  # contact "", "/", "P", "N"; coil "", "/", "S", "R", "P", "N"
-    type_name: str = ""  # box type: TON, GT, MOVE, ADD, a user FB or function
-    instance: A.Expr | None = None
-    args: list[A.Arg] = field(default_factory=list)  # parameters written in a text box
-    targets: list[A.Expr] = field(default_factory=list)  # text function box: '-> x'
-    out_pin: str = ""  # XML: the output pin of a function block ("OUT")
-    rung: int = 0
-    text: str = ""  # as written, for messages and drawings
-    geom: Any = None  # text: (line, col0, col1); XML: (x, y, w, h)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -409,8 +384,6 @@ class _TextLadder:
 
     # -- boxes ------------------------------------------------------------------------------
     def box(self, r: int, c0: int, c1: int, inner: str, text: str) -> Elem | None:
-        from .st_parser import Parser, _Bail
-
         line = self.first + r
         lex = Lexer(" " * (c0 + 1) + inner, self.file)
         toks = lex.tokens()
@@ -428,17 +401,12 @@ class _TextLadder:
         tname = str(toks[0].value)
         arrow = next((k for k, t in enumerate(toks) if t.kind == "-" and toks[k + 1].kind == ">"
                       and toks[k + 1].col == t.col + 1), None)
-        p = Parser.__new__(Parser)
-        p.diagnostics = self.diags
-        p.pragmas = []
-        p.file = self.file
-        p.il_default = False
         eof = toks[-1]
 
-        def sub(ts: list[Token]):
-            p.toks = ts + [Token("EOF", None, "", eof.line, eof.col)]
-            p.i = 0
-            return p
+        def sub(ts: list[Token]) -> Parser:
+            # EOF where the box's last token starts (an arrow or a name may follow nothing)
+            return Parser.over_tokens(ts + [Token("EOF", None, "", eof.line, eof.col)],
+                                      self.file, self.diags)
 
         try:
             if tname in COMPARE:
@@ -489,7 +457,7 @@ class _TextLadder:
             e = self.new_elem("fb", r, c0, c1, text)
             e.type_name, e.instance, e.args = tname, inst, params
             return e
-        except _Bail:
+        except ParseAbort:
             return None
 
     # -- after all lines ----------------------------------------------------------------------
@@ -548,8 +516,6 @@ class _TextLadder:
 
     def assign_names(self, net: Network, start: int) -> None:
         """Give each contact and coil the name written over it on the line above."""
-        from .st_parser import Parser, _Bail
-
         by_row: dict[int, list[Elem]] = {}
         for e in self.elems[start:]:
             by_row.setdefault(e.geom[0] - self.first, []).append(e)
@@ -601,15 +567,13 @@ class _TextLadder:
             for d in lex.diagnostics:
                 self.diags.append(Diagnostic(d.code, d.message, Location(self.file, line,
                                                                          d.location.col)))
-            p = Parser.__new__(Parser)
-            p.toks, p.i, p.diagnostics, p.pragmas, p.file = toks, 0, self.diags, [], self.file
-            p.il_default = False
+            p = Parser.over_tokens(toks, self.file, self.diags)
             try:
                 x = p.postfix(p.primary())
                 if not p.at("EOF"):
                     p.fail_expected(f"the end of the name '{word}'")
                 e.var = x
-            except _Bail:
+            except ParseAbort:
                 pass
 
 
@@ -621,11 +585,9 @@ def parse_networks(numbered: list[tuple[int, str]], file: str = "<input>"):
     return tl.networks, elems, diags
 
 
-def parse_ld_collect(text: str, file: str = "<input>.ld",
-                     defer: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
-    """Parse a ``.ld`` file: declarations as in ST, bodies as ladder networks (or ST/IL)."""
-    from .st_parser import Parser
-
+def parse(text: str, file: str = "<input>.ld") -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Parse a ``.ld`` file: declarations as in ST, bodies as ladder networks (or ST/IL); the
+    networks stay pending (``Pou.pending``) and drawn (``Pou.networks``)."""
     lines = text.split("\n")
     rails = rail_lines(text)
     rail_set = set(rails)
@@ -658,338 +620,17 @@ def parse_ld_collect(text: str, file: str = "<input>.ld",
         pou.language = "LD"
         tl = _TextLadder(file, diags)
         elems = tl.parse(mine)
-        pou.networks = tl.networks  # type: ignore[attr-defined]
-        pou._lower = (lambda env, pou=pou, elems=elems:  # type: ignore[attr-defined]
-                      lower_network(pou, elems, env, file))
-    if not defer:
-        from .il_parser import lower_pending
-
-        diags.extend(lower_pending([out]))
+        pou.networks = tl.networks
+        # the rungs replace whatever body the ST parser saw (an IL body was reported above)
+        pou.pending = [A.PendingBody("NETWORK", elems, Location(file, mine[0][0], 1))]
     return out, diags
 
 
-# ---------------------------------------------------------------------------------------------
-# Network -> statements (text ladder and PLCopen LD/FBD)
+def parse_ld_collect(text: str, file: str = "<input>.ld") -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Parse a ``.ld`` file and lower its networks (the file alone)."""
+    out, diags = parse(text, file)
+    return out, diags + lower_alone(out)
 
 
-def _true(loc: Location) -> A.Literal:
-    return A.Literal(loc, True, "BOOL", None, "TRUE")
-
-
-def _is_true(e: A.Expr) -> bool:
-    return isinstance(e, A.Literal) and e.kind == "BOOL" and e.value is True
-
-
-def _and(loc: Location, a: A.Expr, b: A.Expr) -> A.Expr:
-    if _is_true(a):
-        return b
-    if _is_true(b):
-        return a
-    return A.Binary(loc, "AND", a, b)
-
-
-def _or(loc: Location, items: list[A.Expr]) -> A.Expr:
-    if not items:
-        return A.Literal(loc, False, "BOOL", None, "FALSE")
-    if any(_is_true(x) for x in items):
-        return _true(loc)
-    out = items[0]
-    for x in items[1:]:
-        out = A.Binary(loc, "OR", out, x)
-    return out
-
-
-def _simple(e: A.Expr) -> bool:
-    return isinstance(e, A.Name | A.Literal | A.Member | A.DirectAddr)
-
-
-_CHAIN = 32  # series elements lowered into one expression before a temporary splits it
-
-
-class _NetLowering:
-    def __init__(self, pou: A.Pou, elems: list[Elem], env, file: str) -> None:
-        self.pou = pou
-        self.elems = {e.id: e for e in elems}
-        self.order = sorted(elems, key=lambda e: e.order)
-        self.env = env
-        self.file = file
-        self.scope = {d.name: d for d in pou.decls}
-        self.diags: list[Diagnostic] = []
-        self.out: list[A.Stmt] = []
-        self.memo: dict[Ref, A.Expr] = {}
-        self.decls: list[A.VarDecl] = []
-        self.uses: dict[Ref, int] = {}
-        self.n = 0
-        self.conds: dict[int, A.Expr] = {}
-        self.pins: dict[int, tuple[str, str]] = {}
-        self.nesting = 0
-        for e in elems:
-            for refs in e.inputs.values():
-                for ref in refs:
-                    self.uses[ref] = self.uses.get(ref, 0) + 1
-
-    def err(self, code: str, msg: str, loc: Location) -> None:
-        self.diags.append(Diagnostic(code, msg, loc))
-
-    def hidden(self, stem: str, loc: Location, section: str, what: str) -> A.Name:
-        self.n += 1
-        name = f"__LD_{stem}{self.n}"
-        d = A.VarDecl(loc, name, A.NamedTypeRef(loc, "BOOL"), section=section, spelling=what)
-        d.used = True
-        self.decls.append(d)
-        return A.Name(loc, name)
-
-    def run(self) -> list[Diagnostic]:
-        for e in self.order:
-            self.visit(e)
-        self.pou.body = self.out
-        self.pou.decls.extend(self.decls)
-        return self.diags
-
-    # -- values -----------------------------------------------------------------------------
-    def value(self, refs: list[Ref], loc: Location) -> A.Expr:
-        self.nesting += 1
-        try:
-            if self.nesting == 1:
-                for r in refs:
-                    self.break_chains(r, loc)
-            return _or(loc, [self.out_value(r, loc) for r in refs])
-        finally:
-            self.nesting -= 1
-
-    def break_chains(self, ref: Ref, loc: Location) -> None:
-        """Store every _CHAIN-th contact of a long series in a temporary, upstream first, so
-        that one rung of thousands of contacts lowers without deep recursion (iterative)."""
-        depth: dict[int, int] = {}
-        stack: list[tuple[int, bool]] = [(ref[0], False)]
-        while stack:
-            i, done = stack.pop()
-            if i < 0 or (i, "") in self.memo or (not done and i in depth):
-                continue
-            e = self.elems[i]
-            ups = [j for refs in e.inputs.values() for j, _ in refs if j >= 0]
-            if not done:
-                depth[i] = -1  # on the way
-                stack.append((i, True))
-                stack.extend((j, False) for j in ups)
-                continue
-            d = 1 + max((depth.get(j, 0) for j in ups if (j, "") not in self.memo), default=0)
-            if d >= _CHAIN and e.kind in ("contact", "cmp", "conn") and e.mode not in ("P", "N"):
-                self.materialize((i, ""), self.out_value((i, ""), e.loc), e.loc)
-                d = 0
-            depth[i] = d
-
-    def out_value(self, ref: Ref, loc: Location) -> A.Expr:
-        if ref[0] < 0:
-            return _true(loc)
-        if ref in self.memo:
-            return copy.deepcopy(self.memo[ref])
-        e = self.elems[ref[0]]
-        pin = ref[1]
-        k = e.kind
-        if k == "left":
-            return _true(e.loc)
-        if k == "contact":
-            return _and(e.loc, self.value(e.inputs.get("", []), e.loc), self.contact_cond(e))
-        if k == "coil":
-            return self.value(e.inputs.get("", []), e.loc)
-        if k == "cmp":
-            a, b = (copy.deepcopy(x.value) for x in e.args)
-            return _and(e.loc, self.value(e.inputs.get("", []), e.loc),
-                        A.Binary(e.loc, COMPARE[e.type_name], a, b))
-        if k == "invar":
-            return copy.deepcopy(e.var)
-        if k == "conn":
-            return self.value(e.inputs.get("", []), e.loc)
-        if k == "fb":
-            if pin in ("", "ENO") and e.id in self.pins:
-                pin = self.pins[e.id][1] if pin == "" else pin
-            if pin == "ENO" or (pin == "" and e.id not in self.pins):
-                return self.value(e.inputs.get("EN", e.inputs.get("", [])), e.loc)
-            return A.Member(e.loc, copy.deepcopy(e.instance), pin)
-        if k == "func":
-            if pin == "ENO" or (pin == "" and e.targets):
-                return self.value(e.inputs.get("EN", e.inputs.get("", [])), e.loc)
-            return self.func_call(e)
-        return A.Literal(loc, False, "BOOL", None, "FALSE")
-
-    def contact_cond(self, e: Elem) -> A.Expr:
-        if e.id in self.conds:
-            return copy.deepcopy(self.conds[e.id])
-        v = copy.deepcopy(e.var) if e.var is not None else A.Literal(e.loc, False, "BOOL")
-        if e.mode == "/":
-            return A.Unary(e.loc, "NOT", v)
-        return v
-
-    def func_call(self, e: Elem) -> A.Expr:
-        args = [copy.deepcopy(a) for a in e.args]
-        for pin, refs in e.inputs.items():
-            if pin in ("", "EN") or not refs:
-                continue
-            args.append(A.Arg(e.loc, pin, self.value(refs, e.loc)))
-        if e.type_name in ("AND", "OR", "XOR", "NOT") and not e.targets:
-            # the FBD boolean boxes are operators, not functions
-            vals = [a.value for a in args if a.value is not None]
-            if e.type_name == "NOT":
-                return A.Unary(e.loc, "NOT", vals[0] if vals else _true(e.loc))
-            out = vals[0] if vals else _true(e.loc)
-            for v in vals[1:]:
-                out = A.Binary(e.loc, e.type_name, out, v)
-            return out
-        return A.Call(e.loc, A.Name(e.loc, e.type_name), args)
-
-    def materialize(self, ref: Ref, value: A.Expr, loc: Location) -> A.Expr:
-        if _simple(value):
-            self.memo[ref] = value
-            return value
-        t = self.hidden("T", loc, "VAR_TEMP", "power flow")
-        self.out.append(A.Assign(loc, t, value))
-        self.memo[ref] = t
-        return copy.deepcopy(t)
-
-    # -- elements ---------------------------------------------------------------------------
-    def visit(self, e: Elem) -> None:
-        k = e.kind
-        ref = (e.id, "")
-        if k == "contact" and e.mode in ("P", "N") and e.var is not None:
-            mem = self.hidden("M", e.loc, "VAR", f"edge memory of {e.text}")
-            pulse = self.hidden("E", e.loc, "VAR_TEMP", f"edge of {e.text}")
-            v = copy.deepcopy(e.var)
-            now = v if e.mode == "P" else A.Unary(e.loc, "NOT", v)
-            was = copy.deepcopy(mem) if e.mode == "P" else A.Unary(e.loc, "NOT", mem)
-            self.out.append(A.Assign(e.loc, pulse, _and(e.loc, now, A.Unary(e.loc, "NOT", was))))
-            self.out.append(A.Assign(e.loc, copy.deepcopy(mem), copy.deepcopy(e.var)))
-            self.conds[e.id] = pulse
-        if k in ("contact", "cmp") and self.uses.get(ref, 0) > 1:
-            self.materialize(ref, self.out_value(ref, e.loc), e.loc)
-        elif k == "coil":
-            self.coil(e)
-        elif k == "fb":
-            self.fb(e)
-        elif k == "func":
-            self.func(e)
-        elif k == "outvar":
-            self.outvar(e)
-
-    def coil(self, e: Elem) -> None:
-        pf = self.value(e.inputs.get("", []), e.loc)
-        if self.uses.get((e.id, ""), 0) > 0 or e.mode in ("P", "N"):
-            pf = self.materialize((e.id, ""), pf, e.loc)
-        if e.var is None:
-            return
-        tgt = copy.deepcopy(e.var)
-        if e.mode == "":
-            self.out.append(A.Assign(e.loc, tgt, pf))
-        elif e.mode == "/":
-            self.out.append(A.Assign(e.loc, tgt, A.Unary(e.loc, "NOT", pf)))
-        elif e.mode in ("S", "R"):
-            self.out.append(A.Assign(e.loc, tgt, pf, e.mode + "="))
-        else:  # edge coils: TRUE for one scan when the power flow rises (P) or falls (N)
-            mem = self.hidden("M", e.loc, "VAR", f"edge memory of {e.text}")
-            now = copy.deepcopy(pf) if e.mode == "P" else A.Unary(e.loc, "NOT", copy.deepcopy(pf))
-            was = copy.deepcopy(mem) if e.mode == "P" else A.Unary(e.loc, "NOT", mem)
-            self.out.append(A.Assign(e.loc, tgt, _and(e.loc, now, A.Unary(e.loc, "NOT", was))))
-            self.out.append(A.Assign(e.loc, copy.deepcopy(mem), copy.deepcopy(pf)))
-
-    def fb_type(self, e: Elem):
-        """The declared type of the instance, checked against the box's type name."""
-        inst = e.instance
-        decl = None
-        if isinstance(inst, A.Name):
-            decl = self.env.lookup(inst.name, self.scope)
-        ty = self.env.type_of_ref(decl.type) if decl is not None else None
-        box_pou = self.env.pous.get(e.type_name)
-        if box_pou is None or box_pou.kind == "FUNCTION":
-            what = "a function" if box_pou is not None else "not a function block type"
-            self.err("PLC0165", f"{e.type_name} in {e.text} is {what}; boxes with an instance are "
-                     "function blocks such as TON, TOF, TP, CTU, CTD, R_TRIG or your own "
-                     "FUNCTION_BLOCK (a function box needs '-> result')", e.loc)
-            return None
-        if isinstance(ty, tuple) and ty[0] == "FB" and ty[1].name != e.type_name:
-            self.err("PLC0165", f"{decl.spelling or decl.name} is declared as {ty[1].name}, but "
-                     f"the box says {e.type_name}", e.loc)
-            return None
-        return box_pou
-
-    def fb(self, e: Elem) -> None:
-        pou = self.fb_type(e)
-        if pou is None:
-            return
-        args: list[A.Arg] = []
-        if "" in e.inputs:  # a text box: the rung feeds its first BOOL input
-            pins = POWER_PINS.get(pou.name)
-            if pins is None:
-                ins = [d for d in pou.decls if d.section == "VAR_INPUT" and _is_bool(d)]
-                outs = [d for d in pou.decls if d.section == "VAR_OUTPUT" and _is_bool(d)]
-                if not ins or not outs:
-                    self.err("PLC0165", f"{pou.name} has no BOOL input and BOOL output to carry the "
-                             "power flow of a ladder box", e.loc)
-                    return
-                pins = (ins[0].name, outs[0].name)
-            self.pins[e.id] = pins
-            args.append(A.Arg(e.loc, pins[0], self.value(e.inputs.get("", []), e.loc)))
-        en = e.inputs.get("EN")
-        for pin, refs in e.inputs.items():
-            if pin in ("", "EN") or not refs:
-                continue
-            args.append(A.Arg(e.loc, pin, self.value(refs, e.loc)))
-        args.extend(copy.deepcopy(a) for a in e.args)
-        call: A.Stmt = A.CallStmt(e.loc, A.Call(e.loc, copy.deepcopy(e.instance), args))
-        if en is not None:
-            cond = self.materialize((e.id, "ENO"), self.value(en, e.loc), e.loc)
-            call = A.If(e.loc, [(copy.deepcopy(cond), [call])])
-        self.out.append(call)
-
-    def func(self, e: Elem) -> None:
-        en = e.inputs.get("EN", e.inputs.get("", []) if e.targets else None)
-        if not e.targets:
-            return  # an XML function: its value is used by whatever it feeds
-        if self.env is not None and not self.env.is_function(e.type_name):
-            self.err("PLC0165", f"{e.type_name} in {e.text} is not a function; use MOVE, ADD, "
-                     "SUB, MUL, DIV, a conversion such as INT_TO_REAL, or your own FUNCTION",
-                     e.loc)
-            return
-        cond = self.value(en or [], e.loc) if en is not None else _true(e.loc)
-        if self.uses.get((e.id, ""), 0) > 0:
-            cond = self.materialize((e.id, ""), cond, e.loc)
-        call = self.func_call(e)
-        if e.type_name == "MOVE" and len(call.args) == 1:
-            value: A.Expr = call.args[0].value
-        else:
-            value = call
-        body: list[A.Stmt] = [A.Assign(e.loc, copy.deepcopy(t), copy.deepcopy(value))
-                              for t in e.targets]
-        if _is_true(cond):
-            self.out.extend(body)
-        else:
-            self.out.append(A.If(e.loc, [(copy.deepcopy(cond), body)]))
-
-    def outvar(self, e: Elem) -> None:
-        refs = e.inputs.get("", [])
-        v = self.value(refs, e.loc)
-        stmt: A.Stmt = A.Assign(e.loc, copy.deepcopy(e.var), v)
-        ref = refs[0] if len(refs) == 1 else (-1, "")
-        hops = 0  # a chain of connectors visits each element at most once
-        while ref[0] >= 0 and self.elems[ref[0]].kind == "conn" and \
-                len(self.elems[ref[0]].inputs.get("", [])) == 1 and hops <= len(self.elems):
-            ref = self.elems[ref[0]].inputs[""][0]  # through connector/continuation pairs
-            hops += 1
-        if ref[0] >= 0:
-            src = self.elems[ref[0]]
-            if src.kind == "func" and "EN" in src.inputs and ref[1] != "ENO":
-                cond = self.value(src.inputs["EN"], e.loc)
-                stmt = A.If(e.loc, [(cond, [stmt])])
-        self.out.append(stmt)
-
-
-def _is_bool(d: A.VarDecl) -> bool:
-    return isinstance(d.type, A.NamedTypeRef) and d.type.name == "BOOL"
-
-
-def lower_network(pou: A.Pou, elems: list[Elem], env, file: str) -> list[Diagnostic]:
-    """Translate a parsed network into ``pou.body`` (and hidden declarations)."""
-    return _NetLowering(pou, elems, env, file).run()
-
-
-__all__ = ["Elem", "Network", "parse_ld_collect", "parse_networks", "lower_network",
-           "POWER_PINS"]
+__all__ = ["Network", "parse", "parse_ld_collect", "parse_networks", "rail_lines", "CONTACTS",
+           "COILS"]

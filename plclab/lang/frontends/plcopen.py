@@ -33,10 +33,13 @@ import re
 import xml.etree.ElementTree as ET
 import xml.parsers.expat as expat
 
-from ..errors import Diagnostic, Location
-from . import ast as A
-from .ld_parser import Elem, lower_network
-from .lexer import identifier_problem
+from ...errors import Diagnostic, Location, PlcError
+from .. import ast as A
+from ..lexer import identifier_problem
+from ..lower.network import Elem
+from ..parsing import ParseAbort
+from .il_lines import parse_il_body
+from .st import Parser, lower_alone
 
 NS = "http://www.plcopen.org/xml/tc6_0201"
 _NAMESPACES = (NS, "http://www.plcopen.org/xml/tc6_0200", "http://www.plcopen.org/xml/tc6.xsd")
@@ -113,8 +116,6 @@ def parse_xml_positions(text: str) -> tuple[ET.Element, dict[int, tuple[int, int
 def parse_xml_safely(text: str | bytes, file: str = "<input>.xml") -> ET.Element:
     """Parse XML text refusing DOCTYPE and ENTITY declarations; any problem is a
     :class:`PlcError` PLC0180."""
-    from ..errors import PlcError
-
     if isinstance(text, bytes):
         text = text.decode("utf-8", errors="replace")
     try:
@@ -173,8 +174,6 @@ class _Importer:
     def text_parser(self, text: str | None, el: ET.Element):
         """An ST parser over ``text`` placed where it stands in the XML file; ``None``: the text
         of ``el`` (of its first descendant holding text, e.g. ``<xhtml:p>`` in ``<ST>``)."""
-        from .st_parser import Parser
-
         if text is None:
             holder = next((d for d in el.iter() if (d.text or "").strip()), el)
             text = "".join(holder.itertext())
@@ -187,8 +186,6 @@ class _Importer:
         return _placed(Parser(text, self.file), line, col)
 
     def expr(self, text: str | None, el: ET.Element, what: str) -> A.Expr:
-        from .st_parser import _Bail
-
         if text is None or not text.strip():
             self.fail("PLC0183", f"{self.describe(el)} has no {what}", el)
         p = self.text_parser(text or "", el)
@@ -197,7 +194,7 @@ class _Importer:
             e = p.expr()
             if not p.at("EOF"):
                 p.fail_expected(f"the end of the {what}")
-        except _Bail:
+        except ParseAbort:
             e = None
         if p.diagnostics:
             self.diags.extend(p.diagnostics)
@@ -402,19 +399,17 @@ class _Importer:
             return
         lang = langs[0]
         tag = _local(lang.tag)
-        if tag == "ST":
-            self.st_body(pou, lang)
-        elif tag == "IL":
-            self.il_body(pou, lang)
-        elif tag in ("LD", "FBD"):
-            pou.language = tag
-            elems = self.graphic(lang, tag)
-            if elems is not None:
-                pou._lower = (lambda env, pou=pou, elems=elems:  # type: ignore[attr-defined]
-                              lower_network(pou, elems, env, self.file))
+        reader = self.body_readers().get(tag)
+        if reader is not None:
+            reader(pou, lang)
         else:
             self.err("PLC0181", f"POU {name}: a <{tag}> body is not supported (plclab imports ST, "
                      "IL, LD and FBD bodies)", lang)
+
+    def body_readers(self):
+        """The body languages of a PLCopen POU: element name -> reader(pou, element)."""
+        return {"ST": self.st_body, "IL": self.il_body, "LD": self.graphic_body,
+                "FBD": self.graphic_body}
 
     def st_body(self, pou: A.Pou, lang: ET.Element) -> None:
         p = self.text_parser(None, lang)
@@ -424,15 +419,20 @@ class _Importer:
         self.diags.extend(p.diagnostics)
 
     def il_body(self, pou: A.Pou, lang: ET.Element) -> None:
-        from .il_parser import parse_il_body
-
         p = self.text_parser(None, lang)
-        lower = parse_il_body(p, "EOF")
+        pending = parse_il_body(p, "EOF")
         if not p.at("EOF"):
             p.error("PLC0146", f"unexpected '{p.tok.text}' in the IL body of {pou.spelling}")
         self.diags.extend(p.diagnostics)
         pou.language = "IL"
-        pou._lower = lambda env, pou=pou: lower(pou, env)  # type: ignore[attr-defined]
+        pou.pending.append(pending)
+
+    def graphic_body(self, pou: A.Pou, lang: ET.Element) -> None:
+        tag = _local(lang.tag)
+        pou.language = tag
+        elems = self.graphic(lang, tag)
+        if elems is not None:
+            pou.pending.append(A.PendingBody("NETWORK", elems, self.loc(lang)))
 
     # -- LD and FBD -------------------------------------------------------------------------
     def refs(self, cpi: ET.Element | None) -> list[tuple[str, str, ET.Element]]:
@@ -736,26 +736,28 @@ def _iso_duration(s: str) -> str:
     return f"T#{ms}ms"
 
 
-def parse_plcopen_collect(text: str, file: str = "<input>.xml",
-                          defer: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
-    """Import a PLCopen XML project; return the tree and the diagnostics (no exception)."""
+def parse(text: str, file: str = "<input>.xml") -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Import a PLCopen XML project; IL bodies and LD/FBD networks stay pending."""
     imp = _Importer(text, file)
-    out = imp.run()
-    diags = imp.diags
-    if not defer:
-        from .il_parser import lower_pending
+    return imp.run(), imp.diags
 
-        diags = diags + lower_pending([out])
-    return out, diags
+
+def parse_plcopen_collect(text: str, file: str = "<input>.xml") -> tuple[A.SourceFile,
+                                                                         list[Diagnostic]]:
+    """Import a PLCopen XML project and lower it (the file alone); return the tree and the
+    diagnostics (no exception)."""
+    out, diags = parse(text, file)
+    return out, diags + lower_alone(out)
 
 
 def parse_plcopen(text: str, file: str = "<input>.xml") -> A.SourceFile:
     """Import a PLCopen XML project; raise :class:`PlcError` on any error."""
-    from ..errors import PlcError
-
     out, diags = parse_plcopen_collect(text, file)
     errors = [d for d in diags if d.severity == "error"]
     if errors:
         raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
     return out
 
+
+__all__ = ["parse", "parse_plcopen", "parse_plcopen_collect", "parse_xml_safely",
+           "parse_xml_positions", "MAX_BOX_CHAIN", "NS"]

@@ -3,6 +3,10 @@
 A recursive-descent parser that recovers at statement and declaration boundaries so that
 one run reports every syntax error in a file.
 
+IL bodies inside ST files are recognised here (:func:`plclab.lang.frontends.il_lines.is_il_body`) and
+kept as pending data on the POU; :func:`parse` stops there, :func:`parse_st_collect` also runs
+the lowering stage (:mod:`plclab.lang.lower`) on the file alone.
+
 >>> f = parse_st("PROGRAM P VAR x : INT; END_VAR x := x + 1; END_PROGRAM", "p.st")
 >>> f.pous[0].name, type(f.pous[0].body[0]).__name__
 ('P', 'Assign')
@@ -13,12 +17,17 @@ from __future__ import annotations
 import difflib
 import re
 from contextlib import contextmanager
+from functools import cache
 
-from ..errors import Diagnostic, Location, PlcError
-from . import ast as A
-from .datasize import NESTING_LIMIT
-from .lexer import KEYWORDS, Lexer, Token, add_capped
-from .limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
+from ...errors import Diagnostic, Location, PlcError
+from .. import ast as A
+from ..datasize import NESTING_LIMIT
+from ..lexer import KEYWORDS, Lexer, Token, add_capped
+from ..library import STDLIB_FILES, stdlib_filename, stdlib_text
+from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
+from ..lower import has_pending, lower_pending
+from ..parsing import ParseAbort
+from .il_lines import is_il_body, parse_il_body
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
@@ -53,11 +62,7 @@ _NATIVE_RE = re.compile(r"^native\s+'([A-Z][A-Z0-9_]*)'$")
 _NATIVE_WORD = re.compile(r"^native\b", re.IGNORECASE)
 
 
-class _Bail(Exception):
-    """Internal: abandon the current statement/declaration after an error."""
-
-
-class _TooDeep(_Bail):
+class _TooDeep(ParseAbort):
     """Internal: nesting beyond the limits (PLC0190 is reported). Statements do not recover
     from it one by one (that would report every level again): the body is skipped."""
 
@@ -67,23 +72,40 @@ class Parser:
     there a ``{native 'NAME'}`` pragma binds a block to its registered implementation. In any
     other file the pragma is an error (PLC0131), so user text never selects Python code."""
 
-    depth = 0  # type nesting; like the two below, a class default for the sub-parsers
-    # the IL and LD front ends build without __init__
-    expr_depth = 0  # nesting of expr() calls (class defaults: IL builds sub-parsers by __new__)
-    block_depth = 0  # nesting of statement lists
-
     def __init__(self, text: str, file: str = "<input>", library: bool = False) -> None:
         lexer = Lexer(text, file)
-        self.toks: list[Token] = lexer.tokens()
-        self.diagnostics: list[Diagnostic] = lexer.diagnostics
-        self.pragmas = lexer.pragmas
+        self._setup(lexer.tokens(), file, lexer.diagnostics, lexer.pragmas, library)
+        self.il_default = file.lower().endswith(".il")  # a .il file: bodies are IL unless ST
+        if not library:
+            self._reject_native_pragmas(text)
+
+    @classmethod
+    def over_tokens(cls, tokens: list[Token], file: str,
+                    diagnostics: list[Diagnostic]) -> Parser:
+        """A parser over already-lexed ``tokens`` (one IL line, the inside of a ladder box),
+        reporting into ``diagnostics``. Unless the tokens end with EOF, one is added just
+        after the last token."""
+        p = cls.__new__(cls)
+        toks = list(tokens)
+        if not toks or toks[-1].kind != "EOF":
+            last = toks[-1] if toks else None
+            toks.append(Token("EOF", None, "", last.line if last else 1,
+                              last.col + len(last.text) if last else 1))
+        p._setup(toks, file, diagnostics, [], False)
+        p.il_default = False
+        return p
+
+    def _setup(self, toks: list[Token], file: str, diagnostics: list[Diagnostic],
+               pragmas: list[tuple[int, str]], library: bool) -> None:
+        self.toks: list[Token] = toks
+        self.diagnostics: list[Diagnostic] = diagnostics
+        self.pragmas = pragmas
         self.file = file
         self.library = library
         self.i = 0
         self.depth = 0  # nesting of types and initial values (see nested())
-        self.il_default = file.lower().endswith(".il")  # a .il file: bodies are IL unless ST
-        if not library:
-            self._reject_native_pragmas(text)
+        self.expr_depth = 0  # nesting of expr() calls
+        self.block_depth = 0  # nesting of statement lists
 
     def _reject_native_pragmas(self, text: str) -> None:
         lines = text.splitlines()
@@ -140,13 +162,13 @@ class Parser:
             if close:
                 self.error("PLC0011", f"expected {what}, found '{t.text}'; did you mean the "
                            f"keyword {close[0]}?")
-                raise _Bail
+                raise ParseAbort
         if t.kind == "==":
             self.error("PLC0012", "'==' is not an ST operator; compare with '=' (and assign "
                        "with ':=')")
-            raise _Bail
+            raise ParseAbort
         self.error("PLC0010", f"expected {what}, found {found}")
-        raise _Bail
+        raise ParseAbort
 
     def ensure_progress(self, start: int) -> None:
         """Safety net of every recovery loop: if nothing was consumed since ``start``, report
@@ -192,8 +214,8 @@ class Parser:
                     code = "PLC0011" if close else "PLC0010"
                     self.error(code, f"expected PROGRAM, FUNCTION, FUNCTION_BLOCK, TYPE, "
                                f"VAR_GLOBAL, CONFIGURATION or TEST, found {_found(t)}{hint}")
-                    raise _Bail
-            except (_Bail, RecursionError) as exc:
+                    raise ParseAbort
+            except (ParseAbort, RecursionError) as exc:
                 if isinstance(exc, RecursionError):  # a safety net: the limits should prevent it
                     self.error("PLC0191", "this part of the program is too deeply nested to "
                                "parse; split it into smaller parts (FUNCTIONs, intermediate "
@@ -205,7 +227,7 @@ class Parser:
         return out
 
     def _native_for(self, line: int) -> str | None:
-        if not getattr(self, "library", False):
+        if not self.library:
             return None
         for pl, body in self.pragmas:
             if pl in (line - 1, line):
@@ -240,25 +262,23 @@ class Parser:
             start = self.i
             try:
                 decls.extend(self.var_section())
-            except _Bail:
+            except ParseAbort:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
                 self.ensure_progress(start)
-        body, language, lower = self.pou_body(end_kw)
+        body, language, pending = self.pou_body(end_kw)
         end_loc = self.loc()
         if not self.accept(end_kw):
             self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
         pou = A.Pou(self.loc(head), kind, name_tok.value, decls, body, ret, name_tok.text,
                     language=language, native=self._native_for(head.line), end_loc=end_loc)
-        if lower is not None:  # IL: translated once every file is parsed (types are known)
-            pou._lower = lambda env, pou=pou: lower(pou, env)  # type: ignore[attr-defined]
+        if pending is not None:  # IL: lowered once every file is parsed (types are known)
+            pou.pending.append(pending)
         return pou
 
-    def pou_body(self, end_kw: str):
-        """(statements, language, pending lowering) of a POU body: ST, or IL when the body
-        looks like IL (rule in :func:`plclab.lang.il_parser.is_il_body`)."""
-        from .il_parser import is_il_body, parse_il_body
-
+    def pou_body(self, end_kw: str) -> tuple[list[A.Stmt], str, A.PendingBody | None]:
+        """(statements, language, pending body) of a POU body: ST, or IL when the body looks
+        like IL (rule in :func:`plclab.lang.frontends.il.is_il_body`)."""
         if is_il_body(self, end_kw):
             return [], "IL", parse_il_body(self, end_kw)
         return self.stmt_list({end_kw}), "ST", None
@@ -369,11 +389,11 @@ class Parser:
                 self.error("PLC0010", f"expected END_VAR to close the {section} section opened "
                            f"at line {sec_tok.line}, found {_found(self.tok)}; add END_VAR "
                            "before it")
-                raise _Bail
+                raise ParseAbort
             start = self.i
             try:
                 out.extend(self.var_decl(section, constant, retain))
-            except _Bail:
+            except ParseAbort:
                 self.sync({"END_VAR"} | _DECL_STOP)
                 self.ensure_progress(start)
         self.expect("END_VAR")
@@ -389,7 +409,7 @@ class Parser:
         if self.at(":="):
             self.error("PLC0010", "a declaration needs a type before the initial value: "
                        "write  name : TYPE := value;")
-            raise _Bail
+            raise ParseAbort
         self.expect(":", "':' and a type")
         tref = self.type_ref()
         init = None
@@ -456,7 +476,7 @@ class Parser:
                     init = self.initializer()
                 self.expect(";")
                 out.append(A.TypeDecl(self.loc(n), n.value, tref, init, n.text))
-            except _Bail:
+            except ParseAbort:
                 self.sync({"END_TYPE"} | _POU_START)
                 self.ensure_progress(start)
         self.expect("END_TYPE")
@@ -473,7 +493,7 @@ class Parser:
         if self.depth >= NESTING_LIMIT:
             self.error("PLC0124", f"this {what} is nested more than {NESTING_LIMIT} levels "
                        "deep; declare the inner levels as named TYPEs with fewer levels")
-            raise _Bail
+            raise ParseAbort
         self.depth += 1
         try:
             yield
@@ -585,7 +605,7 @@ class Parser:
                 out.append(s)
         except _TooDeep:
             raise
-        except _Bail:
+        except ParseAbort:
             if self.i == start:
                 self.advance()
             self.sync(stop)
@@ -633,10 +653,10 @@ class Parser:
             if self.at("="):
                 self.error("PLC0013", "'=' compares; to assign a value write ':=' "
                            f"(e.g. {t.text} := ...;)")
-                raise _Bail
+                raise ParseAbort
             if self.at("=="):
                 self.error("PLC0012", "'==' is not an ST operator; assign with ':='")
-                raise _Bail
+                raise ParseAbort
             if t.kind == "IDENT" and isinstance(target, A.Name):
                 close = difflib.get_close_matches(t.value, SUGGEST, n=1, cutoff=0.75)
                 if close:
@@ -651,7 +671,7 @@ class Parser:
         if k.startswith("END_") or k in ("ELSE", "ELSIF", "UNTIL", "THEN", "DO"):
             self.error("PLC0010", f"unexpected {t.text}: there is no open statement it could "
                        "close here; check the structure above")
-            raise _Bail
+            raise ParseAbort
         self.fail_expected("a statement")
         return None
 
@@ -673,7 +693,7 @@ class Parser:
                 return
         self.error("PLC0010", f"expected {kw} to close the {opener} at line {open_tok.line}, "
                    f"found {_found(t)}")
-        raise _Bail
+        raise ParseAbort
 
     def condition(self, where: str) -> A.Expr:
         cond = self.expr()
@@ -948,6 +968,17 @@ def _found(t: Token) -> str:
     return f"'{t.text}'"
 
 
+def parse(text: str, file: str = "<input>",
+          library: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
+    """Parse ST source (IL bodies included) to the tree and its diagnostics; IL bodies stay
+    pending (``Pou.pending``) for the lowering stage. ``library`` is for plclab's own library
+    files only (see :class:`Parser`)."""
+    with compiler_guard():
+        p = Parser(text, file, library)
+        out = p.parse_file()
+    return out, p.diagnostics
+
+
 def parse_st(text: str, file: str = "<input>") -> A.SourceFile:
     """Parse ST source; raise :class:`PlcError` with every syntax diagnostic if any."""
     out, diags = parse_st_collect(text, file)
@@ -956,19 +987,34 @@ def parse_st(text: str, file: str = "<input>") -> A.SourceFile:
     return out
 
 
-def parse_st_collect(text: str, file: str = "<input>", defer: bool = False,
+def parse_st_collect(text: str, file: str = "<input>",
                      library: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
-    """Parse ST source and return the tree plus the diagnostics (no exception).
+    """Parse ST source and lower its IL bodies (the file alone, with the standard library's
+    declarations); return the tree plus the diagnostics (no exception)."""
+    out, diags = parse(text, file, library)
+    return out, diags + lower_alone(out)
 
-    IL bodies found in the file are translated at the end; with ``defer=True`` that is left to
-    the caller (:func:`plclab.project.parse_sources` does it once all files are parsed).
-    ``library`` is for plclab's own library files only (see :class:`Parser`)."""
-    with compiler_guard():
-        p = Parser(text, file, library)
-        out = p.parse_file()
-    diags = p.diagnostics
-    if not defer and any(hasattr(pou, "_lower") for pou in out.pous):
-        from .il_parser import lower_pending
 
-        diags = diags + lower_pending([out])
-    return out, diags
+def parse_library() -> list[A.SourceFile]:
+    """plclab's block library, freshly parsed (a project's checker annotates its own copy)."""
+    files = []
+    for name in STDLIB_FILES:
+        f, d = parse(stdlib_text(name), stdlib_filename(name), library=True)
+        assert not d, d
+        files.append(f)
+    return files
+
+
+@cache
+def library_declarations() -> tuple[A.SourceFile, ...]:
+    """The block library parsed once, read-only: the declarations that a file lowered on its
+    own needs (the pins of TON, the outputs of CTU...)."""
+    return tuple(parse_library())
+
+
+def lower_alone(*files: A.SourceFile) -> list[Diagnostic]:
+    """Lower the pending bodies of ``files`` parsed without a project (the standalone entry
+    points ``parse_*_collect``); a project lowers all its files at once instead."""
+    if not has_pending(list(files)):
+        return []
+    return lower_pending(list(files), library_declarations())

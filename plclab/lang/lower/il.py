@@ -1,46 +1,28 @@
-"""Instruction List (IEC 61131-3 IL) front end: IL bodies -> the shared AST.
+"""IL bodies -> the core AST: the current result (CR) becomes expressions and statements.
 
-IL bodies live in ordinary POUs (``PROGRAM``/``FUNCTION``/``FUNCTION_BLOCK``) whose declarations
-are parsed by the ST parser; only the body differs. A file may mix ST and IL POUs.
+IL works on a *current result*. The translator keeps the CR as an ST expression and emits plain
+statements: ``LD x / MUL A / ADD B / ST Y`` becomes ``Y := x * A + B;``. Labels and jumps become
+:class:`~plclab.lang.ast.Label` and :class:`~plclab.lang.ast.Jump` (the compiler turns them into
+a state machine). Where the CR must survive a store, a label or a jump it is kept in a hidden
+``VAR_TEMP`` named ``__CR_<TYPE>`` (one per type). The CR type is tracked from the operand of
+``LD`` and checked (``PLC0140``) through :class:`~plclab.lang.lower.types.LoweringTypes`; the
+checker and the compiler do the rest.
 
-**When is a body IL?** (:func:`is_il_body`) When its first line starts with a label (``L1:``,
-alone or before an IL operator), or with an IL operator followed on the same line by its
-operand (``LD x``, ``CAL T1``) -- ST never puts an operand directly after a name -- or alone on
-its line (``RET``, ``NOT``). In a ``.il`` file every body is IL unless it starts like ST
-(``x :=``, ``IF``, ``f(...)``).
-
-**Translation.** IL works on a *current result* (CR). The translator keeps the CR as an ST
-expression and emits plain statements: ``LD x / MUL A / ADD B / ST Y`` becomes
-``Y := x * A + B;``. Labels and jumps become :class:`~plclab.lang.ast.Label` and
-:class:`~plclab.lang.ast.Jump` (the compiler turns them into a state machine). Where the CR
-must survive a store, a label or a jump it is kept in a hidden ``VAR_TEMP`` named
-``__CR_<TYPE>`` (one per type). The CR type is tracked from the operand of ``LD`` and checked
-(``PLC0140``); the checker and the compiler do the rest.
-
->>> from plclab.lang.st_parser import parse_st
->>> f = parse_st('''PROGRAM P VAR x, A, B, Y : INT; END_VAR
-... LD x
-... MUL A
-... ADD B
-... ST Y
-... END_PROGRAM''', "p.il")
->>> f.pous[0].language, type(f.pous[0].body[0]).__name__
-('IL', 'Assign')
+The instructions come from :mod:`plclab.lang.frontends.il` (or a PLCopen ``<IL>`` body) as a
+:class:`~plclab.lang.ast.PendingBody` of kind ``"IL"`` holding a list of :class:`Instr`.
 """
 
 from __future__ import annotations
 
 import difflib
 from dataclasses import dataclass, field
-from functools import cache
 from typing import Any
 
-from ..errors import Diagnostic, Location
-from . import ast as A
-from . import types as T
-from .builtins import BUILTINS, conversion
-from .lexer import Token
-from .limits import compiler_guard
+from ...errors import Diagnostic, Location
+from .. import ast as A
+from .. import types as T
+from ..builtins import BUILTINS, conversion
+from .types import LoweringTypes, category, enum_name, enum_type, type_text
 
 IL_OPERATORS = (
     "LD", "LDN", "ST", "STN", "S", "R", "AND", "ANDN", "OR", "ORN", "XOR", "XORN", "NOT",
@@ -53,47 +35,6 @@ _BIN = {"AND": "AND", "OR": "OR", "XOR": "XOR", "ADD": "+", "SUB": "-", "MUL": "
         "MOD": "MOD", "GT": ">", "GE": ">=", "EQ": "=", "NE": "<>", "LE": "<=", "LT": "<"}
 _NEGATABLE = {"ANDN": "AND", "ORN": "OR", "XORN": "XOR"}
 DEFERRABLE = set(_BIN) | set(_NEGATABLE)
-_NO_OPERAND = {"NOT", "RET", "RETC", "RETCN", ")"}
-_OPERAND_START = {"IDENT", "INT", "REAL", "STRING", "WSTRING", "TIME", "DATE", "TOD", "DT",
-                  "TRUE", "FALSE", "ADDR", "ENUMVAL"}
-_KEYWORD_OPS = {"AND", "OR", "XOR", "NOT", "MOD"}  # IL operators the ST lexer sees as keywords
-_ST_STARTS = {"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "CONTINUE", "RETURN", ";"}
-_BODY_ENDS = {"END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "EOF", "PROGRAM", "FUNCTION",
-              "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION", "TEST"}
-
-
-# ---------------------------------------------------------------------------------------------
-# Recognising and parsing IL lines
-
-
-def _op_name(t: Token) -> str | None:
-    if t.kind == "IDENT" or t.kind in _KEYWORD_OPS:
-        return str(t.value)
-    return None
-
-
-def is_il_body(p, end_kw: str) -> bool:
-    """Decide whether the body starting at the parser's position is IL (see module doc)."""
-    t = p.tok
-    if t.kind in _BODY_ENDS or t.kind == end_kw:
-        return False
-    nxt = p.peek()
-    same_line = nxt.line == t.line and nxt.kind != "EOF"
-    if t.kind in _ST_STARTS:
-        return False
-    name = _op_name(t)
-    if name is None:
-        return False
-    if t.kind == "IDENT" and same_line and nxt.kind in (":=", ".", "[", "(", "^", "=", "=>"):
-        return False
-    if p.il_default:
-        return True
-    if t.kind == "IDENT" and same_line and nxt.kind == ":":  # a label, alone or before an op
-        after = p.peek(2)
-        return after.line != t.line or after.kind == "EOF" or _op_name(after) in IL_OPERATORS
-    if name not in IL_OPERATORS:  # keep ST's own diagnostics for misspelled ST (WHILLE x DO)
-        return False
-    return not same_line or nxt.kind in _OPERAND_START or nxt.kind == "-"
 
 
 @dataclass(eq=False)
@@ -109,370 +50,20 @@ class Instr:
     operand: str = ""  # the operand(s) as written, for messages
 
 
-def parse_il_body(p, end_kw: str):
-    """Parse IL lines up to ``end_kw``; return the lowering function ``lower(pou, env)``."""
-    from .st_parser import _Bail
 
-    instrs: list[Instr] = []
-    toks = p.toks
-    while p.tok.kind not in _BODY_ENDS and p.tok.kind != end_kw:
-        start = p.i
-        line = p.tok.line
-        j = start
-        while toks[j].line == line and toks[j].kind not in _BODY_ENDS and toks[j].kind != end_kw:
-            j += 1
-        lt = toks[start:j]
-        # parenthesised arguments (CAL T1(IN := x,\n PT := T#5s)) may continue on later lines
-        depth = _open_parens(lt)
-        while depth > 0 and toks[j].kind not in _BODY_ENDS and toks[j].kind != end_kw:
-            line = toks[j].line
-            while toks[j].line == line and toks[j].kind not in _BODY_ENDS and \
-                    toks[j].kind != end_kw:
-                depth += (toks[j].kind == "(") - (toks[j].kind == ")")
-                j += 1
-            lt = toks[start:j]
-        p.i = j
-        try:
-            _parse_line(p, lt, instrs)
-        except _Bail:  # the line is dropped; what follows must not complain about the CR
-            instrs.append(Instr(Location(p.file, lt[0].line, lt[0].col), "?"))
-    return lambda pou, env: _Lowering(pou, instrs, env, p.file).run()
-
-
-def _open_parens(lt: list[Token]) -> int:
-    """Unclosed '(' of an operand (not counting a deferred 'AND(' or a closing ')')."""
-    k = 2 if len(lt) > 1 and lt[0].kind == "IDENT" and lt[1].kind == ":" else 0
-    if k < len(lt) and lt[k].kind == ")":
-        return 0
-    k += 1
-    if k < len(lt) and lt[k].kind == "(" and _op_name(lt[k - 1]) in DEFERRABLE:
-        k += 1
-    depth = 0
-    for t in lt[k:]:
-        depth += (t.kind == "(") - (t.kind == ")")
-    return depth
-
-
-def _source_text(toks: list[Token]) -> str:
-    """Tokens of one line back to text (spaces where the source had them)."""
-    out = ""
-    for k, t in enumerate(toks):
-        if k and (t.line != toks[k - 1].line or
-                  t.col > toks[k - 1].col + len(toks[k - 1].text)):
-            out += " "
-        out += t.text
-    return out
-
-
-def _sub_parser(p, toks: list[Token]):
-    """A parser over the tokens of one instruction, ending in EOF at the end of the line."""
-    from .st_parser import Parser
-
-    sub = Parser.__new__(Parser)
-    last = toks[-1] if toks else p.tok
-    sub.toks = list(toks) + [Token("EOF", None, "", last.line, last.col + len(last.text))]
-    sub.diagnostics = p.diagnostics
-    sub.pragmas = []
-    sub.file = p.file
-    sub.i = 0
-    sub.il_default = False
-    return sub
-
-
-def _parse_line(p, lt: list[Token], out: list[Instr]) -> None:
-    from .st_parser import _Bail
-
-    file = p.file
-
-    def loc(t: Token) -> Location:
-        return Location(file, t.line, t.col)
-
-    def err(code: str, msg: str, t: Token) -> None:
-        p.diagnostics.append(Diagnostic(code, msg, loc(t)))
-        raise _Bail
-
-    k = 0
-    if len(lt) > 1 and lt[0].kind == "IDENT" and lt[1].kind == ":":
-        out.append(Instr(loc(lt[0]), "LABEL", lt[0].text, target=str(lt[0].value)))
-        k = 2
-    if k >= len(lt):
-        return
-    optok = lt[k]
-    rest = lt[k + 1:]
-    if rest and rest[-1].kind == ";":  # tolerate a stray ST-style semicolon
-        rest = rest[:-1]
-    if optok.kind == ")":
-        if rest:
-            err("PLC0146", f"nothing may follow ')' on its line, found '{rest[0].text}'",
-                rest[0])
-        out.append(Instr(loc(optok), ")", ")"))
-        return
-    name = _op_name(optok)
-    if name is None:
-        hint = ""
-        if optok.kind in ("IF", "WHILE", "FOR", "CASE", "REPEAT"):
-            hint = " (this looks like ST; an IL body has one operator and operand per line)"
-        err("PLC0141", f"expected an IL operator (LD, ST, AND, JMP, CAL, ...), found "
-            f"'{optok.text}'{hint}", optok)
-    ins = Instr(loc(optok), name, optok.text)
-    ins.operand = _source_text(rest[1:] if rest and rest[0].kind == "(" and name in DEFERRABLE
-                               else rest)
-    if rest and rest[0].kind == "(" and name in DEFERRABLE:
-        ins.deferred = True
-        rest = rest[1:]
-    if rest and rest[0].kind in (":=", "=") and name not in IL_OPERATORS:
-        err("PLC0141", f"'{optok.text} {rest[0].text}' is ST, not IL: write  LD value  then  "
-            f"ST {optok.text}", optok)
-    if name in ("JMP", "JMPC", "JMPCN"):
-        if len(rest) != 1 or rest[0].kind != "IDENT":
-            err("PLC0146", f"{name} needs a label name, e.g. {name} L1", rest[0] if rest else optok)
-        ins.target = str(rest[0].value)
-        out.append(ins)
-        return
-    if name in _NO_OPERAND:
-        if rest:
-            err("PLC0146", f"{name} takes no operand; remove '{rest[0].text}'", rest[0])
-        out.append(ins)
-        return
-    if not rest:
-        if ins.deferred or name not in IL_OPERATORS and name not in FB_INPUT_OPS:
-            out.append(ins)  # AND( ... ) or a function of the current result alone (INT_TO_REAL)
-            return
-        err("PLC0146", f"{name} needs an operand, e.g. {name} x", optok)
-    sub = _sub_parser(p, rest)
-    if name in ("CAL", "CALC", "CALCN"):
-        e = sub.postfix(sub.primary())
-        if not isinstance(e, A.Name | A.Member | A.Index | A.Call):
-            err("PLC0146", f"{name} needs a function block instance, e.g. CAL T1(IN := x)",
-                rest[0])
-        ins.args = [e]
-    elif name in IL_OPERATORS or name in FB_INPUT_OPS:
-        if rest[0].kind == "(":
-            err("PLC0146", f"{name} takes its operand without parentheses: {name} x", rest[0])
-        ins.args = [sub.unary()]
-    else:  # a function call: the current result is the first argument
-        if rest[0].kind == "(":
-            err("PLC0146", f"write the function call as  {name} arg2, arg3  (the current result "
-                "is the first argument); the formal form F(...) is not supported in IL",
-                rest[0])
-        ins.args = [sub.expr()]
-        while sub.accept(","):
-            ins.args.append(sub.expr())
-    if not sub.at("EOF"):
-        t = sub.tok
-        err("PLC0146", f"unexpected '{t.text}' after the operand of {name}: one operand per "
-            "line (use a comma between function arguments)", t)
-    out.append(ins)
-
-
-def parse_il_collect(text: str, file: str = "<input>.il",
-                     defer: bool = False) -> tuple[A.SourceFile, list[Diagnostic]]:
-    """Parse a file whose POU bodies are IL by default (like a ``.il`` file)."""
-    from .st_parser import Parser
-
-    p = Parser(text, file)
-    p.il_default = True
-    out = p.parse_file()
-    diags = p.diagnostics
-    if not defer:
-        diags = diags + lower_pending([out])
-    return out, diags
-
-
-# ---------------------------------------------------------------------------------------------
-# Types known before the checker runs (the front ends need a few: IL's current result, the
-# power-flow pins of ladder boxes)
-
-
-@cache
-def _stdlib_files() -> tuple[A.SourceFile, ...]:
-    from ..project import STDLIB_FILES, _stdlib_text
-    from .st_parser import Parser
-
-    return tuple(Parser(_stdlib_text(n), f"<plclab>/{n}").parse_file() for n in STDLIB_FILES)
-
-
-class Env:
-    """Declarations of every parsed file, for the front ends' own type questions.
-
-    Types are :mod:`plclab.lang.types` objects for elementary types and strings, or tuples
-    ``("FB", pou)``, ``("STRUCT", fields)``, ``("ARRAY", elem_ref)``, ``("ENUM", name)``;
-    ``None`` means unknown (the checker will say more)."""
-
-    def __init__(self, files: list[A.SourceFile]) -> None:
-        files = list(files)
-        if not any(p.name == "TON" for f in files for p in f.pous):
-            files.extend(_stdlib_files())
-        self.types = {td.name: td for f in files for td in f.types}
-        self.pous = {p.name: p for f in files for p in f.pous}
-        self.globals = {d.name: d for f in files for g in f.globals for d in g.decls}
-        for f in files:
-            for c in f.configs:
-                for d in c.globals:
-                    self.globals.setdefault(d.name, d)
-        self.enum_values: dict[str, str] = {}
-        for td in self.types.values():
-            if isinstance(td.type, A.EnumTypeRef):
-                for m, _, _ in td.type.members:
-                    self.enum_values.setdefault(m, td.name)
-
-    def type_of_ref(self, r: A.TypeRef | None, depth: int = 0) -> Any:
-        if r is None or depth > 20:
-            return None
-        if isinstance(r, A.StringTypeRef):
-            return T.WSTRING if r.wide else T.STRING
-        if isinstance(r, A.SubrangeTypeRef):
-            return self.type_of_ref(r.base, depth + 1)
-        if isinstance(r, A.ArrayTypeRef):
-            return ("ARRAY", r.elem)
-        if isinstance(r, A.StructTypeRef):
-            return ("STRUCT", {d.name: d for d in r.fields})
-        if isinstance(r, A.EnumTypeRef):
-            return ("ENUM", "")
-        if isinstance(r, A.NamedTypeRef):
-            t = T.lookup_elementary(r.name)
-            if t is not None:
-                return t
-            td = self.types.get(r.name)
-            if td is not None:
-                inner = self.type_of_ref(td.type, depth + 1)
-                if isinstance(inner, tuple) and inner[0] == "ENUM":
-                    return ("ENUM", td.name)
-                return inner
-            pou = self.pous.get(r.name)
-            if pou is not None and pou.kind != "FUNCTION":
-                return ("FB", pou)
-        return None
-
-    def function(self, name: str) -> A.Pou | None:
-        p = self.pous.get(name)
-        return p if p is not None and p.kind == "FUNCTION" else None
-
-    def is_function(self, name: str) -> bool:
-        return name in BUILTINS or conversion(name) is not None or self.function(name) is not None
-
-    def lookup(self, name: str, scope: dict[str, A.VarDecl]) -> A.VarDecl | None:
-        d = scope.get(name)
-        if d is not None and d.section == "VAR_EXTERNAL":
-            return self.globals.get(name, d)
-        return d if d is not None else self.globals.get(name)
-
-    def expr_type(self, e: A.Expr, scope: dict[str, A.VarDecl], pou: A.Pou | None = None) -> Any:
-        if isinstance(e, A.Literal):
-            if e.kind == "BOOL":
-                return T.BOOL
-            if e.kind in ("INT", "REAL"):
-                if e.prefix:
-                    return T.lookup_elementary(e.prefix) or self.type_of_ref(
-                        A.NamedTypeRef(e.loc, e.prefix))
-                return T.ANY_INT_LIT if e.kind == "INT" else T.ANY_REAL_LIT
-            if e.kind == "TIME":
-                return T.LTIME if e.prefix == "LTIME" else T.TIME
-            if e.kind in ("STRING", "WSTRING"):
-                return T.STRING if e.kind == "STRING" else T.WSTRING
-            if e.kind in ("DATE", "TOD", "DT"):
-                return {"DATE": T.DATE, "TOD": T.TOD, "DT": T.DT}[e.kind]
-            if e.kind == "ENUM":
-                return ("ENUM", e.value[0])
-            return None
-        if isinstance(e, A.Name):
-            d = self.lookup(e.name, scope)
-            if d is not None:
-                return self.type_of_ref(d.type)
-            if pou is not None and pou.kind == "FUNCTION" and e.name == pou.name:
-                return self.type_of_ref(pou.return_type)
-            if e.name in self.enum_values:
-                return ("ENUM", self.enum_values[e.name])
-            p = self.pous.get(e.name)
-            if p is not None and p.kind == "PROGRAM":
-                return ("FB", p)
-            return None
-        if isinstance(e, A.Member):
-            if e.field_name.startswith("%"):
-                return T.BOOL
-            ot = self.expr_type(e.obj, scope, pou)
-            if isinstance(ot, tuple) and ot[0] == "FB":
-                d = next((d for d in ot[1].decls if d.name == e.field_name), None)
-                return self.type_of_ref(d.type) if d is not None else None
-            if isinstance(ot, tuple) and ot[0] == "STRUCT":
-                d = ot[1].get(e.field_name)
-                return self.type_of_ref(d.type) if d is not None else None
-            return None
-        if isinstance(e, A.Index):
-            ot = self.expr_type(e.obj, scope, pou)
-            if isinstance(ot, tuple) and ot[0] == "ARRAY":
-                return self.type_of_ref(ot[1])
-            return None
-        if isinstance(e, A.DirectAddr):
-            a = e.address
-            size = a[2] if len(a) > 2 and a[2].isalpha() else "X"
-            return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}.get(size)
-        if isinstance(e, A.Unary):
-            return self.expr_type(e.operand, scope, pou)
-        return None
-
-    def decl_of(self, e: A.Expr, scope: dict[str, A.VarDecl]) -> A.VarDecl | None:
-        if isinstance(e, A.Name):
-            return self.lookup(e.name, scope)
-        return None
-
-
-def category(t: Any) -> str | None:
-    """BOOL, INT, BITS, REAL, TIME, STRING, DATE, ENUM, FB, STRUCT, ARRAY or None (unknown)."""
-    if t is None:
-        return None
-    if isinstance(t, tuple):
-        return t[0]
-    if isinstance(t, T.StringType):
-        return "STRING"
-    return {"bool": "BOOL", "int": "INT", "bits": "BITS", "real": "REAL", "time": "TIME",
-            "date": "DATE", "tod": "DATE", "dt": "DATE"}.get(getattr(t, "kind", ""), None)
-
-
-def type_text(t: Any) -> str:
-    if t is None:
-        return "unknown"
-    if t is T.ANY_INT_LIT:
-        return "an integer literal"
-    if t is T.ANY_REAL_LIT:
-        return "a REAL literal"
-    if isinstance(t, tuple):
-        if t[0] == "FB":
-            return f"a {t[1].name} instance"
-        if t[0] == "ENUM":
-            return t[1] or "an enumeration"
-        return {"STRUCT": "a structure", "ARRAY": "an array"}[t[0]]
-    return str(getattr(t, "name", t))
+def lower_il(pou: A.Pou, instrs: list[Instr], types: LoweringTypes) -> list[Diagnostic]:
+    """Translate IL instructions into ``pou.body`` (and hidden ``__CR_*`` declarations)."""
+    return _Lowering(pou, instrs, types).run()
 
 
 _NUM = {"INT", "BITS", "REAL"}
 
 
-def lower_pending(files: list[A.SourceFile]) -> list[Diagnostic]:
-    """Run the pending translations (IL bodies, ladder networks, PLCopen graphics) of ``files``
-    with every declaration known; return their diagnostics."""
-    env = Env(files)
-    diags: list[Diagnostic] = []
-    with compiler_guard():  # translations recurse once per nesting level (see limits)
-        for f in files:
-            for pou in f.pous:
-                fn = pou.__dict__.pop("_lower", None)
-                if fn is not None:
-                    diags.extend(fn(env))
-    return diags
-
-
-# ---------------------------------------------------------------------------------------------
-# IL -> AST
-
-
 class _Lowering:
-    def __init__(self, pou: A.Pou, instrs: list[Instr], env: Env, file: str) -> None:
+    def __init__(self, pou: A.Pou, instrs: list[Instr], types: LoweringTypes) -> None:
         self.pou = pou
         self.ins = instrs
-        self.env = env
-        self.file = file
-        self.scope = {d.name: d for d in pou.decls}
+        self.types = types
         self.diags: list[Diagnostic] = []
         self.out: list[A.Stmt] = []
         self.cr: A.Expr | None = None
@@ -491,7 +82,7 @@ class _Lowering:
         self.diags.append(Diagnostic(code, msg, loc, severity))
 
     def typeof(self, e: A.Expr) -> Any:
-        return self.env.expr_type(e, self.scope, self.pou)
+        return self.types.expr_type(e, self.pou)
 
     def cr_from(self) -> str:
         s = self.csrc
@@ -526,8 +117,8 @@ class _Lowering:
             ty = T.DINT
         elif ty is T.ANY_REAL_LIT:
             ty = T.LREAL
-        if isinstance(ty, tuple) and ty[0] == "ENUM" and ty[1]:
-            tname = ty[1]
+        if enum_name(ty) is not None:
+            tname = enum_name(ty)
         elif isinstance(ty, T.Elementary):
             tname = ty.name
         elif ty is T.STRING or ty is T.WSTRING:
@@ -586,7 +177,7 @@ class _Lowering:
             self.err("PLC0142", f"{x.text} {target.address}: {target.address} is a physical "
                      "input; a program reads inputs but never writes them", x.loc)
             return
-        d = self.env.decl_of(target, self.scope)
+        d = self.types.decl_of(target, self.pou)
         if d is None:
             return
         if d.address and d.address.startswith("%I"):
@@ -836,7 +427,7 @@ class _Lowering:
         t = T.lookup_elementary(tname)
         if t is not None:
             return t
-        return ("ENUM", tname)
+        return enum_type(tname)
 
     def op_jump(self, k: int, x: Instr) -> None:
         label = x.target or ""
@@ -899,7 +490,7 @@ class _Lowering:
 
     def fb_operand(self, x: Instr) -> bool:
         t = self.typeof(x.args[0]) if x.args else None
-        return isinstance(t, tuple) and t[0] == "FB" and len(x.args) == 1
+        return self.types.fb_of(t) is not None and len(x.args) == 1
 
     def op_fb_input(self, x: Instr) -> None:
         if not self.need_cr(x):
@@ -910,13 +501,12 @@ class _Lowering:
 
     def op_function(self, x: Instr) -> None:
         name = x.op
-        if not self.env.is_function(name):
+        if not self.types.is_function(name):
             cands = list(IL_OPERATORS) + list(FB_INPUT_OPS)
             close = difflib.get_close_matches(name, cands, n=1, cutoff=0.6)
             if not close:
-                funcs = list(BUILTINS) + [k for k, v in self.env.pous.items()
-                                          if v.kind == "FUNCTION"]
-                close = difflib.get_close_matches(name, funcs, n=1, cutoff=0.7)
+                close = difflib.get_close_matches(name, self.types.function_names(), n=1,
+                                                  cutoff=0.7)
             hint = f"; did you mean {close[0]}?" if close else (
                 " (IL operators: LD, ST, S, R, AND, OR, XOR, NOT, ADD, SUB, MUL, DIV, MOD, GT, "
                 "GE, EQ, NE, LE, LT, JMP, CAL, RET and their N/C forms)")
@@ -935,9 +525,9 @@ class _Lowering:
         conv = conversion(name)
         if conv is not None and name not in BUILTINS:
             return conv[1]
-        f = self.env.function(name)
-        if f is not None:
-            return self.env.type_of_ref(f.return_type)
+        f = self.types.pou(name)
+        if f is not None and f.kind == "FUNCTION":
+            return self.types.type_of(f.return_type)
         if name in ("GT", "GE", "EQ", "NE", "LE", "LT"):
             return T.BOOL
         if name in ("LEN", "FIND"):
@@ -957,7 +547,7 @@ def _storable(a: str, b: str, src: Any, dst: Any) -> bool:
     if a in _NUM and b in _NUM:
         return True
     if a == "ENUM" and b == "ENUM":
-        return not (src[1] and dst[1]) or src[1] == dst[1]
+        return not (enum_name(src) and enum_name(dst)) or enum_name(src) == enum_name(dst)
     return a == b
 
 
@@ -978,3 +568,4 @@ def _common(a: Any, b: Any) -> Any:
         except Exception:  # noqa: BLE001 - unknown combinations stay unknown
             return None
     return a if b is None else None
+

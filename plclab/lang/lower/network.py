@@ -1,0 +1,352 @@
+"""LD and FBD networks -> the core AST, shared by the text ladder front end
+(:mod:`plclab.lang.frontends.ld`) and the PLCopen LD/FBD graphics
+(:mod:`plclab.lang.frontends.plcopen`).
+
+A network is a small graph of :class:`Elem` (contacts, coils, boxes, variables, connectors)
+joined by references to the outputs of other elements. It arrives as a
+:class:`~plclab.lang.ast.PendingBody` of kind ``"NETWORK"`` and becomes statements: coils are
+assignments (``S=``/``R=`` for set/reset coils), power flow is a BOOL expression, boxes are
+calls. Rungs run top to bottom, elements left to right (the order each front end gives).
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+from typing import Any
+
+from ...errors import Diagnostic, Location
+from .. import ast as A
+from .types import LoweringTypes
+
+COMPARE = {"GT": ">", "GE": ">=", "EQ": "=", "NE": "<>", "LE": "<=", "LT": "<"}
+
+Ref = tuple[int, str]  # (element id, output pin; "" = its power-flow output)
+
+
+@dataclass(eq=False)
+class Elem:
+    """One element of a ladder or FBD network (text or XML)."""
+
+    id: int
+    kind: str  # left contact coil fb func cmp invar outvar conn (XML connector/continuation)
+    loc: Location
+    order: tuple = ()
+    inputs: dict[str, list[Ref]] = field(default_factory=dict)  # pin -> refs ("" = power in)
+    var: A.Expr | None = None  # contact/coil variable; in/out variable expression
+    mode: str = ""  # contact "", "/", "P", "N"; coil "", "/", "S", "R", "P", "N"
+    type_name: str = ""  # box type: TON, GT, MOVE, ADD, a user FB or function
+    instance: A.Expr | None = None
+    args: list[A.Arg] = field(default_factory=list)  # parameters written in a text box
+    targets: list[A.Expr] = field(default_factory=list)  # text function box: '-> x'
+    out_pin: str = ""  # XML: the output pin of a function block ("OUT")
+    rung: int = 0
+    text: str = ""  # as written, for messages and drawings
+    geom: Any = None  # text: (line, col0, col1); XML: (x, y, w, h)
+
+
+
+def _true(loc: Location) -> A.Literal:
+    return A.Literal(loc, True, "BOOL", None, "TRUE")
+
+
+def _is_true(e: A.Expr) -> bool:
+    return isinstance(e, A.Literal) and e.kind == "BOOL" and e.value is True
+
+
+def _and(loc: Location, a: A.Expr, b: A.Expr) -> A.Expr:
+    if _is_true(a):
+        return b
+    if _is_true(b):
+        return a
+    return A.Binary(loc, "AND", a, b)
+
+
+def _or(loc: Location, items: list[A.Expr]) -> A.Expr:
+    if not items:
+        return A.Literal(loc, False, "BOOL", None, "FALSE")
+    if any(_is_true(x) for x in items):
+        return _true(loc)
+    out = items[0]
+    for x in items[1:]:
+        out = A.Binary(loc, "OR", out, x)
+    return out
+
+
+def _simple(e: A.Expr) -> bool:
+    return isinstance(e, A.Name | A.Literal | A.Member | A.DirectAddr)
+
+
+_CHAIN = 32  # series elements lowered into one expression before a temporary splits it
+
+
+class _NetLowering:
+    def __init__(self, pou: A.Pou, elems: list[Elem], types: LoweringTypes) -> None:
+        self.pou = pou
+        self.elems = {e.id: e for e in elems}
+        self.order = sorted(elems, key=lambda e: e.order)
+        self.types = types
+        self.diags: list[Diagnostic] = []
+        self.out: list[A.Stmt] = []
+        self.memo: dict[Ref, A.Expr] = {}
+        self.decls: list[A.VarDecl] = []
+        self.uses: dict[Ref, int] = {}
+        self.n = 0
+        self.conds: dict[int, A.Expr] = {}
+        self.pins: dict[int, tuple[str, str]] = {}
+        self.nesting = 0
+        for e in elems:
+            for refs in e.inputs.values():
+                for ref in refs:
+                    self.uses[ref] = self.uses.get(ref, 0) + 1
+
+    def err(self, code: str, msg: str, loc: Location) -> None:
+        self.diags.append(Diagnostic(code, msg, loc))
+
+    def hidden(self, stem: str, loc: Location, section: str, what: str) -> A.Name:
+        self.n += 1
+        name = f"__LD_{stem}{self.n}"
+        d = A.VarDecl(loc, name, A.NamedTypeRef(loc, "BOOL"), section=section, spelling=what)
+        d.used = True
+        self.decls.append(d)
+        return A.Name(loc, name)
+
+    def run(self) -> list[Diagnostic]:
+        for e in self.order:
+            self.visit(e)
+        self.pou.body = self.out
+        self.pou.decls.extend(self.decls)
+        return self.diags
+
+    # -- values -----------------------------------------------------------------------------
+    def value(self, refs: list[Ref], loc: Location) -> A.Expr:
+        self.nesting += 1
+        try:
+            if self.nesting == 1:
+                for r in refs:
+                    self.break_chains(r, loc)
+            return _or(loc, [self.out_value(r, loc) for r in refs])
+        finally:
+            self.nesting -= 1
+
+    def break_chains(self, ref: Ref, loc: Location) -> None:
+        """Store every _CHAIN-th contact of a long series in a temporary, upstream first, so
+        that one rung of thousands of contacts lowers without deep recursion (iterative)."""
+        depth: dict[int, int] = {}
+        stack: list[tuple[int, bool]] = [(ref[0], False)]
+        while stack:
+            i, done = stack.pop()
+            if i < 0 or (i, "") in self.memo or (not done and i in depth):
+                continue
+            e = self.elems[i]
+            ups = [j for refs in e.inputs.values() for j, _ in refs if j >= 0]
+            if not done:
+                depth[i] = -1  # on the way
+                stack.append((i, True))
+                stack.extend((j, False) for j in ups)
+                continue
+            d = 1 + max((depth.get(j, 0) for j in ups if (j, "") not in self.memo), default=0)
+            if d >= _CHAIN and e.kind in ("contact", "cmp", "conn") and e.mode not in ("P", "N"):
+                self.materialize((i, ""), self.out_value((i, ""), e.loc), e.loc)
+                d = 0
+            depth[i] = d
+
+    def out_value(self, ref: Ref, loc: Location) -> A.Expr:
+        if ref[0] < 0:
+            return _true(loc)
+        if ref in self.memo:
+            return copy.deepcopy(self.memo[ref])
+        e = self.elems[ref[0]]
+        pin = ref[1]
+        k = e.kind
+        if k == "left":
+            return _true(e.loc)
+        if k == "contact":
+            return _and(e.loc, self.value(e.inputs.get("", []), e.loc), self.contact_cond(e))
+        if k == "coil":
+            return self.value(e.inputs.get("", []), e.loc)
+        if k == "cmp":
+            a, b = (copy.deepcopy(x.value) for x in e.args)
+            return _and(e.loc, self.value(e.inputs.get("", []), e.loc),
+                        A.Binary(e.loc, COMPARE[e.type_name], a, b))
+        if k == "invar":
+            return copy.deepcopy(e.var)
+        if k == "conn":
+            return self.value(e.inputs.get("", []), e.loc)
+        if k == "fb":
+            if pin in ("", "ENO") and e.id in self.pins:
+                pin = self.pins[e.id][1] if pin == "" else pin
+            if pin == "ENO" or (pin == "" and e.id not in self.pins):
+                return self.value(e.inputs.get("EN", e.inputs.get("", [])), e.loc)
+            return A.Member(e.loc, copy.deepcopy(e.instance), pin)
+        if k == "func":
+            if pin == "ENO" or (pin == "" and e.targets):
+                return self.value(e.inputs.get("EN", e.inputs.get("", [])), e.loc)
+            return self.func_call(e)
+        return A.Literal(loc, False, "BOOL", None, "FALSE")
+
+    def contact_cond(self, e: Elem) -> A.Expr:
+        if e.id in self.conds:
+            return copy.deepcopy(self.conds[e.id])
+        v = copy.deepcopy(e.var) if e.var is not None else A.Literal(e.loc, False, "BOOL")
+        if e.mode == "/":
+            return A.Unary(e.loc, "NOT", v)
+        return v
+
+    def func_call(self, e: Elem) -> A.Expr:
+        args = [copy.deepcopy(a) for a in e.args]
+        for pin, refs in e.inputs.items():
+            if pin in ("", "EN") or not refs:
+                continue
+            args.append(A.Arg(e.loc, pin, self.value(refs, e.loc)))
+        if e.type_name in ("AND", "OR", "XOR", "NOT") and not e.targets:
+            # the FBD boolean boxes are operators, not functions
+            vals = [a.value for a in args if a.value is not None]
+            if e.type_name == "NOT":
+                return A.Unary(e.loc, "NOT", vals[0] if vals else _true(e.loc))
+            out = vals[0] if vals else _true(e.loc)
+            for v in vals[1:]:
+                out = A.Binary(e.loc, e.type_name, out, v)
+            return out
+        return A.Call(e.loc, A.Name(e.loc, e.type_name), args)
+
+    def materialize(self, ref: Ref, value: A.Expr, loc: Location) -> A.Expr:
+        if _simple(value):
+            self.memo[ref] = value
+            return value
+        t = self.hidden("T", loc, "VAR_TEMP", "power flow")
+        self.out.append(A.Assign(loc, t, value))
+        self.memo[ref] = t
+        return copy.deepcopy(t)
+
+    # -- elements ---------------------------------------------------------------------------
+    def visit(self, e: Elem) -> None:
+        k = e.kind
+        ref = (e.id, "")
+        if k == "contact" and e.mode in ("P", "N") and e.var is not None:
+            mem = self.hidden("M", e.loc, "VAR", f"edge memory of {e.text}")
+            pulse = self.hidden("E", e.loc, "VAR_TEMP", f"edge of {e.text}")
+            v = copy.deepcopy(e.var)
+            now = v if e.mode == "P" else A.Unary(e.loc, "NOT", v)
+            was = copy.deepcopy(mem) if e.mode == "P" else A.Unary(e.loc, "NOT", mem)
+            self.out.append(A.Assign(e.loc, pulse, _and(e.loc, now, A.Unary(e.loc, "NOT", was))))
+            self.out.append(A.Assign(e.loc, copy.deepcopy(mem), copy.deepcopy(e.var)))
+            self.conds[e.id] = pulse
+        if k in ("contact", "cmp") and self.uses.get(ref, 0) > 1:
+            self.materialize(ref, self.out_value(ref, e.loc), e.loc)
+        elif k == "coil":
+            self.coil(e)
+        elif k == "fb":
+            self.fb(e)
+        elif k == "func":
+            self.func(e)
+        elif k == "outvar":
+            self.outvar(e)
+
+    def coil(self, e: Elem) -> None:
+        pf = self.value(e.inputs.get("", []), e.loc)
+        if self.uses.get((e.id, ""), 0) > 0 or e.mode in ("P", "N"):
+            pf = self.materialize((e.id, ""), pf, e.loc)
+        if e.var is None:
+            return
+        tgt = copy.deepcopy(e.var)
+        if e.mode == "":
+            self.out.append(A.Assign(e.loc, tgt, pf))
+        elif e.mode == "/":
+            self.out.append(A.Assign(e.loc, tgt, A.Unary(e.loc, "NOT", pf)))
+        elif e.mode in ("S", "R"):
+            self.out.append(A.Assign(e.loc, tgt, pf, e.mode + "="))
+        else:  # edge coils: TRUE for one scan when the power flow rises (P) or falls (N)
+            mem = self.hidden("M", e.loc, "VAR", f"edge memory of {e.text}")
+            now = copy.deepcopy(pf) if e.mode == "P" else A.Unary(e.loc, "NOT", copy.deepcopy(pf))
+            was = copy.deepcopy(mem) if e.mode == "P" else A.Unary(e.loc, "NOT", mem)
+            self.out.append(A.Assign(e.loc, tgt, _and(e.loc, now, A.Unary(e.loc, "NOT", was))))
+            self.out.append(A.Assign(e.loc, copy.deepcopy(mem), copy.deepcopy(pf)))
+
+    def fb_type(self, e: Elem):
+        """The declared type of the instance, checked against the box's type name."""
+        decl = self.types.decl_of(e.instance, self.pou) if e.instance is not None else None
+        declared = self.types.fb_of(self.types.type_of(decl.type)) if decl is not None else None
+        box_pou = self.types.pou(e.type_name)
+        if box_pou is None or box_pou.kind == "FUNCTION":
+            what = "a function" if box_pou is not None else "not a function block type"
+            self.err("PLC0165", f"{e.type_name} in {e.text} is {what}; boxes with an instance are "
+                     "function blocks such as TON, TOF, TP, CTU, CTD, R_TRIG or your own "
+                     "FUNCTION_BLOCK (a function box needs '-> result')", e.loc)
+            return None
+        if declared is not None and declared.name != e.type_name:
+            self.err("PLC0165", f"{decl.spelling or decl.name} is declared as {declared.name}, but "
+                     f"the box says {e.type_name}", e.loc)
+            return None
+        return box_pou
+
+    def fb(self, e: Elem) -> None:
+        pou = self.fb_type(e)
+        if pou is None:
+            return
+        args: list[A.Arg] = []
+        if "" in e.inputs:  # a text box: the rung feeds its first BOOL input
+            pins = self.types.pins(pou)
+            if pins is None:
+                self.err("PLC0165", f"{pou.name} has no BOOL input and BOOL output to carry the "
+                         "power flow of a ladder box", e.loc)
+                return
+            self.pins[e.id] = pins
+            args.append(A.Arg(e.loc, pins[0], self.value(e.inputs.get("", []), e.loc)))
+        en = e.inputs.get("EN")
+        for pin, refs in e.inputs.items():
+            if pin in ("", "EN") or not refs:
+                continue
+            args.append(A.Arg(e.loc, pin, self.value(refs, e.loc)))
+        args.extend(copy.deepcopy(a) for a in e.args)
+        call: A.Stmt = A.CallStmt(e.loc, A.Call(e.loc, copy.deepcopy(e.instance), args))
+        if en is not None:
+            cond = self.materialize((e.id, "ENO"), self.value(en, e.loc), e.loc)
+            call = A.If(e.loc, [(copy.deepcopy(cond), [call])])
+        self.out.append(call)
+
+    def func(self, e: Elem) -> None:
+        en = e.inputs.get("EN", e.inputs.get("", []) if e.targets else None)
+        if not e.targets:
+            return  # an XML function: its value is used by whatever it feeds
+        if not self.types.is_function(e.type_name):
+            self.err("PLC0165", f"{e.type_name} in {e.text} is not a function; use MOVE, ADD, "
+                     "SUB, MUL, DIV, a conversion such as INT_TO_REAL, or your own FUNCTION",
+                     e.loc)
+            return
+        cond = self.value(en or [], e.loc) if en is not None else _true(e.loc)
+        if self.uses.get((e.id, ""), 0) > 0:
+            cond = self.materialize((e.id, ""), cond, e.loc)
+        call = self.func_call(e)
+        if e.type_name == "MOVE" and len(call.args) == 1:
+            value: A.Expr = call.args[0].value
+        else:
+            value = call
+        body: list[A.Stmt] = [A.Assign(e.loc, copy.deepcopy(t), copy.deepcopy(value))
+                              for t in e.targets]
+        if _is_true(cond):
+            self.out.extend(body)
+        else:
+            self.out.append(A.If(e.loc, [(copy.deepcopy(cond), body)]))
+
+    def outvar(self, e: Elem) -> None:
+        refs = e.inputs.get("", [])
+        v = self.value(refs, e.loc)
+        stmt: A.Stmt = A.Assign(e.loc, copy.deepcopy(e.var), v)
+        ref = refs[0] if len(refs) == 1 else (-1, "")
+        hops = 0  # a chain of connectors visits each element at most once
+        while ref[0] >= 0 and self.elems[ref[0]].kind == "conn" and \
+                len(self.elems[ref[0]].inputs.get("", [])) == 1 and hops <= len(self.elems):
+            ref = self.elems[ref[0]].inputs[""][0]  # through connector/continuation pairs
+            hops += 1
+        if ref[0] >= 0:
+            src = self.elems[ref[0]]
+            if src.kind == "func" and "EN" in src.inputs and ref[1] != "ENO":
+                cond = self.value(src.inputs["EN"], e.loc)
+                stmt = A.If(e.loc, [(cond, [stmt])])
+        self.out.append(stmt)
+
+
+def lower_network(pou: A.Pou, elems: list[Elem], types: LoweringTypes) -> list[Diagnostic]:
+    """Translate a parsed network into ``pou.body`` (and hidden declarations)."""
+    return _NetLowering(pou, elems, types).run()
