@@ -4,8 +4,8 @@ import pytest
 
 from plclab.errors import PlcError
 from plclab.lang import ast as A
-from plclab.lang.lexer import Lexer, parse_duration, tokenize
 from plclab.lang.frontends.st import parse_st, parse_st_collect
+from plclab.lang.lexer import Lexer, parse_duration, tokenize
 
 
 def kinds(text):
