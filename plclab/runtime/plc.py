@@ -559,11 +559,11 @@ class Plc:
             raise PlcError("PLC3001", f"{head} exists in several programs ("
                            + ", ".join(n for n, _ in owners) + f"); write e.g. "
                            f"{owners[0][0]}.{head}")
-        import difflib
+        from ..suggest import suggest
 
         cands = [d.name for _, pou, _ in self.project.programs for d in pou.decls]
         cands += list(self.project.globals) + [n for n, _, _ in self.project.programs]
-        close = difflib.get_close_matches(head_u, cands, n=1, cutoff=0.6)
+        close = suggest(head_u, cands)
         hint = f"; did you mean {close[0]}?" if close else ""
         raise PlcError("PLC3001", f"no variable named {path}{hint}")
 
