@@ -149,6 +149,10 @@ def _load_command_modules() -> None:
         except ModuleNotFoundError as e:
             if e.name != mod:
                 raise
+    from .compile.commands import COMMAND as compile_command  # stdlib only; no cli import
+
+    name, help_text, add_args, run = compile_command
+    COMMANDS[name] = (help_text, add_args, run)
 
 
 @command("explain", "explain a diagnostic code with an example and its fix, e.g. plclab "

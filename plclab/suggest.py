@@ -1,9 +1,9 @@
 """One "did you mean" for every message that proposes a close name.
 
->>> suggest("countr", ["COUNTER", "count", "x"], ignore_case=True)
-['count']
->>> did_you_mean("LS3", ["LS1", "LS2", "PUMP"], n=2)
-" Did you mean 'LS1' or 'LS2'?"
+>>> suggest("countr", ["Counter", "x"], ignore_case=True)
+['Counter']
+>>> did_you_mean("PMUP", ["LS1", "PUMP"])
+" Did you mean 'PUMP'?"
 """
 
 from __future__ import annotations

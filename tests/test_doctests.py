@@ -8,7 +8,8 @@ import pytest
 MODULES = [
     # the core
     "plclab", "plclab.errors", "plclab.project", "plclab.lang.lexer", "plclab.lang.st_parser",
-    "plclab.lang.types", "plclab.runtime.plc", "plclab.runtime.literals",
+    "plclab.lang.types", "plclab.runtime.plc", "plclab.runtime.literals", "plclab.durations",
+    "plclab.suggest", "plclab.problems", "plclab.lang.unparse", "plclab.lang.dump",
     # IL, LD and PLCopen front ends, ladder drawing
     "plclab.lang.il_parser", "plclab.lang.ld_parser", "plclab.lang.plcopen",
     "plclab.viz.ladder_svg",
