@@ -47,11 +47,11 @@ _NUMBER = re.compile(r"[0-9]+(?:\.[0-9]*)?(?:e[+-]?[0-9]+)?", re.IGNORECASE)
 def parse_duration(value: Any, *, iec: bool = False) -> int | None:
     """A duration in integer nanoseconds (negative when written with '-'), or None.
 
-    ``iec=True``: the body of an IEC literal as the ST lexer sees it: an optional sign, then
-    parts ``<number><unit>`` with units d, h, m, s, ms, us, ns (any case), no spaces, '_'
+    ``iec=True``: an IEC literal (the ``T#`` prefix is optional) as the ST lexer and
+    ``STRING_TO_TIME`` see it: an optional sign, then parts ``<number><unit>`` with units d, h, m, s, ms, us, ns (any case), no spaces, '_'
     anywhere (``1h2m3s4ms``, ``2s_200ms``, ``-5s``, ``1.5s``).
 
-    Default: also a ``T#``/``TIME#``/``LT#``/``LTIME#`` prefix, spaces, the units min, sec,
+    Default: also spaces (and a ``T#``/``TIME#``/``LT#``/``LTIME#`` prefix), the units min, sec,
     hour(s), day(s), msec, µs..., exponents (``1e3ms``), a bare number of seconds (``"90"``),
     and int, float (seconds) or ``datetime.timedelta`` values.
     """
@@ -80,40 +80,45 @@ def _scaled(x: float, unit: int) -> int | None:
 
 
 def _parse_text(text: str, iec: bool) -> int | None:
-    s = text.strip()
-    upper = s.upper()
-    for prefix in PREFIXES:
-        if upper.startswith(prefix):
-            s = s[len(prefix):]
-            break
+    s = text if iec else text.strip()  # the lexer hands over the body alone, without blanks
+    if "#" in s[:7]:
+        upper = s[:7].upper()
+        for prefix in PREFIXES:
+            if upper.startswith(prefix):
+                s = s[len(prefix):]
+                break
     neg = s.startswith("-")
-    s = s[1:] if s[:1] in "+-" else s
-    s = s.replace("_", "")
+    s = s[1:] if s[:1] in ("+", "-") else s
+    if "_" in s:
+        s = s.replace("_", "")
     if not iec:
         s = s.strip()
         if _NUMBER.fullmatch(s):
             ns = _scaled(float(s), 1_000_000_000)
             return None if ns is None else (-ns if neg else ns)
     part = _IEC_PART if iec else _PART
-    total, pos = 0, 0
-    while pos < len(s):
+    total, pos, end = 0, 0, len(s)
+    while pos < end:
         m = part.match(s, pos)
         if m is None:
             return None
-        num, unit = m.group(1), m.group(2).lower()
-        unit = unit if iec else _WORDS.get(unit, unit)
-        if unit not in NS_PER:
+        num, unit = m.group(1, 2)
+        unit = unit.lower()
+        size = NS_PER.get(unit if iec else _WORDS.get(unit, unit))
+        if size is None:
             return None
-        whole = num.split(".")[0].lower().split("e")[0]
-        if len(whole.lstrip("0")) > _MAX_DIGITS:
-            return -OVERFLOW if neg else OVERFLOW
-        if "." in num or "e" in num.lower():
-            ns = _scaled(float(num), NS_PER[unit])
+        if num.isdigit():
+            if len(num) > _MAX_DIGITS and len(num.lstrip("0")) > _MAX_DIGITS:
+                return -OVERFLOW if neg else OVERFLOW
+            total += int(num) * size
+        else:  # a fraction or an exponent
+            whole = num.split(".")[0].lower().split("e")[0]
+            if len(whole.lstrip("0")) > _MAX_DIGITS:
+                return -OVERFLOW if neg else OVERFLOW
+            ns = _scaled(float(num), size)
             if ns is None:
                 return None
             total += ns
-        else:
-            total += int(num) * NS_PER[unit]
         pos = m.end()
     if pos == 0:
         return None

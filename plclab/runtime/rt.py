@@ -443,7 +443,7 @@ def _str_to_bool(s: str) -> bool:
 def _str_to_time(s: str) -> int:
     from ..durations import parse_duration
 
-    return (parse_duration(s, iec=True) or 0) // 1_000_000
+    return (parse_duration(s.strip(), iec=True) or 0) // 1_000_000
 
 
 def _case_range(x: int, table: tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]],
