@@ -149,18 +149,20 @@ def _load_command_modules() -> None:
         except ModuleNotFoundError as e:
             if e.name != mod:
                 raise
+    from .compile.commands import COMMAND as compile_command  # stdlib only; no cli import
+
+    name, help_text, add_args, run = compile_command
+    COMMANDS[name] = (help_text, add_args, run)
 
 
-@command("explain", "explain a diagnostic code, e.g. plclab explain PLC0113")
-@arg("code", help="a code such as PLC0100")
+@command("explain", "explain a diagnostic code with an example and its fix, e.g. plclab "
+         "explain PLC0113 (--list: every code)")
+@arg("code", nargs="?", help="a code such as PLC0100")
+@arg("--list", dest="list_all", action="store_true", help="list every code with its title")
 def cmd_explain(ns: argparse.Namespace) -> int:
-    from .problems import explain
+    from .problems import explain_command
 
-    try:
-        print(explain(ns.code))
-    except KeyError:
-        raise PlcError("PLC3002", f"{ns.code} is not a plclab diagnostic code") from None
-    return 0
+    return explain_command(ns.code, ns.list_all)
 
 
 def build_parser() -> argparse.ArgumentParser:

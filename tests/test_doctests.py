@@ -8,7 +8,8 @@ import pytest
 MODULES = [
     # the core
     "plclab", "plclab.errors", "plclab.project", "plclab.lang.lexer", "plclab.lang.frontends.st",
-    "plclab.lang.types", "plclab.runtime.plc", "plclab.runtime.literals",
+    "plclab.lang.types", "plclab.runtime.plc", "plclab.runtime.literals", "plclab.durations",
+    "plclab.suggest", "plclab.problems", "plclab.lang.unparse", "plclab.lang.dump",
     # IL, LD and PLCopen front ends, ladder drawing
     "plclab.lang.frontends.registry", "plclab.lang.frontends.il", "plclab.lang.frontends.ld",
     "plclab.lang.frontends.plcopen",

@@ -10,11 +10,11 @@ error PLC5002: unknown key 'titel'
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable
 
 from plclab.errors import Location, PlcError
 from plclab.problems import PROBLEMS as _PROBLEMS  # noqa: E402
+from plclab.suggest import suggest
 
 #: the lab and autograder codes (kept in the one catalogue, plclab/problems.py)
 CODES: dict[str, tuple[str, str]] = {k: v for k, v in _PROBLEMS.items()
@@ -30,7 +30,7 @@ def grade_error(code: str, message: str, location: Location | None = None) -> Pl
 
 def did_you_mean(name: str, options: Iterable[str]) -> str:
     """`` Did you mean 'x'?`` or an empty string."""
-    close = difflib.get_close_matches(str(name), list(options), n=1, cutoff=0.6)
+    close = suggest(name, options)
     return f" Did you mean '{close[0]}'?" if close else ""
 
 

@@ -13,6 +13,7 @@ import math
 import re
 from dataclasses import dataclass
 
+from ..durations import parse_duration
 from ..errors import Diagnostic, Location
 
 KEYWORDS = frozenset(
@@ -105,9 +106,6 @@ _BLANKS = re.compile(r"[ \t]+")
 MAX_DIGITS = 100  # an integer literal with more digits is an error (PLC0125)
 _LTIME_MAX = (1 << 63) - 1  # ns
 _DATE_MAX_S = (1 << 32) - 1  # DATE and DT: unsigned 32-bit seconds since 1970, as on S7/CODESYS
-_DURATION_RE = re.compile(r"([0-9][0-9_]*(?:\.[0-9_]+)?)(d|h|ms|m|s|us|ns)", re.IGNORECASE)
-_UNIT_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
-            "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
 _ESCAPES = {"$": "$", "'": "'", '"': '"', "L": "\n", "N": "\n", "P": "\f", "R": "\r", "T": "\t"}
 
 
@@ -382,7 +380,7 @@ class Lexer:
                            line, col)
                 return Token("TIME", 0, head, line, col, TIME_PREFIXES[prefix]), pos
             s = m.group()
-            ns = parse_duration(s)
+            ns = parse_duration(s, iec=True)
             if ns is not None and not (-_LTIME_MAX - 1 <= ns <= _LTIME_MAX):
                 shown = head + (s if len(s) <= 30 else s[:26] + "...")
                 self.error("PLC0126", f"'{shown}' is out of range: durations reach at most "
@@ -458,36 +456,6 @@ class Lexer:
                 tok.prefix = prefix
             return tok, newpos
         return None, pos
-
-
-def parse_duration(s: str) -> int | None:
-    """Parse the body of a duration literal to nanoseconds.
-
-    >>> parse_duration("1h2m3s4ms") // 1_000_000
-    3723004
-    >>> parse_duration("-5s") // 1_000_000_000
-    -5
-    >>> parse_duration("2s_200ms") // 1_000_000
-    2200
-    """
-    neg = s.startswith("-")
-    body = s.lstrip("+-").replace("_", "")
-    if not body:
-        return None
-    total, pos = 0, 0
-    for m in _DURATION_RE.finditer(body):
-        if m.start() != pos:
-            return None
-        num, unit = m.group(1), m.group(2).lower()
-        whole, _, frac = num.partition(".")
-        if len(whole.lstrip("0")) > 30:  # far beyond any duration; no big arithmetic
-            return (1 << 70) * (-1 if neg else 1)
-        num = whole + ("." + frac[:30] if frac else "")
-        total += round(float(num) * _UNIT_NS[unit]) if "." in num else int(num) * _UNIT_NS[unit]
-        pos = m.end()
-    if pos != len(body) or pos == 0:
-        return None
-    return -total if neg else total
 
 
 def _date_in_range(kind: str, value: int) -> bool:

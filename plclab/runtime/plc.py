@@ -22,9 +22,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..compile.codegen import Compiled, _kind_name
+from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
-from ..lang.lexer import parse_duration
 from ..lang.limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
 from . import natives
 from .rt import HELPERS, AssertFailure, Budget, Fault, format_value
@@ -73,25 +73,18 @@ class Var:
 
 
 def to_ns(value: Any) -> int:
-    """Accept 0.01 (seconds), '10ms', 'T#10ms' or a timedelta and return nanoseconds."""
-    if isinstance(value, _dt.timedelta):
-        return round(value.total_seconds() * 1e9)
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        if not math.isfinite(value):
-            raise PlcError("PLC3002", f"{value!r} is not a duration; give a finite number of "
-                           "seconds or e.g. '10ms'")
-        return round(value * 1e9)
-    if isinstance(value, str):
-        s = value.strip()
-        for p in ("TIME#", "T#", "LTIME#", "LT#", "time#", "t#"):
-            if s.upper().startswith(p.upper()):
-                s = s[len(p):]
-                break
-        ns = parse_duration(s.lower())
-        if ns is None:
-            raise PlcError("PLC3002", f"'{value}' is not a duration; write e.g. 10ms, 1.5s or "
-                           "T#1m30s")
+    """Accept 0.01 (seconds), '10ms', '1min', 'T#10ms' or a timedelta and return nanoseconds
+    (:func:`plclab.durations.parse_duration`)."""
+    ns = None if isinstance(value, float) and not math.isfinite(value) else \
+        parse_duration(value)
+    if ns is not None:
         return ns
+    if isinstance(value, float):
+        raise PlcError("PLC3002", f"{value!r} is not a duration; give a finite number of "
+                       "seconds or e.g. '10ms'")
+    if isinstance(value, str):
+        raise PlcError("PLC3002", f"'{value}' is not a duration; write e.g. 10ms, 1.5s or "
+                       "T#1m30s")
     raise PlcError("PLC3002", f"{value!r} is not a duration")
 
 
@@ -559,11 +552,11 @@ class Plc:
             raise PlcError("PLC3001", f"{head} exists in several programs ("
                            + ", ".join(n for n, _ in owners) + f"); write e.g. "
                            f"{owners[0][0]}.{head}")
-        import difflib
+        from ..suggest import suggest
 
         cands = [d.name for _, pou, _ in self.project.programs for d in pou.decls]
         cands += list(self.project.globals) + [n for n, _, _ in self.project.programs]
-        close = difflib.get_close_matches(head_u, cands, n=1, cutoff=0.6)
+        close = suggest(head_u, cands)
         hint = f"; did you mean {close[0]}?" if close else ""
         raise PlcError("PLC3001", f"no variable named {path}{hint}")
 

@@ -441,15 +441,9 @@ def _str_to_bool(s: str) -> bool:
 
 
 def _str_to_time(s: str) -> int:
-    from ..lang.lexer import parse_duration
+    from ..durations import parse_duration
 
-    t = s.strip().upper()
-    for p in ("TIME#", "T#", "LTIME#", "LT#"):
-        if t.startswith(p):
-            t = t[len(p):]
-            break
-    ns = parse_duration(t.lower())
-    return (ns or 0) // 1_000_000
+    return (parse_duration(s.strip(), iec=True) or 0) // 1_000_000
 
 
 def _case_range(x: int, table: tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]],

@@ -2,7 +2,8 @@
 
 Everything the simulation layer takes as a time (scan, dt, durations, scenario times) goes
 through :func:`parse_ns`, so the same spellings work in Python, TOML and on the command line.
-Numbers are seconds.
+Numbers are seconds. The parsing itself is :func:`plclab.durations.parse_duration`, the one
+parser the PLC's API uses too; this module adds the checks (not negative, at most a year).
 
 >>> parse_ns("10min"), parse_ns("T#1m30s") // 10**9, parse_ns(0.01), parse_ns("1 h")
 (600000000000, 90, 10000000, 3600000000000)
@@ -12,26 +13,12 @@ Numbers are seconds.
 
 from __future__ import annotations
 
-import datetime as _dt
-import math
-import re
 from typing import Any
 
+from ..durations import parse_duration
 from .errors import sim_error
 
-_UNITS = {
-    "d": 86_400_000_000_000, "day": 86_400_000_000_000, "days": 86_400_000_000_000,
-    "h": 3_600_000_000_000, "hr": 3_600_000_000_000, "hrs": 3_600_000_000_000,
-    "hour": 3_600_000_000_000, "hours": 3_600_000_000_000,
-    "m": 60_000_000_000, "min": 60_000_000_000, "mins": 60_000_000_000,
-    "minute": 60_000_000_000, "minutes": 60_000_000_000,
-    "s": 1_000_000_000, "sec": 1_000_000_000, "secs": 1_000_000_000,
-    "second": 1_000_000_000, "seconds": 1_000_000_000,
-    "ms": 1_000_000, "msec": 1_000_000, "us": 1_000, "µs": 1_000, "ns": 1,
-}
 MAX_NS = 366 * 86_400_000_000_000  # the longest duration accepted anywhere: a year
-_PART = re.compile(r"([0-9][0-9_]*(?:\.[0-9_]*)?(?:e[+-]?[0-9]+)?)\s*([a-zµ]+)", re.IGNORECASE)
-_NUMBER = re.compile(r"[+]?[0-9][0-9_]*(?:\.[0-9_]*)?(?:e[+-]?[0-9]+)?", re.IGNORECASE)
 
 
 def parse_ns(value: Any, what: str = "duration", allow_zero: bool = True) -> int:
@@ -52,10 +39,7 @@ def parse_ns(value: Any, what: str = "duration", allow_zero: bool = True) -> int
         PLC4012 for anything that is not a duration, is negative, is longer than a year, or
         is zero when ``allow_zero`` is false.
     """
-    try:
-        ns = _parse(value)
-    except OverflowError:  # 1e300 seconds, 1e400ms: beyond any float
-        ns = MAX_NS + 1
+    ns = parse_duration(value)
     if ns is None:
         raise sim_error("PLC4012", f"{what}: {value!r} is not a duration; write e.g. 10ms, 1.5s, "
                         "90s, 10min, 1h, 1h30m, T#1m30s or a number of seconds")
@@ -71,46 +55,6 @@ def parse_ns(value: Any, what: str = "duration", allow_zero: bool = True) -> int
 def parse_seconds(value: Any, what: str = "duration", allow_zero: bool = True) -> float:
     """Like :func:`parse_ns`, in seconds (a float)."""
     return parse_ns(value, what, allow_zero) / 1e9
-
-
-def _parse(value: Any) -> int | None:
-    if isinstance(value, bool):
-        return None
-    if isinstance(value, _dt.timedelta):
-        return round(value.total_seconds() * 1e9)
-    if isinstance(value, int):
-        return value * 1_000_000_000
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            return None
-        return round(value * 1e9)
-    if not isinstance(value, str):
-        return None
-    s = value.strip()
-    for prefix in ("LTIME#", "TIME#", "LT#", "T#"):
-        if s.upper().startswith(prefix):
-            s = s[len(prefix):]
-            break
-    if s.startswith("-"):
-        return None
-    s = s.lstrip("+").strip()
-    if not s:
-        return None
-    if _NUMBER.fullmatch(s):
-        return round(float(s.replace("_", "")) * 1e9)
-    total, pos = 0, 0
-    for m in _PART.finditer(s):
-        if s[pos:m.start()].strip(" _"):
-            return None
-        unit = _UNITS.get(m.group(2).lower()) or _UNITS.get(m.group(2))
-        if unit is None:
-            return None
-        num = m.group(1).replace("_", "")
-        total += round(float(num) * unit) if ("." in num or "e" in num.lower()) else int(num) * unit
-        pos = m.end()
-    if pos == 0 or s[pos:].strip():
-        return None
-    return total
 
 
 def format_duration(seconds: float) -> str:

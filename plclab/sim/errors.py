@@ -11,11 +11,11 @@ message still names the row index and the key).
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable
 
 from plclab.errors import Diagnostic, Location, PlcError
 from plclab.problems import PROBLEMS as _PROBLEMS  # noqa: E402
+from plclab.suggest import suggest
 
 #: the simulation layer's codes (kept in the one catalogue, plclab/problems.py)
 CODES: dict[str, tuple[str, str]] = {k: v for k, v in _PROBLEMS.items()
@@ -33,7 +33,7 @@ def sim_error(code: str, message: str, file: str | None = None, line: int = 0,
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
     """`` Did you mean 'X'?`` (with a leading space) or an empty string."""
     choices = list(choices)
-    close = difflib.get_close_matches(str(word), choices, n=2, cutoff=0.6)
+    close = suggest(word, choices, n=2)
     if not close:
         close = [c for c in choices if c.lower() == str(word).lower()]
     if not close:

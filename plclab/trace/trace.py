@@ -178,10 +178,9 @@ class Trace:
         prefix, then the same in any case."""
         found = self._find(str(name))
         if found is None:
-            import difflib
+            from ..suggest import did_you_mean
 
-            close = difflib.get_close_matches(str(name), self.columns, n=3, cutoff=0.6)
-            hint = (" Did you mean " + " or ".join(repr(c) for c in close) + "?") if close else ""
+            hint = did_you_mean(name, self.columns, n=3)
             some = ", ".join(list(self.columns)[:30])
             raise _err(f"the trace has no column {name!r}.{hint} Columns: {some}"
                        + (" ..." if len(self.columns) > 30 else ""))
