@@ -255,6 +255,24 @@ def test_the_core_never_imports_the_outer_layers() -> None:
     assert not bad, "\n".join(bad)
 
 
+def test_every_package_declares_its_layer_and_api() -> None:
+    import importlib
+
+    folders = sorted({p.parent for p in PACKAGE.rglob("*.py") if "__pycache__" not in p.parts})
+    for folder in folders:
+        init = folder / "__init__.py"
+        assert init.is_file(), f"{folder} has no __init__.py"
+        tree = ast.parse(init.read_text(encoding="utf-8"))
+        doc = ast.get_docstring(tree)
+        assert doc and len(doc.split()) >= 10, f"{init}: say in a docstring what the layer is"
+        name = ".".join(folder.relative_to(PACKAGE.parent).parts)
+        module = importlib.import_module(name)
+        assert isinstance(getattr(module, "__all__", None), list), f"{name} has no __all__"
+        for attr in module.__all__:  # each declared name exists (lazy ones are imported now)
+            assert getattr(module, attr, None) is not None or importlib.import_module(
+                f"{name}.{attr}"), f"{name}.__all__ names {attr}, which does not exist"
+
+
 def test_a_cycle_and_an_upward_import_are_caught() -> None:
     graph = {"a": {"b": 1}, "b": {"c": 1}, "c": {"a": 1}, "d": {"a": 1}}
     assert strongly_connected(graph) == [["a", "b", "c"]]
