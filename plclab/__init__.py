@@ -1,5 +1,10 @@
 """plclab: a virtual PLC lab for learning IEC 61131-3.
 
+This package is the front door of the PLC core (layer ``api``, above lang -> compile ->
+runtime; see ``docs/adr/0013-layers-and-lazy-cli.md``): :func:`load` and :func:`loads` read,
+check and compile programs into a :class:`~plclab.runtime.plc.Plc`. Importing it imports only
+:mod:`plclab.errors`; the rest comes with the first call.
+
 >>> import plclab
 >>> plc = plclab.loads('''
 ... PROGRAM Blink

@@ -1,39 +1,27 @@
 """The ``plclab`` command line.
 
-Sub-commands: ``check``, ``test``, ``run`` (and more as the lab grows). User errors print as
+Sub-commands: ``check``, ``test``, ``run``, ``explain`` here, and those of the simulator, the
+viewers, the grader and the Modbus server in their packages' ``commands`` modules. The list of
+commands is the static :data:`~plclab.cli_registry.COMMAND_TABLE`; a command's module is
+imported only when that command runs (or its ``--help`` is asked for), so ``plclab check`` does
+not import the simulator, asyncio or a plotting library. User errors print as
 ``file:line:col: error PLCnnnn: message`` and never as a Python traceback.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
-from collections.abc import Callable
 
 from . import __version__
+from .cli_registry import COMMAND_TABLE, REGISTRY, Registered, arg, command
 from .errors import PlcError
+from .names import split_names
 
-COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable]] = {}
+__all__ = ["COMMANDS", "build_parser", "load_command", "main", "split_names"]
 
-
-def command(name: str, help_text: str):
-    def deco(fn):
-        def add_args(p):
-            for a in getattr(fn, "_args", []):
-                p.add_argument(*a[0], **a[1])
-
-        COMMANDS[name] = (help_text, add_args, fn)
-        return fn
-
-    return deco
-
-
-def arg(*names, **kw):
-    def deco(fn):
-        fn._args = [(names, kw)] + getattr(fn, "_args", [])
-        return fn
-
-    return deco
+COMMANDS = REGISTRY  # the commands registered so far (name -> Registered); kept for old callers
 
 
 def _print_diags(diags, out=None) -> tuple[int, int]:
@@ -48,7 +36,7 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
     return errors, warnings
 
 
-@command("check", "check source files and print diagnostics (exit 1 on errors)")
+@command("check")
 @arg("files", nargs="+", metavar="FILE", help="source files (.st, .il, .ld, .xml)")
 @arg("--no-warnings", action="store_true", help="print errors only")
 def cmd_check(ns: argparse.Namespace) -> int:
@@ -62,7 +50,7 @@ def cmd_check(ns: argparse.Namespace) -> int:
     return 1 if errors else 0
 
 
-@command("test", "run the TEST blocks of the given files")
+@command("test")
 @arg("files", nargs="+", metavar="FILE")
 @arg("-k", dest="keyword", default=None, help="only tests whose name contains this text")
 @arg("-v", "--verbose", action="store_true", help="print passing tests too")
@@ -87,7 +75,7 @@ def cmd_test(ns: argparse.Namespace) -> int:
     return 0 if failed == 0 and results else 1
 
 
-@command("run", "run programs for N scans and print variables")
+@command("run")
 @arg("files", nargs="+", metavar="FILE")
 @arg("--cycles", type=int, required=True, help="number of scans to run")
 @arg("--cycle-time", default="10ms", help="task period, e.g. 10ms (default)")
@@ -115,48 +103,7 @@ def cmd_run(ns: argparse.Namespace) -> int:
     return 0
 
 
-def split_names(text: str) -> list[str]:
-    """Split ``A,B[1,2],C`` at the commas that are not inside brackets."""
-    out, depth, cur = [], 0, ""
-    for ch in text:
-        depth += ch == "["
-        depth -= ch == "]"
-        if ch == "," and depth == 0:
-            out.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    out.append(cur)
-    return [n.strip() for n in out if n.strip()]
-
-
-# Modules that register more sub-commands with @command when imported. Each is optional: a
-# module whose extra dependencies are missing still registers its commands, and reports the
-# missing dependency only when the command runs.
-COMMAND_MODULES = ["plclab.sim.commands", "plclab.viz.commands", "plclab.grade.commands",
-                   "plclab.modbus.commands"]
-
-
-def _load_command_modules() -> None:
-    import importlib
-    import importlib.util
-
-    for mod in COMMAND_MODULES:
-        if importlib.util.find_spec(mod.rsplit(".", 1)[0]) is None:
-            continue
-        try:
-            importlib.import_module(mod)
-        except ModuleNotFoundError as e:
-            if e.name != mod:
-                raise
-    from .compile.commands import COMMAND as compile_command  # stdlib only; no cli import
-
-    name, help_text, add_args, run = compile_command
-    COMMANDS[name] = (help_text, add_args, run)
-
-
-@command("explain", "explain a diagnostic code with an example and its fix, e.g. plclab "
-         "explain PLC0113 (--list: every code)")
+@command("explain")
 @arg("code", nargs="?", help="a code such as PLC0100")
 @arg("--list", dest="list_all", action="store_true", help="list every code with its title")
 def cmd_explain(ns: argparse.Namespace) -> int:
@@ -165,27 +112,53 @@ def cmd_explain(ns: argparse.Namespace) -> int:
     return explain_command(ns.code, ns.list_all)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    _load_command_modules()
+def load_command(name: str) -> Registered:
+    """Import the module of command *name* (from the static table) and return its registration."""
+    module = COMMAND_TABLE[name].module
+    if name not in REGISTRY:
+        try:
+            importlib.import_module(module)
+        except ModuleNotFoundError as e:
+            if not e.name or not (module == e.name or module.startswith(e.name + ".")):
+                raise
+            raise PlcError("PLC3005", f"plclab {name}: this installation has no {module}; "
+                           "reinstall plclab (pip install -e .)") from None
+    return REGISTRY[name]
+
+
+def chosen_command(argv: list[str]) -> str | None:
+    """The sub-command named in *argv*: the first word that is not an option (the top-level
+    options, ``-h`` and ``--version``, take no value)."""
+    for a in argv:
+        if not a.startswith("-"):
+            return a
+    return None
+
+
+def build_parser(load: str | list[str] | tuple[str, ...] = ()) -> argparse.ArgumentParser:
+    """The argument parser: every command of the table with its help line; the arguments only
+    of the commands named in *load* (``"all"`` for every command, which imports them all)."""
     p = argparse.ArgumentParser(prog="plclab", description="plclab: a virtual PLC lab for "
                                 "IEC 61131-3 (ST, IL, LD) with physics plants and an autograder.")
     p.add_argument("--version", action="version", version=f"plclab {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
-    for name, (help_text, add_args, _) in COMMANDS.items():
-        sp = sub.add_parser(name, help=help_text, description=help_text)
-        add_args(sp)
+    for name, info in COMMAND_TABLE.items():
+        sp = sub.add_parser(name, help=info.help, description=info.help)
+        if load == "all" or name in load:
+            load_command(name).add_args(sp)
     return p
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    ns = parser.parse_args(argv)
-    if not ns.command:
-        parser.print_help()
-        return 2
-    _, _, fn = COMMANDS[ns.command]
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        return fn(ns)
+        name = chosen_command(argv)
+        parser = build_parser([name] if name in COMMAND_TABLE else [])
+        ns = parser.parse_args(argv)
+        if not ns.command:
+            parser.print_help()
+            return 2
+        return REGISTRY[ns.command].run(ns)
     except PlcError as e:
         print(str(e), file=sys.stderr)
         return 1

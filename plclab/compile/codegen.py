@@ -23,7 +23,7 @@ from ..lang import ast as A
 from ..lang import types as T
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.limits import compiler_guard
-from ..runtime.rt import _f32
+from .real32 import f32 as _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
 _SIMPLE = (A.Name, A.Member, A.Index, A.Literal)

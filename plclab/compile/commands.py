@@ -6,8 +6,9 @@
   they were lowered to (:mod:`plclab.lang.unparse`).
 * ``ast``: an indented dump of the same AST (:mod:`plclab.lang.dump`).
 
-Diagnostics go to standard error, the emitted text to standard output or to ``OUT``. This module
-imports nothing from the command line layer: ``plclab.cli`` registers :data:`COMMAND`.
+Diagnostics go to standard error, the emitted text to standard output or to ``OUT``. The command
+registers itself with :mod:`plclab.cli_registry` (standard library only), so this module imports
+nothing from the command line.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..cli_registry import command
 from ..errors import Diagnostic, PlcError
 
 EMITS = ("python", "st", "ast")
@@ -55,6 +57,7 @@ def emit(sources: list[tuple[str, str]], kind: str) -> tuple[str, list[Diagnosti
     return "\n".join(dump(f) for f in files) + "\n", diags
 
 
+@command("compile", add_args=add_arguments)
 def run(ns: argparse.Namespace) -> int:
     """The ``compile`` sub-command."""
     from ..project import read_sources
@@ -73,7 +76,3 @@ def run(ns: argparse.Namespace) -> int:
                        "folder exists and is writable") from None
     return 0
 
-
-COMMAND = ("compile", "show the generated Python, the lowered ST or the AST of a program",
-           add_arguments, run)
-"""(name, help, add_arguments, run) for the command table of :mod:`plclab.cli`."""

@@ -1,5 +1,8 @@
 """Labs and the autograder.
 
+Layer ``grade`` (``docs/adr/0013-layers-and-lazy-cli.md``): above the simulator and the viewers
+(it runs scenarios and draws the diagrams of failures), below only the CLI.
+
 A lab (``labs/<id>/lab.toml``) joins a plant, a wiring table and an I/O table to scenarios and
 criteria with points; :mod:`plclab.grade.criteria` is the library of checks. The autograder
 (``plclab grade LAB SUBMISSIONS_DIR``) grades a folder of submissions, one process each, and

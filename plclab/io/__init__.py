@@ -1,5 +1,8 @@
 """I/O modules: what stands between a plant and the PLC.
 
+Layer ``io`` (``docs/adr/0013-layers-and-lazy-cli.md``): pure Python on the standard library,
+below the PLC core, whose analog scaling blocks share :mod:`~plclab.io.scaling`'s math.
+
 A plant speaks engineering units (bar, degC, metres, a contact that is closed or
 open); a PLC sees bits and ADC counts in its process image. The modules here turn one
 into the other, with the imperfections a real installation has::

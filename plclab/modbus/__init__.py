@@ -1,5 +1,8 @@
 """Modbus TCP for plclab: serve a PLC's process image, remote I/O, a notebook client.
 
+Layer ``modbus`` (``docs/adr/0013-layers-and-lazy-cli.md``): above the PLC core, beside ``viz``;
+the ``plclab serve`` commands are in the ``cli`` layer (:mod:`plclab.modbus.commands`).
+
 * ``plclab serve PROGRAM...`` -- the PLC scans in real time behind a Modbus TCP server
   (:class:`~plclab.modbus.server.PlcServer`; address map in :mod:`plclab.modbus.addressing`);
 * ``plclab plant-serve PLANT`` -- a plant as a Modbus server, for ``serve --io modbus://...``

@@ -11,7 +11,7 @@ import ipaddress
 import signal
 import sys
 
-from ..cli import arg, command
+from ..cli_registry import arg, command
 from ..errors import PlcError
 
 
@@ -86,7 +86,7 @@ def _say(text: str) -> None:
     print(text, file=sys.stderr, flush=True)
 
 
-@command("serve", "run programs in real time behind a Modbus TCP server")
+@command("serve")
 @arg("files", nargs="+", metavar="PROGRAM", help="source files (.st)")
 @arg("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1, this "
      "computer only)")
@@ -174,7 +174,7 @@ def cmd_serve(ns: argparse.Namespace) -> int:
     return 0
 
 
-@command("plant-serve", "run a plant in real time as a Modbus TCP server (remote I/O)")
+@command("plant-serve")
 @arg("plant", metavar="PLANT", help="plant name, e.g. tank (see plants/README.md)")
 @arg("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
 @arg("--port", type=int, default=5021, help="TCP port (default 5021)")

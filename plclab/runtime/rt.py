@@ -11,7 +11,8 @@ import bisect
 import math
 import struct
 
-_F32 = struct.Struct("<f")
+from ..compile.real32 import f32 as _f32  # REAL rounding, shared with the compiler
+
 _F32_MAX = 3.4028234663852886e38
 
 
@@ -40,14 +41,6 @@ class Budget:
     def __init__(self, limit: int = 1_000_000) -> None:
         self.limit = limit
         self.left = limit
-
-
-def _f32(x):
-    """Round to IEEE single precision (REAL); out of range gives +-inf like the FPU."""
-    try:
-        return _F32.unpack(_F32.pack(x))[0]
-    except OverflowError:
-        return math.copysign(math.inf, x)
 
 
 def _idiv(a: int, b: int) -> int:

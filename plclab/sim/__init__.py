@@ -1,5 +1,8 @@
 """Simulation: a virtual PLC joined to a physics plant through I/O modules, on one clock.
 
+Layer ``sim`` (``docs/adr/0013-layers-and-lazy-cli.md``): above the PLC core, ``io`` and
+``trace``; below the viewers, the grader and the CLI, which it never imports.
+
 >>> import plclab
 >>> from plclab.sim import Simulation, run
 >>> tr = run('''PROGRAM Main

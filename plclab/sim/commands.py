@@ -11,8 +11,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from plclab.cli import arg, command, split_names
+from plclab.cli_registry import arg, command
 from plclab.errors import PlcError
+from plclab.names import split_names
 
 
 def _param(text: str) -> tuple[str, object]:
@@ -28,7 +29,7 @@ def _param(text: str) -> tuple[str, object]:
     return name.strip(), v
 
 
-@command("sim", "simulate PLC programs driving a plant; print a summary, save the trace")
+@command("sim")
 @arg("plant", metavar="PLANT", help="plant name (see: plclab plants)")
 @arg("programs", nargs="+", metavar="PROGRAM", help="ST source files")
 @arg("--wiring", metavar="FILE", default=None,
@@ -127,7 +128,7 @@ def cmd_sim(ns: argparse.Namespace) -> int:
     return 0
 
 
-@command("plants", "list the plants and their signals (plclab plants NAME for details)")
+@command("plants")
 @arg("name", nargs="?", default=None, metavar="NAME", help="one plant: signals, faults, events, "
      "default wiring")
 def cmd_plants(ns: argparse.Namespace) -> int:

@@ -45,7 +45,8 @@ from .channels import Transfer, bind
 from .durations import format_duration, parse_ns
 from .errors import did_you_mean, sim_error
 from .scenario import IO_FAULTS, Action, Scenario, as_scenario
-from .wiring import Wiring, as_wiring
+from .wiring import Wiring
+from .wirings import as_wiring
 
 
 def _gcd_all(values: Iterable[int]) -> int:
@@ -201,7 +202,7 @@ class Simulation:
         self.stop_on_fault = bool(stop_on_fault)
         self.events: list[Any] = []
         if isinstance(watch, str):
-            from plclab.cli import split_names
+            from plclab.names import split_names
 
             watch = split_names(watch)
         watch = list(watch)

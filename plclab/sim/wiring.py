@@ -478,15 +478,3 @@ def load_wiring(path: str | os.PathLike) -> Wiring:
     """Read a TOML wiring file (PLC4001 when unreadable, PLC400x for bad rows)."""
     return Wiring.load(path)
 
-
-def as_wiring(wiring: Any, plant_name: str) -> Wiring:
-    """Accept None (the plant's default), a path, a Wiring or a list of rows."""
-    if wiring is None:
-        from .wirings import default_wiring
-
-        return default_wiring(plant_name)
-    if isinstance(wiring, Wiring):
-        return wiring
-    if isinstance(wiring, str | os.PathLike):
-        return Wiring.load(wiring)
-    return Wiring.from_rows(wiring)

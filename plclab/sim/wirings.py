@@ -18,6 +18,7 @@ wire it to an analog output.
 
 from __future__ import annotations
 
+import os
 from typing import Any
 
 from .errors import did_you_mean, sim_error
@@ -180,3 +181,14 @@ def default_wiring(plant_name: str) -> Wiring:
                         f" Plants with one: {', '.join(DEFAULTS)}; or give a wiring table")
     desc, rows = entry
     return Wiring.from_rows([dict(r) for r in rows], plant=name, description=desc)
+
+
+def as_wiring(wiring: Any, plant_name: str) -> Wiring:
+    """Accept None (the plant's default), a path, a Wiring or a list of rows."""
+    if wiring is None:
+        return default_wiring(plant_name)
+    if isinstance(wiring, Wiring):
+        return wiring
+    if isinstance(wiring, str | os.PathLike):
+        return Wiring.load(wiring)
+    return Wiring.from_rows(wiring)

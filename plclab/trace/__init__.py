@@ -1,5 +1,8 @@
 """The Trace: one columnar record of a simulation run (see :mod:`plclab.trace.trace`).
 
+Layer ``trace`` (``docs/adr/0013-layers-and-lazy-cli.md``): written by the simulator, read by
+the viewers and the grader; it imports only :mod:`plclab.errors` (and NumPy, lazily).
+
 >>> from plclab.trace import Trace, Event, load   # doctest: +SKIP
 
 NumPy is imported when a trace is built or loaded, not when this package is imported.

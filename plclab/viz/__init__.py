@@ -1,9 +1,14 @@
 """Visual timelines: rerun recordings, timing diagrams, VCD/WaveDrom/CSV, chatter analysis.
 
+Layer ``viz`` (``docs/adr/0013-layers-and-lazy-cli.md``): reads a Trace; may use the simulator's
+duration parsing, never the grader, the Modbus server or the CLI.
+
 Heavy libraries (rerun, matplotlib, pyvcd, wavedrom) are imported only when used.
 """
 
 from __future__ import annotations
+
+__all__ = ["export", "timing_diagram", "to_rerun"]
 
 
 def to_rerun(trace, path="run.rrd", spawn=False, **kw):

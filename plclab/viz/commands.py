@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import argparse
 
-from ..cli import arg, command
+from ..cli_registry import arg, command
 from ..errors import PlcError
 
 
-@command("view", "open a saved trace in the rerun viewer, or export it (--rrd, --png, ...)")
+@command("view")
 @arg("trace", metavar="TRACE.npz", help="a trace saved by plclab sim --trace")
 @arg("--rrd", help="write a rerun recording (.rrd) instead of opening the viewer")
 @arg("--vcd", help="write a VCD file (GTKWave)")
@@ -63,7 +63,7 @@ def switching_report(trace) -> str:
     return report(outs, trace.t_end, [b for b in inputs if b.raw_edges])
 
 
-@command("figures", "draw the timing diagrams of TP/TON/TOF/TONR/CTU/CTD/CTUD from real runs")
+@command("figures")
 @arg("folder", help="where to write the pictures")
 @arg("--format", default="svg", choices=["svg", "png"], help="picture format (default svg)")
 @arg("--scan-cycle", action="store_true", help="also draw the scan-cycle diagram")

@@ -1,0 +1,304 @@
+"""The layers of plclab hold: no import cycles, no upward imports, a pure-Python core.
+
+The import graph is read from the source with :mod:`ast` (nothing is imported): every ``import``
+and ``from ... import`` of every module, at module level and inside functions, absolute and
+relative. ``from pkg import name`` counts as an import of ``pkg.name`` when that is a module,
+else of ``pkg``. The layers and the reason for each are in ``docs/adr/0013-layers-and-lazy-cli.md``.
+
+``python tests/test_layering.py`` prints the graph between layers.
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parent.parent / "plclab"
+
+# (layer, module prefixes). Lowest first: a module may import its own layer and the layers
+# above it in this list, never one below. Layers in one row share a rank and may not import
+# each other. The most specific prefix wins; the root package ``plclab`` matches only itself.
+LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
+    # errors, the problem catalogue, name lists, the command table: standard library only.
+    [("base", ("plclab.errors", "plclab.problems", "plclab.names", "plclab.cli_registry",
+               "plclab.durations", "plclab.suggest"))],
+    # signal conversions (4-20 mA, counts, Pt100): pure math on floats, used by the runtime's
+    # analog scaling blocks and by the simulator's I/O channels.
+    [("io", ("plclab.io",))],
+    # the PLC core, bottom to top: language -> compiler -> runtime.
+    [("lang", ("plclab.lang",))],
+    [("compile", ("plclab.compile",))],
+    [("runtime", ("plclab.runtime",))],
+    # the core's front door: read, check, compile, load; run TEST blocks.
+    [("api", ("plclab", "plclab.project", "plclab.testing"))],
+    # the record of a run (NumPy is imported lazily, when a trace is built).
+    [("trace", ("plclab.trace",))],
+    # a PLC joined to a plant on one clock; writes a Trace.
+    [("sim", ("plclab.sim",))],
+    # readers of a Trace (viz) and the PLC behind a Modbus server: independent of each other.
+    [("viz", ("plclab.viz",)), ("modbus", ("plclab.modbus",))],
+    # labs and the autograder: run simulations, draw the diagrams of failures.
+    [("grade", ("plclab.grade",))],
+    # the command line: every `commands` module is a CLI front end of its package.
+    [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
+              "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands"))],
+]
+
+# Layers that must import nothing outside the standard library and plclab (the PLC runs
+# anywhere, even under Pyodide): the core and everything the core imports.
+PURE_LAYERS = {"base", "io", "lang", "compile", "runtime"}
+
+# Cycles that exist on purpose, for now. Each entry is the exact set of modules of one cycle
+# (a strongly connected component); an entry that no longer matches the code fails the test,
+# so remove it when the cycle is gone.
+KNOWN_CYCLES: list[frozenset[str]] = [
+    # none: add a cycle here only with the issue that removes it
+]
+
+
+# ------------------------------------------------------------------------------ the graph
+
+
+def module_files(root: Path = PACKAGE) -> dict[str, Path]:
+    """Dotted module name -> file, for every .py file under *root* (a package is its __init__)."""
+    out = {}
+    for path in sorted(root.rglob("*.py")):
+        parts = path.relative_to(root.parent).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+def imported_names(module: str, path: Path, modules: dict[str, Path]) -> dict[str, int]:
+    """Every module *module* imports (plclab's and others') -> the first line that does."""
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found: dict[str, int] = {}
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        names: list[str] = []
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base_name = ".".join(base + ([node.module] if node.module else []))
+            else:
+                base_name = node.module or ""
+            for a in node.names:
+                sub = f"{base_name}.{a.name}"
+                names.append(sub if sub in modules else base_name)
+        for name in names:
+            found.setdefault(name, node.lineno)
+    return found
+
+
+def owning_module(name: str, modules: dict[str, Path]) -> str | None:
+    """The plclab module an imported dotted name belongs to (``plclab.x.y`` -> ``plclab.x``)."""
+    while name and name not in modules:
+        name = name.rpartition(".")[0]
+    return name or None
+
+
+def import_graph() -> tuple[dict[str, dict[str, int]], dict[str, dict[str, int]]]:
+    """(plclab module -> plclab modules it imports -> line, module -> outside imports -> line)."""
+    modules = module_files()
+    inside: dict[str, dict[str, int]] = {m: {} for m in modules}
+    outside: dict[str, dict[str, int]] = {m: {} for m in modules}
+    for m, path in modules.items():
+        for name, line in imported_names(m, path, modules).items():
+            if name == "plclab" or name.startswith("plclab."):
+                target = owning_module(name, modules)
+                if target and target != m:
+                    inside[m].setdefault(target, line)
+            else:
+                outside[m].setdefault(name, line)
+    return inside, outside
+
+
+def strongly_connected(graph: dict[str, dict[str, int]]) -> list[list[str]]:
+    """The cycles of *graph*: its strongly connected components of two or more modules."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(v: str) -> None:  # Tarjan's algorithm; the graph is a few hundred nodes deep
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in graph.get(v, {}):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                found.append(sorted(comp))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def cycle_path(graph: dict[str, dict[str, int]], members: list[str]) -> list[str]:
+    """One closed path through a component, for the failure message: a -> b -> ... -> a."""
+    start, inside = members[0], set(members)
+    paths = {start: [start]}
+    todo = [start]
+    while todo:  # breadth first: the shortest way back to start
+        v = todo.pop(0)
+        for w in graph[v]:
+            if w == start:
+                return paths[v] + [start]
+            if w in inside and w not in paths:
+                paths[w] = paths[v] + [w]
+                todo.append(w)
+    return members
+
+
+def layer_of(module: str) -> tuple[str, int]:
+    """(layer name, rank) of a plclab module: the most specific prefix of :data:`LAYERS`."""
+    best: tuple[int, str, int] | None = None
+    for rank, row in enumerate(LAYERS):
+        for name, prefixes in row:
+            for p in prefixes:
+                hit = module == p or (p != "plclab" and module.startswith(p + "."))
+                if hit and (best is None or len(p) > best[0]):
+                    best = (len(p), name, rank)
+    if best is None:
+        raise LookupError(f"{module} is in no layer: add it to LAYERS in tests/test_layering.py "
+                          "and docs/adr/0013-layers-and-lazy-cli.md")
+    return best[1], best[2]
+
+
+def is_stdlib(name: str) -> bool:
+    return name.partition(".")[0] in sys.stdlib_module_names
+
+
+# ------------------------------------------------------------------------------ the tests
+
+
+def test_the_graph_is_read_from_every_module() -> None:
+    inside, _ = import_graph()
+    assert "plclab.lang.ast" in inside["plclab.lang.check"]        # relative, module level
+    assert "plclab.runtime.plc" in inside["plclab.project"]        # relative, inside a function
+    assert "plclab.lang.types" in inside["plclab.modbus.server"]   # absolute
+    assert "plclab.compile.real32" in inside["plclab.runtime.rt"]  # from .. import as
+
+
+def test_every_module_is_in_a_layer() -> None:
+    for module in module_files():
+        layer_of(module)
+
+
+def test_no_import_cycles() -> None:
+    inside, _ = import_graph()
+    found = [c for c in strongly_connected(inside) if frozenset(c) not in KNOWN_CYCLES]
+    assert not found, "import cycles:\n" + "\n".join(
+        " -> ".join(cycle_path(inside, c)) for c in found)
+
+
+def test_known_cycles_are_not_stale() -> None:
+    inside, _ = import_graph()
+    actual = {frozenset(c) for c in strongly_connected(inside)}
+    stale = [sorted(c) for c in KNOWN_CYCLES if c not in actual]
+    assert not stale, (f"KNOWN_CYCLES lists cycles that no longer exist as listed: {stale}; "
+                       "update or remove the entry (the current cycles: "
+                       f"{[sorted(c) for c in actual]})")
+
+
+def test_no_upward_imports() -> None:
+    inside, _ = import_graph()
+    bad = []
+    for m, targets in sorted(inside.items()):
+        lm, rm = layer_of(m)
+        for t, line in sorted(targets.items()):
+            lt, rt = layer_of(t)
+            if lm == lt or rt < rm:
+                continue
+            if any(m in c and t in c for c in KNOWN_CYCLES):
+                continue  # reported by KNOWN_CYCLES
+            bad.append(f"{m} (layer {lm}) imports {t} (layer {lt}) at line {line}")
+    assert not bad, "imports that go up or sideways:\n" + "\n".join(bad)
+
+
+def test_the_core_needs_only_the_standard_library() -> None:
+    _, outside = import_graph()
+    bad = [f"{m} imports {name} at line {line}"
+           for m, names in sorted(outside.items()) if layer_of(m)[0] in PURE_LAYERS
+           for name, line in sorted(names.items()) if not is_stdlib(name)]
+    assert not bad, "the core imports outside the standard library:\n" + "\n".join(bad)
+
+
+def test_the_core_never_imports_the_outer_layers() -> None:
+    # The promise of DESIGN.md in the words of issue 12, checked on its own so that a change of
+    # LAYERS cannot quietly drop it.
+    inside, _ = import_graph()
+    outer = ("sim", "grade", "viz", "cli", "modbus", "trace")
+    bad = [f"{m} imports {t}" for m, targets in inside.items()
+           if layer_of(m)[0] in ("lang", "compile", "runtime")
+           for t in targets if layer_of(t)[0] in outer]
+    assert not bad, "\n".join(bad)
+
+
+def test_every_package_declares_its_layer_and_api() -> None:
+    import importlib
+
+    folders = sorted({p.parent for p in PACKAGE.rglob("*.py") if "__pycache__" not in p.parts})
+    for folder in folders:
+        init = folder / "__init__.py"
+        assert init.is_file(), f"{folder} has no __init__.py"
+        tree = ast.parse(init.read_text(encoding="utf-8"))
+        doc = ast.get_docstring(tree)
+        assert doc and len(doc.split()) >= 10, f"{init}: say in a docstring what the layer is"
+        name = ".".join(folder.relative_to(PACKAGE.parent).parts)
+        module = importlib.import_module(name)
+        assert isinstance(getattr(module, "__all__", None), list), f"{name} has no __all__"
+        for attr in module.__all__:  # each declared name exists (lazy ones are imported now)
+            assert getattr(module, attr, None) is not None or importlib.import_module(
+                f"{name}.{attr}"), f"{name}.__all__ names {attr}, which does not exist"
+
+
+def test_a_cycle_and_an_upward_import_are_caught() -> None:
+    graph = {"a": {"b": 1}, "b": {"c": 1}, "c": {"a": 1}, "d": {"a": 1}}
+    assert strongly_connected(graph) == [["a", "b", "c"]]
+    assert cycle_path(graph, ["a", "b", "c"]) == ["a", "b", "c", "a"]
+    assert layer_of("plclab.lang.check")[1] < layer_of("plclab.sim.simulation")[1]
+    assert layer_of("plclab.sim.commands")[0] == "cli"
+    assert layer_of("plclab")[0] == "api" and layer_of("plclab.errors")[0] == "base"
+
+
+def layer_graph() -> dict[str, dict[str, int]]:
+    """Layer -> layers it imports -> how many module imports."""
+    inside, _ = import_graph()
+    out: dict[str, dict[str, int]] = {}
+    for m, targets in inside.items():
+        lm = layer_of(m)[0]
+        for t in targets:
+            lt = layer_of(t)[0]
+            if lt != lm:
+                out.setdefault(lm, {}).setdefault(lt, 0)
+                out[lm][lt] += 1
+    return out
+
+
+if __name__ == "__main__":
+    order = [name for row in LAYERS for name, _ in row]
+    for lm in order:
+        deps = layer_graph().get(lm, {})
+        print(f"{lm:8} -> " + ", ".join(f"{lt} ({n})" for lt, n in
+                                        sorted(deps.items(), key=lambda kv: order.index(kv[0]))))
+    inside, _ = import_graph()
+    for c in strongly_connected(inside):
+        print("cycle:", " -> ".join(cycle_path(inside, c)))
