@@ -8,8 +8,10 @@ Every problem of a lab file is a :class:`~plclab.errors.PlcError` with a code PL
 a message that names the key and says what to write, and the ``lab.toml:line:col`` where the key
 is.
 
->>> lab = load_lab("tank-two-position")          # doctest: +SKIP
->>> lab.title, [s.name for s in lab.scenarios]   # doctest: +SKIP
+For example::
+
+    lab = load_lab("tank-two-position")
+    lab.title, [s.name for s in lab.scenarios]
 """
 
 from __future__ import annotations

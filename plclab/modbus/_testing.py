@@ -51,7 +51,10 @@ def wait_until(predicate, timeout: float = 10.0, interval: float = 0.05):
 class PlclabProcess:
     """``python -m plclab ARGS...`` in a subprocess, output captured in a temporary file.
 
-    >>> # with PlclabProcess(["serve", "prog.st", "--port", str(port)], port=port) as p: ...
+    For example::
+
+        with PlclabProcess(["serve", "prog.st", "--port", str(port)], port=port) as p:
+            ...
     """
 
     def __init__(self, args: list[str], port: int | None = None, cwd: str | None = None,

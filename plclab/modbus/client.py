@@ -1,9 +1,11 @@
 """A tiny synchronous Modbus client for notebooks: ``plclab.modbus.connect()``.
 
->>> # c = plclab.modbus.connect(port=5020)
->>> # c["%QX0.0"], c["%MW0"], c.read_registers(0, 2)
->>> # c["%MW0"] = 42          # holding register 0
->>> # c.close()
+With ``plclab serve`` running::
+
+    c = plclab.modbus.connect(port=5020)
+    c["%QX0.0"], c["%MW0"], c.read_registers(0, 2)
+    c["%MW0"] = 42          # holding register 0
+    c.close()
 
 Addresses in ``c["..."]`` follow the map of ``plclab serve`` (see
 :mod:`plclab.modbus.addressing`); words read back unsigned, as ``plc["%IW0"]`` does.

@@ -3,7 +3,9 @@
 Layer ``trace`` (``docs/adr/0013-layers-and-lazy-cli.md``): written by the simulator, read by
 the viewers and the grader; it imports only :mod:`plclab.errors` (and NumPy, lazily).
 
->>> from plclab.trace import Trace, Event, load   # doctest: +SKIP
+>>> from plclab.trace import Trace, Event, load
+>>> Trace.__module__, load.__module__
+('plclab.trace.trace', 'plclab.trace.trace')
 
 NumPy is imported when a trace is built or loaded, not when this package is imported.
 """

@@ -1,9 +1,10 @@
 """From a :class:`~plclab.trace.Trace` to pictures and files: the glue behind
 ``plclab sim --rrd/--vcd/--wavedrom/--png`` and ``plclab view``.
 
->>> # doctest: +SKIP
->>> from plclab.viz import to_rerun
->>> to_rerun(trace, path="run.rrd")
+For example::
+
+    from plclab.viz import to_rerun
+    to_rerun(trace, path="run.rrd")
 """
 
 from __future__ import annotations

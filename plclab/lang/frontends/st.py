@@ -14,12 +14,12 @@ the lowering stage (:mod:`plclab.lang.lower`) on the file alone.
 
 from __future__ import annotations
 
-import difflib
 import re
 from contextlib import contextmanager
 from functools import cache
 
 from ...errors import Diagnostic, Location, PlcError
+from ...suggest import suggest
 from .. import ast as A
 from ..datasize import NESTING_LIMIT
 from ..lexer import KEYWORDS, Lexer, Token, add_capped
@@ -158,7 +158,7 @@ class Parser:
         t = self.tok
         found = _found(t)
         if t.kind == "IDENT":
-            close = difflib.get_close_matches(t.value, SUGGEST, n=1, cutoff=0.75)
+            close = suggest(t.value, SUGGEST, n=1, cutoff=0.75)
             if close:
                 self.error("PLC0011", f"expected {what}, found '{t.text}'; did you mean the "
                            f"keyword {close[0]}?")
@@ -208,7 +208,7 @@ class Parser:
                     out.tests.append(self.test_block())
                 else:
                     t = self.tok
-                    close = (difflib.get_close_matches(t.value, _POU_START, n=1, cutoff=0.7)
+                    close = (suggest(t.value, _POU_START, n=1, cutoff=0.7)
                              if t.kind == "IDENT" else [])
                     hint = f"; did you mean {close[0]}?" if close else ""
                     code = "PLC0011" if close else "PLC0010"
@@ -247,7 +247,7 @@ class Parser:
         end_kw = _END_OF[kind]
         if kind == "FUNCTION_BLOCK" and self.at("IDENT"):
             t = self.tok
-            close = difflib.get_close_matches(t.value, _OOP_WORDS, n=1, cutoff=0.7)
+            close = suggest(t.value, _OOP_WORDS, n=1, cutoff=0.7)
             if t.value in _OOP_WORDS:
                 self.error("PLC0010", f"{t.text} (object-oriented extension) is not supported "
                            "yet; write a plain FUNCTION_BLOCK")
@@ -658,7 +658,7 @@ class Parser:
                 self.error("PLC0012", "'==' is not an ST operator; assign with ':='")
                 raise ParseAbort
             if t.kind == "IDENT" and isinstance(target, A.Name):
-                close = difflib.get_close_matches(t.value, SUGGEST, n=1, cutoff=0.75)
+                close = suggest(t.value, SUGGEST, n=1, cutoff=0.75)
                 if close:
                     self.error("PLC0011", f"'{t.text}' is not a keyword or a statement; did you "
                                f"mean {close[0]}?", t)
@@ -685,7 +685,7 @@ class Parser:
             return
         t = self.tok
         if t.kind == "IDENT":
-            close = difflib.get_close_matches(t.value, [kw], n=1, cutoff=0.6)
+            close = suggest(t.value, [kw], n=1, cutoff=0.6)
             if close:
                 self.error("PLC0011", f"'{t.text}' is misspelled; did you mean {kw}?")
                 self.advance()

@@ -14,11 +14,11 @@ The instructions come from :mod:`plclab.lang.frontends.il` (or a PLCopen ``<IL>`
 
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass, field
 from typing import Any
 
 from ...errors import Diagnostic, Location
+from ...suggest import suggest
 from .. import ast as A
 from .. import types as T
 from ..builtins import BUILTINS, conversion
@@ -503,9 +503,9 @@ class _Lowering:
         name = x.op
         if not self.types.is_function(name):
             cands = list(IL_OPERATORS) + list(FB_INPUT_OPS)
-            close = difflib.get_close_matches(name, cands, n=1, cutoff=0.6)
+            close = suggest(name, cands, n=1, cutoff=0.6)
             if not close:
-                close = difflib.get_close_matches(name, self.types.function_names(), n=1,
+                close = suggest(name, self.types.function_names(), n=1,
                                                   cutoff=0.7)
             hint = f"; did you mean {close[0]}?" if close else (
                 " (IL operators: LD, ST, S, R, AND, OR, XOR, NOT, ADD, SUB, MUL, DIV, MOD, GT, "
