@@ -293,7 +293,7 @@ class Codegen:
         self.emit(f"def F_{ident(pou.name)}(" + ", ".join(f"v_{ident(d.name)}" for d in params)
                   + "):")
         self.ind += 1
-        rd = pou.return_decl  # type: ignore[attr-defined]
+        rd = pou.return_decl
         if rd.ty is not T.VOID:
             self.emit(f"v_{ident(pou.name)} = {self.default_code(rd.ty)}")
         for d in pou.decls:
@@ -308,7 +308,7 @@ class Codegen:
         self.pou = None
 
     def function_return(self, pou: A.Pou) -> str:
-        rd = pou.return_decl  # type: ignore[attr-defined]
+        rd = pou.return_decl
         res = f"v_{ident(pou.name)}" if rd.ty is not T.VOID else "None"
         outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
         if not outs:
@@ -946,7 +946,7 @@ class Codegen:
             return None if v is None else -v
         if isinstance(e, A.Literal):
             if e.kind == "ENUM":
-                return getattr(e, "enum_value", None)
+                return e.enum_value
             v = e.value
         elif isinstance(e, A.Name) and isinstance(e.sym, EnumSym):
             v = e.sym.value
@@ -1057,7 +1057,7 @@ class Codegen:
             code = getattr(self, "e_" + type(e).__name__)(e)
         finally:
             level = self._levels.pop() + 1
-        if level >= SPILL_LEVEL and not getattr(e, "is_target", False):
+        if level >= SPILL_LEVEL and not e.is_target:
             tmp = self.new_tmp()
             self.pre.append(f"{tmp} = {code}")
             return tmp, 0
@@ -1086,7 +1086,7 @@ class Codegen:
             q = abs(v) // 1_000_000
             return repr(-q if v < 0 else q)
         if k == "ENUM":
-            return repr(getattr(e, "enum_value", 0))
+            return repr(e.enum_value or 0)
         if k == "REAL":
             return _float_code(v, single=T.resolve(e.ty) is T.REAL)
         if k == "INT" and e.ty is not None and T.resolve(e.ty).kind == "real":
