@@ -30,7 +30,7 @@ class UnhandledNode(TypeError):
                          f"add one (visit_{cls}) and run tests/lang/test_walk_coverage.py")
 
 
-def _flat(items: list[Any]) -> list[Any]:
+def flat(items: list[Any]) -> list[Any]:
     """Nodes of a list whose items may be None or tuples of nodes (CASE ranges, array
     repeats)."""
     out: list[Any] = []
@@ -49,10 +49,10 @@ def _body(*bodies: list[A.Stmt] | None) -> list[Any]:
 CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     # type expressions
     A.NamedTypeRef: lambda n: [],
-    A.StringTypeRef: lambda n: _flat([n.length]),
-    A.ArrayTypeRef: lambda n: _flat(n.ranges) + [n.elem],
+    A.StringTypeRef: lambda n: flat([n.length]),
+    A.ArrayTypeRef: lambda n: flat(n.ranges) + [n.elem],
     A.SubrangeTypeRef: lambda n: [n.base, n.lo, n.hi],
-    A.EnumTypeRef: lambda n: _flat([v for _, v, _ in n.members] + [n.base]),
+    A.EnumTypeRef: lambda n: flat([v for _, v, _ in n.members] + [n.base]),
     A.StructTypeRef: lambda n: list(n.fields),
     # expressions
     A.Literal: lambda n: [],
@@ -63,16 +63,16 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.Unary: lambda n: [n.operand],
     A.Binary: lambda n: [n.left, n.right],
     A.Call: lambda n: [n.func, *n.args],
-    A.Arg: lambda n: _flat([n.value]),
-    A.ArrayInit: lambda n: _flat(n.items),
+    A.Arg: lambda n: flat([n.value]),
+    A.ArrayInit: lambda n: flat(n.items),
     A.StructInit: lambda n: [v for _, v, _ in n.fields],
     # statements
     A.Assign: lambda n: [n.target, n.value],
     A.CallStmt: lambda n: [n.call],
     A.If: lambda n: [x for c, b in n.branches for x in (c, *b)] + _body(n.orelse),
-    A.CaseBranch: lambda n: _flat(n.labels) + n.body,
+    A.CaseBranch: lambda n: flat(n.labels) + n.body,
     A.Case: lambda n: [n.selector, *n.branches] + _body(n.orelse),
-    A.For: lambda n: _flat([n.var, n.start, n.end, n.step]) + n.body,
+    A.For: lambda n: flat([n.var, n.start, n.end, n.step]) + n.body,
     A.While: lambda n: [n.cond, *n.body],
     A.Repeat: lambda n: [*n.body, n.cond],
     A.Exit: lambda n: [],
@@ -80,13 +80,13 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.Return: lambda n: [],
     A.Empty: lambda n: [],
     A.Label: lambda n: [],
-    A.Jump: lambda n: _flat([n.cond]),
+    A.Jump: lambda n: flat([n.cond]),
     # declarations
-    A.VarDecl: lambda n: [n.type] + _flat([n.init]),
-    A.Pou: lambda n: _flat([*n.decls, n.return_type]) + n.body,
-    A.TypeDecl: lambda n: [n.type] + _flat([n.init]),
+    A.VarDecl: lambda n: [n.type] + flat([n.init]),
+    A.Pou: lambda n: flat([*n.decls, n.return_type]) + n.body,
+    A.TypeDecl: lambda n: [n.type] + flat([n.init]),
     A.GlobalVars: lambda n: list(n.decls),
-    A.TaskDecl: lambda n: _flat([n.interval, n.priority, n.single]),
+    A.TaskDecl: lambda n: flat([n.interval, n.priority, n.single]),
     A.ProgramInstance: lambda n: [],
     A.Configuration: lambda n: [*n.globals, *n.tasks, *n.instances],
     A.TestBlock: lambda n: [*n.decls, *n.body],

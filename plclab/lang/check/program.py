@@ -53,7 +53,8 @@ class ProgramChecks(Pass):
                          e.loc)
             else:
                 t.interval = A.Literal(e.loc, v if ty is T.LTIME else v // 1_000_000 * 1_000_000,
-                                       "TIME", None, getattr(e, "text", ""))
+                                       "TIME", None,
+                                       e.text if isinstance(e, A.Literal | A.Name) else "")
                 t.interval.ty = ty
         if t.priority is not None:
             e = t.priority
