@@ -23,6 +23,7 @@ from ..lang import ast as A
 from ..lang import types as T
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.limits import compiler_guard
+from ..lang.walk import UnhandledNode
 from ..runtime.rt import _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
@@ -498,7 +499,9 @@ class Codegen:
 
     def stmt(self, s: A.Stmt) -> None:
         self.where_now = self.where(s.loc)
-        m = getattr(self, "s_" + type(s).__name__)
+        m = getattr(self, "s_" + type(s).__name__, None)
+        if m is None:
+            raise UnhandledNode("Codegen.stmt", s)
         m(s)
 
     def s_Empty(self, s: A.Empty) -> None:
@@ -1054,7 +1057,10 @@ class Codegen:
         """(code, nesting since the last temporary) of one node."""
         self._levels.append(0)
         try:
-            code = getattr(self, "e_" + type(e).__name__)(e)
+            method = getattr(self, "e_" + type(e).__name__, None)
+            if method is None:  # ArrayInit / StructInit go through init_code
+                raise UnhandledNode("Codegen.ex_node", e)
+            code = method(e)
         finally:
             level = self._levels.pop() + 1
         if level >= SPILL_LEVEL and not e.is_target:
