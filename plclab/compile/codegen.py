@@ -366,13 +366,11 @@ class Codegen:
         self.emit("")
 
     def located(self):
-        for d in self.p.globals.values():
-            if d.address and not d.address.endswith("*"):
-                yield d, f"_G.{ident(d.name)}"
-        for n, pou, _ in self.p.programs:
-            for d in pou.decls:
-                if d.address and not d.address.endswith("*") and d.section != "VAR_EXTERNAL":
-                    yield d, f"_P.{ident(n)}.{ident(d.name)}"
+        """(declaration, Python path) of every located variable with a concrete address."""
+        for v in self.p.symbols.located_vars():
+            if not v.wildcard:
+                owner = "_G" if v.instance is None else f"_P.{ident(v.instance)}"
+                yield v.decl, f"{owner}.{ident(v.decl.name)}"
 
     # -- process image access -----------------------------------------------------------------
     @staticmethod
