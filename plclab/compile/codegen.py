@@ -23,6 +23,7 @@ from ..lang import ast as A
 from ..lang import types as T
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.limits import compiler_guard
+from ..lang.walk import UnhandledNode
 from .real32 import f32 as _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
@@ -293,7 +294,7 @@ class Codegen:
         self.emit(f"def F_{ident(pou.name)}(" + ", ".join(f"v_{ident(d.name)}" for d in params)
                   + "):")
         self.ind += 1
-        rd = pou.return_decl  # type: ignore[attr-defined]
+        rd = pou.return_decl
         if rd.ty is not T.VOID:
             self.emit(f"v_{ident(pou.name)} = {self.default_code(rd.ty)}")
         for d in pou.decls:
@@ -308,7 +309,7 @@ class Codegen:
         self.pou = None
 
     def function_return(self, pou: A.Pou) -> str:
-        rd = pou.return_decl  # type: ignore[attr-defined]
+        rd = pou.return_decl
         res = f"v_{ident(pou.name)}" if rd.ty is not T.VOID else "None"
         outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
         if not outs:
@@ -365,13 +366,11 @@ class Codegen:
         self.emit("")
 
     def located(self):
-        for d in self.p.globals.values():
-            if d.address and not d.address.endswith("*"):
-                yield d, f"_G.{ident(d.name)}"
-        for n, pou, _ in self.p.programs:
-            for d in pou.decls:
-                if d.address and not d.address.endswith("*") and d.section != "VAR_EXTERNAL":
-                    yield d, f"_P.{ident(n)}.{ident(d.name)}"
+        """(declaration, Python path) of every located variable with a concrete address."""
+        for v in self.p.symbols.located_vars():
+            if not v.wildcard:
+                owner = "_G" if v.instance is None else f"_P.{ident(v.instance)}"
+                yield v.decl, f"{owner}.{ident(v.decl.name)}"
 
     # -- process image access -----------------------------------------------------------------
     @staticmethod
@@ -498,7 +497,9 @@ class Codegen:
 
     def stmt(self, s: A.Stmt) -> None:
         self.where_now = self.where(s.loc)
-        m = getattr(self, "s_" + type(s).__name__)
+        m = getattr(self, "s_" + type(s).__name__, None)
+        if m is None:
+            raise UnhandledNode("Codegen.stmt", s)
         m(s)
 
     def s_Empty(self, s: A.Empty) -> None:
@@ -946,7 +947,7 @@ class Codegen:
             return None if v is None else -v
         if isinstance(e, A.Literal):
             if e.kind == "ENUM":
-                return getattr(e, "enum_value", None)
+                return e.enum_value
             v = e.value
         elif isinstance(e, A.Name) and isinstance(e.sym, EnumSym):
             v = e.sym.value
@@ -1054,10 +1055,13 @@ class Codegen:
         """(code, nesting since the last temporary) of one node."""
         self._levels.append(0)
         try:
-            code = getattr(self, "e_" + type(e).__name__)(e)
+            method = getattr(self, "e_" + type(e).__name__, None)
+            if method is None:  # ArrayInit / StructInit go through init_code
+                raise UnhandledNode("Codegen.ex_node", e)
+            code = method(e)
         finally:
             level = self._levels.pop() + 1
-        if level >= SPILL_LEVEL and not getattr(e, "is_target", False):
+        if level >= SPILL_LEVEL and not e.is_target:
             tmp = self.new_tmp()
             self.pre.append(f"{tmp} = {code}")
             return tmp, 0
@@ -1086,7 +1090,7 @@ class Codegen:
             q = abs(v) // 1_000_000
             return repr(-q if v < 0 else q)
         if k == "ENUM":
-            return repr(getattr(e, "enum_value", 0))
+            return repr(e.enum_value or 0)
         if k == "REAL":
             return _float_code(v, single=T.resolve(e.ty) is T.REAL)
         if k == "INT" and e.ty is not None and T.resolve(e.ty).kind == "real":

@@ -1,8 +1,10 @@
 """The one abstract syntax tree that every front end (ST, IL, LD, SFC, PLCopen XML) produces.
 
-The checker annotates expressions with ``ty`` (a :mod:`plclab.lang.types` type) and names with
-``sym`` (the declaration they refer to); the compiler reads those annotations and never asks
-which language a POU came from.
+The checker annotates the tree in place, only through the fields declared below with
+:func:`annotation` (``Expr.ty``, ``Name.sym``, ``Call.target``, ``Pou.return_decl``, ...; each says
+which pass of :mod:`plclab.lang.check` sets it); the compiler reads those annotations and never
+asks which language a POU came from. :mod:`plclab.lang.walk` knows the children of every node
+class.
 """
 
 from __future__ import annotations
@@ -12,6 +14,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import Location
+
+
+def annotation(default: Any = None) -> Any:
+    """A field the checker fills in after parsing: not a constructor argument, not compared,
+    not shown in ``repr``."""
+    return field(default=default, init=False, compare=False, repr=False)
 
 # ---------------------------------------------------------------------------------------------
 # Type expressions as written in source
@@ -65,7 +73,8 @@ class StructTypeRef(TypeRef):
 @dataclass(eq=False)
 class Expr:
     loc: Location
-    ty: Any = field(default=None, init=False, repr=False)
+    ty: Any = annotation()  # check.exprs: the expression's type (plclab.lang.types)
+    is_target: bool = annotation(False)  # check.exprs.lvalue: written to, never a temporary
 
 
 @dataclass(eq=False)
@@ -74,13 +83,14 @@ class Literal(Expr):
     kind: str  # INT REAL BOOL STRING WSTRING TIME DATE TOD DT ENUM
     prefix: str | None = None  # INT#5 -> "INT"
     text: str = ""
+    enum_value: int | None = annotation()  # check.exprs: the value of Color#Red (kind ENUM)
 
 
 @dataclass(eq=False)
 class Name(Expr):
     name: str
     text: str = ""  # as written (the name is upper-cased: identifiers are case-insensitive)
-    sym: Any = field(default=None, init=False, repr=False)
+    sym: Any = annotation()  # check.exprs / check.calls: VarSym | EnumSym | ProgSym
 
 
 @dataclass(eq=False)
@@ -93,7 +103,7 @@ class Member(Expr):
     obj: Expr
     field_name: str
     text: str = ""  # the member name as written
-    sym: Any = field(default=None, init=False, repr=False)
+    sym: Any = annotation()  # check.exprs: the member's VarDecl (block instances)
 
 
 @dataclass(eq=False)
@@ -128,7 +138,7 @@ class Arg:
 class Call(Expr):
     func: Expr  # Name of a function / FB instance expression
     args: list[Arg]
-    target: Any = field(default=None, init=False, repr=False)  # resolved callee
+    target: Any = annotation()  # check.calls: CallInfo, the callee and the bound arguments
 
 
 @dataclass(eq=False)
@@ -255,8 +265,8 @@ class VarDecl:
     constant: bool = False
     retain: bool = False
     spelling: str = ""  # the name as written
-    used: bool = False  # set by the checker
-    ty: Any = field(default=None, init=False, repr=False)
+    used: bool = False  # set by the checker (check.exprs, check.declarations): for PLC0200
+    ty: Any = annotation()  # check.declarations: the resolved type
 
 
 @dataclass(eq=False)
@@ -275,6 +285,9 @@ class Pou:
     pending: list[PendingBody] = field(default_factory=list, compare=False, repr=False)
     # text ladder only: the drawn networks (plclab.lang.frontends.ld.Network), for drawings
     networks: list[Any] = field(default_factory=list, compare=False, repr=False)
+
+    # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
+    return_decl: VarDecl | None = annotation()
 
 
 @dataclass(eq=False)

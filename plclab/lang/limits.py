@@ -82,6 +82,7 @@ def nesting_violation(stmts: list) -> tuple[str, object] | None:
     operator, the right operand of a binary operator (left operands are chains, walked with
     loops), an index, an argument, the object of ``.member`` / ``[index]`` / ``(call)``."""
     from . import ast as A
+    from .walk import children
 
     leaves = (A.Literal, A.Name, A.DirectAddr)
     exprs: list[tuple[object, int]] = []  # (expression, depth)
@@ -97,8 +98,7 @@ def nesting_violation(stmts: list) -> tuple[str, object] | None:
         e, depth = exprs.pop()
         if depth > MAX_EXPR_NESTING:
             return "expressions", e.loc
-        t = type(e)
-        if t is A.Binary:
+        if type(e) is A.Binary:
             while type(e) is A.Binary:  # the left spine: same depth
                 if not isinstance(e.right, leaves):
                     exprs.append((e.right, depth + 1))
@@ -106,35 +106,15 @@ def nesting_violation(stmts: list) -> tuple[str, object] | None:
             if not isinstance(e, leaves):
                 exprs.append((e, depth))
             continue
-        if t is A.Unary:
-            kids = [e.operand]
-        elif t is A.Member:
-            kids = [e.obj]
-        elif t is A.Index:
-            kids = [e.obj, *e.indices]
-        elif t is A.Call:
-            kids = [e.func] + [a.value for a in e.args if a.value is not None]
-        else:
-            continue
-        exprs.extend((k, depth + 1) for k in kids if not isinstance(k, leaves))
+        kids = [k.value if isinstance(k, A.Arg) else k for k in children(e)]
+        exprs.extend((k, depth + 1) for k in kids if k is not None and not isinstance(k, leaves))
     return None
 
 
 def _stmt_exprs(s, A) -> list:
-    if isinstance(s, A.Assign):
-        return [s.target, s.value]
-    if isinstance(s, A.CallStmt):
-        return [s.call]
-    if isinstance(s, A.If):
-        return [c for c, _ in s.branches]
+    """The expressions of statement ``s`` itself (not of the statements inside it)."""
+    from .walk import children, flat
+
     if isinstance(s, A.Case):
-        labels = [x for b in s.branches for lab in b.labels
-                  for x in (lab if isinstance(lab, tuple) else (lab,))]
-        return [s.selector] + labels
-    if isinstance(s, A.For):
-        return [e for e in (s.var, s.start, s.end, s.step) if e is not None]
-    if isinstance(s, A.While | A.Repeat):
-        return [s.cond]
-    if isinstance(s, A.Jump) and s.cond is not None:
-        return [s.cond]
-    return []
+        return [s.selector] + [x for b in s.branches for x in flat(b.labels)]
+    return [c for c in children(s) if isinstance(c, A.Expr)]

@@ -160,17 +160,8 @@ MAP_COLUMNS = ["name", "address", "type", "table", "number", "ref", "bit", "word
 
 def located_variables(plc) -> list[tuple[str, str, str]]:
     """``(name, address, type)`` of every located variable of a loaded :class:`Plc`."""
-    out = []
-    project = plc.project
-    for d in project.globals.values():
-        if d.address and not d.address.endswith("*"):
-            out.append((d.spelling or d.name, d.address.upper(), str(d.ty)))
-    for inst, pou, _ in project.programs:
-        label = pou.spelling if inst == pou.name else inst
-        for d in pou.decls:
-            if d.address and not d.address.endswith("*") and d.section != "VAR_EXTERNAL":
-                out.append((f"{label}.{d.spelling or d.name}", d.address.upper(), str(d.ty)))
-    return out
+    return [(v.path, v.address, str(v.decl.ty)) for v in plc.project.symbols.located_vars()
+            if not v.wildcard]
 
 
 def overlaps(plc) -> list[str]:

@@ -410,10 +410,10 @@ def io_status_vars(plc, io_status: str | None) -> list[Callable[[bool], None]]:
     paths = []
     if "IO_OK" in project.globals:
         paths.append("IO_OK")
-    for inst, pou, _ in project.programs:
-        for d in pou.decls:
-            if d.name == "IO_OK" and d.section not in ("VAR_EXTERNAL", "VAR_TEMP"):
-                paths.append(f"{inst}.IO_OK")
+    symbols = project.symbols
+    for inst, pou in symbols.programs_declaring("IO_OK"):
+        if symbols.members(pou)["IO_OK"].section not in ("VAR_EXTERNAL", "VAR_TEMP"):
+            paths.append(f"{inst}.IO_OK")
     for p in paths:
         var = plc.var(p)
         if T.resolve(var.type) is not T.BOOL:

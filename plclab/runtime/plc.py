@@ -25,6 +25,7 @@ from ..compile.codegen import Compiled, _kind_name
 from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
+from ..lang.check.symbols import instance_label
 from ..lang.limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
 from . import natives
 from .rt import HELPERS, AssertFailure, Budget, Fault, format_value
@@ -279,8 +280,9 @@ class Plc:
         for d in self.project.globals.values():
             if d.retain:
                 yield d.name, self.var(d.name)
-        for inst, pou, _ in self.project.programs:
-            for d in pou.decls:
+        symbols = self.project.symbols
+        for inst, pou, _ in symbols.programs():
+            for d in symbols.members(pou).values():
                 if d.retain and d.section != "VAR_EXTERNAL":
                     yield f"{inst}.{d.name}", self.var(f"{inst}.{d.name}")
 
@@ -543,8 +545,7 @@ class Plc:
             return self._walk(path, program(head_u), T.FBType(pou.name, pou), parts[1:])
         if head_u in self.project.globals:
             return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project), parts)
-        owners = [(n, pou) for n, pou, _ in self.project.programs
-                  if any(d.name == head_u for d in pou.decls)]
+        owners = self.project.symbols.programs_declaring(head_u)
         if len(owners) == 1:
             n, pou = owners[0]
             return self._walk(path, program(n.upper()), T.FBType(pou.name, pou), parts)
@@ -554,7 +555,8 @@ class Plc:
                            f"{owners[0][0]}.{head}")
         from ..suggest import suggest
 
-        cands = [d.name for _, pou, _ in self.project.programs for d in pou.decls]
+        symbols = self.project.symbols
+        cands = [name for _, pou, _ in symbols.programs() for name in symbols.members(pou)]
         cands += list(self.project.globals) + [n for n, _, _ in self.project.programs]
         close = suggest(head_u, cands)
         hint = f"; did you mean {close[0]}?" if close else ""
@@ -572,8 +574,9 @@ class Plc:
                 d = cur.project.globals.get(nu)
                 address = d.address if d is not None else None
             elif isinstance(cur, T.FBType) and cur.pou is not None:
-                d = next((x for x in cur.pou.decls if x.name == nu and
-                          x.section not in ("VAR_TEMP",)), None)
+                d = self.project.symbols.members(cur.pou).get(nu)
+                if d is not None and d.section == "VAR_TEMP":
+                    d = None
                 if d is not None and d.section == "VAR_EXTERNAL":
                     return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project),
                                       [(name, idx)] + parts[parts.index((name, idx)) + 1:])
@@ -712,9 +715,10 @@ class Plc:
     def variables(self) -> list[str]:
         """Every top-level variable path (program variables and globals)."""
         out = [d.spelling or d.name for d in self.project.globals.values()]
-        for inst, pou, _ in self.project.programs:
-            label = pou.spelling if inst == pou.name else inst
-            out += [f"{label}.{d.spelling or d.name}" for d in pou.decls
+        symbols = self.project.symbols
+        for inst, pou, _ in symbols.programs():
+            label = instance_label(inst, pou)
+            out += [f"{label}.{d.spelling or d.name}" for d in symbols.members(pou).values()
                     if d.section != "VAR_TEMP" and not d.name.startswith("__")]
         return out
 

@@ -159,14 +159,9 @@ _DIRTY = object()
 
 def _declared(plc: Any, address: str) -> Any:
     """The type of a located variable declared at ``address`` (or None)."""
-    project = plc.project
-    for d in project.globals.values():
-        if d.address and d.address.upper() == address:
-            return d.ty
-    for _, pou, _ in project.programs:
-        for d in pou.decls:
-            if d.address and d.address.upper() == address:
-                return d.ty
+    for v in plc.project.symbols.located_vars():
+        if v.address == address:
+            return v.decl.ty
     return None
 
 
@@ -634,15 +629,9 @@ def _warnings(channels: list[Channel], plc: Any) -> list[str]:
     """Located PLC inputs nobody wires, located outputs that drive nothing."""
     wired = {c.address for c in channels if c.address}
     out = []
-    project = plc.project
-    decls = [(d.spelling or d.name, d) for d in project.globals.values()]
-    for inst, pou, _ in project.programs:
-        label = pou.spelling if inst == pou.name else inst
-        decls += [(f"{label}.{d.spelling or d.name}", d) for d in pou.decls
-                  if d.section != "VAR_EXTERNAL"]
-    for name, d in decls:
-        a = (d.address or "").upper()
-        if not a or a.endswith("*") or a[1] not in "IQ":
+    for v in plc.project.symbols.located_vars():
+        name, a = v.path, v.address
+        if v.wildcard or a[1] not in "IQ":
             continue
         if a not in wired and not _covered(a, wired):
             if a[1] == "I":

@@ -795,8 +795,7 @@ def _canonical(plc: Any, path: str) -> str:
     project = plc.project
     if head in {n.upper() for n, _, _ in project.programs} or head in project.globals:
         return p
-    owners = [n.upper() for n, pou, _ in project.programs
-              if any(d.name.upper() == head for d in pou.decls)]
+    owners = [n.upper() for n, _ in project.symbols.programs_declaring(head)]
     return f"{owners[0]}.{p}" if len(owners) == 1 else p
 
 

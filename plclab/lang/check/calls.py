@@ -1,0 +1,336 @@
+"""Pass: calls -- functions, function block and program instances, standard functions and
+conversions; binds arguments to parameters (PLC0106, PLC0107)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from ...errors import Location
+from .. import ast as A
+from .. import types as T
+from ..builtins import BUILTINS, Builtin, conversion
+from .context import Pass, close_hint
+from .symbols import ProgSym, VarSym
+
+_INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
+
+
+@dataclass(eq=False)
+class CallInfo:
+    """A checked call: what is called and how its parameters bind (``Call.target``)."""
+
+    kind: str  # "builtin" "conv" "function" "fb" "program"
+    callee: Any  # Builtin | (src, dst) | Pou
+    inputs: list[tuple[Any, A.Expr]] = field(default_factory=list)  # (VarDecl|index, expr)
+    outputs: list[tuple[Any, A.Expr, bool]] = field(default_factory=list)  # (VarDecl, target, neg)
+    inouts: list[tuple[Any, A.Expr]] = field(default_factory=list)
+
+
+class Calls(Pass):
+    """Checks calls, sets ``Call.target`` and records the call graph (for recursion)."""
+
+    def call(self, c: A.Call, statement: bool) -> T.Type:
+        f = c.func
+        if isinstance(f, A.Name):
+            fname = f.name
+            local = self.cx.exprs.lookup(fname)
+            if isinstance(local, VarSym) and local.decl.section == "RETURN":
+                local = None  # F(...) inside F is a (recursive) call, not the result variable
+            if local is None:
+                pou = self.table.pous.get(fname)
+                if pou is not None and pou.kind == "FUNCTION":
+                    return self.call_function(c, pou)
+                if pou is not None and pou.kind == "PROGRAM":
+                    if not statement:
+                        self.err("PLC0106", f"program {fname} is called as a statement, not in an "
+                                 "expression", c.loc)
+                    f.sym = ProgSym(pou, pou.name)
+                    f.ty = self.table.types[pou.name]
+                    return self.call_fb(c, pou, statement, program=True)
+                if fname in BUILTINS or conversion(fname) is not None:
+                    return self.call_builtin(c, fname, statement)
+                if pou is not None and pou.kind == "FUNCTION_BLOCK":
+                    self.err("PLC0106", f"{fname} is a function block type; declare an instance "
+                             f"(e.g. my{fname.title()} : {fname};) and call the instance", c.loc)
+                    self._args_only(c)
+                    return T.ANY
+                cands = [k for k, v in self.table.pous.items() if v.kind == "FUNCTION"] + list(
+                    BUILTINS) + list(self.cx.scope)
+                self.err("PLC0106", f"{fname} is not a function or function block instance" +
+                         close_hint(fname, cands), c.loc)
+                self._args_only(c)
+                return T.ANY
+        ft = T.resolve(self.cx.exprs.expr(f, None))
+        if isinstance(ft, T.FBType):
+            if ft.pou.kind == "FUNCTION_BLOCK":
+                return self.call_fb(c, ft.pou, statement)
+        if ft is not T.ANY:
+            self.err("PLC0106", f"a value of type {ft} cannot be called", c.loc)
+        self._args_only(c)
+        return T.ANY
+
+    def _args_only(self, c: A.Call) -> None:
+        for a in c.args:
+            if a.value is not None:
+                self.cx.exprs.expr(a.value, None)
+
+    def _bind(self, c: A.Call, params: list[A.VarDecl], who: str) -> tuple[list, list, list]:
+        """Bind call arguments to formal parameters: named, or positional in order."""
+        inputs, outputs, inouts = [], [], []
+        positional_params = [d for d in params if d.section in _INPUTISH]
+        by_name = {d.name: d for d in params}
+        pos = 0
+        seen: set[str] = set()
+        for a in c.args:
+            if a.name is None:
+                if pos >= len(positional_params):
+                    self.err("PLC0107", f"too many arguments for {who} (it takes "
+                             f"{len(positional_params)} input(s))", a.loc)
+                    self.cx.exprs.expr(a.value, None)
+                    continue
+                d = positional_params[pos]
+                pos += 1
+            else:
+                d = by_name.get(a.name)
+                if d is None or d.section not in _INPUTISH + ("VAR_OUTPUT",):
+                    names = [p.name for p in params if p.section in _INPUTISH + ("VAR_OUTPUT",)]
+                    self.err("PLC0107", f"{who} has no parameter {a.name}" +
+                             close_hint(a.name, names) + (
+                                 "" if close_hint(a.name, names) else
+                                 f" (parameters: {', '.join(names) or 'none'})"), a.loc)
+                    if a.value is not None:
+                        self.cx.exprs.expr(a.value, None)
+                    continue
+            if d.name in seen:
+                self.err("PLC0107", f"parameter {d.name} is given twice", a.loc)
+            seen.add(d.name)
+            if a.output:
+                if d.section != "VAR_OUTPUT":
+                    self.err("PLC0107", f"{d.name} is an input of {who}; pass it with ':=' not "
+                             "'=>'", a.loc)
+                    continue
+                if a.value is not None:
+                    tt = self.cx.exprs.lvalue(a.value)
+                    self.cx.exprs.check_assignable(d.ty, tt, a.value, a.loc)
+                    outputs.append((d, a.value, a.negated))
+                continue
+            if d.section == "VAR_OUTPUT":
+                self.err("PLC0107", f"{d.name} is an output of {who}; connect it with '=>' "
+                         f"(e.g. {d.name} => myVar)", a.loc)
+                self.cx.exprs.expr(a.value, None)
+                continue
+            if d.section == "VAR_IN_OUT":
+                tt = self.cx.exprs.lvalue(a.value)
+                if not T.same_type(tt, d.ty) and tt is not T.ANY and d.ty is not T.ANY and not (
+                    isinstance(T.resolve(tt), T.StringType) and
+                    isinstance(T.resolve(d.ty), T.StringType)
+                ):
+                    self.err("PLC0107", f"VAR_IN_OUT {d.name} needs a variable of type {d.ty} "
+                             f"exactly, not {tt}", a.loc)
+                inouts.append((d, a.value))
+                continue
+            vt = self.cx.exprs.expr(a.value, d.ty)
+            self.cx.exprs.check_assignable(vt, d.ty, a.value, a.loc)
+            inputs.append((d, a.value))
+        for d in params:
+            if d.section == "VAR_IN_OUT" and d.name not in seen:
+                self.err("PLC0107", f"VAR_IN_OUT {d.name} of {who} must be connected on every "
+                         "call", c.loc)
+        return inputs, outputs, inouts
+
+    def params(self, pou: A.Pou) -> list[A.VarDecl]:
+        """The declarations of a called POU, its parameters among them."""
+        return list(self.table.members(pou).values())
+
+    def _called(self, pou: A.Pou, loc: Location) -> None:
+        """Remember that the POU being checked calls ``pou`` here (for recursion)."""
+        if self.cx.pou is not None:
+            self.cx.call_graph.setdefault(self.cx.pou.name, set()).add(pou.name)
+            self.cx.call_sites.setdefault((self.cx.pou.name, pou.name), loc)
+
+    def call_function(self, c: A.Call, pou: A.Pou) -> T.Type:
+        self._called(pou, c.loc)
+        ins, outs, inouts = self._bind(c, self.params(pou), f"function {pou.spelling or pou.name}")
+        c.target = CallInfo("function", pou, ins, outs, inouts)
+        rd = pou.return_decl
+        return rd.ty if rd is not None else T.VOID
+
+    def call_fb(self, c: A.Call, pou: A.Pou, statement: bool, program: bool = False) -> T.Type:
+        if not statement:
+            self.err("PLC0106", f"a function block call is a statement: call {pou.name} on its "
+                     "own line, then read its outputs (inst.Q)", c.loc)
+        self._called(pou, c.loc)
+        ins, outs, inouts = self._bind(c, self.params(pou), f"{pou.name}")
+        c.target = CallInfo("program" if program else "fb", pou, ins, outs, inouts)
+        return T.VOID
+
+    def call_builtin(self, c: A.Call, name: str, statement: bool) -> T.Type:
+        conv = conversion(name)
+        if conv is not None and name not in BUILTINS:
+            if len(c.args) != 1 or c.args[0].output:
+                self.err("PLC0107", f"{name} takes exactly one argument", c.loc)
+                self._args_only(c)
+                return conv[1]
+            a = c.args[0]
+            at = self.cx.exprs.expr(a.value, None)
+            src, dst = conv
+            ra = T.base_of(at)
+            if src not in (None, "__TRUNC__") and ra is not T.ANY:
+                want = T.lookup_elementary(src)
+                ok = T.can_widen(ra, want) or T.same_type(ra, want) or (
+                    isinstance(ra, T.EnumType) and want.kind == "int")
+                if not ok:
+                    self.err("PLC0107", f"{name} expects {src}, but the argument is "
+                             f"{T.concrete(ra)}" + (f"; use {T.concrete(ra).name}_TO_"
+                                                    f"{dst.name}" if hasattr(dst, 'name') else ""),
+                             a.loc)
+            c.target = CallInfo("conv", (src, dst), [(0, a.value)])
+            return dst
+        b: Builtin = BUILTINS[name]
+        if b.test_only and not self.cx.in_test:
+            self.err("PLC0106", f"{name} is only available inside TEST ... END_TEST blocks",
+                     c.loc)
+        if b.statement_only and not statement:
+            self.err("PLC0106", f"{name} is a statement, not a value", c.loc)
+        vals: list[A.Expr] = []
+        names = list(b.params)
+        for a in c.args:
+            if a.output:
+                self.err("PLC0107", f"{name} has no outputs to connect with '=>'", a.loc)
+                continue
+            if a.name is not None:
+                if a.name in names:
+                    idx = names.index(a.name)
+                elif b.variadic and a.name.startswith(names[-1][:-1]) and a.name[len(
+                        names[-1]) - 1:].isdigit():
+                    idx = int(a.name[len(names[-1]) - 1:]) - (1 if names[0].endswith("1") else 0)
+                    idx = max(idx, 0)
+                else:
+                    self.err("PLC0107", f"{name} has no parameter {a.name} (parameters: "
+                             f"{', '.join(names)})", a.loc)
+                    continue
+                while len(vals) <= idx:
+                    vals.append(None)  # type: ignore[arg-type]
+                vals[idx] = a.value
+            else:
+                vals.append(a.value)
+        if any(v is None for v in vals) or len(vals) < b.min_args or (
+            not b.variadic and len(vals) > len(b.params)
+        ):
+            self.err("PLC0107", f"{name} takes {'at least ' if b.variadic else ''}"
+                     f"{b.min_args if b.variadic else len(b.params)} argument(s): "
+                     f"{name}({', '.join(b.params)}{', ...' if b.variadic else ''})", c.loc)
+            for v in vals:
+                if v is not None:
+                    self.cx.exprs.expr(v, None)
+            return T.ANY
+        c.target = CallInfo("builtin", b, list(enumerate(vals)))
+        return self.builtin_type(name, vals, c)
+
+    def builtin_type(self, name: str, vals: list[A.Expr], c: A.Call) -> T.Type:
+        ts = [self.cx.exprs.expr(v, None) for v in vals]
+        bs = [T.base_of(t) for t in ts]
+        if any(t is T.ANY for t in bs):
+            return T.BOOL if name in ("GT", "GE", "EQ", "LE", "LT", "NE") else T.ANY
+
+        def need(ok: bool, what: str) -> None:
+            if not ok:
+                self.err("PLC0107", f"{name} needs {what}, not " +
+                         ", ".join(str(T.concrete(b)) for b in bs), c.loc)
+
+        def common(items: list[T.Type]) -> T.Type:
+            cur = items[0]
+            for x in items[1:]:
+                nxt = T.common_type(cur, x)
+                if nxt is None:
+                    self.err("PLC0107", f"{name}: the arguments {T.concrete(cur)} and "
+                             f"{T.concrete(x)} have no common type", c.loc)
+                    return T.ANY
+                cur = nxt
+            return cur
+
+        if name in ("ABS", "NEG"):
+            need(bs[0].kind in ("int", "real"), "a number")
+            return ts[0]
+        if name in ("SQRT", "LN", "LOG", "EXP", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN"):
+            need(bs[0].kind in ("int", "real"), "a number")
+            return ts[0] if bs[0].kind == "real" and bs[0] is not T.ANY_REAL_LIT else (
+                T.LREAL if bs[0] is T.ANY_REAL_LIT or getattr(bs[0], "bits", 0) > 16 else T.REAL)
+        if name == "ATAN2":
+            return common(bs) if all(b.kind == "real" for b in bs) else T.LREAL
+        if name in ("TRUNC", "ROUND"):
+            need(bs[0].kind == "real", "a REAL or LREAL")
+            return T.DINT  # as CODESYS: TRUNC and ROUND give DINT
+        if name == "MOVE":
+            return ts[0]
+        if name == "EXPT":
+            need(bs[0].kind in ("int", "real") and bs[1].kind in ("int", "real"), "numbers")
+            return ts[0] if bs[0].kind == "real" and bs[0] is not T.ANY_REAL_LIT else T.LREAL
+        if name in ("ADD", "MUL", "SUB", "DIV", "MOD", "MIN", "MAX"):
+            t = common(bs)
+            if name in ("MIN", "MAX"):
+                return t
+            need(t is T.ANY or t.kind in ("int", "real", "time"), "numbers")
+            return t
+        if name == "LIMIT":
+            return common(bs)
+        if name == "SEL":
+            need(bs[0] is T.BOOL, "a BOOL selector G first")
+            return common(bs[1:])
+        if name == "MUX":
+            need(bs[0].kind == "int", "an integer selector K first")
+            return common(bs[1:])
+        if name in ("SHL", "SHR", "ROL", "ROR"):
+            need(bs[0].kind in ("bits", "int") and bs[1].kind == "int",
+                 "a bit string and a shift count")
+            return ts[0] if bs[0] is not T.ANY_INT_LIT else T.DWORD
+        if name in ("GT", "GE", "EQ", "LE", "LT", "NE"):
+            common(bs)
+            return T.BOOL
+        strs = [isinstance(b, T.StringType) for b in bs]
+        if name == "LEN":
+            need(strs[0], "a STRING")
+            return T.INT
+        if name in ("LEFT", "RIGHT"):
+            need(strs[0] and bs[1].kind == "int", "a STRING and a length")
+            return ts[0]
+        if name == "MID":
+            need(strs[0] and bs[1].kind == "int" and bs[2].kind == "int",
+                 "a STRING, a length and a position")
+            return ts[0]
+        if name == "CONCAT":
+            need(all(strs), "STRINGs")
+            wide = any(getattr(b, "wide", False) for b in bs)
+            return T.StringType(wide, 80 if not wide else 80)
+        if name == "INSERT":
+            need(strs[0] and strs[1] and bs[2].kind == "int", "two STRINGs and a position")
+            return ts[0]
+        if name == "DELETE":
+            need(strs[0] and bs[1].kind == "int" and bs[2].kind == "int",
+                 "a STRING, a length and a position")
+            return ts[0]
+        if name == "REPLACE":
+            need(strs[0] and strs[1] and bs[2].kind == "int" and bs[3].kind == "int",
+                 "two STRINGs, a length and a position")
+            return ts[0]
+        if name == "FIND":
+            need(strs[0] and strs[1], "two STRINGs")
+            return T.INT
+        if name in ("ASSERT_EQ", "ASSERT_NE"):
+            if T.common_type(bs[0], bs[1]) is None and not (
+                isinstance(bs[0], T.EnumType) and bs[0] is bs[1]
+            ):
+                self.err("PLC0107", f"{name} compares values of one type, not {T.concrete(bs[0])} "
+                         f"and {T.concrete(bs[1])}", c.loc)
+            return T.VOID
+        if name in ("ASSERT_TRUE", "ASSERT_FALSE"):
+            need(bs[0] is T.BOOL, "a BOOL")
+            return T.VOID
+        if name == "ASSERT_NEAR":
+            need(all(b.kind in ("int", "real", "time") for b in bs), "numbers")
+            return T.VOID
+        if name == "ADVANCE_TIME":
+            need(bs[0].kind == "time", "a TIME, e.g. ADVANCE_TIME(T#100ms)")
+            return T.VOID
+        return T.ANY

@@ -1,0 +1,471 @@
+"""Pass: expressions -- names, literals, members, indices, operators, and whether a value may
+be assigned where it goes (PLC0100, PLC0103-PLC0105, PLC0111, PLC0116-PLC0118, PLC0121)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ...errors import Location
+from .. import ast as A
+from .. import types as T
+from ..walk import NodeVisitor
+from .context import Pass, close_hint
+from .declarations import split_address
+from .symbols import EnumSym, ProgSym, VarSym
+
+_REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
+
+
+class Expressions(Pass, NodeVisitor):
+    """Types every expression (``Expr.ty``) and resolves names (``Name.sym``)."""
+
+    def check_assignable(self, src: T.Type, dst: T.Type, e: A.Expr, loc: Location) -> None:
+        if src is T.ANY or dst is T.ANY:
+            return
+        rs, rd = T.resolve(src), T.resolve(dst)
+        if isinstance(rd, T.FBType):
+            self.err("PLC0103", f"cannot assign to a function block instance of {rd.name}; "
+                     "call it or assign its members", loc)
+            return
+        if isinstance(e, A.Literal) and e.kind == "INT" and src in (T.ANY_INT_LIT,) or (
+            isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None
+        ):
+            if rd.kind in ("int", "bits"):
+                if not T.fits(e.value, rd):
+                    self.err("PLC0111", f"{e.value} does not fit in {rd.name} "
+                             f"({_range_text(rd)}); use a larger type", e.loc)
+                return
+        if isinstance(rs, T.EnumType) or isinstance(rd, T.EnumType):
+            if rs is rd:
+                return
+            self.err("PLC0103", f"cannot assign {rs} to {rd}: enumerations only take their own "
+                     "values", loc)
+            return
+        if T.base_of(rd) is T.REAL and isinstance(e, A.Literal) and e.prefix is None and \
+                e.kind in ("REAL", "INT") and abs(e.value) > _REAL_MAX:
+            self.err("PLC0111", f"{e.text} does not fit in REAL (at most about 3.4E38); use "
+                     "LREAL", e.loc)
+            return
+        if T.can_widen(rs, rd):
+            if T.base_of(rs).name in ("DINT", "UDINT", "LINT") and T.base_of(rd) is T.REAL:
+                self.warn("PLC0202", f"{rs} to REAL may lose precision (REAL has 24 bits of "
+                          "mantissa); use LREAL or an explicit conversion", loc)
+            if isinstance(rd, T.Subrange) and isinstance(e, A.Literal) and e.kind == "INT" and \
+                    not T.fits(e.value, rd):
+                self.err("PLC0111", f"{e.value} is outside the subrange {rd.lo}..{rd.hi}", e.loc)
+            return
+        if isinstance(rs, T.StringType) and isinstance(rd, T.StringType) and rs.wide != rd.wide:
+            self.err("PLC0103", "STRING and WSTRING do not mix; convert with STRING_TO_WSTRING",
+                     loc)
+            return
+        hint = ""
+        if rs.kind in ("int", "real", "bits", "time", "bool") and rd.kind in (
+            "int", "real", "bits", "time", "bool"
+        ):
+            sn, dn = T.base_of(T.concrete(rs)).name, T.base_of(rd).name
+            hint = f"; convert explicitly with {sn}_TO_{dn}(...)"
+        self.err("PLC0118" if hint else "PLC0103",
+                 f"cannot assign {T.concrete(rs)} to {rd} without a conversion{hint}", loc)
+
+    def lookup(self, name: str) -> Any:
+        sym = self.cx.scope.local(name)
+        if sym is not None:
+            return sym
+        g = self.table.globals.get(name)
+        if g is not None:
+            return VarSym(g, "global", None)
+        return None
+
+    def lvalue(self, e: A.Expr) -> T.Type:
+        t = self.expr(e, None, write=True)
+        e.is_target = True  # never moved into a temporary
+        if isinstance(e, A.Member) and e.field_name.startswith("%"):
+            e.obj.is_target = True  # x.3 := ... assigns x
+        root = e
+        while isinstance(root, A.Member | A.Index):
+            root = root.obj
+        if isinstance(e, A.Name):
+            sym = e.sym
+            if isinstance(sym, VarSym):
+                d = sym.decl
+                if d.constant:
+                    self.err("PLC0105", f"{d.spelling or d.name} is a constant and cannot be "
+                             "changed", e.loc)
+                elif d.address and d.address.startswith("%I"):
+                    self.err("PLC0105", f"{d.spelling or d.name} is a physical input ({d.address}); "
+                             "a program can read an input but not write it", e.loc)
+                elif d.section == "VAR_INPUT" and self.cx.pou is not None and \
+                        self.cx.pou.kind == "FUNCTION_BLOCK":
+                    self.warn("PLC0203", f"{d.name} is an input of {self.cx.pou.name}: the caller "
+                              "overwrites it on every call; copy it to a local variable", e.loc)
+            elif isinstance(sym, EnumSym):
+                self.err("PLC0105", f"{e.name} is an enumeration value, not a variable", e.loc)
+            elif isinstance(sym, ProgSym):
+                self.err("PLC0105", f"{e.name} is a program; assign its variables instead",
+                         e.loc)
+        elif isinstance(e, A.DirectAddr):
+            if e.address.startswith("%I"):
+                self.err("PLC0105", f"{e.address} is a physical input; a program cannot write it",
+                         e.loc)
+        elif not isinstance(e, A.Name | A.Member | A.Index):
+            self.err("PLC0105", "the left side of ':=' must be a variable, an element or a "
+                     "member", e.loc)
+        return t
+
+    def expr(self, e: A.Expr, expected: T.Type | None, write: bool = False) -> T.Type:
+        t = self.visit(e, expected, write)
+        e.ty = t
+        return t
+
+    # one visit_<Class> per expression class (an unknown class raises UnhandledNode)
+    def visit_Literal(self, e: A.Literal, expected: T.Type | None, write: bool) -> T.Type:
+        return self.literal(e, expected)
+
+    def visit_Name(self, e: A.Name, expected: T.Type | None, write: bool) -> T.Type:
+        return self.name(e, expected)
+
+    def visit_DirectAddr(self, e: A.DirectAddr, expected: T.Type | None, write: bool) -> T.Type:
+        return self.direct(e)
+
+    def visit_Member(self, e: A.Member, expected: T.Type | None, write: bool) -> T.Type:
+        return self.member(e, write)
+
+    def visit_Index(self, e: A.Index, expected: T.Type | None, write: bool) -> T.Type:
+        return self.index(e)
+
+    def visit_Unary(self, e: A.Unary, expected: T.Type | None, write: bool) -> T.Type:
+        return self.unary(e, expected)
+
+    def visit_Binary(self, e: A.Binary, expected: T.Type | None, write: bool) -> T.Type:
+        return self.binary(e, expected)
+
+    def visit_Call(self, e: A.Call, expected: T.Type | None, write: bool) -> T.Type:
+        return self.cx.calls.call(e, statement=False)
+
+    def visit_ArrayInit(self, e: A.Expr, expected: T.Type | None, write: bool) -> T.Type:
+        self.err("PLC0103", "an aggregate initial value is only allowed in a declaration",
+                 e.loc)
+        return T.ANY
+
+    visit_StructInit = visit_ArrayInit
+
+    def literal(self, e: A.Literal, expected: T.Type | None) -> T.Type:
+        k = e.kind
+        if k == "BOOL":
+            return T.BOOL
+        if k in ("INT", "REAL") and e.prefix:
+            t = self.cx.decls.named_type(e.prefix, e.loc)
+            rt = T.resolve(t)
+            if k == "INT" and rt.kind in ("int", "bits"):
+                if not T.fits(e.value, rt):
+                    self.err("PLC0111", f"{e.text} does not fit in {rt.name} ({_range_text(rt)})",
+                             e.loc)
+                return t
+            if rt is T.BOOL and k == "INT" and e.value in (0, 1):
+                e.kind, e.value = "BOOL", bool(e.value)
+                return T.BOOL
+            if rt.kind == "real":
+                e.kind, e.value = "REAL", float(e.value)
+                if rt is T.REAL and abs(e.value) > _REAL_MAX:
+                    self.err("PLC0111", f"{e.text} does not fit in REAL (at most about "
+                             "3.4E38); use LREAL", e.loc)
+                return t
+            if isinstance(rt, T.EnumType):
+                return rt
+            self.err("PLC0111", f"{e.text} is not a valid {t} literal", e.loc)
+            return t
+        if k == "INT":
+            return T.ANY_INT_LIT
+        if k == "REAL":
+            return T.ANY_REAL_LIT
+        if k in ("STRING", "WSTRING"):
+            return T.StringType(k == "WSTRING", max(len(e.value), 1))
+        if k == "TIME":
+            t = T.LTIME if e.prefix == "LTIME" else T.TIME
+            if expected is not None and T.resolve(expected) is T.LTIME:
+                t = T.LTIME
+            ms = abs(e.value) // 1_000_000 * (-1 if e.value < 0 else 1)
+            if t is T.TIME and not (T.TIME.lo <= ms <= T.TIME.hi):
+                self.err("PLC0126", f"{e.text} is out of TIME's range (T#-24d20h31m23s648ms.."
+                         "T#24d20h31m23s647ms, 32 bits of ms); use LTIME# for longer durations",
+                         e.loc)
+            return t
+        if k in ("DATE", "TOD", "DT"):
+            return {"DATE": T.DATE, "TOD": T.TOD, "DT": T.DT}[k]
+        if k == "ENUM":
+            tname, member = e.value
+            t = T.resolve(self.cx.decls.named_type(tname, e.loc))
+            if isinstance(t, T.EnumType):
+                if member not in t.members:
+                    self.err("PLC0116", f"{tname} has no value {member}" +
+                             close_hint(member, t.members), e.loc)
+                    return T.ANY
+                e.enum_value = t.members[member]
+                return t
+            if t is not T.ANY:
+                self.err("PLC0102", f"{tname} is not an enumeration type", e.loc)
+            return T.ANY
+        return T.ANY
+
+    def name(self, e: A.Name, expected: T.Type | None) -> T.Type:
+        sym = self.lookup(e.name)
+        if sym is not None:
+            e.sym = sym
+            sym.decl.used = True
+            return sym.decl.ty if sym.decl.ty is not None else T.ANY
+        members = self.table.enum_members.get(e.name)
+        if members:
+            rexp = T.resolve(expected) if expected is not None else None
+            for m in members:
+                if m.type is rexp:
+                    e.sym = m
+                    return m.type
+            if len(members) == 1:
+                e.sym = members[0]
+                return members[0].type
+            self.err("PLC0100", f"{e.name} is a value of several enumerations ("
+                     + ", ".join(m.type.name for m in members) + "); qualify it, e.g. "
+                     f"{members[0].type.name}#{e.name}", e.loc)
+            return T.ANY
+        p = self.table.pous.get(e.name)
+        if p is not None and p.kind == "PROGRAM":
+            e.sym = ProgSym(p, p.name)
+            return self.table.types[p.name]
+        if p is not None and p.kind == "FUNCTION_BLOCK":
+            self.err("PLC0100", f"{e.name} is a function block type; declare an instance "
+                     f"(inst : {e.name};) and use the instance", e.loc)
+            return T.ANY
+        cands = list(self.cx.scope) + list(self.table.globals) + list(self.table.enum_members)
+        self.err("PLC0100", f"{e.text or e.name} is not declared" + close_hint(e.name, cands) +
+                 ("" if close_hint(e.name, cands) else "; declare it in a VAR section"),
+                 e.loc)
+        # declare it to avoid repeated errors
+        d = A.VarDecl(e.loc, e.name, A.NamedTypeRef(e.loc, "ANY"))
+        d.ty = T.ANY
+        d.used = True
+        sym2 = VarSym(d, "local", None)
+        self.cx.scope.declare(e.name, sym2)
+        e.sym = sym2
+        return T.ANY
+
+    def direct(self, e: A.DirectAddr) -> T.Type:
+        a = e.address
+        size, parts = split_address(a)
+        if size == "X" and (len(parts) != 2 or len(parts[1]) > 1 or int(parts[1]) > 7):
+            self.err("PLC0120", f"bit address {a[:30]} needs byte.bit with bit 0..7, e.g. %IX0.3",
+                     e.loc)
+        elif size != "X" and len(parts) != 1:
+            self.err("PLC0120", f"{a[:30]}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
+                     e.loc)
+        else:
+            self.cx.decls.image_extent(a, size, parts[0], e.loc)
+        return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
+
+    def member(self, e: A.Member, write: bool) -> T.Type:
+        ot = T.resolve(self.expr(e.obj, None))
+        f = e.field_name
+        if ot is T.ANY:
+            return T.ANY
+        if f.startswith("%"):
+            bit = int(f[1:])
+            bt = T.base_of(ot)
+            if bt.kind not in ("bits", "int") or not isinstance(bt, T.Elementary):
+                self.err("PLC0116", f"bit access .{bit} needs a BYTE/WORD/DWORD/LWORD or integer, "
+                         f"not {ot}", e.loc)
+            elif bit >= bt.bits:
+                self.err("PLC0116", f"bit {bit} does not exist in {bt.name} (0..{bt.bits - 1})",
+                         e.loc)
+            return T.BOOL
+        if isinstance(ot, T.StructType):
+            d = ot.fields.get(f)
+            if d is None:
+                self.err("PLC0116", f"structure {ot.name} has no member {f}" +
+                         close_hint(f, ot.fields), e.loc)
+                return T.ANY
+            return d.ty
+        if isinstance(ot, T.FBType):
+            pou = ot.pou
+            members = self.table.members(pou)
+            d = members.get(f)
+            if d is None:
+                names = list(members)
+                self.err("PLC0116", f"{pou.kind.replace('_', ' ').lower()} {pou.name} has no "
+                         f"member {f}" + close_hint(f, names), e.loc)
+                return T.ANY
+            e.sym = d
+            if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test:
+                if d.section in ("VAR", "VAR_TEMP"):
+                    self.err("PLC0121", f"{f} is internal to {pou.name}; only its inputs and "
+                             "outputs are visible outside", e.loc)
+                elif write and d.section == "VAR_OUTPUT":
+                    self.err("PLC0105", f"{f} is an output of {pou.name}; only the block itself "
+                             "writes it", e.loc)
+            return d.ty
+        self.err("PLC0116", f"{ot} has no members; '.{f}' needs a structure or a function block "
+                 "instance", e.loc)
+        return T.ANY
+
+    def index(self, e: A.Index) -> T.Type:
+        ot = T.resolve(self.expr(e.obj, None))
+        for ix in e.indices:
+            it = T.resolve(self.expr(ix, T.DINT))
+            if it is not T.ANY and it.kind not in ("int", "enum") and it is not T.ANY_INT_LIT:
+                self.err("PLC0117", f"an array index must be an integer, not {it}", ix.loc)
+        if ot is T.ANY:
+            return T.ANY
+        if isinstance(ot, T.StringType):
+            self.err("PLC0117", "strings are not indexed with [...]; use MID(s, 1, position)",
+                     e.loc)
+            return T.ANY
+        if not isinstance(ot, T.ArrayType):
+            self.err("PLC0117", f"{ot} is not an array and cannot be indexed", e.loc)
+            return T.ANY
+        if len(e.indices) != len(ot.dims):
+            self.err("PLC0117", f"{ot} has {len(ot.dims)} dimension(s) but {len(e.indices)} "
+                     "index(es) were given", e.loc)
+            return ot.elem
+        for ix, (lo, hi) in zip(e.indices, ot.dims, strict=True):
+            v = self.cx.consts.const_value(ix) if isinstance(ix, A.Literal | A.Unary) else None
+            if isinstance(v, int) and not lo <= v <= hi:
+                self.err("PLC0112", f"index {v} is outside the array bounds {lo}..{hi}", ix.loc)
+        return ot.elem
+
+    def unary(self, e: A.Unary, expected: T.Type | None) -> T.Type:
+        t = self.expr(e.operand, expected)
+        rt = T.base_of(t)
+        if rt is T.ANY:
+            return T.ANY
+        if e.op == "NOT":
+            if rt is T.BOOL or rt.kind == "bits" or rt.kind == "int":
+                return t
+            self.err("PLC0104", f"NOT needs BOOL or a bit string, not {t}", e.loc)
+            return T.ANY
+        if rt.kind in ("int", "real", "time"):
+            if isinstance(rt, T.Elementary) and rt.kind == "int" and not rt.signed:
+                self.warn("PLC0204", f"negating an unsigned {rt.name} wraps around", e.loc)
+            return t
+        self.err("PLC0104", f"unary '-' needs a number or a TIME, not {t}", e.loc)
+        return T.ANY
+
+    def binary(self, e: A.Binary, expected: T.Type | None) -> T.Type:
+        """A chain ``a + b + c + ...`` is a left-deep tree: walk its left spine with a loop
+        (expected types flow down, result types up), so its length costs no recursion."""
+        spine = [(e, expected)]
+        while isinstance(spine[-1][0].left, A.Binary):
+            node, exp = spine[-1]
+            spine.append((node.left, _left_expected(node, exp)))
+        bottom, exp = spine[-1]
+        lt = self.expr(bottom.left, _left_expected(bottom, exp))
+        for node, exp in reversed(spine):
+            lt = self.binary_node(node, exp, lt)
+            node.ty = lt
+        return lt
+
+    def binary_node(self, e: A.Binary, expected: T.Type | None, lt: T.Type) -> T.Type:
+        """The type of ``e`` whose left operand (of type ``lt``) is checked already."""
+        op = e.op
+        if op in ("AND", "OR", "XOR"):
+            rt = self.expr(e.right, lt if lt not in (T.ANY_INT_LIT,) else expected)
+        else:
+            sub_exp = expected if op in ("+", "-", "*", "/", "MOD") else None
+            rt = self.expr(e.right, lt if T.resolve(lt).kind in ("enum",) else sub_exp)
+            if T.resolve(rt).kind == "enum" and isinstance(e.left, A.Name) and \
+                    isinstance(e.left.sym, EnumSym):
+                lt = self.expr(e.left, rt)
+        a, b = T.base_of(lt), T.base_of(rt)
+        if a is T.ANY or b is T.ANY:
+            return T.BOOL if op in ("=", "<>", "<", "<=", ">", ">=") else T.ANY
+        if op in ("AND", "OR", "XOR"):
+            if a is T.BOOL and b is T.BOOL:
+                return T.BOOL
+            if a.kind in ("bits", "int") and b.kind in ("bits", "int"):
+                c = T.common_type(a, b)
+                if c is not None:
+                    return c
+            self.err("PLC0104", f"{op} needs two BOOLs or two bit strings, not {a} and {b}" +
+                     (" (comparisons bind tighter than AND/OR: add parentheses, e.g. "
+                      "(a AND b) = c)" if T.BOOL in (a, b) else ""), e.loc)
+            return T.ANY
+        if op in ("=", "<>", "<", "<=", ">", ">="):
+            if isinstance(a, T.EnumType) or isinstance(b, T.EnumType):
+                if a is not b:
+                    self.err("PLC0104", f"cannot compare {a} with {b}", e.loc)
+                return T.BOOL
+            c = T.common_type(a, b)
+            if c is None:
+                self.err("PLC0104", f"cannot compare {T.concrete(a)} with {T.concrete(b)}" +
+                         _conv_hint(a, b), e.loc)
+            return T.BOOL
+        # arithmetic
+        ka, kb = a.kind, b.kind
+        if ka in ("time", "tod", "dt", "date") or kb in ("time", "tod", "dt", "date"):
+            return self.time_arith(e, a, b)
+        if op == "**":
+            if ka in ("int", "real") and kb in ("int", "real"):
+                if ka == "real" and a is not T.ANY_REAL_LIT:
+                    return a
+                return T.LREAL if a in (T.DINT, T.LINT, T.UDINT, T.ULINT) else T.REAL
+            self.err("PLC0104", f"'**' needs numbers, not {a} and {b}", e.loc)
+            return T.ANY
+        if op == "MOD":
+            if ka in ("int", "bits") and kb in ("int", "bits"):
+                c = T.common_type(a, b)
+                if c is not None:
+                    return c
+            self.err("PLC0104", f"MOD needs integers, not {T.concrete(a)} and {T.concrete(b)}",
+                     e.loc)
+            return T.ANY
+        if ka in ("int", "real", "bits") and kb in ("int", "real", "bits"):
+            c = T.common_type(a, b)
+            if c is not None and c.kind != "bits":
+                return c
+            if c is not None and c.kind == "bits":
+                self.err("PLC0104", f"arithmetic '{op}' is not defined on bit strings ({c}); "
+                         f"convert to an integer first, e.g. {c.name}_TO_UINT(...)", e.loc)
+                return T.ANY
+        if isinstance(a, T.StringType) and op == "+":
+            self.err("PLC0104", "strings are joined with CONCAT(a, b), not '+'", e.loc)
+            return T.ANY
+        self.err("PLC0104", f"operator '{op}' cannot combine {T.concrete(a)} and "
+                 f"{T.concrete(b)}" + _conv_hint(a, b), e.loc)
+        return T.ANY
+
+    def time_arith(self, e: A.Binary, a: T.Type, b: T.Type) -> T.Type:
+        op, ka, kb = e.op, a.kind, b.kind
+        if ka == "time" and kb == "time" and op in ("+", "-"):
+            return T.LTIME if T.LTIME in (a, b) else T.TIME
+        if ka == "time" and kb in ("int", "real") and op in ("*", "/"):
+            return a
+        if kb == "time" and ka in ("int", "real") and op == "*":
+            return b
+        if ka in ("tod", "dt") and kb == "time" and op in ("+", "-"):
+            return a
+        if ka == kb and ka in ("tod", "dt", "date") and op == "-":
+            return T.TIME
+        self.err("PLC0104", f"operator '{op}' cannot combine {T.concrete(a)} and "
+                 f"{T.concrete(b)} (TIME + TIME, TIME * number, TOD + TIME and DT - DT are "
+                 "defined)", e.loc)
+        return T.ANY
+
+
+def _left_expected(e: A.Binary, expected: T.Type | None) -> T.Type | None:
+    """The type expected of the left operand of ``e`` when ``e`` is expected to be ``expected``."""
+    if e.op in ("AND", "OR", "XOR") or e.op in ("+", "-", "*", "/", "MOD"):
+        return expected
+    return None
+
+
+def _range_text(t: T.Type) -> str:
+    t = T.resolve(t)
+    if isinstance(t, T.Subrange):
+        return f"{t.lo}..{t.hi}"
+    if isinstance(t, T.Elementary):
+        return f"{t.lo}..{t.hi}"
+    return str(t)
+
+
+def _conv_hint(a: T.Type, b: T.Type) -> str:
+    a, b = T.concrete(a), T.concrete(b)
+    if a.kind in ("int", "real", "bits") and b.kind in ("int", "real", "bits"):
+        return f"; convert one side, e.g. {a.name}_TO_{b.name}(...)"
+    return ""

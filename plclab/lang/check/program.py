@@ -1,0 +1,165 @@
+"""Pass: the whole program -- configuration and tasks, recursion among POUs, data that contains
+itself or is too large (PLC0100, PLC0110, PLC0123, PLC0124, PLC0129)."""
+
+from __future__ import annotations
+
+from ...errors import Location
+from .. import ast as A
+from .. import datasize
+from .. import types as T
+from ..datasize import DataSizes
+from ..limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
+from .context import Pass
+
+_MAX_PRIORITY = 31  # task priorities 0..31 (CODESYS)
+
+
+class ProgramChecks(Pass):
+    """Checks what needs every POU checked first."""
+
+    def configuration(self) -> tuple[list[tuple[str, A.Pou, str | None]], list[A.TaskDecl]]:
+        """The program instances and the tasks; without a CONFIGURATION every PROGRAM runs
+        once, in the default task. The symbol table remembers the instances."""
+        tasks: list[A.TaskDecl] = []
+        programs: list[tuple[str, A.Pou, str | None]] = []
+        if self.table.configs:
+            for c in self.table.configs:
+                tasks.extend(c.tasks)
+                for t in c.tasks:
+                    self.check_task(t)
+                programs += self.table.instances(c, self.cx.report)
+        else:
+            programs = self.table.programs()
+        self.table.set_programs(programs)
+        return programs, tasks
+
+    def check_task(self, t: A.TaskDecl) -> None:
+        """INTERVAL a TIME constant > 0, PRIORITY an integer constant 0..31 (PLC0129); both are
+        replaced by their folded literal, which is what the runtime reads."""
+        if t.interval is not None:
+            e = t.interval
+            ty = T.resolve(self.cx.exprs.expr(e, None))
+            v = self.cx.consts.const_value(e) if ty.kind == "time" else None
+            if ty.kind != "time" or not isinstance(v, int):
+                self.err("PLC0129", f"the INTERVAL of task {t.name} must be a TIME constant, "
+                         "e.g. INTERVAL := T#10ms", e.loc)
+            elif ty is not T.LTIME and v % 1_000_000 and v < 1_000_000:
+                self.err("PLC0129", f"the INTERVAL of task {t.name} is less than 1 ms, which a "
+                         "TIME (whole milliseconds) cannot hold; write LTIME#500us or more than "
+                         "T#1ms", e.loc)
+            elif not MIN_INTERVAL_NS <= v <= MAX_INTERVAL_NS:
+                self.err("PLC0129", f"the INTERVAL of task {t.name} is {v / 1e6:g} ms; it must "
+                         "lie between 0.1 ms (LTIME#100us) and 1 day, e.g. INTERVAL := T#10ms",
+                         e.loc)
+            else:
+                t.interval = A.Literal(e.loc, v if ty is T.LTIME else v // 1_000_000 * 1_000_000,
+                                       "TIME", None,
+                                       e.text if isinstance(e, A.Literal | A.Name) else "")
+                t.interval.ty = ty
+        if t.priority is not None:
+            e = t.priority
+            ty = T.resolve(self.cx.exprs.expr(e, None))
+            v = self.cx.consts.const_value(e)
+            if ty.kind != "int" or isinstance(v, bool) or not isinstance(v, int) or \
+                    not 0 <= v <= _MAX_PRIORITY:
+                self.err("PLC0129", f"the PRIORITY of task {t.name} must be an integer constant "
+                         f"0..{_MAX_PRIORITY} (0 is the most urgent)", e.loc)
+            else:
+                t.priority = A.Literal(e.loc, v, "INT", None, str(v))
+                t.priority.ty = ty
+
+    def check_recursion(self) -> None:
+        """PLC0110 at the call that closes each circle of calls, naming it (F -> G -> F).
+        Iterative depth-first walk: long call chains are fine."""
+        state: dict[str, int] = {}
+        for root in list(self.cx.call_graph):
+            if root in state:
+                continue
+            state[root] = 1
+            path = [root]
+            stack = [iter(sorted(self.cx.call_graph.get(root, ())))]
+            while stack:
+                m = next(stack[-1], None)
+                if m is None:
+                    stack.pop()
+                    state[path.pop()] = 2
+                    continue
+                if state.get(m) == 1:
+                    n = path[-1]
+                    cyc = path[path.index(m):] + [m]
+                    names = [self.table.pous[x].spelling or x for x in cyc]
+                    if len(names) > 9:
+                        names = names[:4] + [f"({len(names) - 8} more)"] + names[-4:]
+                    where = self.cx.call_sites.get((n, m), self.table.pous[m].loc)
+                    self.err("PLC0110", "recursion is not allowed in IEC 61131-3 (a PLC has no "
+                             f"dynamic stack): {' -> '.join(names)}; this call closes the "
+                             "circle: rewrite it as a loop", where)
+                elif m not in state:
+                    state[m] = 1
+                    path.append(m)
+                    stack.append(iter(sorted(self.cx.call_graph.get(m, ()))))
+
+    def check_data(self, programs: list, tests: list[A.TestBlock]) -> None:
+        """Blocks and structures must not contain themselves; every POU's and TEST's data and
+        the program's whole data must stay within :data:`datasize.DATA_LIMIT` bytes and
+        :data:`datasize.NESTING_LIMIT` levels (PLC0123, PLC0124)."""
+        ds = DataSizes()
+        for p in self.table.pous.values():
+            if p.kind != "FUNCTION":
+                ds.ensure(p)
+        for t in list(self.table.types.values()):
+            if isinstance(T.resolve(t), T.StructType):
+                ds.ensure(T.resolve(t))
+        seen: set[frozenset] = set()
+        for closing, text, ring in ds.cycles:
+            key = frozenset(id(c) for c in ring)
+            if key not in seen:
+                seen.add(key)
+                self.err("PLC0123", f"{text}: {datasize.container_name(ring[0])} contains an "
+                         "instance of itself, which would be infinitely large; remove "
+                         f"{closing.spelling or closing.name} or pass the block as VAR_IN_OUT",
+                         closing.loc)
+        if seen:
+            return  # sizes are meaningless until the circle is gone
+        scopes: list[tuple[str, list[A.VarDecl], Location]] = [
+            (f"{p.kind} {p.spelling or p.name}", datasize.members(p), p.loc)
+            for p in self.table.pous.values() if not p.loc.file.startswith("<plclab>/")]
+        scopes += [(f"TEST '{t.title}'", t.decls, t.loc) for t in tests]
+        for what, decls, loc in scopes:
+            if self._data_fits(ds, what, decls, loc, None):
+                continue
+            return
+        top = list(self.table.globals.values())
+        total, depth, _ = ds.decls_cost(top)
+        big, big_bytes, owner = None, -1, None
+        for d in top:
+            b, _ = ds.type_cost(d.ty)
+            if b > big_bytes:
+                big, big_bytes, owner = d, b, None
+        for inst, p, _ in programs:
+            b, dep = ds.type_cost(self.table.types.get(p.name))
+            total += b
+            if b > big_bytes:
+                big, big_bytes, owner = ds.biggest.get(id(p)), b, inst
+        if total > datasize.DATA_LIMIT and big is not None:
+            self.err("PLC0124", f"the program's data takes {total:,} bytes, more than the limit "
+                     f"of {datasize.DATA_LIMIT:,} (16 MiB); the largest part: "
+                     f"{ds.chain(big, owner)}. Use smaller arrays", big.loc)
+
+    def _data_fits(self, ds: DataSizes, what: str, decls: list[A.VarDecl], loc: Location,
+                   owner: str | None) -> bool:
+        size, depth, big = ds.decls_cost(decls)
+        if big is None:
+            return True
+        name = what.split(" ", 1)[1].strip("'")
+        if depth > datasize.NESTING_LIMIT:
+            self.err("PLC0124", f"the data of {what} nests {depth} levels deep (arrays, "
+                     f"structures and instances inside each other; the limit is "
+                     f"{datasize.NESTING_LIMIT}): {ds.chain(big, name)}", big.loc)
+            return False
+        if size > datasize.DATA_LIMIT:
+            self.err("PLC0124", f"the data of {what} takes {size:,} bytes, more than the limit "
+                     f"of {datasize.DATA_LIMIT:,} (16 MiB): {ds.chain(big, name)}; use smaller "
+                     "arrays", big.loc)
+            return False
+        return True

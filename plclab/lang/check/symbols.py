@@ -1,0 +1,291 @@
+"""The symbol table: every declaration of a project, and the questions asked about them.
+
+A :class:`SymbolTable` is built once from the parsed files (:meth:`SymbolTable.collect`): the
+TYPEs, the POUs (a user POU hides a library block of the same name), the global variables, the
+enumeration values and the program instances. It answers *declaration* questions only, so it is
+usable **before any body is checked** -- a lowering stage (IL, LD/FBD networks) may build one
+and ask ``scope(pou).lookup(name)`` or ``members(pou)``. What it cannot know before the
+checker's declarations pass has run is the resolved type of a declaration: ``VarDecl.ty`` (and
+``types``) are filled by that pass; ``lookup`` still finds the declaration.
+
+After checking, the :class:`~plclab.lang.check.checker.Project` carries the table
+(``project.symbols``): the runtime, the simulator and the Modbus server ask it for program
+variables and located variables instead of walking ``pou.decls`` themselves.
+
+>>> from plclab.lang.st_parser import parse_st
+>>> f = parse_st("PROGRAM P VAR x AT %IX0.1 : BOOL; n : INT; END_VAR n := 1; END_PROGRAM")
+>>> table = SymbolTable.collect([f])
+>>> table.scope(table.pou("P")).lookup("N").decl.name
+'N'
+>>> [(v.path, v.address) for v in table.located_vars()]
+[('P.x', '%IX0.1')]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+from ...errors import Location
+from ...suggest import suggest
+from .. import ast as A
+from .. import types as T
+
+Report = Callable[[str, str, Location | None, str], None]  # (code, message, where, severity)
+
+
+@dataclass(eq=False)
+class VarSym:
+    """A variable a name refers to."""
+
+    decl: A.VarDecl
+    storage: str  # "self" (member of the POU instance), "local", "global"
+    owner: A.Pou | None = None
+
+    @property
+    def ty(self) -> T.Type:
+        return self.decl.ty
+
+
+@dataclass(eq=False)
+class EnumSym:
+    """An enumeration value a name refers to."""
+
+    type: T.EnumType
+    value: int
+    member: str
+
+
+@dataclass(eq=False)
+class ProgSym:
+    """A program instance a name refers to."""
+
+    pou: A.Pou
+    instance: str
+
+
+@dataclass(frozen=True, eq=False)
+class LocatedVar:
+    """A variable declared with an AT address, where it lives and how to name it."""
+
+    path: str  # as a user writes it: "g" (a global) or "Main.x" (a program instance's variable)
+    address: str  # upper-case, e.g. "%IX0.1" ("%I*" for a wildcard)
+    decl: A.VarDecl
+    pou: A.Pou | None = None  # the program, None for a global
+    instance: str | None = None  # the program instance's name, None for a global
+
+    @property
+    def wildcard(self) -> bool:
+        """``AT %I*``: the address is given later (by a configuration)."""
+        return self.address.endswith("*")
+
+
+class Scope:
+    """The names visible in one POU (or TEST): its own declarations, then the globals.
+
+    ``VAR_EXTERNAL x`` names the global ``x`` (a :class:`VarSym` with storage ``"global"``); a
+    FUNCTION's own name is its result variable (section ``RETURN``)."""
+
+    def __init__(self, names: dict[str, Any] | None = None,
+                 globals_: dict[str, A.VarDecl] | None = None) -> None:
+        self.names: dict[str, Any] = names if names is not None else {}
+        self.globals: dict[str, A.VarDecl] = globals_ if globals_ is not None else {}
+
+    def local(self, name: str) -> Any:
+        """The symbol declared in this scope itself, or None."""
+        return self.names.get(name)
+
+    def lookup(self, name: str) -> Any:
+        """The symbol ``name`` refers to here: a local one, else a global variable, else None."""
+        sym = self.names.get(name)
+        if sym is not None:
+            return sym
+        g = self.globals.get(name)
+        return VarSym(g, "global", None) if g is not None else None
+
+    def declare(self, name: str, sym: Any) -> None:
+        self.names[name] = sym
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.names)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self.names
+
+
+def close_hint(name: str, candidates) -> str:
+    """``"; did you mean X?"`` for the candidate closest to ``name``, or ``""``."""
+    close = suggest(name.upper(), [str(c).upper() for c in candidates], cutoff=0.7)
+    return f"; did you mean {close[0]}?" if close else ""
+
+
+def instance_label(instance: str, pou: A.Pou) -> str:
+    """How a program instance is named in paths: the POU as written when the instance is the
+    POU itself (no configuration), else the instance name."""
+    return (pou.spelling or pou.name) if instance == pou.name else instance
+
+
+@dataclass(eq=False)
+class SymbolTable:
+    """Every declaration of a project (see the module text)."""
+
+    type_decls: dict[str, A.TypeDecl] = field(default_factory=dict)
+    pous: dict[str, A.Pou] = field(default_factory=dict)
+    globals: dict[str, A.VarDecl] = field(default_factory=dict)
+    global_decls: list[A.VarDecl] = field(default_factory=list)  # all, duplicates included
+    configs: list[A.Configuration] = field(default_factory=list)
+    types: dict[str, T.Type] = field(default_factory=dict)  # resolved by the checker
+    enum_members: dict[str, list[EnumSym]] = field(default_factory=dict)  # by the checker
+    _scopes: dict[int, Scope] = field(default_factory=dict)
+    _programs: list[tuple[str, A.Pou, str | None]] | None = None
+
+    # -- building -----------------------------------------------------------------------------
+    @classmethod
+    def collect(cls, files: list[A.SourceFile], report: Report | None = None,
+                with_globals: bool = True) -> SymbolTable:
+        """The TYPEs, POUs and global variables of ``files`` (no body is looked at);
+        ``report(code, message, where, severity)`` hears about names declared twice (the first
+        declaration wins). The checker passes ``with_globals=False`` and enters the globals
+        itself (:meth:`declare_global`) once the TYPEs are resolved, which must not see them."""
+        say = report or (lambda *_: None)
+        table = cls()
+        for f in files:
+            for td in f.types:
+                table._declare("type", td.name, td.loc, table.type_decls, td, say)
+            for p in f.pous:
+                if p.name in table.type_decls:
+                    say("PLC0101", f"{p.spelling or p.name} is declared twice (as a type and as "
+                        "a POU); rename one of them", p.loc, "error")
+                prev = table.pous.get(p.name)
+                if prev is not None and prev.loc.file.startswith("<plclab>/"):
+                    # a user POU may take the name of a library block: it hides that block
+                    say("PLC0205", f"{p.spelling or p.name} hides the library block of the "
+                        "same name; rename it to keep using the library one", p.loc, "warning")
+                    table.pous[p.name] = p
+                    continue
+                table._declare("POU", p.name, p.loc, table.pous, p, say)
+        table.configs = [c for f in files for c in f.configs]
+        table.global_decls = [d for f in files for g in f.globals for d in g.decls]
+        table.global_decls += [d for c in table.configs for d in c.globals]
+        for d in table.global_decls:
+            d.section = "VAR_GLOBAL"
+            if with_globals:
+                table.declare_global(d, say)
+        return table
+
+    def declare_global(self, d: A.VarDecl, report: Report | None = None) -> None:
+        """Enter global variable ``d``; a second one of the same name is reported, not entered."""
+        self._declare("global variable", d.name, d.loc, self.globals, d,
+                      report or (lambda *_: None))
+
+    @staticmethod
+    def _declare(what: str, name: str, loc: Location, table: dict, item: Any,
+                 say: Report) -> None:
+        if name in table:
+            say("PLC0101", f"{what} {name} is declared twice (first at {table[name].loc}); "
+                "rename or remove one", loc, "error")
+            return
+        table[name] = item
+
+    # -- questions ----------------------------------------------------------------------------
+    def pou(self, name: str) -> A.Pou | None:
+        """The POU called ``name`` (upper-case), or None."""
+        return self.pous.get(name)
+
+    def bases(self, pou: A.Pou) -> list[A.Pou]:
+        """The blocks ``pou`` inherits from, nearest first (the hook for EXTENDS: none today)."""
+        return []
+
+    def members(self, owner: A.Pou | T.Type) -> dict[str, A.VarDecl]:
+        """The declared members of a POU, a block or structure type, by name: inherited ones
+        first (:meth:`bases`), then its own, in declaration order; the first of a name wins."""
+        t = T.resolve(owner) if isinstance(owner, T.Type) else owner
+        if isinstance(t, T.StructType):
+            return dict(t.fields)
+        pou = t.pou if isinstance(t, T.FBType) else t
+        out: dict[str, A.VarDecl] = {}
+        if not isinstance(pou, A.Pou):
+            return out
+        for p in [*reversed(self.bases(pou)), pou]:
+            for d in p.decls:
+                out.setdefault(d.name, d)
+        return out
+
+    def scope(self, pou: A.Pou) -> Scope:
+        """The names visible inside ``pou`` (built on first use, from declarations only)."""
+        sc = self._scopes.get(id(pou))
+        if sc is None:
+            sc = self._scopes[id(pou)] = self._build_scope(pou)
+        return sc
+
+    def _build_scope(self, p: A.Pou) -> Scope:
+        names: dict[str, Any] = {}
+        storage_local = p.kind == "FUNCTION"
+        for d in [d for b in reversed(self.bases(p)) for d in b.decls] + p.decls:
+            if d.section == "VAR_EXTERNAL":
+                g = self.globals.get(d.name)
+                names[d.name] = VarSym(g if g is not None else d, "global", p)
+                continue
+            st = "local" if (storage_local or d.section == "VAR_TEMP") else "self"
+            names[d.name] = VarSym(d, st, p)
+        if p.kind == "FUNCTION":
+            if p.return_decl is None:
+                rd = A.VarDecl(p.loc, p.name, p.return_type or A.NamedTypeRef(p.loc, "VOID"),
+                               section="RETURN", spelling=p.spelling)
+                rd.used = True
+                if p.return_type is None:
+                    rd.ty = T.VOID
+                p.return_decl = rd
+            names[p.name] = VarSym(p.return_decl, "local", p)
+        return Scope(names, self.globals)
+
+    def set_programs(self, programs: list[tuple[str, A.Pou, str | None]]) -> None:
+        """The program instances, as the checker validated them against the configuration."""
+        self._programs = programs
+
+    def programs(self) -> list[tuple[str, A.Pou, str | None]]:
+        """``(instance, pou, task)`` of every program that runs: the configuration's instances
+        (unknown programs left out), or every PROGRAM when there is no configuration."""
+        if self._programs is not None:
+            return self._programs
+        if self.configs:
+            return [x for c in self.configs for x in self.instances(c)]
+        return [(p.name, p, None) for p in self.pous.values() if p.kind == "PROGRAM"]
+
+    def instances(self, config: A.Configuration,
+                  report: Report | None = None) -> list[tuple[str, A.Pou, str | None]]:
+        """``(instance, pou, task)`` of the program instances of one configuration; an unknown
+        program (left out) or task is reported (PLC0100)."""
+        say = report or (lambda *_: None)
+        out = []
+        tnames = {t.name for t in config.tasks}
+        for inst in config.instances:
+            p = self.pous.get(inst.program)
+            if p is None or p.kind != "PROGRAM":
+                say("PLC0100", f"PROGRAM {inst.program} is not declared" + close_hint(
+                    inst.program, [k for k, v in self.pous.items() if v.kind == "PROGRAM"]),
+                    inst.loc, "error")
+                continue
+            if inst.task and inst.task not in tnames:
+                say("PLC0100", f"task {inst.task} is not declared in the configuration" +
+                    close_hint(inst.task, tnames), inst.loc, "error")
+            out.append((inst.name, p, inst.task))
+        return out
+
+    def programs_declaring(self, name: str) -> list[tuple[str, A.Pou]]:
+        """``(instance, pou)`` of the program instances that declare a variable ``name``
+        (upper-case)."""
+        return [(inst, pou) for inst, pou, _ in self.programs() if name in self.members(pou)]
+
+    def located_vars(self) -> list[LocatedVar]:
+        """Every variable with an AT address: the globals, then each program instance's own
+        variables (its VAR_EXTERNALs are the globals already listed), wildcards included."""
+        out = [LocatedVar(d.spelling or d.name, d.address.upper(), d)
+               for d in self.globals.values() if d.address]
+        for inst, pou, _ in self.programs():
+            label = instance_label(inst, pou)
+            out += [LocatedVar(f"{label}.{d.spelling or d.name}", d.address.upper(), d, pou, inst)
+                    for d in self.members(pou).values()
+                    if d.address and d.section != "VAR_EXTERNAL"]
+        return out
