@@ -84,6 +84,9 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     # declarations
     A.VarDecl: lambda n: [n.type] + flat([n.init]),
     A.Pou: lambda n: flat([*n.decls, n.return_type]) + n.body,
+    # a body the lowering has not translated yet: front-end data (IL instructions, network
+    # elements), not AST nodes; the lowering empties Pou.pending before any pass walks a tree
+    A.PendingBody: lambda n: [],
     A.TypeDecl: lambda n: [n.type] + flat([n.init]),
     A.GlobalVars: lambda n: list(n.decls),
     A.TaskDecl: lambda n: flat([n.interval, n.priority, n.single]),

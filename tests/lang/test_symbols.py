@@ -14,7 +14,7 @@ import plclab
 from plclab.lang import ast as A
 from plclab.lang import types as T
 from plclab.lang.check import Checker, SymbolTable, VarSym, symbols
-from plclab.lang.st_parser import parse_st
+from plclab.lang.frontends.st import parse_st
 from plclab.lang.walk import walk
 from plclab.project import check_sources, parse_sources, read_sources
 

@@ -15,7 +15,7 @@ from plclab.lang import ast as A
 from plclab.lang.check import Checker
 from plclab.lang.check.exprs import Expressions
 from plclab.lang.check.stmts import Statements
-from plclab.lang.st_parser import parse_st
+from plclab.lang.frontends.st import parse_st
 from plclab.lang.walk import CHILDREN, UnhandledNode, children, walk
 
 # initial values only: the checker rejects them in expressions (PLC0103), the code generator

@@ -12,7 +12,7 @@ After checking, the :class:`~plclab.lang.check.checker.Project` carries the tabl
 (``project.symbols``): the runtime, the simulator and the Modbus server ask it for program
 variables and located variables instead of walking ``pou.decls`` themselves.
 
->>> from plclab.lang.st_parser import parse_st
+>>> from plclab.lang.frontends.st import parse_st
 >>> f = parse_st("PROGRAM P VAR x AT %IX0.1 : BOOL; n : INT; END_VAR n := 1; END_PROGRAM")
 >>> table = SymbolTable.collect([f])
 >>> table.scope(table.pou("P")).lookup("N").decl.name

@@ -5,11 +5,11 @@ IL needs the type of its current result (to check ``LD x / ADD b`` and to pick t
 pins that carry the power flow. The lowering runs before the checker, once every declaration of
 every file is known, so it asks :class:`LoweringTypes` and nothing else.
 
-:class:`DeclarationTypes` answers from the parsed declarations alone (the logic the IL front end
-used to keep as ``Env``). It will be replaced by the checker's symbol table
-(:mod:`plclab.lang.check`, usable before bodies are checked): the lowering modules must only
-call the methods of :class:`LoweringTypes` and the value helpers below (:func:`category`,
-:func:`type_text`, :func:`enum_name`), so that the switch touches this module only.
+:class:`DeclarationTypes` answers from the checker's symbol table
+(:class:`plclab.lang.check.symbols.SymbolTable`, usable before bodies are checked), so the
+lowering and the checker see one model of scopes and members. The lowering modules call only
+the methods of :class:`LoweringTypes` and the value helpers below (:func:`category`,
+:func:`type_text`, :func:`enum_name`).
 
 A type value (:data:`LType`) is a :mod:`plclab.lang.types` object for elementary and string
 types, a :class:`Composite` for the rest, or ``None``: unknown (the checker will say more).
@@ -23,6 +23,7 @@ from typing import Any, Protocol
 from .. import ast as A
 from .. import types as T
 from ..builtins import BUILTINS, conversion
+from ..check.symbols import SymbolTable
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,7 +118,10 @@ def enum_type(name: str) -> Composite:
 
 
 class DeclarationTypes:
-    """:class:`LoweringTypes` answered from the declarations of parsed files.
+    """:class:`LoweringTypes` answered by the checker's symbol table
+    (:class:`plclab.lang.check.symbols.SymbolTable`), built from the declarations of the parsed
+    files before any body is checked: scopes, globals, ``VAR_EXTERNAL`` and the members of a
+    block (inherited ones too, once EXTENDS exists) come from the same place the checker uses.
 
     ``library``: files to add when ``files`` lack the standard library (a single file parsed
     on its own); a project's files already hold it."""
@@ -127,27 +131,12 @@ class DeclarationTypes:
         files = list(files)
         if not any(p.name == "TON" for f in files for p in f.pous):
             files.extend(library)
-        self.types = {td.name: td for f in files for td in f.types}
-        self.pous = {p.name: p for f in files for p in f.pous}
-        self.globals = {d.name: d for f in files for g in f.globals for d in g.decls}
-        for f in files:
-            for c in f.configs:
-                for d in c.globals:
-                    self.globals.setdefault(d.name, d)
+        self.table = SymbolTable.collect(files)
         self.enum_values: dict[str, str] = {}
-        for td in self.types.values():
+        for td in self.table.type_decls.values():
             if isinstance(td.type, A.EnumTypeRef):
                 for m, _, _ in td.type.members:
                     self.enum_values.setdefault(m, td.name)
-        self._scopes: dict[int, dict[str, A.VarDecl]] = {}
-
-    def scope(self, pou: A.Pou) -> dict[str, A.VarDecl]:
-        """The POU's own declarations by name (as declared when first asked: the hidden
-        variables the lowering adds come after)."""
-        s = self._scopes.get(id(pou))
-        if s is None:
-            s = self._scopes[id(pou)] = {d.name: d for d in pou.decls}
-        return s
 
     # -- LoweringTypes ------------------------------------------------------------------------
     def type_of(self, ref: A.TypeRef | None, depth: int = 0) -> LType:
@@ -167,13 +156,13 @@ class DeclarationTypes:
             t = T.lookup_elementary(ref.name)
             if t is not None:
                 return t
-            td = self.types.get(ref.name)
+            td = self.table.type_decls.get(ref.name)
             if td is not None:
                 inner = self.type_of(td.type, depth + 1)
                 if category(inner) == "ENUM":
                     return Composite("ENUM", td.name)
                 return inner
-            pou = self.pous.get(ref.name)
+            pou = self.table.pou(ref.name)
             if pou is not None and pou.kind != "FUNCTION":
                 return Composite("FB", pou)
         return None
@@ -182,48 +171,47 @@ class DeclarationTypes:
         return t.target if isinstance(t, Composite) and t.category == "FB" else None
 
     def pou(self, name: str) -> A.Pou | None:
-        return self.pous.get(name)
+        return self.table.pou(name)
 
     def is_function(self, name: str) -> bool:
         if name in BUILTINS or conversion(name) is not None:
             return True
-        p = self.pous.get(name)
+        p = self.table.pou(name)
         return p is not None and p.kind == "FUNCTION"
 
     def function_names(self) -> list[str]:
-        return list(BUILTINS) + [k for k, v in self.pous.items() if v.kind == "FUNCTION"]
+        return list(BUILTINS) + [k for k, v in self.table.pous.items() if v.kind == "FUNCTION"]
 
     def pins(self, fb: A.Pou) -> tuple[str, str] | None:
         pins = POWER_PINS.get(fb.name)
         if pins is not None:
             return pins
-        ins = [d for d in fb.decls if d.section == "VAR_INPUT" and _is_bool(d)]
-        outs = [d for d in fb.decls if d.section == "VAR_OUTPUT" and _is_bool(d)]
+        decls = self.table.members(fb).values()
+        ins = [d for d in decls if d.section == "VAR_INPUT" and _is_bool(d)]
+        outs = [d for d in decls if d.section == "VAR_OUTPUT" and _is_bool(d)]
         return (ins[0].name, outs[0].name) if ins and outs else None
 
     def decl_of(self, e: A.Expr, pou: A.Pou) -> A.VarDecl | None:
         if isinstance(e, A.Name):
-            return self._lookup(e.name, self.scope(pou))
+            return self._lookup(e.name, pou)
         return None
 
-    def _lookup(self, name: str, scope: dict[str, A.VarDecl]) -> A.VarDecl | None:
-        d = scope.get(name)
-        if d is not None and d.section == "VAR_EXTERNAL":
-            return self.globals.get(name, d)
-        return d if d is not None else self.globals.get(name)
+    def _lookup(self, name: str, pou: A.Pou) -> A.VarDecl | None:
+        """The declaration ``name`` means inside ``pou`` (a global for ``VAR_EXTERNAL``; a
+        FUNCTION's own name is its result variable)."""
+        sym = self.table.scope(pou).lookup(name)
+        return sym.decl if sym is not None else None
 
     def expr_type(self, e: A.Expr, pou: A.Pou) -> LType:
         if isinstance(e, A.Literal):
             return self._literal_type(e)
         if isinstance(e, A.Name):
-            d = self._lookup(e.name, self.scope(pou))
+            d = self._lookup(e.name, pou)
             if d is not None:
                 return self.type_of(d.type)
-            if pou.kind == "FUNCTION" and e.name == pou.name:
-                return self.type_of(pou.return_type)
             if e.name in self.enum_values:
                 return Composite("ENUM", self.enum_values[e.name])
-            p = self.pous.get(e.name)
+            p = self.table.pou(e.name)
             if p is not None and p.kind == "PROGRAM":
                 return Composite("FB", p)
             return None
@@ -232,7 +220,7 @@ class DeclarationTypes:
                 return T.BOOL
             ot = self.expr_type(e.obj, pou)
             if isinstance(ot, Composite) and ot.category == "FB":
-                d = next((d for d in ot.target.decls if d.name == e.field_name), None)
+                d = self.table.members(ot.target).get(e.field_name)
                 return self.type_of(d.type) if d is not None else None
             if isinstance(ot, Composite) and ot.category == "STRUCT":
                 d = ot.target.get(e.field_name)
