@@ -21,9 +21,11 @@ from typing import Any
 from ..errors import Location, PlcError
 from ..lang import ast as A
 from ..lang import types as T
+from ..lang.builtins import BUILTINS
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.limits import compiler_guard
 from ..lang.walk import UnhandledNode
+from .builtins_emit import EMITTERS, Emission, const_int
 from .real32 import f32 as _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
@@ -1139,7 +1141,7 @@ class Codegen:
 
     def index_code(self, ix: A.Expr, lo: int, hi: int) -> str:
         code = self.ex(ix)
-        c = _const_int(ix)
+        c = const_int(ix)
         off = f" - {lo}" if lo > 0 else (f" + {-lo}" if lo < 0 else "")
         if c is not None:
             return str(c - lo)
@@ -1155,7 +1157,7 @@ class Codegen:
     def interval(self, e: A.Expr) -> tuple[int, int] | None:
         """The range an integer expression surely lies in (literals, FOR variables with known
         bounds, + and - of those), or None: lets indexing skip its bounds check."""
-        c = _const_int(e)
+        c = const_int(e)
         if c is not None:
             return (c, c)
         if isinstance(e, A.Name):
@@ -1306,20 +1308,6 @@ class Codegen:
             return self.wrap(code, d)
         return code
 
-    def shift(self, name: str, codes: list[str], args: list[A.Expr], t: T.Type) -> str:
-        """SHL/SHR/ROL/ROR on the bit pattern of IN's type; a signed result is reinterpreted
-        (SHL(INT#-1, 1) = -2). A negative count is a fault, a count >= the width gives 0."""
-        bits = getattr(t, "bits", 32) or 32
-        mask = (1 << bits) - 1
-        n = _const_int(args[1])
-        if name == "SHL" and n is not None and 0 <= n < bits:
-            r = f"(({codes[0]} << {n}) & {mask})"
-        elif name == "SHR" and n is not None and 0 <= n < bits:
-            r = f"(({codes[0]} & {mask}) >> {n})"
-        else:
-            r = f"_{name.lower()}({codes[0]}, {codes[1]}, {bits})"
-        return self.wrap(r, t) if getattr(t, "signed", False) and t.kind == "int" else r
-
     @staticmethod
     def widen(code: str, src: T.Type | None, dst: T.Type | None) -> str:
         """An implicit widening inside an expression (MIN, SEL, GT...): the value stays exact,
@@ -1336,91 +1324,10 @@ class Codegen:
         return code
 
     def builtin(self, name: str, args: list[A.Expr], e: A.Call) -> str:
-        codes = [self.ex(a) for a in args]
+        """A standard function call, by its emitter (``Builtin.emit``, :mod:`.builtins_emit`)."""
+        spec = BUILTINS[name]
         t = T.base_of(e.ty) if e.ty is not None else T.ANY
-        w = self.where(e.loc)
-        simple = {"SQRT": "_sqrt", "LN": "_ln", "LOG": "_log", "EXP": "_exp", "SIN": "_sin",
-                  "COS": "_cos", "TAN": "_tan", "ASIN": "_asin", "ACOS": "_acos",
-                  "ATAN": "_math.atan"}
-        if name in simple:
-            r = f"{simple[name]}({codes[0]})"
-            return f"_f32({r})" if t is T.REAL else r
-        if name == "ABS":
-            return f"abs({codes[0]})"
-        if name == "NEG":
-            return f"(-{codes[0]})"
-        if name == "ATAN2":
-            r = f"_math.atan2({codes[0]}, {codes[1]})"
-            return f"_f32({r})" if t is T.REAL else r
-        if name in ("TRUNC", "ROUND"):  # a conversion to DINT: wraps like TRUNC_DINT
-            return self.wrap(f"_{name.lower()}({codes[0]})", T.DINT)
-        if name == "MOVE":
-            return self.copy_code(codes[0], args[0].ty)
-        if name == "EXPT":
-            return f"_expt({codes[0]}, {codes[1]})"
-        if name in ("ADD", "MUL"):
-            return "(" + f" {'+' if name == 'ADD' else '*'} ".join(codes) + ")"
-        if name == "SUB":
-            return f"({codes[0]} - {codes[1]})"
-        if name == "DIV":
-            fn = "_idiv" if t.kind in ("int", "bits") else "_rdiv"
-            return f"{fn}({codes[0]}, {codes[1]})"
-        if name == "MOD":
-            return f"_imod({codes[0]}, {codes[1]})"
-        if name in ("MIN", "MAX", "LIMIT", "SEL", "MUX"):
-            first = 1 if name in ("SEL", "MUX") else 0  # G and K are not values
-            codes[first:] = [self.widen(c, a.ty, t) for c, a in zip(codes[first:], args[first:],
-                                                                    strict=True)]
-        if name in ("MIN", "MAX"):
-            if len(codes) == 1:
-                return codes[0]
-            return f"{name.lower()}({', '.join(codes)})"
-        if name == "LIMIT":
-            return f"_limit({codes[0]}, {codes[1]}, {codes[2]})"
-        if name == "SEL":  # only the selected input is evaluated (as CODESYS documents)
-            return f"({codes[2]} if {codes[0]} else {codes[1]})"
-        if name == "MUX":  # likewise: a binary decision on K, no tuple of every input
-            k = self.new_tmp()
-            n = len(codes) - 1
-            return (f"({_mux_tree(k, codes[1:], 0, n)} if 0 <= ({k} := {codes[0]}) < {n} "
-                    f"else _mux({k}, {n}, {w}))")
-        if name in ("SHL", "SHR", "ROL", "ROR"):
-            return self.shift(name, codes, args, t)
-        if name in ("GT", "GE", "EQ", "LE", "LT", "NE"):
-            pyop = {"GT": ">", "GE": ">=", "EQ": "==", "LE": "<=", "LT": "<", "NE": "!="}[name]
-            common = _common([a.ty for a in args])
-            codes = [self.widen(c, a.ty, common) for c, a in zip(codes, args, strict=True)]
-            if len(codes) == 2:
-                return f"({codes[0]} {pyop} {codes[1]})"
-            # GT(a, b, c) = a > b AND b > c with every input evaluated once (no short cut)
-            tmps = [self.new_tmp() for _ in codes[1:-1]]
-            left = codes[0]
-            parts = []
-            for tmp, c in zip(tmps, codes[1:-1], strict=True):
-                parts.append(f"({left} {pyop} ({tmp} := {c}))")
-                left = tmp
-            parts.append(f"({left} {pyop} {codes[-1]})")
-            return "(" + " & ".join(parts) + ")"
-        if name == "LEN":
-            return f"len({codes[0]})"
-        if name == "CONCAT":
-            return "(" + " + ".join(codes) + ")[:" + str(getattr(t, "length", 80)) + "]"
-        lit = [_const_int(a) for a in args]
-        # constant lengths and positions (the common case) become plain slices
-        if name == "LEFT" and lit[1] is not None and lit[1] >= 0:
-            return f"{codes[0]}[:{lit[1]}]"
-        if name == "RIGHT" and lit[1] is not None and lit[1] > 0:
-            return f"{codes[0]}[-{lit[1]}:]"
-        if name == "MID" and lit[1] is not None and lit[2] is not None and lit[1] >= 0 and \
-                lit[2] >= 1:
-            return f"{codes[0]}[{lit[2] - 1}:{lit[2] - 1 + lit[1]}]"
-        if name == "DELETE" and lit[1] is not None and lit[2] is not None and lit[1] >= 0 and \
-                lit[2] >= 1:
-            head = f"{codes[0]}[:{lit[2] - 1}] + " if lit[2] > 1 else ""
-            return f"({head}{codes[0]}[{lit[2] - 1 + lit[1]}:])"
-        fn = {"LEFT": "_left", "RIGHT": "_right", "MID": "_mid", "INSERT": "_insert",
-              "DELETE": "_delete", "REPLACE": "_replace", "FIND": "_find"}[name]
-        return f"{fn}({', '.join(codes)})"
+        return EMITTERS[spec.emit](Emission(self, spec, [self.ex(a) for a in args], args, t, e))
 
 
 # limits of the generated code (see "-- sizes" in Codegen)
@@ -1481,25 +1388,6 @@ def _float_code(v: int | float, single: bool) -> str:
     return repr(x)
 
 
-def _mux_tree(k: str, items: list[str], lo: int, hi: int) -> str:
-    """Choose items[k] for lo <= k < hi with nested conditionals (depth log2 of the count)."""
-    if hi - lo == 1:
-        return items[lo]
-    mid = (lo + hi) // 2
-    return (f"({_mux_tree(k, items, lo, mid)} if {k} < {mid} else "
-            f"{_mux_tree(k, items, mid, hi)})")
-
-
-def _common(types: list[T.Type | None]) -> T.Type | None:
-    """The common type of a comparison's inputs (None when unknown)."""
-    cur = types[0]
-    for x in types[1:]:
-        if cur is None or x is None:
-            return None
-        cur = T.common_type(cur, x)
-    return cur
-
-
 def _from_native(e: A.Expr | None) -> bool:
     """A value read from a native block or function: Python code that may hand back doubles,
     so a store into a REAL rounds it like an arithmetic result."""
@@ -1527,13 +1415,6 @@ def _in_range_builtin(e: A.Call) -> bool:
         return all(isinstance(x, _SIMPLE) and x.ty is not None and T.base_of(x.ty) is t
                    for x in vals) and isinstance(args[0], _SIMPLE)
     return False
-
-
-def _const_int(e: A.Expr | None) -> int | None:
-    if isinstance(e, A.Literal) and isinstance(e.value, int) and not isinstance(e.value, bool) \
-            and e.kind == "INT":
-        return e.value
-    return None
 
 
 def _kind_name(t: T.Type | None) -> str:

@@ -1,7 +1,23 @@
-"""Signatures of the standard functions (IEC 61131-3 2.5.1.5) as the checker sees them.
+"""The standard library's specification: one entry per standard function and block.
 
-Each entry maps a function name to a typing rule. The compiler turns calls into inline Python
-or calls of :mod:`plclab.runtime.stdfuncs`.
+Every other place derives from these tables instead of keeping its own list of names:
+
+* a :class:`Builtin` (a standard function of IEC 61131-3 2.5.1.5, or a TEST-block assertion)
+  gives the signature (formal names, arity), the checker's typing rule (``typing``: a key of
+  :data:`plclab.lang.check.calls.TYPING_RULES`), the compiler's emission (``emit``: a key of
+  :data:`plclab.compile.builtins_emit.EMITTERS`) and the run-time helpers the emitted code calls
+  (``natives``: names in :data:`plclab.runtime.rt.HELPERS`);
+* a :class:`Block` (a standard or control function block) gives its library file, its native
+  implementation (a key of :mod:`plclab.runtime.natives`), the pins a ladder rung's power flow
+  enters and leaves by (:data:`POWER_PINS`) and its IL input operators (:data:`FB_INPUT_OPS`).
+
+``tests/lang/test_standard_spec.py`` checks that every key names a rule, an emitter, a helper and a
+library declaration that exist.
+
+>>> BUILTINS["SQRT"].typing, BUILTINS["SQRT"].natives
+('float', ('_sqrt',))
+>>> POWER_PINS["CTU"], "PT" in FB_INPUT_OPS
+(('CU', 'Q'), True)
 """
 
 from __future__ import annotations
@@ -13,17 +29,39 @@ from . import types as T
 
 @dataclass(frozen=True)
 class Builtin:
+    """A standard function (see the module text)."""
+
     name: str
     params: tuple[str, ...]  # formal names for named calls (IEC: IN, IN1, MN, ...)
+    typing: str = ""  # the checker's typing rule
+    emit: str = ""  # the compiler's emitter ("test" for the TEST-block statements)
     variadic: bool = False
     min_args: int = 1
     test_only: bool = False
     statement_only: bool = False
+    natives: tuple[str, ...] = ()  # run-time helpers the emitted code calls
+    operator: str = ""  # the Python operator of ADD, MUL and the comparisons
+    args: tuple[str, ...] = ()  # the "signature" rule: argument kinds, STRING or INT
+    needs: str = ""  # ... and how its message names them
+    result: str = ""  # ... and the result: "IN" (the first argument's type) or a type name
 
 
-_NUM_1 = ("IN",)
+@dataclass(frozen=True)
+class Block:
+    """A function block of plclab's library whose body is native Python."""
+
+    name: str
+    library: str  # stdlib.st or ctrllib.st
+    power: tuple[str, str] | None = None  # LD: (BOOL input fed by the rung, output continuing)
+    il_inputs: tuple[str, ...] = ()  # IL input operators (IEC 61131-3 Table 53: S1, PT, ...)
+
+
 _B = Builtin
 BUILTINS: dict[str, Builtin] = {}
+_MATH = {"SQRT": "_sqrt", "LN": "_ln", "LOG": "_log", "EXP": "_exp", "SIN": "_sin",
+         "COS": "_cos", "TAN": "_tan", "ASIN": "_asin", "ACOS": "_acos", "ATAN": "_math"}
+_COMPARE = {"GT": ">", "GE": ">=", "EQ": "==", "LE": "<=", "LT": "<"}
+_SHIFT = {"SHL": "_shl", "SHR": "_shr", "ROL": "_rol", "ROR": "_ror"}
 
 
 def _add(*bs: Builtin) -> None:
@@ -31,41 +69,82 @@ def _add(*bs: Builtin) -> None:
         BUILTINS[b.name] = b
 
 
+def _text(name: str, params: tuple[str, ...], native: str, args: tuple[str, ...], needs: str,
+          result: str = "IN") -> Builtin:
+    """A string function typed by its argument kinds."""
+    return _B(name, params, "signature", "string_call", min_args=len(params), natives=(native,),
+              args=args, needs=needs, result=result)
+
+
 _add(
-    *(_B(n, ("IN",)) for n in ("ABS", "SQRT", "LN", "LOG", "EXP", "SIN", "COS", "TAN", "ASIN",
-                               "ACOS", "ATAN", "TRUNC", "MOVE", "ROUND", "NEG")),
-    _B("EXPT", ("IN1", "IN2"), min_args=2),
-    _B("ATAN2", ("Y", "X"), min_args=2),
-    _B("ADD", ("IN1", "IN2"), variadic=True, min_args=2),
-    _B("MUL", ("IN1", "IN2"), variadic=True, min_args=2),
-    _B("SUB", ("IN1", "IN2"), min_args=2),
-    _B("DIV", ("IN1", "IN2"), min_args=2),
-    _B("MOD", ("IN1", "IN2"), min_args=2),
-    _B("MIN", ("IN1", "IN2"), variadic=True, min_args=1),
-    _B("MAX", ("IN1", "IN2"), variadic=True, min_args=1),
-    _B("LIMIT", ("MN", "IN", "MX"), min_args=3),
-    _B("SEL", ("G", "IN0", "IN1"), min_args=3),
-    _B("MUX", ("K", "IN0", "IN1"), variadic=True, min_args=2),
-    *(_B(n, ("IN", "N"), min_args=2) for n in ("SHL", "SHR", "ROL", "ROR")),
-    *(_B(n, ("IN1", "IN2"), variadic=True, min_args=2) for n in ("GT", "GE", "EQ", "LE", "LT")),
-    _B("NE", ("IN1", "IN2"), min_args=2),
-    _B("LEN", ("IN",)),
-    _B("LEFT", ("IN", "L"), min_args=2),
-    _B("RIGHT", ("IN", "L"), min_args=2),
-    _B("MID", ("IN", "L", "P"), min_args=3),
-    _B("CONCAT", ("IN1", "IN2"), variadic=True, min_args=1),
-    _B("INSERT", ("IN1", "IN2", "P"), min_args=3),
-    _B("DELETE", ("IN", "L", "P"), min_args=3),
-    _B("REPLACE", ("IN1", "IN2", "L", "P"), min_args=4),
-    _B("FIND", ("IN1", "IN2"), min_args=2),
-    _B("ASSERT_EQ", ("ACTUAL", "EXPECTED"), min_args=2, test_only=True, statement_only=True),
-    _B("ASSERT_NE", ("ACTUAL", "EXPECTED"), min_args=2, test_only=True, statement_only=True),
-    _B("ASSERT_TRUE", ("IN",), test_only=True, statement_only=True),
-    _B("ASSERT_FALSE", ("IN",), test_only=True, statement_only=True),
-    _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL"), min_args=3, test_only=True,
-       statement_only=True),
-    _B("ADVANCE_TIME", ("T",), test_only=True, statement_only=True),
+    _B("ABS", ("IN",), "number_same", "abs"),
+    _B("NEG", ("IN",), "number_same", "neg"),
+    *(_B(n, ("IN",), "float", "math", natives=(fn,)) for n, fn in _MATH.items()),
+    _B("TRUNC", ("IN",), "to_dint", "to_dint", natives=("_trunc",)),
+    _B("ROUND", ("IN",), "to_dint", "to_dint", natives=("_round",)),
+    _B("MOVE", ("IN",), "same", "move"),
+    _B("EXPT", ("IN1", "IN2"), "expt", "expt", min_args=2, natives=("_expt",)),
+    _B("ATAN2", ("Y", "X"), "atan2", "atan2", min_args=2, natives=("_math",)),
+    _B("ADD", ("IN1", "IN2"), "arithmetic", "operator", variadic=True, min_args=2, operator="+"),
+    _B("MUL", ("IN1", "IN2"), "arithmetic", "operator", variadic=True, min_args=2, operator="*"),
+    _B("SUB", ("IN1", "IN2"), "arithmetic", "operator", min_args=2, operator="-"),
+    _B("DIV", ("IN1", "IN2"), "arithmetic", "div", min_args=2, natives=("_idiv", "_rdiv")),
+    _B("MOD", ("IN1", "IN2"), "arithmetic", "mod", min_args=2, natives=("_imod",)),
+    _B("MIN", ("IN1", "IN2"), "extremum", "extremum", variadic=True, min_args=1),
+    _B("MAX", ("IN1", "IN2"), "extremum", "extremum", variadic=True, min_args=1),
+    _B("LIMIT", ("MN", "IN", "MX"), "limit", "limit", min_args=3, natives=("_limit",)),
+    _B("SEL", ("G", "IN0", "IN1"), "select", "select", min_args=3),
+    _B("MUX", ("K", "IN0", "IN1"), "multiplex", "multiplex", variadic=True, min_args=2,
+       natives=("_mux",)),
+    *(_B(n, ("IN", "N"), "shift", "shift", min_args=2, natives=(fn,)) for n, fn in _SHIFT.items()),
+    *(_B(n, ("IN1", "IN2"), "compare", "compare", variadic=True, min_args=2, operator=op)
+      for n, op in _COMPARE.items()),
+    _B("NE", ("IN1", "IN2"), "compare", "compare", min_args=2, operator="!="),
+    _B("LEN", ("IN",), "signature", "len", args=("STRING",), needs="a STRING", result="INT"),
+    _text("LEFT", ("IN", "L"), "_left", ("STRING", "INT"), "a STRING and a length"),
+    _text("RIGHT", ("IN", "L"), "_right", ("STRING", "INT"), "a STRING and a length"),
+    _text("MID", ("IN", "L", "P"), "_mid", ("STRING", "INT", "INT"),
+          "a STRING, a length and a position"),
+    _B("CONCAT", ("IN1", "IN2"), "concat", "concat", variadic=True, min_args=1),
+    _text("INSERT", ("IN1", "IN2", "P"), "_insert", ("STRING", "STRING", "INT"),
+          "two STRINGs and a position"),
+    _text("DELETE", ("IN", "L", "P"), "_delete", ("STRING", "INT", "INT"),
+          "a STRING, a length and a position"),
+    _text("REPLACE", ("IN1", "IN2", "L", "P"), "_replace", ("STRING", "STRING", "INT", "INT"),
+          "two STRINGs, a length and a position"),
+    _text("FIND", ("IN1", "IN2"), "_find", ("STRING", "STRING"), "two STRINGs", result="INT"),
+    *(_B(n, ("ACTUAL", "EXPECTED"), "assert_compare", "test", min_args=2, test_only=True,
+         statement_only=True, natives=("_assert_cmp",)) for n in ("ASSERT_EQ", "ASSERT_NE")),
+    *(_B(n, ("IN",), "assert_bool", "test", test_only=True, statement_only=True,
+         natives=("_assert_bool",)) for n in ("ASSERT_TRUE", "ASSERT_FALSE")),
+    _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL"), "assert_near", "test", min_args=3,
+       test_only=True, statement_only=True, natives=("_assert_near",)),
+    _B("ADVANCE_TIME", ("T",), "advance_time", "test", test_only=True, statement_only=True),
 )
+
+_STD, _CTRL = "stdlib.st", "ctrllib.st"
+BLOCKS: dict[str, Block] = {b.name: b for b in (
+    # IEC 61131-3 2.5.2.3: bistables, edge detection, counters, timers (TONR: plclab's own)
+    Block("SR", _STD, ("S1", "Q1"), ("S1",)),
+    Block("RS", _STD, ("S", "Q1"), ("R1",)),
+    Block("R_TRIG", _STD, ("CLK", "Q"), ("CLK",)),
+    Block("F_TRIG", _STD, ("CLK", "Q"), ("CLK",)),
+    Block("CTU", _STD, ("CU", "Q"), ("CU", "PV")),
+    Block("CTD", _STD, ("CD", "Q"), ("CD", "PV")),
+    Block("CTUD", _STD, ("CU", "QU"), ("CU", "CD", "PV")),
+    Block("TP", _STD, ("IN", "Q"), ("IN", "PT")),
+    Block("TON", _STD, ("IN", "Q"), ("IN", "PT")),
+    Block("TOF", _STD, ("IN", "Q"), ("IN", "PT")),
+    Block("TONR", _STD, ("IN", "Q"), ("IN", "PT")),
+    # control blocks (a ladder box takes its first BOOL input and output)
+    *(Block(n, _CTRL) for n in ("PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE",
+                                "BLINKER", "RAMP", "PT1", "MOVING_AVG", "LIMIT_ALARM")),
+)}
+
+# derived: the power-flow pins of a ladder box, the IL input operators
+POWER_PINS: dict[str, tuple[str, str]] = {b.name: b.power for b in BLOCKS.values() if b.power}
+FB_INPUT_OPS: tuple[str, ...] = tuple(dict.fromkeys(op for b in BLOCKS.values()
+                                                    for op in b.il_inputs))
 
 CONVERTIBLE = [n for n in T.ELEMENTARY] + ["STRING", "WSTRING"]
 

@@ -17,11 +17,11 @@ from __future__ import annotations
 from functools import cache
 
 from ..errors import PlcError
+from ..lang.builtins import BLOCKS
 
-STANDARD_BLOCKS = ("TP", "TON", "TOF", "TONR", "CTU", "CTD", "CTUD", "R_TRIG", "F_TRIG", "SR",
-                   "RS")
-CONTROL_BLOCKS = ("PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE", "BLINKER",
-                  "RAMP", "PT1", "MOVING_AVG", "LIMIT_ALARM")
+# the blocks are listed once, in the standard library's specification (plclab.lang.builtins)
+STANDARD_BLOCKS = tuple(b.name for b in BLOCKS.values() if b.library == "stdlib.st")
+CONTROL_BLOCKS = tuple(b.name for b in BLOCKS.values() if b.library == "ctrllib.st")
 
 
 @cache

@@ -12,6 +12,7 @@ from .. import types as T
 from ..builtins import BUILTINS, Builtin, conversion
 from .context import Pass, close_hint
 from .symbols import ProgSym, VarSym
+from .typing_rules import TYPING_RULES, Typing
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
 
@@ -229,108 +230,11 @@ class Calls(Pass):
         return self.builtin_type(name, vals, c)
 
     def builtin_type(self, name: str, vals: list[A.Expr], c: A.Call) -> T.Type:
+        """Type the arguments, then apply the function's typing rule (its ``Builtin.typing``,
+        :mod:`.typing_rules`)."""
+        spec = BUILTINS[name]
         ts = [self.cx.exprs.expr(v, None) for v in vals]
         bs = [T.base_of(t) for t in ts]
         if any(t is T.ANY for t in bs):
-            return T.BOOL if name in ("GT", "GE", "EQ", "LE", "LT", "NE") else T.ANY
-
-        def need(ok: bool, what: str) -> None:
-            if not ok:
-                self.err("PLC0107", f"{name} needs {what}, not " +
-                         ", ".join(str(T.concrete(b)) for b in bs), c.loc)
-
-        def common(items: list[T.Type]) -> T.Type:
-            cur = items[0]
-            for x in items[1:]:
-                nxt = T.common_type(cur, x)
-                if nxt is None:
-                    self.err("PLC0107", f"{name}: the arguments {T.concrete(cur)} and "
-                             f"{T.concrete(x)} have no common type", c.loc)
-                    return T.ANY
-                cur = nxt
-            return cur
-
-        if name in ("ABS", "NEG"):
-            need(bs[0].kind in ("int", "real"), "a number")
-            return ts[0]
-        if name in ("SQRT", "LN", "LOG", "EXP", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN"):
-            need(bs[0].kind in ("int", "real"), "a number")
-            return ts[0] if bs[0].kind == "real" and bs[0] is not T.ANY_REAL_LIT else (
-                T.LREAL if bs[0] is T.ANY_REAL_LIT or getattr(bs[0], "bits", 0) > 16 else T.REAL)
-        if name == "ATAN2":
-            return common(bs) if all(b.kind == "real" for b in bs) else T.LREAL
-        if name in ("TRUNC", "ROUND"):
-            need(bs[0].kind == "real", "a REAL or LREAL")
-            return T.DINT  # as CODESYS: TRUNC and ROUND give DINT
-        if name == "MOVE":
-            return ts[0]
-        if name == "EXPT":
-            need(bs[0].kind in ("int", "real") and bs[1].kind in ("int", "real"), "numbers")
-            return ts[0] if bs[0].kind == "real" and bs[0] is not T.ANY_REAL_LIT else T.LREAL
-        if name in ("ADD", "MUL", "SUB", "DIV", "MOD", "MIN", "MAX"):
-            t = common(bs)
-            if name in ("MIN", "MAX"):
-                return t
-            need(t is T.ANY or t.kind in ("int", "real", "time"), "numbers")
-            return t
-        if name == "LIMIT":
-            return common(bs)
-        if name == "SEL":
-            need(bs[0] is T.BOOL, "a BOOL selector G first")
-            return common(bs[1:])
-        if name == "MUX":
-            need(bs[0].kind == "int", "an integer selector K first")
-            return common(bs[1:])
-        if name in ("SHL", "SHR", "ROL", "ROR"):
-            need(bs[0].kind in ("bits", "int") and bs[1].kind == "int",
-                 "a bit string and a shift count")
-            return ts[0] if bs[0] is not T.ANY_INT_LIT else T.DWORD
-        if name in ("GT", "GE", "EQ", "LE", "LT", "NE"):
-            common(bs)
-            return T.BOOL
-        strs = [isinstance(b, T.StringType) for b in bs]
-        if name == "LEN":
-            need(strs[0], "a STRING")
-            return T.INT
-        if name in ("LEFT", "RIGHT"):
-            need(strs[0] and bs[1].kind == "int", "a STRING and a length")
-            return ts[0]
-        if name == "MID":
-            need(strs[0] and bs[1].kind == "int" and bs[2].kind == "int",
-                 "a STRING, a length and a position")
-            return ts[0]
-        if name == "CONCAT":
-            need(all(strs), "STRINGs")
-            wide = any(getattr(b, "wide", False) for b in bs)
-            return T.StringType(wide, 80 if not wide else 80)
-        if name == "INSERT":
-            need(strs[0] and strs[1] and bs[2].kind == "int", "two STRINGs and a position")
-            return ts[0]
-        if name == "DELETE":
-            need(strs[0] and bs[1].kind == "int" and bs[2].kind == "int",
-                 "a STRING, a length and a position")
-            return ts[0]
-        if name == "REPLACE":
-            need(strs[0] and strs[1] and bs[2].kind == "int" and bs[3].kind == "int",
-                 "two STRINGs, a length and a position")
-            return ts[0]
-        if name == "FIND":
-            need(strs[0] and strs[1], "two STRINGs")
-            return T.INT
-        if name in ("ASSERT_EQ", "ASSERT_NE"):
-            if T.common_type(bs[0], bs[1]) is None and not (
-                isinstance(bs[0], T.EnumType) and bs[0] is bs[1]
-            ):
-                self.err("PLC0107", f"{name} compares values of one type, not {T.concrete(bs[0])} "
-                         f"and {T.concrete(bs[1])}", c.loc)
-            return T.VOID
-        if name in ("ASSERT_TRUE", "ASSERT_FALSE"):
-            need(bs[0] is T.BOOL, "a BOOL")
-            return T.VOID
-        if name == "ASSERT_NEAR":
-            need(all(b.kind in ("int", "real", "time") for b in bs), "numbers")
-            return T.VOID
-        if name == "ADVANCE_TIME":
-            need(bs[0].kind == "time", "a TIME, e.g. ADVANCE_TIME(T#100ms)")
-            return T.VOID
-        return T.ANY
+            return T.BOOL if spec.typing == "compare" else T.ANY
+        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c))

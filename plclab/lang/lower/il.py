@@ -21,7 +21,7 @@ from ...errors import Diagnostic, Location
 from ...suggest import suggest
 from .. import ast as A
 from .. import types as T
-from ..builtins import BUILTINS, conversion
+from ..builtins import BUILTINS, FB_INPUT_OPS, conversion
 from .types import LoweringTypes, category, enum_name, enum_type, type_text
 
 IL_OPERATORS = (
@@ -30,7 +30,6 @@ IL_OPERATORS = (
     "JMP", "JMPC", "JMPCN", "CAL", "CALC", "CALCN", "RET", "RETC", "RETCN",
 )
 # IEC "FB input operators": LD x / IN T1 sets T1.IN := x and calls T1
-FB_INPUT_OPS = ("S1", "R1", "CLK", "CU", "CD", "PV", "IN", "PT")
 _BIN = {"AND": "AND", "OR": "OR", "XOR": "XOR", "ADD": "+", "SUB": "-", "MUL": "*", "DIV": "/",
         "MOD": "MOD", "GT": ">", "GE": ">=", "EQ": "=", "NE": "<>", "LE": "<=", "LT": "<"}
 _NEGATABLE = {"ANDN": "AND", "ORN": "OR", "XORN": "XOR"}
@@ -528,17 +527,18 @@ class _Lowering:
         f = self.types.pou(name)
         if f is not None and f.kind == "FUNCTION":
             return self.types.type_of(f.return_type)
-        if name in ("GT", "GE", "EQ", "NE", "LE", "LT"):
+        spec = BUILTINS.get(name)
+        rule = spec.typing if spec is not None else ""
+        if rule == "compare":
             return T.BOOL
-        if name in ("LEN", "FIND"):
-            return T.INT
-        if name in ("TRUNC", "ROUND"):
+        if rule == "to_dint":
             return T.DINT
-        if name in ("SEL", "MUX"):
+        if rule == "signature" and spec.result != "IN":
+            return T.lookup_elementary(spec.result)
+        if rule in ("select", "multiplex"):  # the type of the inputs after the selector
             return tys[1] if len(tys) > 1 else None
-        if name in ("ABS", "NEG", "MOVE", "LIMIT", "MIN", "MAX", "ADD", "MUL", "SUB", "DIV",
-                    "MOD", "SHL", "SHR", "ROL", "ROR", "LEFT", "RIGHT", "MID", "INSERT",
-                    "DELETE", "REPLACE", "CONCAT"):
+        if rule in ("number_same", "same", "limit", "extremum", "arithmetic", "shift",
+                    "signature", "concat"):
             return tys[0]
         return None
 

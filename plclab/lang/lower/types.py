@@ -22,7 +22,7 @@ from typing import Any, Protocol
 
 from .. import ast as A
 from .. import types as T
-from ..builtins import BUILTINS, conversion
+from ..builtins import BUILTINS, POWER_PINS, conversion
 from ..check.symbols import SymbolTable
 
 
@@ -37,12 +37,6 @@ class Composite:
 
 
 LType = Any  # T.Type | Composite | None
-
-# the power-flow pins of the standard function blocks: (input fed by the rung, output continuing)
-POWER_PINS = {"TON": ("IN", "Q"), "TOF": ("IN", "Q"), "TP": ("IN", "Q"), "TONR": ("IN", "Q"),
-              "CTU": ("CU", "Q"), "CTD": ("CD", "Q"), "CTUD": ("CU", "QU"),
-              "R_TRIG": ("CLK", "Q"), "F_TRIG": ("CLK", "Q"), "SR": ("S1", "Q1"),
-              "RS": ("S", "Q1")}
 
 
 class LoweringTypes(Protocol):

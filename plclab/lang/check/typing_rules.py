@@ -1,0 +1,158 @@
+"""The typing rules of the standard functions: ``Builtin.typing`` -> rule.
+
+A rule gets the call's argument types (already checked) and returns the result type, reporting
+PLC0107 when the arguments do not fit. Which function follows which rule is written once, in
+:data:`plclab.lang.builtins.BUILTINS`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from .. import ast as A
+from .. import types as T
+from ..builtins import Builtin
+
+__all__ = ["TYPING_RULES", "Typing"]
+
+
+@dataclass(eq=False)
+class Typing:
+    """One call being typed: the pass (to report), the function, the argument types ``ts`` and
+    their base types ``bs``."""
+
+    cx: Any  # the calls pass
+    spec: Builtin
+    ts: list[T.Type]
+    bs: list[T.Type]
+    call: A.Call
+
+    def need(self, ok: bool, what: str) -> None:
+        if not ok:
+            self.cx.err("PLC0107", f"{self.spec.name} needs {what}, not " +
+                        ", ".join(str(T.concrete(b)) for b in self.bs), self.call.loc)
+
+    def common(self, items: list[T.Type]) -> T.Type:
+        cur = items[0]
+        for x in items[1:]:
+            nxt = T.common_type(cur, x)
+            if nxt is None:
+                self.cx.err("PLC0107", f"{self.spec.name}: the arguments {T.concrete(cur)} and "
+                            f"{T.concrete(x)} have no common type", self.call.loc)
+                return T.ANY
+            cur = nxt
+        return cur
+
+    def kinds(self, *kinds: str) -> bool:
+        return all(b.kind in kinds for b in self.bs)
+
+
+def _number_same(t: Typing) -> T.Type:  # ABS, NEG
+    t.need(t.bs[0].kind in ("int", "real"), "a number")
+    return t.ts[0]
+
+
+def _float(t: Typing) -> T.Type:  # SQRT, LN, ..., ATAN: REAL stays REAL, else LREAL or REAL
+    b = t.bs[0]
+    t.need(b.kind in ("int", "real"), "a number")
+    return t.ts[0] if b.kind == "real" and b is not T.ANY_REAL_LIT else (
+        T.LREAL if b is T.ANY_REAL_LIT or getattr(b, "bits", 0) > 16 else T.REAL)
+
+
+def _atan2(t: Typing) -> T.Type:
+    return t.common(t.bs) if t.kinds("real") else T.LREAL
+
+
+def _to_dint(t: Typing) -> T.Type:  # TRUNC, ROUND give DINT, as in CODESYS
+    t.need(t.bs[0].kind == "real", "a REAL or LREAL")
+    return T.DINT
+
+
+def _same(t: Typing) -> T.Type:  # MOVE
+    return t.ts[0]
+
+
+def _expt(t: Typing) -> T.Type:
+    t.need(t.bs[0].kind in ("int", "real") and t.bs[1].kind in ("int", "real"), "numbers")
+    return t.ts[0] if t.bs[0].kind == "real" and t.bs[0] is not T.ANY_REAL_LIT else T.LREAL
+
+
+def _arithmetic(t: Typing) -> T.Type:  # ADD, MUL, SUB, DIV, MOD
+    r = t.common(t.bs)
+    t.need(r is T.ANY or r.kind in ("int", "real", "time"), "numbers")
+    return r
+
+
+def _extremum(t: Typing) -> T.Type:  # MIN, MAX, LIMIT
+    return t.common(t.bs)
+
+
+def _select(t: Typing) -> T.Type:
+    t.need(t.bs[0] is T.BOOL, "a BOOL selector G first")
+    return t.common(t.bs[1:])
+
+
+def _multiplex(t: Typing) -> T.Type:
+    t.need(t.bs[0].kind == "int", "an integer selector K first")
+    return t.common(t.bs[1:])
+
+
+def _shift(t: Typing) -> T.Type:
+    t.need(t.bs[0].kind in ("bits", "int") and t.bs[1].kind == "int",
+           "a bit string and a shift count")
+    return t.ts[0] if t.bs[0] is not T.ANY_INT_LIT else T.DWORD
+
+
+def _compare(t: Typing) -> T.Type:
+    t.common(t.bs)
+    return T.BOOL
+
+
+def _signature(t: Typing) -> T.Type:
+    """Fixed argument kinds (``Builtin.args``: STRING or INT) and result (``Builtin.result``:
+    ``IN`` for the first argument's type, else a type name)."""
+    ok = all(isinstance(b, T.StringType) if k == "STRING" else b.kind == "int"
+             for k, b in zip(t.spec.args, t.bs, strict=False))
+    t.need(ok, t.spec.needs)
+    return t.ts[0] if t.spec.result == "IN" else T.lookup_elementary(t.spec.result)
+
+
+def _concat(t: Typing) -> T.Type:
+    t.need(all(isinstance(b, T.StringType) for b in t.bs), "STRINGs")
+    wide = any(getattr(b, "wide", False) for b in t.bs)
+    return T.StringType(wide, 80)
+
+
+def _assert_compare(t: Typing) -> T.Type:
+    a, b = t.bs[0], t.bs[1]
+    if T.common_type(a, b) is None and not (isinstance(a, T.EnumType) and a is b):
+        t.cx.err("PLC0107", f"{t.spec.name} compares values of one type, not {T.concrete(a)} "
+                 f"and {T.concrete(b)}", t.call.loc)
+    return T.VOID
+
+
+def _assert_bool(t: Typing) -> T.Type:
+    t.need(t.bs[0] is T.BOOL, "a BOOL")
+    return T.VOID
+
+
+def _assert_near(t: Typing) -> T.Type:
+    t.need(t.kinds("int", "real", "time"), "numbers")
+    return T.VOID
+
+
+def _advance_time(t: Typing) -> T.Type:
+    t.need(t.bs[0].kind == "time", "a TIME, e.g. ADVANCE_TIME(T#100ms)")
+    return T.VOID
+
+
+TYPING_RULES: dict[str, Callable[[Typing], T.Type]] = {
+    "number_same": _number_same, "float": _float, "atan2": _atan2, "to_dint": _to_dint,
+    "same": _same, "expt": _expt, "arithmetic": _arithmetic, "extremum": _extremum,
+    "limit": _extremum, "select": _select, "multiplex": _multiplex, "shift": _shift,
+    "compare": _compare, "signature": _signature, "concat": _concat,
+    "assert_compare": _assert_compare, "assert_bool": _assert_bool,
+    "assert_near": _assert_near, "advance_time": _advance_time,
+}
