@@ -309,3 +309,16 @@ if __name__ == "__main__":
     inside, _ = import_graph()
     for c in strongly_connected(inside):
         print("cycle:", " -> ".join(cycle_path(inside, c)))
+
+
+def test_no_private_name_is_imported_from_another_module() -> None:
+    """A name starting with one underscore is its module's own business: another module that
+    needs it must get a public name (``from x import f as _f`` of a public ``f`` is fine)."""
+    found = []
+    for module, path in module_files().items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith(
+                    "plclab")):
+                found += [f"{module}:{node.lineno} imports {a.name}" for a in node.names
+                          if a.name.startswith("_") and not a.name.startswith("__")]
+    assert not found, "\n".join(found)

@@ -598,7 +598,7 @@ class Codegen:
             return
         texts = [A.expr_text(e) for _, e in info.inputs]
         self.assert_texts[w] = ", ".join(texts)
-        kinds = [_kind_name(e.ty) for _, e in info.inputs]
+        kinds = [kind_name(e.ty) for _, e in info.inputs]
         if name in ("ASSERT_EQ", "ASSERT_NE"):
             k = kinds[0] if kinds[0] != "int?" else kinds[1]
             self.emit(f"_assert_cmp({args[0]}, {args[1]}, {name == 'ASSERT_EQ'}, {w}, {k!r})")
@@ -1417,7 +1417,7 @@ def _in_range_builtin(e: A.Call) -> bool:
     return False
 
 
-def _kind_name(t: T.Type | None) -> str:
+def kind_name(t: T.Type | None) -> str:
     if t is None:
         return "int?"
     r = T.resolve(t)

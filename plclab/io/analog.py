@@ -30,12 +30,12 @@ from plclab.io.scaling import (
     CountFormat,
     SignalRange,
     Status,
-    _signal_code,
     count_format,
     counts_to_eng,
     counts_to_signal,
     eng_resolution,
     eng_to_counts,
+    signal_code,
     signal_range,
     signal_status,
 )
@@ -285,7 +285,7 @@ class AnalogInput:
         return eng_resolution(0.0, span, convention=self.format)
 
     def _code(self, x: float) -> int:
-        return _signal_code(x, self.range, self.format, self.wire_break_diagnostic)[0]
+        return signal_code(x, self.range, self.format, self.wire_break_diagnostic)[0]
 
     def _diagnose(self, x: float) -> Status:
         return signal_status(x, self.range, convention=self.format)

@@ -435,7 +435,7 @@ def signal_to_eng(value: float, lo: float, hi: float, signal: str | SignalRange)
     return lo + signal_range(signal).to_fraction(value) * (hi - lo)
 
 
-def _signal_code(
+def signal_code(
     value: float, rng: SignalRange, fmt: CountFormat, wire_break_diagnostic: bool
 ) -> tuple[int, int]:
     code, flag = _quantise(_fraction_to_counts(rng.to_fraction(value), fmt), fmt)
@@ -481,7 +481,7 @@ def signal_to_counts(
     """
     rng = signal_range(signal)
     fmt = count_format(convention, bits, rng.bipolar)
-    return _signal_code(value, rng, fmt, wire_break_diagnostic)[0]
+    return signal_code(value, rng, fmt, wire_break_diagnostic)[0]
 
 
 def counts_to_signal(
@@ -618,7 +618,7 @@ def signal_status(
     flag = 0
     if convention is not None:
         fmt = count_format(convention, bits, rng.bipolar)
-        flag = _signal_code(value, rng, fmt, True)[1]
+        flag = signal_code(value, rng, fmt, True)[1]
     return Status(
         wire_break=rng.wire_break_at is not None and value <= rng.wire_break_at,
         short_circuit=rng.fault_high_at is not None and value >= rng.fault_high_at,

@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 
-from .rt import _f32
+from ..compile.real32 import f32 as _f32
 from .stdfb import NativeBlock
 
 __all__ = ["PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE", "BLINKER", "RAMP", "PT1",

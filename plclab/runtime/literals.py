@@ -50,7 +50,7 @@ def parse_literal(text: str, ty: T.Type, path: str = "") -> Any:
             return v
         raise PlcError("PLC3002", f"{path}: {v} does not fit {t}")
     elif t.kind == "real" and tok.kind in ("INT", "REAL"):
-        from .rt import _f32
+        from ..compile.real32 import f32 as _f32
 
         return _f32(float(v)) if t is T.REAL else float(v)
     elif t.kind == "time" and tok.kind == "TIME":

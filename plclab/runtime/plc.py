@@ -21,7 +21,7 @@ import sys
 from dataclasses import dataclass
 from typing import Any
 
-from ..compile.codegen import Compiled, _kind_name
+from ..compile.codegen import Compiled, kind_name
 from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
@@ -518,7 +518,7 @@ class Plc:
     def get(self, path: str, iec: bool = False) -> Any:
         v = self.var(path)
         val = v.get()
-        return format_value(val, _kind_name(v.type)) if iec else val
+        return format_value(val, kind_name(v.type)) if iec else val
 
     def format(self, path: str) -> str:
         """The value as an IEC literal (``T#1s``, ``TRUE``, ``7.8``)."""
@@ -787,9 +787,9 @@ def convert_in(value: Any, ty: T.Type, path: str = "") -> Any:
             return value
     elif t.kind == "real":
         if isinstance(value, int | float) and not isinstance(value, bool):
-            from .rt import _f32
+            from ..compile.real32 import f32
 
-            return _f32(float(value)) if t is T.REAL else float(value)
+            return f32(float(value)) if t is T.REAL else float(value)
     elif t.kind == "time":
         if isinstance(value, _dt.timedelta):
             ns = round(value.total_seconds() * 1e9)

@@ -165,7 +165,7 @@ def _declared(plc: Any, address: str) -> Any:
     return None
 
 
-def _type_kind(ty: Any) -> tuple[str, tuple[int, int]]:
+def type_kind(ty: Any) -> tuple[str, tuple[int, int]]:
     """('bool' | 'int' | 'real' | other kind, integer range) of a PLC type."""
     from plclab.lang import types as T
 
@@ -375,7 +375,7 @@ def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: 
         ch.plc_kind = "bool"
         return
     declared = _declared(plc, row.plc)
-    kind = _type_kind(declared)[0] if declared is not None else ""
+    kind = type_kind(declared)[0] if declared is not None else ""
     if kind == "real" and mod == "direct" and size in ("D", "L"):
         ch.float_fmt = ">f" if size == "D" else ">d"
         ch.plc_kind = "float"
@@ -399,7 +399,7 @@ def _bind_variable(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool:
         bad("PLC4004", f"{e.message}; name a variable of the program (e.g. Main.SP) or an "
             "address such as %IX0.0", "plc")
         return
-    kind, rng = _type_kind(var.type)
+    kind, rng = type_kind(var.type)
     mod = row.module
     need_bool = mod in ("di", "do") or (mod == "direct" and is_bool)
     if need_bool and kind != "bool":

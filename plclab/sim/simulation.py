@@ -220,7 +220,7 @@ class Simulation:
     def _build_recorder(self, watch: list[str]) -> None:
         from plclab.trace.recorder import Recorder
 
-        from .channels import _type_kind
+        from .channels import type_kind
 
         rec = Recorder()
         sigs = self.plant.signals
@@ -258,7 +258,7 @@ class Simulation:
                 var = self.plc.var(name)
             except PlcError as e:
                 raise sim_error("PLC4020", f"watch {name}: {e.message}") from None
-            kind, _ = _type_kind(var.type)
+            kind, _ = type_kind(var.type)
             if kind == "time":
                 kind = "int"
             elif kind == "enum":
