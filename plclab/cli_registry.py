@@ -82,7 +82,7 @@ def command(name: str, help_text: str | None = None, *,
         if name not in COMMAND_TABLE:
             COMMAND_TABLE[name] = CommandInfo(help_text or "", fn.__module__)
         REGISTRY[name] = Registered(COMMAND_TABLE[name].help, add_args or from_decorators, fn)
-        fn._help_text = help_text  # checked against the table by tests/test_cli_lazy.py
+        fn._help_text = help_text  # checked against the table by tests/cli/test_cli_lazy.py
         return fn
 
     return deco

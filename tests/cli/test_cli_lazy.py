@@ -18,7 +18,7 @@ import pytest
 from plclab import cli
 from plclab.cli_registry import COMMAND_TABLE, REGISTRY
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 # What `plclab check` may not import (issue 12), and the packages of the other commands.
 HEAVY = ["asyncio", "numpy", "matplotlib", "pymunk", "rerun", "pymodbus", "plants",

@@ -225,7 +225,7 @@ def test_no_block_raises_and_no_output_becomes_nan(call, cycle_ms):
 
 # ------------------------------------------------------------------ docs/blocks.md examples
 
-_DOCS = Path(__file__).resolve().parents[2] / "docs" / "blocks.md"
+_DOCS = Path(__file__).resolve().parents[3] / "docs" / "blocks.md"
 
 
 def test_every_example_in_docs_blocks_md_compiles_and_runs():
