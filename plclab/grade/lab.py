@@ -37,12 +37,13 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion")
+            "criterion", "mistake")
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
                   "message", "hint", "signals", "window", "description", "requires",
                   "critical")
+MISTAKE_KEYS = ("file", "max_score", "violates", "description")
 IO_KEYS = ("name", "address", "type", "unit", "description")
 DIAGRAM_KEYS = ("signals", "window")
 
@@ -210,6 +211,21 @@ def _as_verdict(res: Any, where: str) -> Verdict:
 
 
 @dataclass
+class MistakeSpec:
+    """A typical wrong program kept in ``mistakes/`` and the score it may earn at most.
+
+    ``violates`` names the criteria it breaks: a criterion name (every scenario that checks
+    it) or one test, ``"scenario: criterion"``. The lab's tests hold it to at most
+    ``max_score`` and to at most half the points of the tests it violates.
+    """
+
+    file: str
+    max_score: float
+    violates: list[str] = field(default_factory=list)
+    description: str = ""
+
+
+@dataclass
 class Lab:
     """A lab read from ``lab.toml`` (see :func:`load_lab`)."""
 
@@ -233,6 +249,7 @@ class Lab:
     diagram_signals: list[str] = field(default_factory=list)
     diagram_window: float = 20.0
     hash: str = ""
+    mistakes: list[MistakeSpec] = field(default_factory=list)
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -272,6 +289,15 @@ class Lab:
             rows.append(f"| `{r.name}` | `{r.address}` | {r.type} | {r.unit} | "
                         f"{r.description} |")
         return "\n".join(rows)
+
+    def violated_tests(self, mistake: MistakeSpec) -> list[str]:
+        """The tests (``"scenario: criterion"``) a mistake's ``violates`` names."""
+        out: list[str] = []
+        for v in mistake.violates:
+            tests = ([v] if ": " in v else
+                     [f"{s}: {c.name}" for c in self.criteria if c.name == v for s in c.scenarios])
+            out += [t for t in tests if t not in out]
+        return out
 
     def files(self, sub: str) -> list[Path]:
         """Source files in a sub-folder (``solution``, ``mistakes``), sorted."""
@@ -473,7 +499,37 @@ class _Builder:
         lab = Lab(lab_id, self.folder, title, plant, io, scenarios, criteria, wiring, wsrc,
                   summary, goals, params, str(scan) if isinstance(scan, str) else f"{scan_s}s",
                   langs, tl, mem, watch, dsig, dwin)
+        lab.mistakes = self.mistakes(d, criteria)
         return lab
+
+    def mistakes(self, d: Mapping[str, Any], criteria: list[CriterionSpec]
+                 ) -> list[MistakeSpec]:
+        raw = d.get("mistake", [])
+        if not isinstance(raw, list) or not all(isinstance(r, Mapping) for r in raw):
+            raise self.err("PLC5004", "mistake must be [[mistake]] tables", key="mistake")
+        tests = {f"{s}: {c.name}" for c in criteria for s in c.scenarios}
+        crits = [c.name for c in criteria]
+        out: list[MistakeSpec] = []
+        for i, m in enumerate(raw):
+            what = f"[[mistake]] #{i + 1}"
+            self.unknown(m, MISTAKE_KEYS, what, "mistake", i)
+            file = self.string(m, "file", what, "mistake", i, required=True)
+            if Path(file).name != file or not (self.folder / "mistakes" / file).is_file():
+                raise self.err("PLC5001", f"{what}: no file mistakes/{file} in the lab folder",
+                               "mistake", i, "file")
+            top = m.get("max_score")
+            if isinstance(top, bool) or not isinstance(top, int | float) or top < 0:
+                raise self.err("PLC5004", f"{what}: max_score must be a number >= 0, e.g. "
+                               "max_score = 12", "mistake", i, "max_score")
+            viol = self.strings(m, "violates", what, "mistake", i)
+            for v in viol:
+                if v not in tests and v not in crits:
+                    raise self.err("PLC5009", f"{what}: violates '{v}', which is neither a "
+                                   "criterion nor a test 'scenario: criterion'."
+                                   f"{did_you_mean(v, crits)}", "mistake", i, "violates")
+            out.append(MistakeSpec(file, float(top), viol,
+                                   self.string(m, "description", what, "mistake", i)))
+        return out
 
     def memory(self, v: Any) -> int:
         if isinstance(v, bool) or not isinstance(v, int | float | str):
