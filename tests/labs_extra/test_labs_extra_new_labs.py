@@ -174,3 +174,24 @@ def test_two_hand_and_dose():
     assert c.dose(_trace(t, DOWN=down, POSITION=pos), pulses=60, count=1)[0]
     ok, msg, _, _ = c.dose(_trace(t, DOWN=down, POSITION=pos * 0.5), pulses=60)
     assert not ok and "60 mm" in msg
+
+
+def test_pumps_latched_until_low_level():
+    chk = _checks("pump-station").latched
+    t = np.arange(0.0, 100.0, 0.5)
+    ny = t < 80.0
+    latched = (t >= 10.0) & (t < 80.5)
+    assert chk(_trace(t, NY=ny, NS1=latched, NS2=latched & (t >= 30.0), NS3=t < 0))[0]
+    follows = latched & ~((t >= 40.0) & (t < 50.0))
+    ok, msg, tf, sig = chk(_trace(t, NY=ny, NS1=latched, NS2=follows & (t >= 30.0), NS3=t < 0))
+    assert not ok and tf == 40.0 and "NS2" in msg and sig[0] == "NS2"
+
+
+def test_steady_output():
+    chk = _checks("heater-pid").steady_output
+    t = np.arange(0.0, 100.0, 1.0)
+    calm = 85.0 + 0.5 * np.sin(t)
+    assert chk(_trace(t, POWER=calm, TEMP=t * 0), max_std=3.0, start=10.0)[0]
+    noisy = 85.0 + 10.0 * np.sin(t)
+    ok, msg = chk(_trace(t, POWER=noisy, TEMP=t * 0), max_std=3.0, start=10.0)[:2]
+    assert not ok and "at most 3" in msg
