@@ -186,6 +186,12 @@ class CriterionSpec:
             return Verdict(False, f"this criterion could not be evaluated ({type(e).__name__}: "
                            f"{e}); tell your instructor (PLC5010)")
 
+    def summary(self) -> str:
+        """The check and its parameters in one line: ``max_switchings: signal = PUMP, max = 8``."""
+        name = self.python if self.function is not None else self.check
+        ps = ", ".join(f"{k} = {_fmt_param(v)}" for k, v in self.params.items() if v is not None)
+        return f"{name}: {ps}" if ps else name
+
     def relevant_signals(self) -> list[str]:
         """Signals for the timing diagram of a failure."""
         out = list(self.signals)
@@ -193,6 +199,21 @@ class CriterionSpec:
             if s not in out:
                 out.append(s)
         return out
+
+
+def _fmt_param(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:g}"
+    if isinstance(v, list | tuple):
+        return "[" + ", ".join(_fmt_param(x) for x in v) + "]"
+    if isinstance(v, Mapping):
+        return "{" + ", ".join(f"{k} = {_fmt_param(x)}" for k, x in v.items()) + "}"
+    return str(v)
+
+
+def _cell(text: str) -> str:
+    """Text for one cell of a Markdown table."""
+    return " ".join(text.split()).replace("|", "\\|")
 
 
 def _as_verdict(res: Any, where: str) -> Verdict:
@@ -288,6 +309,21 @@ class Lab:
         for r in self.io:
             rows.append(f"| `{r.name}` | `{r.address}` | {r.type} | {r.unit} | "
                         f"{r.description} |")
+        return "\n".join(rows)
+
+    def criteria_table_markdown(self) -> str:
+        """The criteria as a Markdown table (scenarios, points, the check with its parameters,
+        what it means), for the README: generated from lab.toml so that the two cannot
+        disagree."""
+        hidden = {s.name for s in self.scenarios if not s.visible}
+        rows = ["| Criterion | Scenarios | Points | Check | What it checks |",
+                "|---|---|---|---|---|"]
+        for c in self.criteria:
+            scs = ", ".join(f"`{s}`" + (" (hidden)" if s in hidden else "") for s in c.scenarios)
+            what = _cell(c.description or c.message)
+            flags = " (critical)" if c.critical else ""
+            rows.append(f"| {c.name}{flags} | {scs} | {c.points:g} each | {_cell(c.summary())} "
+                        f"| {what} |")
         return "\n".join(rows)
 
     def violated_tests(self, mistake: MistakeSpec) -> list[str]:

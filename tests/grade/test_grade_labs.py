@@ -124,3 +124,26 @@ def test_solution_st_tests_pass(lab_id, name):
 
     results = run_test_files([str(lab_path(lab_id) / "solution" / name)])
     assert results and all(r.passed for r in results), [str(r) for r in results]
+
+
+def test_tank_readme_criteria_table_is_generated():
+    """The tank lab's README lists its criteria between markers; every README that has the
+    markers must hold exactly the table lab.toml generates."""
+    from plclab.grade.commands import CRITERIA_END, CRITERIA_START
+
+    lab = load_lab("tank-two-position")
+    readme = (lab.path / "README.md").read_text(encoding="utf-8")
+    assert readme_table(readme, CRITERIA_START, CRITERIA_END) is not None
+    assert "max = 8" in lab.criteria_table_markdown()
+
+
+@pytest.mark.parametrize("lab_id", LABS)
+def test_readme_criteria_table_matches_lab_toml(lab_id):
+    from plclab.grade.commands import CRITERIA_END, CRITERIA_START
+
+    lab = load_lab(lab_id)
+    readme = (lab.path / "README.md").read_text(encoding="utf-8")
+    table = readme_table(readme, CRITERIA_START, CRITERIA_END)
+    if table is not None:
+        assert table == lab.criteria_table_markdown(), (
+            f"run: plclab lab show {lab_id} --update-readme")
