@@ -110,8 +110,8 @@ LABS_CONFIG: dict[str, dict] = {
         "duration": None,
         "window": None,
         "questions": [
-            "Set TN := 0.0 (a P controller). How far below the set point does the water stay, "
-            "and how does that depend on KP?",
+            "Set TN := 0.0 (a P controller). How far below the set point does the water stay "
+            "in the sustained-draw scenario, and how does that depend on KP?",
             "Call the controller every 10 s instead of every second. What changes?",
             "Why does the power stay at 100 % for minutes at the start, and why does that not "
             "make the temperature overshoot (anti-windup)?",
@@ -127,6 +127,8 @@ LABS_CONFIG: dict[str, dict] = {
             "Why does the piston go back up (and not down) when the light curtain is clear "
             "again?",
             "What limits the dose accuracy: the scan time, the valve lag or the encoder?",
+            "Where in your program does the temperature control run, and does it still run "
+            "while the sequence waits for the light curtain?",
         ],
     },
 }

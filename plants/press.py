@@ -71,6 +71,8 @@ class Press(Plant):
         Heat-loss coefficient, W/K.
     t_amb : float
         Ambient temperature, degC.
+    t0 : float or None
+        Plastic temperature after reset, degC (default ``t_amb``).
     t_melt, t_degrade : float
         Lowest temperature for extrusion and the temperature where the plastic degrades, degC.
     estop_hardwired : bool
@@ -115,6 +117,7 @@ class Press(Plant):
         heat_capacity: float = 3000.0,
         ua: float = 4.0,
         t_amb: float = 20.0,
+        t0: float | None = None,
         t_melt: float = 180.0,
         t_degrade: float = 260.0,
         estop_hardwired: bool = True,
@@ -137,6 +140,7 @@ class Press(Plant):
         self.heat_capacity = float(heat_capacity)
         self.ua = float(ua)
         self.t_amb = float(t_amb)
+        self.t0 = self.t_amb if t0 is None else float(t0)
         self.t_melt = float(t_melt)
         self.t_degrade = float(t_degrade)
         self.estop_hardwired = bool(estop_hardwired)
@@ -167,7 +171,7 @@ class Press(Plant):
     def _reset_state(self) -> None:
         self.position = self.position0
         self.velocity = 0.0
-        self.temp = self.t_amb
+        self.temp = self.t0
         self.travel_down = 0.0
         self.strokes = 0
         self._stroke_start: float | None = None

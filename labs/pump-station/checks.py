@@ -76,3 +76,25 @@ def start_gap(trace, signals=("NS1", "NS2", "NS3"), gap=5.0, tol=0.2):
             return (False, f"{s0} started at t = {t0:.1f} s and {s1} only {t1 - t0:.1f} s later "
                     f"(at least {float(gap):g} s apart)", t1, [s0, s1])
     return True, f"{len(starts)} pump start(s), each at least {float(gap):g} s after the last"
+
+
+def latched(trace, pumps=("NS1", "NS2", "NS3"), low="NY", tol=2.0):
+    """Every pump, once started, runs until the water falls below the low level: each time a
+    pump goes off, ``low`` went FALSE at most ``tol`` seconds before (or the pump stops with
+    the low level at most ``tol`` later). A pump that follows a level switch stops while the
+    water is still above the low level and fails."""
+    import numpy as np
+
+    t = trace.time
+    ny = trace[low].astype(bool)
+    for name in pumps:
+        x = trace[name].astype(bool)
+        for i in np.nonzero(~x[1:] & x[:-1])[0] + 1:
+            ts = float(t[i])
+            a = int(np.searchsorted(t, ts - float(tol), "left"))
+            b = int(np.searchsorted(t, ts + float(tol), "right"))
+            if ny[a:b].all():
+                return (False, f"{name} stopped at t = {ts:.1f} s while the water was still above "
+                        f"the low level {low}: a pump must stay on until {low}", ts,
+                        [name, low, "LEVEL"])
+    return True, f"{', '.join(pumps)} ran each time until the low level {low}"

@@ -16,7 +16,14 @@ from pathlib import Path
 from plclab.cli_registry import arg, command
 
 from .errors import grade_error
-from .scaffold import README_END, README_START, readme_table  # noqa: F401 (re-exported)
+from .scaffold import (
+    CRITERIA_END,
+    CRITERIA_START,
+    README_END,
+    README_START,
+    readme_table,
+    replace_block,
+)
 
 
 def _labs_arg(p: argparse.ArgumentParser) -> None:
@@ -185,13 +192,16 @@ def lab_show(ns: argparse.Namespace) -> int:
         text = path.read_text(encoding="utf-8") if path.is_file() else f"# {lab.title}\n"
         block = f"{README_START}\n{lab.io_table_markdown()}\n{README_END}"
         if readme_table(text) is not None:
-            head = text.split(README_START, 1)[0]
-            tail = text.split(README_END, 1)[1]
-            text = head + block + tail
+            text = replace_block(text, README_START, README_END, lab.io_table_markdown())
         else:
             text = text.rstrip() + "\n\n## I/O table\n\n" + block + "\n"
+        done = "I/O table"
+        if readme_table(text, CRITERIA_START, CRITERIA_END) is not None:
+            text = replace_block(text, CRITERIA_START, CRITERIA_END,
+                                  lab.criteria_table_markdown())
+            done += " and criteria table"
         write_atomic(path, text)
-        print(f"{path}: I/O table updated")
+        print(f"{path}: {done} updated")
         return 0
     print(show_text(lab))
     readme = lab.path / "README.md"

@@ -39,12 +39,13 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion")
+            "criterion", "mistake")
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
                   "message", "hint", "signals", "window", "description", "requires",
                   "critical")
+MISTAKE_KEYS = ("file", "max_score", "violates", "description")
 IO_KEYS = ("name", "address", "type", "unit", "description")
 DIAGRAM_KEYS = ("signals", "window")
 
@@ -187,6 +188,12 @@ class CriterionSpec:
             return Verdict(False, f"this criterion could not be evaluated ({type(e).__name__}: "
                            f"{e}); tell your instructor (PLC5010)")
 
+    def summary(self) -> str:
+        """The check and its parameters in one line: ``max_switchings: signal = PUMP, max = 8``."""
+        name = self.python if self.function is not None else self.check
+        ps = ", ".join(f"{k} = {_fmt_param(v)}" for k, v in self.params.items() if v is not None)
+        return f"{name}: {ps}" if ps else name
+
     def relevant_signals(self) -> list[str]:
         """Signals for the timing diagram of a failure."""
         out = list(self.signals)
@@ -194,6 +201,21 @@ class CriterionSpec:
             if s not in out:
                 out.append(s)
         return out
+
+
+def _fmt_param(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:g}"
+    if isinstance(v, list | tuple):
+        return "[" + ", ".join(_fmt_param(x) for x in v) + "]"
+    if isinstance(v, Mapping):
+        return "{" + ", ".join(f"{k} = {_fmt_param(x)}" for k, x in v.items()) + "}"
+    return str(v)
+
+
+def _cell(text: str) -> str:
+    """Text for one cell of a Markdown table."""
+    return " ".join(text.split()).replace("|", "\\|")
 
 
 def _as_verdict(res: Any, where: str) -> Verdict:
@@ -209,6 +231,21 @@ def _as_verdict(res: Any, where: str) -> Verdict:
         return Verdict(passed, msg, t, sig)
     raise grade_error("PLC5010", f"python check {where} returned {res!r}; return a Verdict, a "
                       "bool or (passed, message[, t_fail[, signals]])")
+
+
+@dataclass
+class MistakeSpec:
+    """A typical wrong program kept in ``mistakes/`` and the score it may earn at most.
+
+    ``violates`` names the criteria it breaks: a criterion name (every scenario that checks
+    it) or one test, ``"scenario: criterion"``. The lab's tests hold it to at most
+    ``max_score`` and to at most half the points of the tests it violates.
+    """
+
+    file: str
+    max_score: float
+    violates: list[str] = field(default_factory=list)
+    description: str = ""
 
 
 @dataclass
@@ -235,6 +272,7 @@ class Lab:
     diagram_signals: list[str] = field(default_factory=list)
     diagram_window: float = 20.0
     hash: str = ""
+    mistakes: list[MistakeSpec] = field(default_factory=list)
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -274,6 +312,30 @@ class Lab:
             rows.append(f"| `{r.name}` | `{r.address}` | {r.type} | {r.unit} | "
                         f"{r.description} |")
         return "\n".join(rows)
+
+    def criteria_table_markdown(self) -> str:
+        """The criteria as a Markdown table (scenarios, points, the check with its parameters,
+        what it means), for the README: generated from lab.toml so that the two cannot
+        disagree."""
+        hidden = {s.name for s in self.scenarios if not s.visible}
+        rows = ["| Criterion | Scenarios | Points | Check | What it checks |",
+                "|---|---|---|---|---|"]
+        for c in self.criteria:
+            scs = ", ".join(f"`{s}`" + (" (hidden)" if s in hidden else "") for s in c.scenarios)
+            what = _cell(c.description or c.message)
+            flags = " (critical)" if c.critical else ""
+            rows.append(f"| {c.name}{flags} | {scs} | {c.points:g} each | {_cell(c.summary())} "
+                        f"| {what} |")
+        return "\n".join(rows)
+
+    def violated_tests(self, mistake: MistakeSpec) -> list[str]:
+        """The tests (``"scenario: criterion"``) a mistake's ``violates`` names."""
+        out: list[str] = []
+        for v in mistake.violates:
+            tests = ([v] if ": " in v else
+                     [f"{s}: {c.name}" for c in self.criteria if c.name == v for s in c.scenarios])
+            out += [t for t in tests if t not in out]
+        return out
 
     def files(self, sub: str) -> list[Path]:
         """Source files in a sub-folder (``solution``, ``mistakes``), sorted."""
@@ -475,7 +537,37 @@ class _Builder:
         lab = Lab(lab_id, self.folder, title, plant, io, scenarios, criteria, wiring, wsrc,
                   summary, goals, params, str(scan) if isinstance(scan, str) else f"{scan_s}s",
                   langs, tl, mem, watch, dsig, dwin)
+        lab.mistakes = self.mistakes(d, criteria)
         return lab
+
+    def mistakes(self, d: Mapping[str, Any], criteria: list[CriterionSpec]
+                 ) -> list[MistakeSpec]:
+        raw = d.get("mistake", [])
+        if not isinstance(raw, list) or not all(isinstance(r, Mapping) for r in raw):
+            raise self.err("PLC5004", "mistake must be [[mistake]] tables", key="mistake")
+        tests = {f"{s}: {c.name}" for c in criteria for s in c.scenarios}
+        crits = [c.name for c in criteria]
+        out: list[MistakeSpec] = []
+        for i, m in enumerate(raw):
+            what = f"[[mistake]] #{i + 1}"
+            self.unknown(m, MISTAKE_KEYS, what, "mistake", i)
+            file = self.string(m, "file", what, "mistake", i, required=True)
+            if Path(file).name != file or not (self.folder / "mistakes" / file).is_file():
+                raise self.err("PLC5001", f"{what}: no file mistakes/{file} in the lab folder",
+                               "mistake", i, "file")
+            top = m.get("max_score")
+            if isinstance(top, bool) or not isinstance(top, int | float) or top < 0:
+                raise self.err("PLC5004", f"{what}: max_score must be a number >= 0, e.g. "
+                               "max_score = 12", "mistake", i, "max_score")
+            viol = self.strings(m, "violates", what, "mistake", i)
+            for v in viol:
+                if v not in tests and v not in crits:
+                    raise self.err("PLC5009", f"{what}: violates '{v}', which is neither a "
+                                   "criterion nor a test 'scenario: criterion'."
+                                   f"{did_you_mean(v, crits)}", "mistake", i, "violates")
+            out.append(MistakeSpec(file, float(top), viol,
+                                   self.string(m, "description", what, "mistake", i)))
+        return out
 
     def memory(self, v: Any) -> int:
         if isinstance(v, bool) or not isinstance(v, int | float | str):

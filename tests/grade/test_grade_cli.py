@@ -38,7 +38,7 @@ def test_lab_check_ends_with_the_score(capsys, tmp_path):
     out = capsys.readouterr().out
     n = visible_max(MOTOR)
     assert out.rstrip().splitlines()[-1] == f"score: {n:g}/{n:g}"
-    assert "stop-wins" not in out, "hidden scenarios are not run by students"
+    assert "short-presses" not in out, "hidden scenarios are not run by students"
 
 
 def test_lab_check_a_mistake_draws_and_exports(capsys, tmp_path):
@@ -58,7 +58,7 @@ def test_lab_check_a_mistake_draws_and_exports(capsys, tmp_path):
 
 def test_lab_check_refuses_hidden_scenarios(capsys):
     sol = MOTOR.path / "solution" / "motor.st"
-    assert main(["lab", "check", "motor-start-stop", str(sol), "--scenario", "stop-wins",
+    assert main(["lab", "check", "motor-start-stop", str(sol), "--scenario", "short-presses",
                  "--no-media"]) == 1
     assert "PLC5026" in capsys.readouterr().err
 

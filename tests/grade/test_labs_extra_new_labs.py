@@ -1,6 +1,5 @@
 """The labs ventilation-fans, pump-station, heater-pid and press-safety: every reference
-solution scores 100 % (hidden scenarios included), every typical mistake scores less and fails
-the criteria it is meant to fail, the starter scores low, the README keeps its I/O table in
+solution scores 100 % (hidden scenarios included), the starter scores low, the README keeps its I/O table in
 step with lab.toml and cites the textbook, and the labs' own Python checks do what they say on
 small hand-made traces."""
 
@@ -13,34 +12,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from plclab.grade.commands import readme_table
 from plclab.grade.engine import grade_sources, read_submission
-from plclab.grade.feedback import render_feedback
 from plclab.grade.lab import load_lab
+from plclab.grade.scaffold import readme_table
 from plclab.trace import Trace
 
 ROOT = Path(__file__).resolve().parents[2]
 NEW_LABS = ["ventilation-fans", "pump-station", "heater-pid", "press-safety"]
 EXPECT = re.compile(r"\(\*\s*expect:\s*(.+?)\s*\*\)")
 
-# mistake file -> criteria it must fail (at least these)
-MISTAKES = {
-    ("ventilation-fans", "steady_lamp.st"): {"fault lamp flashes at 5 Hz"},
-    ("ventilation-fans", "half_frequency.st"): {"fault lamp flashes at 5 Hz"},
-    ("ventilation-fans", "standby_latched.st"): {"standby stops after the repair",
-                                                 "two fans run"},
-    ("pump-station", "no_priming_wait.st"): {"no pump without prime"},
-    ("pump-station", "all_together.st"): {"one pump copes with the normal inflow",
-                                          "one start at a time", "pump 2 joins in stage"},
-    ("pump-station", "no_latch.st"): {"no chatter"},
-    ("heater-pid", "reverse_acting.st"): {"heats up"},
-    ("heater-pid", "no_integral.st"): {"reaches 50 °C", "holds 50 °C"},
-    ("heater-pid", "gain_too_high.st"): {"no saturation chatter"},
-    ("press-safety", "taped_hand.st"): {"two hands within 0.5 s"},
-    ("press-safety", "ignores_curtain.st"): {"stops for the light curtain"},
-    ("press-safety", "counts_levels.st"): {"makes doses"},
-    ("press-safety", "no_bottom_switch.st"): {"stops at the bottom", "no crash"},
-}
+# The typical mistakes, their score bounds and the criteria they break are in each lab.toml
+# ([[mistake]]); tests/grade/test_grade_labs.py grades them for every lab.
 
 
 def _grade(lab_id, path):
@@ -91,23 +73,6 @@ def test_solution_scores_full_marks_hidden_included(lab_id, name):
     assert res.status == "ok" and not failed, failed
     assert res.score == res.max_score == lab.max_score
     assert {t.scenario for t in res.tests} == {s.name for s in lab.scenarios}
-
-
-@pytest.mark.parametrize("lab_id,name", sorted(MISTAKES))
-def test_mistake_fails_what_it_should(lab_id, name):
-    path = ROOT / "labs" / lab_id / "mistakes" / name
-    lab, res = _grade(lab_id, path)
-    assert res.status == "ok", res.diagnostics
-    assert res.score < res.max_score
-    failed = {t.criterion for t in res.tests if not t.passed}
-    assert MISTAKES[(lab_id, name)] <= failed, failed
-    expect = EXPECT.search(path.read_text(encoding="utf-8")).group(1)
-    assert expect.lower() in render_feedback(res, instructor=True).lower()
-
-
-def test_every_mistake_is_listed():
-    have = {(lab_id, p.name) for lab_id in NEW_LABS for p in load_lab(lab_id).files("mistakes")}
-    assert have == set(MISTAKES)
 
 
 @pytest.mark.parametrize("lab_id", NEW_LABS)
@@ -209,3 +174,24 @@ def test_two_hand_and_dose():
     assert c.dose(_trace(t, DOWN=down, POSITION=pos), pulses=60, count=1)[0]
     ok, msg, _, _ = c.dose(_trace(t, DOWN=down, POSITION=pos * 0.5), pulses=60)
     assert not ok and "60 mm" in msg
+
+
+def test_pumps_latched_until_low_level():
+    chk = _checks("pump-station").latched
+    t = np.arange(0.0, 100.0, 0.5)
+    ny = t < 80.0
+    latched = (t >= 10.0) & (t < 80.5)
+    assert chk(_trace(t, NY=ny, NS1=latched, NS2=latched & (t >= 30.0), NS3=t < 0))[0]
+    follows = latched & ~((t >= 40.0) & (t < 50.0))
+    ok, msg, tf, sig = chk(_trace(t, NY=ny, NS1=latched, NS2=follows & (t >= 30.0), NS3=t < 0))
+    assert not ok and tf == 40.0 and "NS2" in msg and sig[0] == "NS2"
+
+
+def test_steady_output():
+    chk = _checks("heater-pid").steady_output
+    t = np.arange(0.0, 100.0, 1.0)
+    calm = 85.0 + 0.5 * np.sin(t)
+    assert chk(_trace(t, POWER=calm, TEMP=t * 0), max_std=3.0, start=10.0)[0]
+    noisy = 85.0 + 10.0 * np.sin(t)
+    ok, msg = chk(_trace(t, POWER=noisy, TEMP=t * 0), max_std=3.0, start=10.0)[:2]
+    assert not ok and "at most 3" in msg

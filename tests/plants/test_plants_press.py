@@ -174,3 +174,15 @@ def test_closed_loop_heat_then_dose_by_pulses() -> None:
         assert d == pytest.approx(40.0, abs=1.5)
     bad = {"crash", "moved_without_two_hands", "curtain_violation", "cold_extrusion", "overheat"}
     assert not [e for e in p.drain_events() if e.kind in bad]
+
+
+def test_initial_temperature_t0() -> None:
+    """t0 starts the plastic at its own temperature; without it the press starts at ambient."""
+    p = Press(t_amb=20.0)
+    p.reset()
+    assert p["TEMP"] == pytest.approx(20.0)
+    p = Press(t_amb=20.0, t0=150.0, heat_capacity=1000.0)
+    p.reset()
+    assert p["TEMP"] == pytest.approx(150.0)
+    p.step(1.0)  # no heating: it cools towards ambient, ua (150 - 20) / C = 0.52 K/s
+    assert p["TEMP"] == pytest.approx(150.0 - 0.52, abs=0.01)

@@ -198,8 +198,8 @@ LAB_EDITS = {
         '`; import pwned_sentinel` | x |\\n## the motor does not start',
         'name = "starts"': 'name = "starts"\nhint = "]]> {0!r:{1}} %s %(x)s"'},
     "names": {'name = "start-stop"': 'name = "../../../escaped"',
-              '"start-stop", "overload", "stop-wins"]': '"../../../escaped", "overload", '
-              '"stop-wins"]', 'scenarios = ["start-stop"]': 'scenarios = ["../../../escaped"]'},
+              '["start-stop", "overload"': '["../../../escaped", "overload"',
+              'scenarios = ["start-stop"]': 'scenarios = ["../../../escaped"]'},
     "wiring-module": {'wiring = "': f'wiring = [{{ plc = "%IX0.0", signal = "START", '
                       f'module = "{S}" }}]\nold_wiring = "'},
 }
