@@ -293,7 +293,7 @@ def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
 
 
 def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
-                   scan: bool = False) -> list[Recording]:
+                   scan: bool = False, names: list[str] | None = None) -> list[Recording]:
     """One recording per scenario of a graded run, named by lab, scenario, file and score;
     scenarios with a failed criterion first (the viewer opens the first)."""
     from .layout import run_info, varying
@@ -305,9 +305,30 @@ def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
     for name, trace in result.traces.items():
         info = run_info(lab, result, name, student_file)
         info.keep = sorted(keep)
-        recs.append(recording(trace, fps=fps, info=info, scan=scan))
+        recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
     recs.sort(key=lambda r: all(v.passed for v in r.layout.info.verdicts))
     return recs
+
+
+def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any = None) -> str:
+    """``plclab lab check --rrd``: every scenario of the run in one file, one recording each
+    (failing scenarios first); returns the line to print."""
+    try:
+        import rerun  # noqa: F401
+    except ImportError:
+        raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
+                       "'plclab[viz]'") from None
+    from .recording import write_many
+
+    sig = getattr(ns, "signals", None)
+    names = [s.strip() for s in sig.split(",") if s.strip()] if sig else None
+    recs = lab_recordings(lab, result, student_file, scan=bool(getattr(ns, "scan_times", False)),
+                          names=names)
+    write_many(recs, path)
+    shown = ", ".join(r.layout.info.scenario for r in recs)
+    return (f"timeline: {path} ({len(recs)} scenario(s): {shown}; rerun's viewer lists them "
+            "all when Settings > 'Load files via Viewer catalog' is off, else it opens the "
+            "first)")
 
 
 def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
