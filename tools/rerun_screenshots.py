@@ -6,7 +6,7 @@ For each lab: grade the reference solution (the first ``solution/*.st``) and the
 (``mistakes/*.st`` in name order) in process, record its first failing scenario (else its first
 scenario) as ``plclab lab check --rrd`` does, open it in the rerun viewer under Xvfb
 (software Vulkan: ``apt-get install xvfb mesa-vulkan-drivers``), move the time cursor to the
-first failure (else to the end of the run) and save what the window draws with
+first failure (else to the middle of the run) and save what the window draws with
 ``rerun.experimental.ViewerClient.save_screenshot`` (an X screen grab comes back black).
 
 Nothing is written into the source tree unless ``--out`` points there.
@@ -57,7 +57,8 @@ def record(lab_id: str, program: Path, path: Path) -> tuple[float, str]:
     write_many([first], path)
     fails = [v.time for v in first.layout.info.verdicts if not v.passed and v.time is not None]
     ts = first.layout.plots[0].lines[0].series.times if first.layout.plots else [0.0]
-    return (min(fails) if fails else float(ts[-1])), first.layout.info.recording_id()
+    t = min(fails) if fails else 0.5 * (float(ts[0]) + float(ts[-1]))  # else mid-run
+    return t, first.layout.info.recording_id()
 
 
 def free_display() -> int:

@@ -54,13 +54,23 @@ def parse_window(text: str | None) -> tuple[float | None, float | None]:
     return t0, t1
 
 
-def chatter_episodes(trace, min_toggles: int = 4,
-                     window: float = 10.0) -> list[tuple[str, float, float, int]]:
+CHATTER = (6, 5.0)
+"""Chatter: at least 6 switchings within 5 s (a motor started twice or a reject pulse train
+is not chatter; a pump on a bare level switch is)."""
+
+
+def chatter_episodes(trace, min_toggles: int = CHATTER[0],
+                     window: float = CHATTER[1]) -> list[tuple[str, float, float, int]]:
     """(output, start, end, switchings) of each chatter episode of a digital output
-    (actuators, %Q columns)."""
+    (actuators, %Q columns; not lamps or transistor outputs, which blink on purpose)."""
     out = []
     info = trace.meta.get("signal_info", {})
-    outs = [n for n in trace.columns if trace.kind(n) == "bool" and (
+    quiet = set()  # lamps and transistor outputs may blink: that is not relay chatter
+    for r in trace.io:
+        kind = (r.get("params") or {}).get("kind")
+        if kind == "transistor" or info.get(r.get("plant_column"), {}).get("kind") == "lamp":
+            quiet |= {r.get("column"), r.get("plant_column")}
+    outs = [n for n in trace.columns if trace.kind(n) == "bool" and n not in quiet and (
         n.startswith("%Q") or info.get(n, {}).get("kind") == "actuator")]
     for name in outs:
         st = output_stats(Series(name, trace.time, trace.columns[name], "bool"),
@@ -69,7 +79,8 @@ def chatter_episodes(trace, min_toggles: int = 4,
     return out
 
 
-def chatter_events(trace, min_toggles: int = 4, window: float = 10.0) -> list[Event]:
+def chatter_events(trace, min_toggles: int = CHATTER[0],
+                   window: float = CHATTER[1]) -> list[Event]:
     """A warning event at each chatter episode of a digital output (actuators, %Q columns)."""
     return [Event(a, "chatter", name, f"{n} switchings in {b - a:.2f} s", "WARN")
             for name, a, b, n in chatter_episodes(trace, min_toggles, window)]
@@ -144,7 +155,7 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
             rec.events.append(Event(t, "verdict", "", f"FAILED {v.name}: {v.detail}", "ERROR"))
             if v.time is not None and inside(v.time):
                 sig = next((s for s in v.signals if lay.lane_of(s) or lay.plot_of(s)), "")
-                rec.markers += _markers(lay, sig, "fails", v.time, None, f"FAILED {v.name}:")
+                rec.markers += _markers(lay, sig, "fails", v.time, None, f"FAILED {v.name}")
         else:
             rec.events.append(Event(t, "verdict", "", f"passed {v.name}", "INFO"))
     rec.summary = _summary(lay, rec, chat, counts, trace)
@@ -153,7 +164,7 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         key = None
         if lay.plots and lay.plots[0].lines:
             ln = lay.plots[0].lines[0]
-            key = (ln.series.name, lay.plots[0].unit)
+            key = (ln.series.name, ln.label, lay.plots[0].unit, ln.step)
         from .plant_view import picture
 
         pic = picture(trace, plant, key)
@@ -187,7 +198,7 @@ def _markers(lay: Layout, source: str, what: str, t: float, t_end: float | None,
     red segment under its lane, if it has one."""
     lane = lay.lane_of(source) if source else None
     name = lane.label if lane is not None else source
-    label = f"{name} {what}".strip() if text is None else f"{text} {what}".strip()
+    label = f"{name} {what}".strip() if text is None else (text or what)
     out: list[Marker] = []
     from .recording import lane_entity
 

@@ -194,7 +194,8 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
     (label, value) pairs drawn as dashed lines."""
     info = info or RunInfo()
     units = trace.meta.get("units", {}) or {}
-    focus = {c for c in (_resolve(trace, n) for n in info.focus) if c}
+    focus_order = [c for c in (_resolve(trace, n) for n in info.focus) if c]
+    focus = set(focus_order)
     keep = focus | {c for c in (_resolve(trace, n) for n in info.keep) if c}
     wanted = None
     if names is not None:
@@ -250,7 +251,7 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
         order = {c: k for k, c in enumerate(wanted)}
         lanes.sort(key=lambda ln: order.get(ln.series.name, len(order)))
         analog.sort(key=lambda a: order.get(a[1], len(order)))
-    plots = _group(analog, focus, series, limits or {}, wanted is None)
+    plots = _group(analog, focus_order, series, limits or {}, wanted is None)
     return Layout(plots, lanes, info)
 
 
@@ -268,25 +269,64 @@ def _constant(values: Any) -> bool:
         bool(values.min() == values.max())
 
 
-def _group(analog, focus, series, limits, cap: bool) -> list[Plot]:
+def _group(analog, focus: list[str], series, limits, cap: bool) -> list[Plot]:
+    """Plots per unit; a watched variable joins the plot whose values it shares most (a
+    setpoint beside its temperature), else its own; the lab's signals first, in its order."""
     plots: dict[str, Plot] = {}
-    for label, col, unit, step in analog:
-        key = slug(unit or "value")
+
+    def add(key: str, unit: str, label: str, s: Series, step: bool) -> None:
         p = plots.setdefault(key, Plot(key, unit))
-        color = LINE_COLORS[len(p.lines) % len(LINE_COLORS)]
-        p.lines.append(Line(label, series(col, "real" if not step else "int", unit), color, step))
-        for k, (lname, value) in enumerate(limits.get(col, [])):
+        p.lines.append(Line(label, s, LINE_COLORS[len(p.lines) % len(LINE_COLORS)], step))
+        for k, (lname, value) in enumerate(limits.get(s.name, [])):
             p.limits.append(Limit(lname, float(value), LIMIT_COLORS[k % len(LIMIT_COLORS)]))
-    ordered = sorted(plots.values(), key=lambda p: not any(ln.series.name in focus
-                                                            for ln in p.lines))
+
+    watched = []
+    for label, col, unit, step in analog:
+        s = series(col, "int" if step else "real", unit)
+        if unit == "watched":
+            watched.append((label, s, step))
+        else:
+            add(slug(unit or "value"), unit, label, s, step)
+    for label, s, step in watched:
+        best, score = None, 0.05
+        for p in plots.values():
+            o = _overlap(_span(s), _span_of(p))
+            if o > score:
+                best, score = p, o
+        if best is not None:
+            add(best.key, best.unit, label, s, step)
+        else:
+            add("watched", "watched", label, s, step)
+    rank = {c: k for k, c in enumerate(focus)}
+    ordered = sorted(plots.values(), key=lambda p: min(
+        [rank.get(ln.series.name, len(rank)) for ln in p.lines]))
     if cap:
         ordered = ordered[:MAX_PLOTS]
     for p in ordered:
         if p.limits:
-            lo = min([0.0] + [lim.value for lim in p.limits])
-            hi = max(lim.value for lim in p.limits)
-            p.y_range = (lo, hi * 1.08 if hi > 0 else hi + 1.0)
+            lo = min([0.0] + [lim.value for lim in p.limits] + [_span_of(p)[0]])
+            hi = max([lim.value for lim in p.limits] + [_span_of(p)[1]])
+            p.y_range = (lo, hi + 0.08 * (hi - lo) if hi > lo else hi + 1.0)
     return ordered
+
+
+def _span(s: Series) -> tuple[float, float]:
+    vals = [float(v) for v in s.values if v == v]
+    return (min(vals), max(vals)) if vals else (0.0, 0.0)
+
+
+def _span_of(p: Plot) -> tuple[float, float]:
+    spans = [_span(ln.series) for ln in p.lines]
+    return min(a for a, _ in spans), max(b for _, b in spans)
+
+
+def _overlap(a: tuple[float, float], b: tuple[float, float]) -> float:
+    """Shared length over joint length of two value ranges (1 = the same range)."""
+    inter = min(a[1], b[1]) - max(a[0], b[0])
+    union = max(a[1], b[1]) - min(a[0], b[0])
+    if union <= 0:
+        return 1.0 if inter >= 0 else 0.0
+    return max(inter, 0.0) / union
 
 
 def run_info(lab: Any = None, result: Any = None, scenario: str = "",

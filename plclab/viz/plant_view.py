@@ -22,8 +22,10 @@ OFF = (110, 110, 110)
 UPRIGHT = (60, 190, 120)
 FALLEN = (240, 110, 40)
 TEXT = (230, 230, 230)
-COUNTERS = ("released", "good", "rejected", "fallen_rejected", "standing_rejected",
-            "fallen_passed", "unfilled_passed", "toppled")
+HOT = (255, 80, 40)
+HEATS = {"element": "HEATER"}
+"""Geometry lines drawn hot while a signal is TRUE."""
+COUNTERS = ("released", "good", "rejected", "fallen_passed", "unfilled_passed", "toppled")
 
 
 @dataclass
@@ -64,9 +66,10 @@ def _fmt(v: float, unit: str) -> str:
     return f"{txt} {unit}".strip()
 
 
-def picture(trace: Any, plant: Any, key: tuple[str, str] | None = None) -> Picture | None:
+def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = None
+            ) -> Picture | None:
     """The picture of ``plant`` (an instance from :mod:`plants`) for ``trace``; ``key`` is the
-    (column, unit) whose current value is written above the plant."""
+    (column, label, unit, whole-number) whose current value is written above the plant."""
     try:
         geo = plant.geometry() or {}
     except Exception:  # noqa: BLE001 - a picture is optional
@@ -99,8 +102,13 @@ def picture(trace: Any, plant: Any, key: tuple[str, str] | None = None) -> Pictu
                 static.append(Shape("outline", name, STEEL, points=pts))
             extent(s["x"], s["y"], s["x"] + s["w"], s["y"] + s["h"])
         elif kind == "line":
-            static.append(Shape("outline", name, STEEL,
-                                points=[(s["x0"], s["y0"]), (s["x1"], s["y1"])]))
+            pts = [(s["x0"], s["y0"]), (s["x1"], s["y1"])]
+            drive = HEATS.get(name)
+            if drive in cols:  # a heating element glows while it is switched on
+                moving.append(lambda i, pts=pts, c=cols[drive], name=name: [Shape(
+                    "outline", name, HOT if c[i] else STEEL, points=pts)])
+            else:
+                static.append(Shape("outline", name, STEEL, points=pts))
             extent(s["x0"], s["y0"], s["x1"], s["y1"])
         elif kind in ("mark", "circle"):
             extent(s["x"], s["y"], s["x"], s["y"])
@@ -111,18 +119,24 @@ def picture(trace: Any, plant: Any, key: tuple[str, str] | None = None) -> Pictu
         extent(0.0, 0.0, 1.0, 0.5)
     dot = 0.025 * size
 
+    placed: list[tuple[float, float]] = []
     for s in geo.get("shapes", []):
         kind, name = s.get("type"), s.get("name", "")
         if kind not in ("mark", "circle"):
             continue
         r = float(s.get("r", dot))
+        x = s["x"] + (3 * dot if kind == "mark" else 0.0)
+        while any(abs(x - px) < 0.12 * size and abs(s["y"] - py) < 0.1 * size
+                  for px, py in placed):
+            x += 0.15 * size  # a label must not sit on its neighbour's
+        placed.append((x, s["y"]))
+        extent(x, s["y"], x, s["y"])
         if name in cols and trace.kind(name) == "bool":
             drawn.add(name)
             lamp = info.get(name, {}).get("kind") == "lamp"
-            moving.append(_switch(name, s["x"] + (3 * dot if kind == "mark" else 0.0), s["y"],
-                                  r, cols[name], lamp))
+            moving.append(_switch(name, x, s["y"], r, cols[name], lamp))
         else:
-            static.append(Shape("dot", name, (120, 120, 120), s["x"], s["y"], r=dot * 0.6,
+            static.append(Shape("dot", name, (120, 120, 120), x, s["y"], r=dot * 0.6,
                                 label=name))
 
     fill = geo.get("fill")
@@ -157,28 +171,35 @@ def picture(trace: Any, plant: Any, key: tuple[str, str] | None = None) -> Pictu
         moving.append(_bottles(trace, bottle))
         counters = [(c, k) for k in COUNTERS for c in (k, f"snapshot:{k}") if c in cols]
         if counters:
-            bx, by = min(xs), max(ys) + 0.12 * size
+            bx, by = (min(xs) + max(xs)) / 2, max(ys) + 0.12 * size
 
             def count_text(i: int, counters=counters, bx=bx, by=by) -> list[Shape]:
-                txt = "  ".join(f"{k.replace('_', ' ')} {int(val(c, i))}"
+                txt = " · ".join(f"{k.replace('_', ' ')} {int(val(c, i))}"
                                 for c, k in counters if not math.isnan(val(c, i)))
                 return [Shape("text", "counters", TEXT, bx, by, label=txt)]
             moving.append(count_text)
             extent(bx, by, bx, by)
 
     # actuators, lamps and panel buttons the geometry does not place: a row under the plant
+    kinds = ("actuator", "lamp") if geo.get("shapes") else ("actuator", "lamp", "sensor", "panel")
     row = [n for n, d in info.items() if d.get("type") == "bool" and n in cols
-           and n not in drawn and d.get("kind") in ("actuator", "lamp")]
+           and n not in drawn and d.get("kind") in kinds]
     analog_act = [n for n, d in info.items() if d.get("type") == "real" and n in cols
                   and d.get("kind") in ("actuator", "panel")]
-    x_lo, x_hi = min(xs), max(xs)
+    mid = (min(xs) + max(xs)) / 2
+    per_row = 4
+    step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row), 0.3 * size)
+    width = step * min(len(row), per_row)
+    x_lo, x_hi = min(min(xs), mid - width / 2), max(max(xs), mid + width / 2)
     y_row = min(ys) - 0.12 * size
-    step = max((x_hi - x_lo) / max(len(row), 1), 0.0)
     for k, n in enumerate(row):
-        x = x_lo + step * (k + 0.5)
+        r, c = divmod(k, per_row)
+        in_row = min(per_row, len(row) - r * per_row)
+        x = mid + step * (c + 0.5 - in_row / 2)
         lamp = info[n].get("kind") == "lamp"
-        moving.append(_switch(n, x, y_row, 1.6 * dot, cols[n], lamp))
+        moving.append(_switch(n, x, y_row - r * 0.12 * size, 1.6 * dot, cols[n], lamp))
     if row:
+        y_row -= 0.12 * size * ((len(row) - 1) // per_row)
         extent(x_lo, y_row - 0.08 * size, x_hi, y_row)
     if analog_act:
         y_txt = y_row - 0.12 * size
@@ -191,11 +212,12 @@ def picture(trace: Any, plant: Any, key: tuple[str, str] | None = None) -> Pictu
     if key and key[0] in cols and not (fill and fill.get("signal") == key[0]) \
             and not (piston and piston.get("signal") == key[0]):
         ky = max(ys) + 0.1 * size
-        kc, ku = key
+        kc, kl, ku, whole = key
 
-        def key_text(i: int, kc=kc, ku=ku, ky=ky) -> list[Shape]:
-            return [Shape("text", "key_value", TEXT, (x_lo + x_hi) / 2, ky,
-                          label=f"{kc} {_fmt(val(kc, i), ku)}")]
+        def key_text(i: int, kc=kc, kl=kl, ku=ku, ky=ky, whole=whole) -> list[Shape]:
+            v = val(kc, i)
+            txt = f"{int(v)} {ku}".strip() if whole and not math.isnan(v) else _fmt(v, ku)
+            return [Shape("text", "key_value", TEXT, mid, ky, label=f"{kl} {txt}")]
         moving.append(key_text)
         extent(x_lo, ky, x_hi, ky + 0.05 * size)
 

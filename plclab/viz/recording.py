@@ -35,6 +35,8 @@ from .plant_view import Picture, Shape
 
 MARK = (230, 40, 40)
 OFF_LANE = (45, 45, 45)
+SCREEN_PX = 930.0
+"""Height of the left column on a 1000-pixel screen: lanes get their height, plots the rest."""
 DASHES = 48
 """A limit line is drawn as this many dashes across the run."""
 
@@ -90,6 +92,12 @@ class Recording:
         return float(min(t[0] for t in ts)), float(max(t[-1] for t in ts))
 
 
+def _limit_entity(p: Any, lim: Any) -> str:
+    """Highest limit first, as they lie in the plot (``/plots/m/limits/1_rim``)."""
+    order = sorted(p.limits, key=lambda x: -x.value).index(lim) + 1
+    return f"/plots/{p.key}/limits/{order}_{slug(lim.label)}"
+
+
 def lane_entity(k: int, label: str) -> str:
     """Lanes sort by entity path in the viewer: the number keeps the lab's order."""
     return f"/digital/{k + 1:02d}_{slug(label)}"
@@ -106,6 +114,9 @@ def blueprint(rec: Recording) -> Any:
         end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range
     left: list[Any] = []
     shares: list[float] = []
+    marks = sum(1 for m in rec.markers if m.lane)
+    lanes_px = 38.0 * (len(lay.lanes) + marks) + 40.0 if lay.lanes else 0.0
+    plot_px = max(140.0, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
     for p in lay.plots:
         kw: dict[str, Any] = {}
         if p.y_range is not None:
@@ -113,16 +124,15 @@ def blueprint(rec: Recording) -> Any:
         left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=p.title,
                                        plot_legend=rrb.PlotLegend(corner="LeftTop"),
                                        axis_x=whole, **kw))
-        shares.append(2.0)
+        shares.append(plot_px)
     if lay.lanes:
         left.append(rrb.StateTimelineView(origin="/digital", name="digital I/O, in the lab's "
                                           "order (ON = coloured)", time_view=whole))
-        shares.append(0.6 + 0.35 * len(lay.lanes) + 0.25 * sum(1 for m in rec.markers
-                                                                if m.lane))
+        shares.append(lanes_px)
     if len(rec.scan_durations_us):
         left.append(rrb.TimeSeriesView(origin="/scan", name="scan duration [us]",
                                        axis_x=whole))
-        shares.append(1.0)
+        shares.append(140.0)
     right: list[Any] = []
     rshares: list[float] = []
     if rec.picture is not None:
@@ -188,7 +198,7 @@ class RrdWriter:
                     names=ln.label, colors=[ln.color], widths=[2.0],
                     interpolation_mode="StepAfter" if ln.step else "Linear"), static=True)
             for lim in p.limits:
-                st.log(f"/plots/{p.key}/limits/{slug(lim.label)}", rr.SeriesLines(
+                st.log(_limit_entity(p, lim), rr.SeriesLines(
                     names=f"{lim.label} {lim.value:g} {p.unit}".rstrip(), colors=[lim.color],
                     widths=[1.5]), static=True)
         for lane in rec.layout.lanes:
@@ -265,7 +275,7 @@ class RrdWriter:
             if ends:
                 a, b = float(ends[0][start]), float(ends[0][-1])
                 for lim in p.limits:
-                    self._dashes(f"/plots/{p.key}/limits/{slug(lim.label)}", lim.value, a, b)
+                    self._dashes(_limit_entity(p, lim), lim.value, a, b)
         for lane in rec.layout.lanes:
             s = lane.series
             self._states(self.lane_paths[lane.label], s.times[start:], s.values[start:])
