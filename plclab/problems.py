@@ -237,6 +237,14 @@ PROBLEMS: dict[str, tuple[str, str]] = {
     "PLC4021": ("unknown trace column or bad trace file",
                 "The trace has no column of that name (trace.names lists them), or the file is "
                 "not a trace saved by plclab."),
+    "PLC4030": ("rerun recordings could not be joined",
+                "Every scenario is written as its own recording and rerun's `rrd merge` joins "
+                "them into one file; it failed (message attached). Write one scenario with "
+                "--scenario NAME, or check that rerun-sdk's command line works (rerun --version)."),
+    "PLC4031": ("inline rerun viewer not installed",
+                "Showing the timeline inside a notebook needs rerun-notebook matching rerun-sdk: "
+                "pip install 'rerun-notebook==0.41.*' (it serves its viewer from your machine, "
+                "offline). Or write an .rrd file and open it with `rerun FILE`."),
     "PLC3005": ("optional part not installed", "The feature needs an extra: pip install "
                 "'plclab[viz]' (rerun, matplotlib), 'plclab[modbus]' or 'plclab[sim]'."),
     # lab files

@@ -159,16 +159,20 @@ class RrdWriter:
     :meth:`send` logs rows (all of them, or only the new ones when streaming live)."""
 
     def __init__(self, rec: Recording, path: str | Path | None = "run.rrd",
-                 spawn: bool = False, send_blueprint: bool = True) -> None:
+                 spawn: bool = False, send_blueprint: bool = True, stream: Any = None) -> None:
         import rerun as rr
 
         self.rr = rr
-        self.path = None if spawn else path
+        self.path = None if (spawn or stream is not None) else path
         info = rec.layout.info
-        self.stream = rr.RecordingStream(info.application_id(), recording_id=info.recording_id())
-        if spawn:
+        if stream is not None:  # a stream someone else shows (the notebook viewer)
+            self.stream = stream
+        else:
+            self.stream = rr.RecordingStream(info.application_id(),
+                                             recording_id=info.recording_id())
+        if stream is None and spawn:
             self.stream.spawn()
-        elif path is not None:
+        elif stream is None and path is not None:
             self.stream.save(str(path))
         self.stream.send_recording_name(info.title())
         props = {k: v for k, v in (("lab", info.lab), ("scenario", info.scenario),

@@ -170,3 +170,23 @@ def test_tank_picture_is_filled_and_coloured():
     assert any(lb.startswith("LEVEL ") and lb.endswith(" m") for lb in labels)  # key value
     spots = [(round(s.x, 3), round(s.y, 3)) for s in frames[-1] if s.label]
     assert len(spots) == len(set(spots))  # no two labels at one place
+
+
+def test_notebook_viewer_missing_is_a_plc_error(monkeypatch):
+    import sys
+
+    from plclab.errors import PlcError
+    from plclab.viz import notebook
+
+    monkeypatch.setitem(sys.modules, "rerun_notebook", None)  # as if not installed
+    assert not notebook.available()
+    with pytest.raises(PlcError) as e:
+        notebook.show(sim.run(TANK, plant="tank", duration="5s"))
+    assert e.value.code == "PLC4031"
+
+
+def test_scenarios_failing_first_and_one_layout_for_all(recs):
+    assert not all(v.passed for v in recs[0].layout.info.verdicts)
+    plots = [[p.key for p in r.layout.plots] for r in recs]
+    lanes = [[ln.label for ln in r.layout.lanes] for r in recs]
+    assert all(p == plots[0] for p in plots) and all(ln == lanes[0] for ln in lanes)
