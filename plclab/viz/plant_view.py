@@ -145,11 +145,13 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
         x0, y0, w = fill["x"], fill["y"], fill["w"]
         u = units.get(sig, "")
 
+        extent(x0 - 0.3 * size, y0, x0, y0)
+
         def water(i: int, sig=sig, x0=x0, y0=y0, w=w, u=u) -> list[Shape]:
             h = max(val(sig, i), 0.0)
             return [Shape("box", "water", WATER, x0, y0, w, max(h, 1e-6)),
-                    Shape("text", "level_value", TEXT, x0 + w / 2, y0 + h,
-                          label=f"{sig} {_fmt(h, u)}")]
+                    Shape("text", "level_value", TEXT, x0 - 0.15 * size, y0 + h,
+                          label=f"{sig} {_fmt(h, u)}")]  # left: the switches are right
         moving.append(water)
     piston = geo.get("piston")
     if piston and piston.get("signal") in cols:
@@ -187,8 +189,8 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     analog_act = [n for n, d in info.items() if d.get("type") == "real" and n in cols
                   and d.get("kind") in ("actuator", "panel")]
     mid = (min(xs) + max(xs)) / 2
-    per_row = 4
-    step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row), 0.3 * size)
+    per_row = 3  # a label needs about a fifth of the picture's width
+    step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row), 0.4 * size)
     width = step * min(len(row), per_row)
     x_lo, x_hi = min(min(xs), mid - width / 2), max(max(xs), mid + width / 2)
     y_row = min(ys) - 0.12 * size

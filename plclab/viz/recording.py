@@ -115,7 +115,7 @@ def blueprint(rec: Recording) -> Any:
     left: list[Any] = []
     shares: list[float] = []
     marks = sum(1 for m in rec.markers if m.lane)
-    lanes_px = 38.0 * (len(lay.lanes) + marks) + 40.0 if lay.lanes else 0.0
+    lanes_px = 46.0 * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
     plot_px = max(140.0, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
     for p in lay.plots:
         kw: dict[str, Any] = {}
