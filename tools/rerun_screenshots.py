@@ -6,7 +6,8 @@ For each lab: grade the reference solution (the first ``solution/*.st``) and the
 (``mistakes/*.st`` in name order) in process, record its first failing scenario (else its first
 scenario) as ``plclab lab check --rrd`` does, open it in the rerun viewer under Xvfb
 (software Vulkan: ``apt-get install xvfb mesa-vulkan-drivers``), move the time cursor to the
-first failure (else to the middle of the run) and save what the window draws with
+first failure (else to the middle of the run), park the mouse pointer out of the way (xdotool,
+if installed) and save what the window draws with
 ``rerun.experimental.ViewerClient.save_screenshot`` (an X screen grab comes back black).
 
 Nothing is written into the source tree unless ``--out`` points there.
@@ -105,14 +106,28 @@ def shoot(rrd: Path, png: Path, t: float, rid: str, env: dict[str, str], wait: f
             time.sleep(1.0)
         client.set_time("sim_time", duration=t, play_state="paused",
                         recording=rec.store_id if rec is not None else None)
+        if shutil.which("xdotool"):  # park the pointer on the menu bar: no hover tooltip
+            subprocess.run(["xdotool", "mousemove", "5", "5"], env=env, check=False)
         time.sleep(wait)
         client.save_screenshot(str(png))
+        shrink(png)
     finally:
         viewer.terminate()
         try:
             viewer.wait(10)
         except subprocess.TimeoutExpired:
             viewer.kill()
+
+
+def shrink(png: Path) -> None:
+    """256 colours are plenty for the viewer's flat dark UI: a third of the bytes."""
+    try:
+        from PIL import Image
+    except ImportError:
+        return
+    with Image.open(png) as im:
+        small = im.convert("RGB").quantize(256)
+    small.save(png, optimize=True)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -190,7 +190,8 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
                   and d.get("kind") in ("actuator", "panel")]
     mid = (min(xs) + max(xs)) / 2
     per_row = 3  # a label needs about a fifth of the picture's width
-    step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row), 0.4 * size)
+    step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row),
+               0.55 * (max(ys) - min(ys)))  # tall, narrow vessels need a wider row
     width = step * min(len(row), per_row)
     x_lo, x_hi = min(min(xs), mid - width / 2), max(max(xs), mid + width / 2)
     y_row = min(ys) - 0.12 * size
