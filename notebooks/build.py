@@ -257,6 +257,17 @@ GRADE = '''\
 result = grade(PROGRAM)
 '''
 
+RERUN = '''\
+# The run above in rerun's viewer: plots per unit, the I/O lanes, the plant, chatter and
+# faults marked (rerun-notebook 0.41 serves its viewer from your machine: works offline).
+from plclab.viz import notebook as rerun_view
+
+if trace is not None and rerun_view.available():
+    rerun_view.show(trace, lab=lab, scenario={scenario!r})
+elif trace is not None:
+    print("To see the run in rerun here: pip install 'rerun-notebook==0.41.*'")
+'''
+
 
 def build_notebook(lab_id: str) -> nbformat.NotebookNode:
     """The notebook of one lab."""
@@ -303,6 +314,11 @@ def build_notebook(lab_id: str) -> nbformat.NotebookNode:
         "## Check it\n\nThe lab's visible scenarios and criteria (`plclab.grade.check`), "
         "with the feedback a grader gives. The last line is your score."))
     cells.append(new_code_cell(GRADE))
+    cells.append(new_markdown_cell(
+        "## The run in rerun\n\nThe same run as an interactive timeline (the view of "
+        f"`plclab lab check {lab_id} FILE --rrd run.rrd`): scrub the time, zoom into a "
+        "moment, watch the plant."))
+    cells.append(new_code_cell(RERUN.format(scenario=cfg["scenario"])))
     if "Grading" in sec:
         cells.append(new_markdown_cell("## What is graded\n\n" + sec["Grading"]))
     qs = "\n".join(f"{i}. {q}" for i, q in enumerate(cfg["questions"], 1))

@@ -240,6 +240,12 @@ def lab_check(ns: argparse.Namespace) -> int:
     wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
     if wants_export and res.traces:
         name = ns.scenario or next(iter(res.traces))
+        if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file and score
+            from plclab.viz.from_trace import write_lab_rrd
+
+            print(write_lab_rrd(lab, res, ns.rrd, ", ".join(Path(f).name for f in ns.files),
+                                ns))
+            ns.rrd = None
         for line in run_exports(res.traces[name], ns):
             print(line)
     if not ns.no_media and any(t.diagram for t in res.tests):

@@ -134,6 +134,7 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
                         "(pip install 'plclab[viz]')")
         return
     from plclab.viz.from_trace import recording
+    from plclab.viz.layout import Verdict, run_info
     from plclab.viz.recording import write_rrd as _write
 
     times = [t.t_fail for t in failed if t.t_fail is not None]
@@ -153,7 +154,10 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
     path = media_dir / f"{slug(sc.name)}.rrd"
     tmp = _atomic_tmp(path)
     try:
-        _write(recording(trace, names, t0, t1, fps=RRD_FPS), tmp)
+        info = run_info(lab, None, sc.name)
+        info.verdicts = [Verdict(t.criterion, False, t.t_fail, t.detail or t.message,
+                                 list(crits[t.criterion].relevant_signals())) for t in failed]
+        _write(recording(trace, names, t0, t1, fps=RRD_FPS, info=info), tmp)
         os.replace(tmp, path)
     except Exception as e:  # noqa: BLE001 - a recording must never cost a grade
         run.rrd_note = f"no .rrd recording ({type(e).__name__}: {e})"

@@ -78,7 +78,8 @@ def cmd_sim(ns: argparse.Namespace) -> int:
     params = dict(_param(p) for p in ns.param) if ns.param else None
     watch = split_names(ns.watch) if ns.watch else []
     sim = Simulation(plc, ns.plant, ns.wiring, scan, ns.dt, ns.seed, scenario=sc, watch=watch,
-                     snapshot=ns.snapshot, decimate=ns.decimate, plant_params=params)
+                     snapshot=ns.snapshot or None, decimate=ns.decimate,
+                     plant_params=params)
     for w in sim.warnings:
         print(f"note: {w}", file=sys.stderr)
     duration = ns.duration

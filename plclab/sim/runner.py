@@ -51,7 +51,7 @@ def load_plc(program: Any, cycle_time: Any = "10ms") -> Any:
 def run(program: Any, plant: Any = None, duration: Any = None, scenario: Any = None,
         wiring: Any = None, scan: Any = None, seed: int | None = None,
         watch: Iterable[str] = (), plant_params: dict[str, Any] | None = None, dt: Any = None,
-        until: Any = None, snapshot: bool = False, decimate: int = 1) -> Any:
+        until: Any = None, snapshot: bool | None = None, decimate: int = 1) -> Any:
     """Load a program, build the plant, simulate, return the :class:`~plclab.trace.Trace`.
 
     Parameters

@@ -105,10 +105,11 @@ class Simulation:
     scenario : Scenario, path, dict or list of actions, optional
     watch : iterable of str
         PLC variables to record every scan (``"Main.M"``, ``"t1.ET"``).
-    snapshot : bool
+    snapshot : bool, optional
         Also record the plant's ``snapshot()`` extras (can be expensive, e.g. 32 bottles),
         under their own keys (``volume``, ``bottle3.x``; ``snapshot:<key>`` when the name is
-        taken).
+        taken). Default (None): only for plants whose picture needs them (the conveyor's
+        bottles and counters, ``"bottle"`` in its geometry).
     decimate : int
         Record every n-th scan (events and edges are always complete).
     plant_params : dict, optional
@@ -136,7 +137,7 @@ class Simulation:
 
     def __init__(self, plc: Any, plant: Any = "tank", wiring: Any = None, scan: Any = None,
                  dt: Any = None, seed: int | None = None, *, scenario: Any = None,
-                 watch: Iterable[str] = (), snapshot: bool = False, decimate: int = 1,
+                 watch: Iterable[str] = (), snapshot: bool | None = None, decimate: int = 1,
                  plant_params: dict[str, Any] | None = None, wall_clock: bool = True,
                  stop_on_fault: bool = False) -> None:
         self.scenario: Scenario = as_scenario(scenario)
@@ -197,6 +198,11 @@ class Simulation:
         if isinstance(decimate, bool) or not isinstance(decimate, int) or decimate < 1:
             raise sim_error("PLC4020", f"decimate must be a whole number >= 1, not {decimate!r}")
         self.decimate = decimate
+        if snapshot is None:  # the recording draws bottles: keep them in the Trace
+            try:
+                snapshot = "bottle" in (self.plant.geometry() or {})
+            except Exception:  # noqa: BLE001 - a plant without a usable picture
+                snapshot = False
         self.snapshot = bool(snapshot)
         self.wall_clock = bool(wall_clock)
         self.stop_on_fault = bool(stop_on_fault)

@@ -9,13 +9,13 @@ For example::
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
 from ..errors import PlcError
 from .chatter import output_stats
-from .recording import Event, Recording, write_rrd
+from .layout import Layout, RunInfo, plan
+from .recording import Event, Marker, Recording, write_rrd
 from .series import Series
 
 
@@ -55,59 +55,36 @@ def parse_window(text: str | None) -> tuple[float | None, float | None]:
     return t0, t1
 
 
-def chatter_events(trace, min_toggles: int = 4, window: float = 10.0) -> list[Event]:
-    """A warning event at each chatter episode of a digital output (actuators, %Q columns)."""
-    evs = []
+CHATTER = (6, 5.0)
+"""Chatter: at least 6 switchings within 5 s (a motor started twice or a reject pulse train
+is not chatter; a pump on a bare level switch is)."""
+
+
+def chatter_episodes(trace, min_toggles: int = CHATTER[0],
+                     window: float = CHATTER[1]) -> list[tuple[str, float, float, int]]:
+    """(output, start, end, switchings) of each chatter episode of a digital output
+    (actuators, %Q columns; not lamps or transistor outputs, which blink on purpose)."""
+    out = []
     info = trace.meta.get("signal_info", {})
-    outs = [n for n in trace.columns if trace.kind(n) == "bool" and (
+    quiet = set()  # lamps and transistor outputs may blink: that is not relay chatter
+    for r in trace.io:
+        kind = (r.get("params") or {}).get("kind")
+        if kind == "transistor" or info.get(r.get("plant_column"), {}).get("kind") == "lamp":
+            quiet |= {r.get("column"), r.get("plant_column")}
+    outs = [n for n in trace.columns if trace.kind(n) == "bool" and n not in quiet and (
         n.startswith("%Q") or info.get(n, {}).get("kind") == "actuator")]
     for name in outs:
         st = output_stats(Series(name, trace.time, trace.columns[name], "bool"),
                           min_toggles=min_toggles, window=window)
-        for a, b, n in st.episodes:
-            evs.append(Event(a, "chatter", name, f"{n} switchings in {b - a:.2f} s", "WARN"))
-    return evs
-
-
-def recording(trace, names: list[str] | None = None, t0: float | None = None,
-              t1: float | None = None, fps: float = 10.0) -> Recording:
-    """Build a :class:`Recording`: analog and digital lanes, limits, events, plant picture."""
-    ss = series(trace, names, t0, t1)
-    analog = [s for s in ss if s.kind == "real"]
-    digital = [s for s in ss if s.kind != "real"]
-    warn_kinds = {"overflow", "dry_run", "plc_fault", "io_fault", "fault_injected",
-                  "bottle_toppled", "chatter", "spill", "crash", "moved_without_two_hands",
-                  "curtain_violation"}
-    events = [Event(e.time, e.kind, e.source, e.message,
-                    "ERROR" if e.kind == "plc_fault" else "WARN" if e.kind in warn_kinds
-                    else "INFO") for e in trace.events
-              if (t0 is None or e.time >= t0) and (t1 is None or e.time <= t1)]
-    events += [e for e in chatter_events(trace)
-               if (t0 is None or e.time >= t0) and (t1 is None or e.time <= t1)]
-    geometry, frames = _plant_picture(trace)
-    start = t0 if t0 is not None else (float(trace.time[0]) if len(trace.time) else 0.0)
-    end = t1 if t1 is not None else trace.t_end
-    n = max(1, int((end - start) * fps))
-    frame_times = [start + k / fps for k in range(n + 1)] if geometry else []
-    wall = trace.wall.get("scan_s")
-    scan_us = [] if wall is None else [float(x) * 1e6 for x in wall]
-    return Recording(analog=analog, digital=digital, events=events,
-                     limits=_limits(trace), scan_times=list(trace.time) if scan_us else [],
-                     scan_durations_us=scan_us, geometry=geometry, frames=frames,
-                     frame_times=frame_times, title=str(trace.meta.get("plant", "run")))
-
-
-def _limits(trace) -> dict[str, list[tuple[str, float]]]:
-    """Setpoints and switch heights worth drawing beside analog signals."""
-    out: dict[str, list[tuple[str, float]]] = {}
-    params = trace.meta.get("plant_params", {}) or {}
-    plant = _plant(trace)
-    if plant is not None and "LEVEL" in trace.columns:
-        for attr, label in (("ls1_height", "LS1"), ("ls2_height", "LS2"), ("height", "rim")):
-            v = params.get(attr, getattr(plant, attr, None))
-            if isinstance(v, int | float):
-                out.setdefault("LEVEL", []).append((label, float(v)))
+        out += [(name, a, b, n) for a, b, n in st.episodes]
     return out
+
+
+def chatter_events(trace, min_toggles: int = CHATTER[0],
+                   window: float = CHATTER[1]) -> list[Event]:
+    """A warning event at each chatter episode of a digital output (actuators, %Q columns)."""
+    return [Event(a, "chatter", name, f"{n} switchings in {b - a:.2f} s", "WARN")
+            for name, a, b, n in chatter_episodes(trace, min_toggles, window)]
 
 
 def _plant(trace):
@@ -122,75 +99,276 @@ def _plant(trace):
         return None
 
 
-def _plant_picture(trace):
+WARN_KINDS = {"overflow", "dry_run", "plc_fault", "io_fault", "fault_injected",
+              "bottle_toppled", "chatter", "spill", "crash", "moved_without_two_hands",
+              "curtain_violation"}
+"""Trace event kinds shown as warnings (plc_fault as an error)."""
+MAX_INFO = 12
+"""An informational event kind that happens more often than this is counted, not listed."""
+
+
+def recording(trace, names: list[str] | None = None, t0: float | None = None,
+              t1: float | None = None, fps: float = 10.0, info: RunInfo | None = None,
+              scan: bool = False) -> Recording:
+    """Build a :class:`Recording`: plots per unit, lanes in the lab's order, markers, the
+    summary and events, the plant picture; ``scan`` adds the wall-clock scan durations."""
+    if info is None:
+        info = RunInfo(lab=str(trace.meta.get("plant", "")))
+    start = t0 if t0 is not None else (float(trace.time[0]) if len(trace.time) else 0.0)
+    end = t1 if t1 is not None else trace.t_end
     plant = _plant(trace)
+    lay = plan(trace, info, names, t0, t1, _limits(trace, plant))
+    rec = Recording(layout=lay)
+
+    def inside(t: float) -> bool:
+        return start - 1e-9 <= t <= end + 1e-9
+
+    evs = [e for e in trace.events if inside(e.time)]
+    counts: dict[tuple[str, str], int] = {}
+    for e in evs:
+        counts[(e.kind, e.source)] = counts.get((e.kind, e.source), 0) + 1
+    kinds: dict[str, int] = {}
+    for e in evs:
+        kinds[e.kind] = kinds.get(e.kind, 0) + 1
+    for e in evs:
+        level = "ERROR" if e.kind == "plc_fault" else "WARN" if e.kind in WARN_KINDS else "INFO"
+        ev = Event(e.time, e.kind, _label(lay, e.source), e.message, level)
+        if level == "INFO" and (e.kind == "relay" or kinds[e.kind] > MAX_INFO):
+            rec.details.append(ev)
+        else:
+            rec.events.append(ev)
+        if level != "INFO":
+            what = e.kind.replace("_", " ")
+            rec.markers += _markers(lay, e.source, what, e.time, None,
+                                    text="" if lay.lane_of(e.source) is None else None)
+    chat = []
+    wired = {r.get("plant_column") for r in trace.io if r.get("direction") == "out"}
+    for name, a, b, n in chatter_episodes(trace):
+        if name in wired or not (inside(a) or inside(b)):  # once, by its PLC output
+            continue
+        e = Event(max(a, start), "chatter", name, f"{n} switchings in {b - a:.2f} s", "WARN")
+        chat.append(e)
+        rec.events.append(Event(e.time, "chatter", _label(lay, name), e.message, "WARN"))
+        rec.markers += _markers(lay, name, "chatter", e.time, min(b, end))
+    for v in info.verdicts:
+        t = v.time if v.time is not None else end
+        if not v.passed:
+            rec.events.append(Event(t, "verdict", "", f"FAILED {v.name}: {v.detail}", "ERROR"))
+            if v.time is not None and inside(v.time):
+                sig = next((s for s in v.signals if lay.lane_of(s) or lay.plot_of(s)), "")
+                rec.markers += _markers(lay, sig, "fails", v.time, None, f"FAILED {v.name}")
+        else:
+            rec.events.append(Event(t, "verdict", "", f"passed {v.name}", "INFO"))
+    rec.summary = _summary(lay, rec, chat, counts, trace)
+    pic = None
+    if plant is not None:
+        key = None
+        if lay.plots and lay.plots[0].lines:
+            ln = lay.plots[0].lines[0]
+            key = (ln.series.name, ln.label, lay.plots[0].unit, ln.step)
+        from .plant_view import picture
+
+        pic = picture(trace, plant, key)
+    if pic is not None and len(trace.time):
+        import numpy as np
+
+        n = max(1, int((end - start) * fps))
+        times = np.array([start + k / fps for k in range(n + 1)])
+        rows = np.clip(np.searchsorted(trace.time, times + 1e-9, "right") - 1, 0,
+                       len(trace.time) - 1)
+        rec.picture, rec.frame_times, rec.frame_rows = pic, list(times), list(rows)
+    wall = trace.wall.get("scan_s") if scan else None
+    if wall is not None:
+        keep = [k for k, t in enumerate(trace.time) if inside(float(t))]
+        rec.scan_times = [float(trace.time[k]) for k in keep]
+        rec.scan_durations_us = [float(wall[k]) * 1e6 for k in keep]
+    return rec
+
+
+def _label(lay: Layout, source: str) -> str:
+    """An event source as the lab names it (``%QX0.0`` -> ``PUMP (%QX0.0)``)."""
+    lane = lay.lane_of(source)
+    if lane is not None and lane.label != source:
+        return f"{lane.label} ({source})"
+    return source
+
+
+def _markers(lay: Layout, source: str, what: str, t: float, t_end: float | None,
+             text: str | None = None) -> list[Marker]:
+    """A cross in the plot of ``source`` (else in the first plot, on its first line) and a
+    red segment under its lane, if it has one."""
+    lane = lay.lane_of(source) if source else None
+    name = lane.label if lane is not None else source
+    label = f"{name} {what}".strip() if text is None else (text or what)
+    out: list[Marker] = []
+    from .recording import lane_entity
+
+    if lane is not None:
+        k = lay.lanes.index(lane)
+        span = t_end if t_end is not None else t
+        out.append(Marker(t, label, what, end=max(span, t + _min_width(lane)),
+                          lane=lane_entity(k, lane.label)))
+    hit = lay.plot_of(source) if source else None
+    if hit is None and lay.plots and lay.plots[0].lines:
+        hit = lay.plots[0], lay.plots[0].lines[0]
+    if hit is not None:
+        plot, line = hit
+        out.append(Marker(t, label, what, plot=plot.key, value=_value_at(line.series, t)))
+    return out
+
+
+def _min_width(lane) -> float:
+    """A marker segment is at least 1 % of the lane's time span wide, so it can be seen."""
+    ts = lane.series.times
+    return 0.01 * (float(ts[-1]) - float(ts[0])) if len(ts) > 1 else 0.0
+
+
+def _value_at(s: Series, t: float) -> float:
+    import bisect
+
+    i = max(0, bisect.bisect_right(list(s.times), t) - 1) if len(s.times) else 0
+    return float(s.values[i]) if len(s.values) else 0.0
+
+
+def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> str:
+    """Markdown, most important first: faults, failed criteria, chatter, warnings, passed
+    criteria, relay operations."""
+    info = lay.info
+    lines = [f"**{info.title()}**", ""]
+    errors = [e for e in rec.events if e.level == "ERROR" and e.kind != "verdict"]
+    failed = [v for v in info.verdicts if not v.passed]
+    warns = [e for e in rec.events if e.level == "WARN" and e.kind != "chatter"]
+    for e in errors:
+        lines.append(f"- **FAULT at {_t(e.time)}**: {e.message}")
+    for v in failed:
+        when = f"at {_t(v.time)}" if v.time is not None else "over the run"
+        lines.append(f"- **FAILED {when}: {v.name}**: {v.detail}")
+    for e in chat:
+        lines.append(f"- **CHATTER at {_t(e.time)}**: {_label(lay, e.source)}, {e.message}")
+    for e in warns[:8]:
+        lines.append(f"- **WARNING at {_t(e.time)}**: {e.source}: {e.message}")
+    if len(warns) > 8:
+        lines.append(f"- {len(warns) - 8} more warnings in the events view")
+    passed = [v for v in info.verdicts if v.passed]
+    if passed:
+        lines.append(f"- passed: {', '.join(v.name for v in passed)}")
+    relays = [(src, n) for (kind, src), n in counts.items() if kind == "relay"]
+    if relays:
+        lines.append("- relay operations: " + ", ".join(
+            f"{_label(lay, src)} {n}" for src, n in relays))
+    others = [(k, n) for (k, _src), n in counts.items() if k not in WARN_KINDS | {"relay"}
+              and n > MAX_INFO]
+    if others:
+        lines.append("- " + ", ".join(f"{n} × {k}" for k, n in others))
+    if len(lines) == 2:
+        lines.append("- nothing went wrong")
+    return "\n".join(lines)
+
+
+def _t(t: float | None) -> str:
+    if t is None:
+        return ""
+    return f"{t:.2f} s" if t < 60 else f"{int(t // 60)} min {t % 60:.1f} s"
+
+
+def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
+    """Switch heights and vessel rims worth drawing as limits, from the plant's geometry: the
+    marks beside a filled vessel are limits of its level, the end switches of a piston limits
+    of its position."""
+    out: dict[str, list[tuple[str, float]]] = {}
     if plant is None:
-        return {}, None
+        return out
     try:
-        geometry = plant.geometry() or {}
-    except Exception:  # noqa: BLE001
-        return {}, None
-    if not geometry:
-        return {}, None
-    marks = [s for s in geometry.get("shapes", []) if s.get("type") in ("mark", "circle")
-             and s.get("name") in trace.columns]
-    fill = geometry.get("fill")
-    bottles = sorted({c.split(".")[0] for c in trace.columns if c.startswith("bottle")
-                      and c.endswith(".x")})
-    bw = float(getattr(plant, "bottle_width", 0.06))
-    bh = float(getattr(plant, "bottle_height", 0.25))
-
-    def frames(t: float) -> list[dict]:
-        shapes: list[dict] = []
-        if fill and fill.get("signal") in trace.columns:
-            h = float(trace.value_at(fill["signal"], t))
-            shapes.append({"type": "rect", "name": "fill", "x": fill["x"], "y": fill["y"],
-                           "w": fill["w"], "h": max(h, 0.0), "color": (40, 110, 220)})
-        for m in marks:
-            on = bool(trace.value_at(m["name"], t))
-            shapes.append({"type": "mark", "name": m["name"] + "_state", "x": m["x"],
-                           "y": m["y"], "color": (40, 180, 60) if on else (160, 160, 160)})
-        for b in bottles:
-            x = float(trace.value_at(f"{b}.x", t))
-            if math.isnan(x):
-                shapes.append({"type": "clear", "name": b})
-                continue
-            y = float(trace.value_at(f"{b}.y", t))
-            a = float(trace.value_at(f"{b}.angle", t)) if f"{b}.angle" in trace.columns else 0
-            shapes.append({"type": "rect", "name": b, "x": x - bw / 2, "y": y - bh / 2,
-                           "w": bw, "h": bh, "angle": a or 1e-9, "color": (30, 140, 90)})
-        return shapes
-
-    geometry = {"shapes": [s for s in geometry.get("shapes", []) if s.get("type") != "circle"]
-                + [{"type": "mark", "name": s["name"], "x": s["x"], "y": s["y"]}
-                   for s in geometry.get("shapes", []) if s.get("type") == "circle"]}
-    return geometry, frames
+        geo = plant.geometry() or {}
+    except Exception:  # noqa: BLE001 - a picture is optional
+        return out
+    shapes = geo.get("shapes", [])
+    fill = geo.get("fill")
+    if fill and fill.get("signal") in trace.columns:
+        sig = fill["signal"]
+        for s in shapes:
+            if s.get("type") == "mark" and s.get("name") in trace.columns:
+                out.setdefault(sig, []).append((s["name"], float(s["y"])))
+        vessel = next((s for s in shapes if s.get("type") == "rect"
+                       and abs(s["x"] - fill["x"]) < 1e-9), None)
+        if vessel is not None:
+            out.setdefault(sig, []).append(("rim", float(vessel["y"] + vessel["h"])))
+    piston = geo.get("piston")
+    if piston and piston.get("signal") in trace.columns:
+        scale = float(piston["scale"])
+        for s in shapes:
+            if s.get("type") == "mark" and s.get("name") in trace.columns and scale:
+                out.setdefault(piston["signal"], []).append((s["name"], float(s["y"]) / scale))
+    for v in out.values():
+        v.sort(key=lambda lv: lv[1])
+    return out
 
 
-def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
-             names: list[str] | None = None,
-             window: tuple[float | None, float | None] = (None, None), fps: float = 10.0):
-    """Write a trace as a rerun recording (``spawn=True`` opens the viewer instead); ``fps``
-    is the frame rate of the plant animation (the signals keep every scan)."""
+def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
+                   scan: bool = False, names: list[str] | None = None) -> list[Recording]:
+    """One recording per scenario of a graded run, named by lab, scenario, file and score;
+    scenarios with a failed criterion first (the viewer opens the first)."""
+    from .layout import run_info, varying
+
+    keep: set[str] = set()  # one layout for all scenarios: the viewer keeps one blueprint
+    for trace in result.traces.values():
+        keep |= varying(trace)
+    recs = []
+    for name, trace in result.traces.items():
+        info = run_info(lab, result, name, student_file)
+        info.keep = sorted(keep)
+        recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
+    recs.sort(key=lambda r: all(v.passed for v in r.layout.info.verdicts))
+    return recs
+
+
+def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any = None) -> str:
+    """``plclab lab check --rrd``: every scenario of the run in one file, one recording each
+    (failing scenarios first); returns the line to print."""
     try:
         import rerun  # noqa: F401
     except ImportError:
         raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
                        "'plclab[viz]'") from None
-    return write_rrd(recording(trace, names, *window, fps=fps), None if spawn else path,
-                     spawn=spawn)
+    from .recording import write_many
+
+    sig = getattr(ns, "signals", None)
+    names = [s.strip() for s in sig.split(",") if s.strip()] if sig else None
+    recs = lab_recordings(lab, result, student_file, scan=bool(getattr(ns, "scan_times", False)),
+                          names=names)
+    write_many(recs, path)
+    shown = ", ".join(r.layout.info.scenario for r in recs)
+    return (f"timeline: {path} ({len(recs)} scenario(s): {shown}; rerun's viewer lists them "
+            "all when Settings > 'Load files via Viewer catalog' is off, else it opens the "
+            "first)")
+
+
+def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
+             names: list[str] | None = None,
+             window: tuple[float | None, float | None] = (None, None), fps: float = 10.0,
+             info: RunInfo | None = None, scan: bool = False):
+    """Write a trace as a rerun recording (``spawn=True`` opens the viewer instead); ``fps``
+    is the frame rate of the plant animation (the signals keep every scan); ``info`` names
+    the run and carries the lab's I/O table and verdicts; ``scan`` adds scan durations."""
+    try:
+        import rerun  # noqa: F401
+    except ImportError:
+        raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
+                       "'plclab[viz]'") from None
+    rec = recording(trace, names, *window, fps=fps, info=info, scan=scan)
+    return write_rrd(rec, None if spawn else path, spawn=spawn)
 
 
 def export(trace, *, rrd: str | None = None, vcd: str | None = None,
            wavedrom: str | None = None, png: str | None = None, csv: str | None = None,
            signals: list[str] | None = None, window: str | None = None,
-           spawn: bool = False) -> list[str]:
+           spawn: bool = False, scan: bool = False, info: RunInfo | None = None) -> list[str]:
     """Write every requested file; returns lines saying what was written where."""
     t0, t1 = parse_window(window)
     done = []
     ss = series(trace, signals, t0, t1) if (vcd or wavedrom or png or csv) else []
     if rrd or spawn:
-        to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1))
+        to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan)
         done.append("rerun viewer opened" if spawn else f"timeline: {rrd}")
     if vcd:
         from .exports import write_vcd
@@ -226,6 +404,8 @@ def add_export_args(p: Any) -> None:
     p.add_argument("--png", help="write a timing diagram (.png or .svg)")
     p.add_argument("--signals", help="signals for the exports, comma separated")
     p.add_argument("--window", help="time window for the exports, e.g. 0s..20s")
+    p.add_argument("--scan-times", action="store_true",
+                   help="also record how long each scan took (wall clock) in the rerun timeline")
 
 
 def run_exports(trace, ns: Any) -> list[str]:
@@ -234,4 +414,4 @@ def run_exports(trace, ns: Any) -> list[str]:
     return export(trace, rrd=getattr(ns, "rrd", None), vcd=getattr(ns, "vcd", None),
                   wavedrom=getattr(ns, "wavedrom", None), png=getattr(ns, "png", None),
                   signals=sig, window=getattr(ns, "window", None),
-                  spawn=getattr(ns, "spawn", False))
+                  spawn=getattr(ns, "spawn", False), scan=getattr(ns, "scan_times", False))

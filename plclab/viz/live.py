@@ -17,7 +17,7 @@ from ..errors import PlcError
 
 def run_live(sim: Any, duration: Any = None, until: Any = None, *, spawn: bool = True,
              path: str | Path | None = None, chunks: int = 50, speed: float | None = None,
-             names: list[str] | None = None, fps: float = 10.0):
+             names: list[str] | None = None, fps: float = 10.0, scan: bool = False):
     """Run ``sim`` (a :class:`plclab.sim.Simulation`) streaming it to rerun; returns the Trace."""
     try:
         import rerun  # noqa: F401
@@ -46,9 +46,11 @@ def run_live(sim: Any, duration: Any = None, until: Any = None, *, spawn: bool =
         n_ns = min(step_ns, total_ns - done_ns)
         trace = sim.run(n_ns / 1e9, until)
         done_ns += n_ns
-        rec = recording(trace, names, fps=fps)
+        rec = recording(trace, names, fps=fps, scan=scan)
         end = trace.t_end
-        rec.frame_times = [t for t in rec.frame_times if shown_t <= t < end] or []
+        new = [k for k, t in enumerate(rec.frame_times) if shown_t <= t < end]
+        rec.frame_times = [rec.frame_times[k] for k in new]
+        rec.frame_rows = [rec.frame_rows[k] for k in new]
         if writer is None:
             writer = RrdWriter(rec, path, spawn=spawn)
         writer.send(rec)

@@ -1,28 +1,44 @@
 """rerun recordings of a run (rerun-sdk 0.41, the optional [viz] extra).
 
-Layout of a recording:
+Layout of a recording (see :mod:`plclab.viz.layout` for what is chosen, ADR 0014 for why):
 
-* ``/analog/<signal>``: analog values as lines (setpoints and alarm limits as dashed companions
-  under ``/analog/<signal>/limits/<name>``);
-* ``/digital/<signal>``: BOOLs stacked like a logic analyzer, drawn step-after;
-* ``/markers/<signal>``: points where something happened to the signal (chatter, fault);
-* ``/events``: a text log (faults and chatter as warnings);
-* ``/scan/duration_us``: the wall-clock time each scan took;
-* ``/plant``: a 2D picture of the plant where it has geometry (bottles, tank fill, fans);
-* time lines ``sim_time`` (seconds) and ``scan`` (scan number) to scrub to any scan.
+* ``/plots/<unit>/<signal>``: one time-series view per unit (``/plots/m/LEVEL``); limits as
+  labelled dashed lines under ``/plots/<unit>/limits/<name>``; chatter, faults and failed
+  criteria as red crosses under ``/plots/<unit>/markers/<what>``;
+* ``/digital/<NN>_<name>``: one state lane per program input/output in the lab's order (ON/off),
+  ``/digital/<NN>_<name>/<what>`` a red segment where that signal chattered or failed;
+* ``/summary``: Markdown, most important first (faults, failed criteria with their time,
+  chatter, passed criteria, relay operation counts);
+* ``/events``: the timed warnings and verdicts; ``/details/relays`` every relay operation
+  (not in the default view);
+* ``/plant``: the plant picture (:mod:`plclab.viz.plant_view`);
+* ``/scan/duration_us``: wall-clock time of each scan, only when asked for;
+* time lines ``sim_time`` (seconds) and ``scan`` (scan number).
 
-Everything is logged column-wise with ``rr.send_columns``, so a whole run is written at once.
+Signals are logged column-wise with ``rr.send_columns``, so a whole run is written at once.
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable, Sequence
+import os
+import subprocess
+import sys
+import tempfile
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .series import Series
+from ..errors import PlcError
+from .layout import Layout, slug
+from .plant_view import Picture, Shape
+
+MARK = (230, 40, 40)
+OFF_LANE = (45, 45, 45)
+SCREEN_PX = 930.0
+"""Height of the left column on a 1000-pixel screen: lanes get their height, plots the rest."""
+DASHES = 48
+"""A limit line is drawn as this many dashes across the run."""
 
 
 @dataclass
@@ -35,27 +51,107 @@ class Event:
 
 
 @dataclass
-class Recording:
-    """What goes into one .rrd file (built from a Trace by :mod:`plclab.viz.trace_adapter`)."""
+class Marker:
+    """Something that happened to a signal, drawn in the plot or lane that shows it."""
 
-    analog: list[Series] = field(default_factory=list)
-    digital: list[Series] = field(default_factory=list)
+    time: float
+    label: str  # e.g. "PUMP chatter"
+    kind: str = "mark"  # chatter | fault | fails ...: names the marker's lane
+    end: float | None = None
+    plot: str | None = None  # plot key
+    value: float | None = None  # height of the cross in that plot
+    lane: str | None = None  # lane entity under /digital
+
+
+@dataclass
+class Recording:
+    """What goes into one recording (built from a Trace by :func:`plclab.viz.from_trace.recording`)."""
+
+    layout: Layout = field(default_factory=Layout)
     events: list[Event] = field(default_factory=list)
-    limits: dict[str, list[tuple[str, float]]] = field(default_factory=dict)
+    details: list[Event] = field(default_factory=list)
+    markers: list[Marker] = field(default_factory=list)
+    summary: str = ""
     scan_times: Sequence[float] = ()
     scan_durations_us: Sequence[float] = ()
-    geometry: dict[str, Any] = field(default_factory=dict)
-    frames: Callable[[float], list[dict]] | None = None  # time -> dynamic shapes
+    picture: Picture | None = None
+    frame_rows: Sequence[int] = ()
     frame_times: Sequence[float] = ()
-    title: str = "plclab"
+    view_span: tuple[float, float] | None = None  # time range at open (default: the run's)
+
+    @property
+    def title(self) -> str:
+        return self.layout.info.title()
+
+    def span(self) -> tuple[float, float]:
+        """First and last time of the signals: what the plots show at open."""
+        ts = [s.times for s in [ln.series for p in self.layout.plots for ln in p.lines]
+              + [lane.series for lane in self.layout.lanes] if len(s.times)]
+        if not ts:
+            return 0.0, 1.0
+        return float(min(t[0] for t in ts)), float(max(t[-1] for t in ts))
 
 
-_PALETTE = [(31, 119, 180), (255, 127, 14), (44, 160, 44), (214, 39, 40), (148, 103, 189),
-            (140, 86, 75), (227, 119, 194), (127, 127, 127), (188, 189, 34), (23, 190, 207)]
+def _limit_entity(p: Any, lim: Any) -> str:
+    """Highest limit first, as they lie in the plot (``/plots/m/limits/1_rim``)."""
+    order = sorted(p.limits, key=lambda x: -x.value).index(lim) + 1
+    return f"/plots/{p.key}/limits/{order}_{slug(lim.label)}"
 
 
-def _entity(name: str) -> str:
-    return "".join(c if c.isalnum() or c in "_-" else "_" for c in name)
+def lane_entity(k: int, label: str) -> str:
+    """Lanes sort by entity path in the viewer: the number keeps the lab's order."""
+    return f"/digital/{k + 1:02d}_{slug(label)}"
+
+
+def blueprint(rec: Recording) -> Any:
+    """The default view: plots and lanes on the left, plant, summary and events on the right."""
+    import rerun.blueprint as rrb
+
+    lay = rec.layout
+    span = rec.view_span or rec.span()
+    whole = rrb.TimeAxis(view_range=rrb.TimeRange(
+        start=rrb.TimeRangeBoundary.absolute(seconds=span[0]),
+        end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range
+    left: list[Any] = []
+    shares: list[float] = []
+    marks = sum(1 for m in rec.markers if m.lane)
+    lanes_px = 46.0 * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
+    plot_px = max(140.0, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
+    for p in lay.plots:
+        kw: dict[str, Any] = {}
+        if p.y_range is not None:
+            kw["axis_y"] = rrb.ScalarAxis(range=p.y_range)
+        left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=p.title,
+                                       plot_legend=rrb.PlotLegend(corner="LeftTop"),
+                                       axis_x=whole, **kw))
+        shares.append(plot_px)
+    if lay.lanes:
+        left.append(rrb.StateTimelineView(origin="/digital", name="digital I/O, in the lab's "
+                                          "order (ON = coloured)", time_view=whole))
+        shares.append(lanes_px)
+    if len(rec.scan_durations_us):
+        left.append(rrb.TimeSeriesView(origin="/scan", name="scan duration [us]",
+                                       axis_x=whole))
+        shares.append(140.0)
+    right: list[Any] = []
+    rshares: list[float] = []
+    if rec.picture is not None:
+        x0, y0, x1, y1 = rec.picture.bounds
+        right.append(rrb.Spatial2DView(origin="/plant", name="plant", visual_bounds=(
+            rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0)))))
+        rshares.append(3.0)
+    right.append(rrb.TextDocumentView(origin="/summary", name="summary: most important first"))
+    rshares.append(2.0)
+    right.append(rrb.TextLogView(origin="/events", name="events"))
+    rshares.append(1.5)
+    cols: list[Any] = []
+    if left:
+        cols.append(rrb.Vertical(*left, row_shares=shares))
+    cols.append(rrb.Vertical(*right, row_shares=rshares))
+    return rrb.Blueprint(
+        rrb.Horizontal(*cols, column_shares=[3, 2] if left else None),
+        rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"),
+        rrb.TimePanel(state="collapsed", timeline="sim_time", play_state="paused"))
 
 
 class RrdWriter:
@@ -63,113 +159,227 @@ class RrdWriter:
     :meth:`send` logs rows (all of them, or only the new ones when streaming live)."""
 
     def __init__(self, rec: Recording, path: str | Path | None = "run.rrd",
-                 spawn: bool = False, blueprint: bool = True) -> None:
+                 spawn: bool = False, send_blueprint: bool = True, stream: Any = None) -> None:
         import rerun as rr
 
         self.rr = rr
-        self.path = None if spawn else path
-        self.stream = rr.RecordingStream(f"plclab-{_entity(rec.title)}")
-        if spawn:
+        self.path = None if (spawn or stream is not None) else path
+        info = rec.layout.info
+        if stream is not None:  # a stream someone else shows (the notebook viewer)
+            self.stream = stream
+        else:
+            self.stream = rr.RecordingStream(info.application_id(),
+                                             recording_id=info.recording_id())
+        if stream is None and spawn:
             self.stream.spawn()
-        elif path is not None:
+        elif stream is None and path is not None:
             self.stream.save(str(path))
-        if blueprint:
-            self._blueprint(rec)
-        n = len(rec.digital)
-        # stacked: each digital signal on its own 0..1 lane, like a logic analyzer
-        self.lanes = {s.name: 1.5 * (n - 1 - k) for k, s in enumerate(rec.digital)}
+        self.stream.send_recording_name(info.title())
+        props = {k: v for k, v in (("lab", info.lab), ("scenario", info.scenario),
+                                   ("file", info.student_file)) if v}
+        if info.score is not None:
+            props["score"] = f"{info.score:g}/{info.max_score:g}"
+        if props:
+            self.stream.send_property("plclab", rr.AnyValues(**props))
+        if send_blueprint:
+            self.stream.send_blueprint(blueprint(rec))
         self.rows = 0  # rows already sent
-        self.events = 0  # events already sent
-        self.marked: set[str] = set()
+        self._last: dict[str, bool] = {}  # last state sent per lane
+        self._sent: set[str] = set()  # events and markers already sent
+        self._shown: set[str] = set()  # plant entities drawn so far
+        self._drawn: dict[str, Any] = {}  # what each plant entity shows now
+        self.lane_paths = {lane.label: lane_entity(k, lane.label)
+                           for k, lane in enumerate(rec.layout.lanes)}
         self._styles(rec)
-        if rec.geometry:
-            _log_geometry(self.stream, Recording(geometry=rec.geometry))
+        self._static_plant(rec)
 
-    def _blueprint(self, rec: Recording) -> None:
-        import rerun.blueprint as rrb
-
-        views = []
-        if rec.analog:
-            views.append(rrb.TimeSeriesView(origin="/analog", name="analog signals"))
-        if rec.digital:
-            views.append(rrb.TimeSeriesView(origin="/digital", name="digital I/O"))
-        if rec.geometry:
-            views.append(rrb.Spatial2DView(origin="/plant", name="plant"))
-        views.append(rrb.TextLogView(origin="/events", name="events"))
-        if len(rec.scan_durations_us):
-            views.append(rrb.TimeSeriesView(origin="/scan", name="scan duration"))
-        self.stream.send_blueprint(rrb.Blueprint(rrb.Vertical(*views)))
-
+    # ------------------------------------------------------------------ set-up
     def _styles(self, rec: Recording) -> None:
-        rr = self.rr
-
-        def style(entity, name, color, step):
-            self.stream.log(entity, rr.SeriesLines(
-                names=name, colors=[color],
-                interpolation_mode="StepAfter" if step else "Linear"), static=True)
-
-        for k, s in enumerate(rec.analog):
-            style(f"/analog/{_entity(s.name)}", s.name, _PALETTE[k % len(_PALETTE)],
-                  s.kind != "real")
-            for lname, _ in rec.limits.get(s.name, []):
-                style(f"/analog/{_entity(s.name)}/limits/{_entity(lname)}", lname,
-                      (150, 150, 150), False)
-        for k, s in enumerate(rec.digital):
-            style(f"/digital/{_entity(s.name)}", s.name, _PALETTE[k % len(_PALETTE)], True)
+        rr, st = self.rr, self.stream
+        for p in rec.layout.plots:
+            for ln in p.lines:
+                st.log(f"/plots/{p.key}/{slug(ln.label)}", rr.SeriesLines(
+                    names=ln.label, colors=[ln.color], widths=[2.0],
+                    interpolation_mode="StepAfter" if ln.step else "Linear"), static=True)
+            for lim in p.limits:
+                st.log(_limit_entity(p, lim), rr.SeriesLines(
+                    names=f"{lim.label} {lim.value:g} {p.unit}".rstrip(), colors=[lim.color],
+                    widths=[1.5]), static=True)
+        for lane in rec.layout.lanes:
+            st.log(self.lane_paths[lane.label], rr.StateConfiguration(
+                values=["1", "0"], labels=[f"{lane.label} ON", "off"],
+                colors=[lane.color, OFF_LANE]), static=True)
         if len(rec.scan_durations_us):
-            style("/scan/duration_us", "scan duration [us]", (100, 100, 100), False)
+            st.log("/scan/duration_us", rr.SeriesLines(names="scan duration [us]",
+                                                       colors=[(120, 120, 120)]), static=True)
 
-    def _columns(self, entity: str, times, values, first_index: int, offset: float = 0.0):
+    def _static_plant(self, rec: Recording) -> None:
+        if rec.picture is None:
+            return
+        for shp in rec.picture.static:
+            self._shapes(f"/plant/static/{slug(shp.name)}", [shp], static=True)
+
+    # ------------------------------------------------------------------ rows
+    def _columns(self, entity: str, times, values, first_index: int) -> None:
         import numpy as np
 
         rr = self.rr
         t = np.asarray(times, dtype=np.float64)
-        v = np.asarray([float(x) for x in values], dtype=np.float64) + offset
+        v = np.asarray(values, dtype=np.float64)
         idx = np.arange(first_index, first_index + len(t), dtype=np.int64)
         rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=t),
                                          rr.TimeColumn("scan", sequence=idx)],
                         columns=rr.Scalars.columns(scalars=v), recording=self.stream)
 
+    def _states(self, entity: str, times, values) -> None:
+        """Only the changes of a BOOL (and its first value): a lane of 24,000 scans with three
+        switchings is four rows."""
+        import numpy as np
+
+        rr = self.rr
+        v = np.asarray(values).astype(bool)
+        if not len(v):
+            return
+        prev = self._last.get(entity)
+        before = np.r_[[not v[0]] if prev is None else [prev], v[:-1]]
+        keep = np.flatnonzero(v != before)
+        self._last[entity] = bool(v[-1])
+        if not len(keep):
+            return
+        t = np.asarray(times, dtype=np.float64)[keep]
+        rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=t)],
+                        columns=rr.StateChange.columns(state=["1" if x else "0" for x in v[keep]]),
+                        recording=self.stream)
+
+    def _dashes(self, entity: str, value: float, a: float, b: float) -> None:
+        """A dashed horizontal line from a to b: dashes separated by NaN gaps."""
+        if b <= a:
+            return
+        p = (b - a) / DASHES
+        ts, vs = [], []
+        for k in range(DASHES):
+            s = a + k * p
+            ts += [s, s + 0.6 * p, s + 0.6 * p + 1e-9]
+            vs += [value, value, float("nan")]
+        rr = self.rr
+        rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=ts)],
+                        columns=rr.Scalars.columns(scalars=vs), recording=self.stream)
+
     def send(self, rec: Recording) -> None:
         """Log the rows of ``rec`` from row ``self.rows`` on, and its new events and frames."""
         start = self.rows
-        for s in rec.analog:
-            self._columns(f"/analog/{_entity(s.name)}", s.times[start:], s.values[start:],
-                          start)
-            for lname, value in rec.limits.get(s.name, []):
-                if len(s.times) > start:
-                    ends = [s.times[start], s.times[-1]]
-                    self._columns(f"/analog/{_entity(s.name)}/limits/{_entity(lname)}", ends,
-                                  [value, value], start)
-        for s in rec.digital:
-            self._columns(f"/digital/{_entity(s.name)}", s.times[start:], s.values[start:],
-                          start, offset=self.lanes.get(s.name, 0.0))
+        n = start
+        for p in rec.layout.plots:
+            for ln in p.lines:
+                s = ln.series
+                self._columns(f"/plots/{p.key}/{slug(ln.label)}", s.times[start:],
+                              [float(x) for x in s.values[start:]], start)
+                n = max(n, len(s.times))
+            ends = [ln.series.times for ln in p.lines if len(ln.series.times) > start]
+            if ends:
+                a, b = float(ends[0][start]), float(ends[0][-1])
+                for lim in p.limits:
+                    self._dashes(_limit_entity(p, lim), lim.value, a, b)
+        for lane in rec.layout.lanes:
+            s = lane.series
+            self._states(self.lane_paths[lane.label], s.times[start:], s.values[start:])
+            n = max(n, len(s.times))
         if len(rec.scan_durations_us):
             self._columns("/scan/duration_us", list(rec.scan_times)[start:],
                           list(rec.scan_durations_us)[start:], start)
-        self.rows = max([len(s.times) for s in rec.analog + rec.digital] + [start])
-        self._events(rec.events[self.events:])
-        self.events = len(rec.events)
-        if rec.geometry and rec.frames is not None:
-            _log_frames(self.stream, rec)
+        self.rows = n
+        self._events(rec)
+        self._plant_frames(rec)
 
-    def _events(self, events: list[Event]) -> None:
-        rr = self.rr
+    def _events(self, rec: Recording) -> None:
+        rr, st = self.rr, self.stream
         levels = {"INFO": rr.TextLogLevel.INFO, "WARN": rr.TextLogLevel.WARN,
                   "ERROR": rr.TextLogLevel.ERROR}
-        for ev in sorted(events, key=lambda e: e.time):
-            self.stream.set_time("sim_time", duration=ev.time)
-            self.stream.log("/events", rr.TextLog(f"[{ev.kind}] {ev.source}: {ev.message}",
-                                                  level=levels.get(ev.level,
-                                                                   rr.TextLogLevel.INFO)))
-            if ev.level != "INFO":
-                name = _entity(ev.source)
-                if name not in self.marked:
-                    self.marked.add(name)
-                    self.stream.log(f"/markers/{name}", rr.SeriesPoints(
-                        markers="cross", colors=[(214, 39, 40)]), static=True)
-                self.stream.log(f"/markers/{name}",
-                                rr.Scalars(self.lanes.get(ev.source, 0.0) + 1.2))
+        for ev in sorted(self._new(rec.events), key=lambda e: e.time):
+            st.set_time("sim_time", duration=ev.time)
+            st.log("/events", rr.TextLog(f"{ev.source}: {ev.message}" if ev.source
+                                         else ev.message,
+                                         level=levels.get(ev.level, rr.TextLogLevel.INFO)))
+        for ev in self._new(rec.details):
+            st.set_time("sim_time", duration=ev.time)
+            st.log(f"/details/{slug(ev.kind)}", rr.TextLog(f"{ev.source}: {ev.message}"))
+        for m in self._new(rec.markers):
+            self._marker(m)
+        if rec.summary:
+            st.log("/summary", rr.TextDocument(rec.summary, media_type="text/markdown"),
+                   static=True)
+
+    def _new(self, items: list[Any]) -> list[Any]:
+        """The items not sent yet (a live run sends a growing recording chunk by chunk)."""
+        out = []
+        for it in items:
+            key = repr(it)
+            if key not in self._sent:
+                self._sent.add(key)
+                out.append(it)
+        return out
+
+    def _marker(self, m: Marker) -> None:
+        rr, st = self.rr, self.stream
+        if m.plot is not None and m.value is not None:
+            path = f"/plots/{m.plot}/markers/{slug(m.label)}"
+            st.log(path, rr.SeriesPoints(markers="cross", colors=[MARK], marker_sizes=[8.0],
+                                         names=m.label), static=True)
+            st.set_time("sim_time", duration=m.time)
+            st.log(path, rr.Scalars(m.value))
+        if m.lane is not None:
+            path = f"{m.lane}_{slug(m.kind)}"  # a sibling: sorts right under its lane
+            st.log(path, rr.StateConfiguration(values=["1", "0"], labels=[m.label, ""],
+                                               colors=[MARK, (0, 0, 0, 0)],
+                                               visible=[True, False]), static=True)
+            st.set_time("sim_time", duration=m.time)
+            st.log(path, rr.StateChange(state="1"))
+            st.set_time("sim_time", duration=m.end if m.end is not None else m.time)
+            st.log(path, rr.StateChange(state="0"))
+
+    def _plant_frames(self, rec: Recording) -> None:
+        pic = rec.picture
+        if pic is None:
+            return
+        shown, last = self._shown, self._drawn
+        for t, i in zip(rec.frame_times, rec.frame_rows, strict=True):
+            self.stream.set_time("sim_time", duration=float(t))
+            groups: dict[str, list[Shape]] = {}
+            for shp in pic.frame(int(i)):
+                groups.setdefault(shp.name, []).append(shp)
+            for name, shapes in groups.items():
+                key = repr([(s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
+                             round(s.h, 4), round(s.angle, 3), s.label) for s in shapes])
+                if last.get(name) != key:
+                    self._shapes(f"/plant/{name}", shapes)
+                    last[name] = key
+            for name in shown - set(groups):
+                if last.get(name) != "":
+                    self.stream.log(f"/plant/{name}", self.rr.Clear(recursive=False))
+                    last[name] = ""
+            shown |= set(groups)
+
+    def _shapes(self, entity: str, shapes: list[Shape], static: bool = False) -> None:
+        rr, st = self.rr, self.stream
+        kind = shapes[0].kind
+        if kind == "box":
+            strips, radii, colors = [], [], []
+            for s in shapes:
+                for strip, r in _box_slices(s):
+                    strips.append(strip)
+                    radii.append(1.2 * r)  # overlap: no seams between the slices
+                    colors.append(s.color)
+            st.log(entity, rr.LineStrips2D(strips, radii=radii, colors=colors), static=static)
+        elif kind == "outline":
+            st.log(entity, rr.LineStrips2D([[(x, -y) for x, y in s.points] for s in shapes],
+                                           colors=[s.color for s in shapes],
+                                           radii=rr.Radius.ui_points(2.0)), static=static)
+        elif kind in ("dot", "text"):
+            st.log(entity, rr.Points2D([(s.x, -s.y) for s in shapes],
+                                       radii=[s.r if kind == "dot" else 1e-6 for s in shapes],
+                                       colors=[s.color for s in shapes],
+                                       labels=[s.label for s in shapes], show_labels=True),
+                   static=static)
 
     def close(self) -> Path | None:
         if self.path is not None:
@@ -179,71 +389,74 @@ class RrdWriter:
         return None
 
 
+def _box_slices(s: Shape, n: int = 6) -> list[tuple[list[tuple[float, float]], float]]:
+    """A filled rotated rectangle as ``n`` thick segments along its long side (rerun's boxes
+    are outlines only, and a thick line has round caps: thin slices keep the corners nearly
+    square), in screen coordinates (y down). Returns (strip, radius) pairs."""
+    import math
+
+    cx, cy = s.x + s.w / 2, s.y + s.h / 2
+    c, sn = math.cos(s.angle), math.sin(s.angle)
+    long_, short = (s.h, s.w) if s.h >= s.w else (s.w, s.h)
+    t = short / n
+    half = max(long_ - t, 0.0) / 2  # the caps add t/2 at each end
+    out = []
+    for k in range(n):
+        off = -short / 2 + t * (k + 0.5)
+        if s.h >= s.w:  # long axis along the box's y
+            ax, ay, ox, oy = -sn * half, c * half, c * off, sn * off
+        else:
+            ax, ay, ox, oy = c * half, sn * half, -sn * off, c * off
+        x, y = cx + ox, cy + oy
+        out.append(([(x - ax, -(y - ay)), (x + ax, -(y + ay))], t / 2))
+    return out
+
+
 def write_rrd(rec: Recording, path: str | Path | None = "run.rrd", spawn: bool = False,
-              blueprint: bool = True) -> Path | None:
+              send_blueprint: bool = True) -> Path | None:
     """Write ``rec`` to ``path`` (headless), or open a viewer with ``spawn=True``."""
-    w = RrdWriter(rec, path, spawn, blueprint)
+    w = RrdWriter(rec, path, spawn, send_blueprint)
     w.send(rec)
     return w.close()
 
 
-def _log_geometry(stream, rec: Recording) -> None:
-    """The plant's static shapes."""
-    import rerun as rr
+def write_many(recs: list[Recording], path: str | Path) -> Path:
+    """Several recordings (every scenario of a run) in one file, each selectable in the viewer.
 
-    for shp in rec.geometry.get("shapes", []):
-        _log_shape(stream, f"/plant/static/{_entity(shp.get('name', 'shape'))}", shp, rr,
-                   static=True)
-
-
-def _log_frames(stream, rec: Recording) -> None:
-    """The plant's moving parts at each frame time."""
-    import rerun as rr
-
-    for t in rec.frame_times:
-        stream.set_time("sim_time", duration=float(t))
-        for shp in rec.frames(t):
-            _log_shape(stream, f"/plant/dynamic/{_entity(shp.get('name', 'shape'))}", shp, rr)
-
-
-def _log_shape(stream, entity: str, shp: dict, rr, static: bool = False) -> None:
-    kind = shp.get("type")
-    color = shp.get("color", (90, 90, 90))
-    if kind == "rect":
-        if shp.get("angle"):
-            cx, cy = shp["x"] + shp["w"] / 2, shp["y"] + shp["h"] / 2
-            pts = _rotated_rect(cx, cy, shp["w"], shp["h"], shp["angle"])
-            stream.log(entity, rr.LineStrips2D([pts], colors=[color]), static=static)
-        else:
-            stream.log(entity, rr.Boxes2D(mins=[(shp["x"], -shp["y"] - shp["h"])],
-                                          sizes=[(shp["w"], shp["h"])], colors=[color],
-                                          labels=[shp.get("label", "")]), static=static)
-    elif kind == "line":
-        stream.log(entity, rr.LineStrips2D([[(shp["x0"], -shp["y0"]), (shp["x1"], -shp["y1"])]],
-                                           colors=[color]), static=static)
-    elif kind == "mark":
-        stream.log(entity, rr.Points2D([(shp["x"], -shp["y"])], labels=[shp.get("name", "")],
-                                       colors=[color], radii=[0.01]), static=static)
-    elif kind == "clear":
-        stream.log(entity, rr.Clear(recursive=True))
+    Each is written on its own, then rerun's own ``rrd merge`` joins them (a concatenation of
+    .rrd files is not a valid .rrd since 0.41's footers)."""
+    path = Path(path)
+    spans = [r.span() for r in recs]
+    for r in recs:  # the application's blueprint is shared: show the longest run whole
+        r.view_span = (min(a for a, _ in spans), max(b for _, b in spans))
+    if len(recs) == 1:
+        return write_rrd(recs[0], path) or path
+    with tempfile.TemporaryDirectory(prefix="plclab-rrd-", dir=path.parent) as tmp:
+        parts = [write_rrd(r, Path(tmp) / f"{k}.rrd") for k, r in enumerate(recs)]
+        out = Path(tmp) / "all.rrd"
+        cmd = [sys.executable, "-m", "rerun_cli", "rrd", "merge", *map(str, parts), "-o",
+               str(out)]
+        env = {**os.environ, "RUST_LOG": "error"}
+        r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
+        if r.returncode != 0 or not out.exists():
+            raise PlcError("PLC4030", f"could not join the recordings of {len(recs)} scenarios "
+                           f"into {path} (rerun rrd merge: {r.stderr.strip()[-300:]}); write "
+                           "one scenario with --scenario NAME")
+        os.replace(out, path)
+    return path
 
 
-def _rotated_rect(cx: float, cy: float, w: float, h: float, angle: float) -> list:
-    c, s = math.cos(angle), math.sin(angle)
-    pts = []
-    for dx, dy in ((-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2),
-                   (-w / 2, -h / 2)):
-        x, y = cx + dx * c - dy * s, cy + dx * s + dy * c
-        pts.append((x, -y))  # screen y grows downwards in 2D views
-    return pts
-
-
-def read_entity_paths(path: str | Path) -> set[str]:
+def read_entity_paths(path: str | Path, recording_id: str | None = None) -> set[str]:
     """Entity paths stored in an .rrd file (rerun's own reader; for tests and checks)."""
     from rerun.chunk import RrdReader
 
+    reader = RrdReader(path)
+    stores = reader.recordings()
+    store = stores[0] if stores else None
+    if recording_id is not None:
+        store = next(s for s in stores if s.recording_id == recording_id)
     paths: set[str] = set()
-    for chunk in RrdReader(path).stream():
+    for chunk in reader.stream(store=store):
         ep = getattr(chunk, "entity_path", None)
         if ep is not None:
             paths.add(str(ep))

@@ -25,12 +25,14 @@ def test_rrd_has_the_expected_entities(tank_trace, tmp_path):
     from plclab.viz import to_rerun
     from plclab.viz.recording import read_entity_paths
 
-    path = to_rerun(tank_trace, tmp_path / "tank.rrd")
+    path = to_rerun(tank_trace, tmp_path / "tank.rrd", scan=True)
     paths = read_entity_paths(path)
-    for p in ("/analog/LEVEL", "/analog/LEVEL/limits/LS1", "/analog/LEVEL/limits/LS2",
-              "/digital/PUMP", "/digital/LS1", "/events", "/plant/static/tank",
-              "/plant/dynamic/fill", "/scan/duration_us", "/markers/PUMP"):
+    for p in ("/plots/m/LEVEL", "/plots/m/limits/3_LS1", "/plots/m/limits/2_LS2",
+              "/digital/03_PUMP", "/digital/01_LS1", "/events", "/summary", "/plant/static/tank",
+              "/plant/water", "/scan/duration_us", "/plots/m/markers/PUMP_chatter",
+              "/digital/03_PUMP_chatter"):
         assert p in paths, p
+    assert "/scan/duration_us" not in read_entity_paths(to_rerun(tank_trace, tmp_path / "b.rrd"))
 
 
 def test_chatter_becomes_warning_events(tank_trace):
@@ -49,9 +51,10 @@ def test_conveyor_bottles_in_the_2d_view(tmp_path):
 
     prog = """PROGRAM B VAR X1 AT %IX0.2 : BOOL; X2 AT %IX0.3 : BOOL; C AT %QX0.0 : BOOL;
     R AT %QX0.1 : BOOL; END_VAR C := TRUE; R := X2 AND NOT X1; END_PROGRAM"""
-    tr = sim.run(prog, plant="conveyor", duration="20s", snapshot=True)
+    tr = sim.run(prog, plant="conveyor", duration="20s")  # bottles are recorded by default
     paths = read_entity_paths(to_rerun(tr, tmp_path / "c.rrd"))
-    assert "/plant/dynamic/bottle0" in paths and "/plant/static/belt" in paths
+    assert "/plant/bottles/upright" in paths and "/plant/static/belt" in paths
+    assert "/plant/counters" in paths
 
 
 def test_sim_command_exports_everything(tmp_path, capsys):
@@ -128,4 +131,4 @@ def test_live_streaming_equals_the_finished_run(tmp_path):
     tr_plain = sim.run(TANK, plant="tank", duration="90s")
     assert tr_live.equals(tr_plain)
     paths = read_entity_paths(tmp_path / "live.rrd")
-    assert {"/analog/LEVEL", "/digital/PUMP", "/events", "/plant/dynamic/fill"} <= paths
+    assert {"/plots/m/LEVEL", "/digital/03_PUMP", "/summary", "/plant/water"} <= paths

@@ -1,0 +1,192 @@
+"""The default rerun view reads without a click: structure read back from the recording
+(rerun's own reader) and from the blueprint sent, for a tank lab run and a conveyor run."""
+
+import pytest
+
+import plclab.sim as sim
+
+rr = pytest.importorskip("rerun")
+
+TANK = """PROGRAM P VAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL; M AT %QX0.0 : BOOL; END_VAR
+M := ((NOT LS1) OR M) AND (NOT LS2); END_PROGRAM"""
+CHATTER = TANK.replace("((NOT LS1) OR M) AND (NOT LS2)", "NOT LS1")
+
+
+@pytest.fixture(scope="module")
+def tank_lab():
+    from plclab.grade.lab import load_lab
+
+    return load_lab("tank-two-position")
+
+
+@pytest.fixture(scope="module")
+def graded(tank_lab):
+    """The chattering mistake, graded in two visible scenarios."""
+    from plclab.grade.engine import grade_sources
+
+    res = grade_sources(tank_lab, [(CHATTER, "follows_ls1.st")], student="",
+                        scenarios=["normal", "low-demand"], keep_traces=True)
+    return res
+
+
+@pytest.fixture(scope="module")
+def recs(tank_lab, graded):
+    from plclab.viz.from_trace import lab_recordings
+
+    return lab_recordings(tank_lab, graded, "follows_ls1.st", fps=2.0)
+
+
+def _columns(path, recording_id, entity, component):
+    """Values of one component of one entity in one recording of an .rrd file."""
+    from rerun.chunk import RrdReader
+
+    reader = RrdReader(path)
+    store = next(s for s in reader.recordings() if s.recording_id == recording_id)
+    out = []
+    for chunk in reader.stream(store=store):
+        if str(chunk.entity_path) != entity:
+            continue
+        batch = chunk.to_record_batch()
+        for name in batch.schema.names:
+            if name.endswith(component):
+                out += batch.column(name).to_pylist()
+    return out
+
+
+def test_lanes_are_the_io_table_in_order_named_not_by_address(recs, tank_lab):
+    lay = recs[0].layout
+    assert [ln.label for ln in lay.lanes] == [r.name for r in tank_lab.io if r.type == "BOOL"]
+    assert [ln.address for ln in lay.lanes] == ["%IX0.0", "%IX0.1", "%QX0.0"]
+    assert not any(ln.label.startswith("%") for ln in lay.lanes)  # no address duplicates
+
+
+def test_plots_per_unit_with_labelled_distinct_limits(recs):
+    lay = recs[0].layout
+    units = [p.unit for p in lay.plots]
+    assert units[0] == "m" and len(units) == len(set(units))
+    level = lay.plots[0]
+    assert [ln.label for ln in level.lines] == ["LEVEL"]
+    assert [lim.label for lim in level.limits] == ["LS1", "LS2", "rim"]
+    assert [lim.value for lim in level.limits] == pytest.approx([0.5, 1.5, 2.0])
+    colors = [lim.color for lim in level.limits] + [level.lines[0].color]
+    assert len(set(colors)) == len(colors)
+    assert "mA" not in units  # the transmitter current: the lab is not about it
+
+
+def test_recording_reads_back_with_names_lanes_limits_and_markers(recs, tmp_path):
+    from rerun.chunk import RrdReader
+
+    from plclab.viz.recording import read_entity_paths, write_many
+
+    path = write_many(recs, tmp_path / "run.rrd")
+    ids = {s.recording_id for s in RrdReader(path).recordings()}
+    assert ids == {"tank-two-position/normal/follows_ls1.st",
+                   "tank-two-position/low-demand/follows_ls1.st"}  # every scenario, selectable
+    rid = "tank-two-position/normal/follows_ls1.st"
+    paths = read_entity_paths(path, rid)
+    assert {"/digital/01_LS1", "/digital/02_LS2", "/digital/03_PUMP"} <= paths
+    assert "/digital/03_PUMP_chatter" in paths  # the chatter in the lane it concerns
+    assert "/plots/m/markers/PUMP_chatter" in paths  # ... and in the level plot
+    names = _columns(path, rid, "/plots/m/limits/2_LS2", "SeriesLines:names")
+    assert names and "LS2 1.5 m" in str(names)
+    dashes = _columns(path, rid, "/plots/m/limits/2_LS2", "Scalars:scalars")
+    flat = [v for row in dashes for v in (row or [])]
+    assert any(v != v for v in flat) and 1.5 in flat  # dashed: NaN gaps between dashes
+    states = [v for row in _columns(path, rid, "/digital/03_PUMP", "StateChange:state")
+              for v in (row or [])]
+    assert set(states) == {"0", "1"} and len(states) > 50  # chattering: many changes
+    title = _columns(path, rid, "/__properties", "RecordingInfo:name")
+    assert "tank-two-position · normal · follows_ls1.st · " in str(title)
+    assert "/scan/duration_us" not in paths  # only on request
+
+
+def test_summary_puts_failures_first_and_counts_relays(recs):
+    text = recs[0].summary
+    lines = [ln for ln in text.splitlines() if ln.startswith("- ")]
+    assert lines[0].startswith("- **FAILED")
+    assert any("CHATTER" in ln for ln in lines)
+    assert "relay operations: PUMP (%QX0.0)" in text
+    assert not any(e.kind == "relay" for e in recs[0].events)  # one by one only in details
+    assert any(e.kind == "relay" for e in recs[0].details)
+    verdicts = [e for e in recs[0].events if e.kind == "verdict"]
+    assert verdicts and all(e.time >= 0 for e in verdicts)
+
+
+def test_blueprint_shows_the_whole_run_paused(recs):
+    import rerun.blueprint as rrb
+
+    from plclab.viz.recording import blueprint
+
+    bp = blueprint(recs[0])
+    views = []
+
+    def walk(node):
+        for c in getattr(node, "contents", []) or []:
+            walk(c)
+        if isinstance(node, rrb.View):
+            views.append(node)
+
+    walk(bp.root_container)
+    kinds = [type(v).__name__ for v in views]
+    assert kinds.count("TimeSeriesView") == len(recs[0].layout.plots)
+    assert {"StateTimelineView", "Spatial2DView", "TextDocumentView", "TextLogView"} <= set(kinds)
+    assert bp.time_panel is not None and "paused" in repr(bp.time_panel.play_state).lower()
+    a, b = recs[0].span()
+    assert a == 0.0 and b > 200.0
+
+
+def test_conveyor_bottles_upright_and_fallen_and_counters(tmp_path):
+    pytest.importorskip("pymunk")
+    from plclab.viz.from_trace import recording
+    from plclab.viz.recording import read_entity_paths, write_rrd
+
+    prog = """PROGRAM B VAR C AT %QX0.0 : BOOL; END_VAR C := TRUE; END_PROGRAM"""
+    tr = sim.run(prog, plant="conveyor", duration="25s",
+                 plant_params={"topple_rate": 0.5, "feed_limit": 6})
+    rec = recording(tr, fps=2.0)
+    shapes = [s for i in rec.frame_rows for s in rec.picture.frame(int(i))]
+    kinds = {s.name for s in shapes}
+    assert {"bottles/upright", "bottles/fallen", "counters"} <= kinds
+    x0, y0, x1, y1 = rec.picture.bounds
+    bottles = [s for s in shapes if s.name.startswith("bottles/")]
+    assert all(x0 <= s.x and s.x + s.w <= x1 for s in bottles if s.x > -0.5)  # in frame
+    paths = read_entity_paths(write_rrd(rec, tmp_path / "c.rrd"))
+    assert {"/plant/bottles/upright", "/plant/bottles/fallen", "/plant/counters"} <= paths
+
+
+def test_tank_picture_is_filled_and_coloured():
+    from plclab.viz.from_trace import recording
+    from plclab.viz.plant_view import OFF, ON
+
+    tr = sim.run(TANK, plant="tank", duration="60s")
+    rec = recording(tr, fps=1.0)
+    frames = [rec.picture.frame(int(i)) for i in rec.frame_rows]
+    water = [s for f in frames for s in f if s.name == "water"]
+    assert water and all(s.kind == "box" for s in water)  # filled, not an outline
+    assert max(s.h for s in water) > min(s.h for s in water)  # it moves with the level
+    pump = {s.color for f in frames for s in f if s.name == "PUMP"}
+    assert pump == {ON, OFF}
+    labels = [s.label for s in frames[-1] if s.kind in ("dot", "text") and s.label]
+    assert any(lb.startswith("LEVEL ") and lb.endswith(" m") for lb in labels)  # key value
+    spots = [(round(s.x, 3), round(s.y, 3)) for s in frames[-1] if s.label]
+    assert len(spots) == len(set(spots))  # no two labels at one place
+
+
+def test_notebook_viewer_missing_is_a_plc_error(monkeypatch):
+    import sys
+
+    from plclab.errors import PlcError
+    from plclab.viz import notebook
+
+    monkeypatch.setitem(sys.modules, "rerun_notebook", None)  # as if not installed
+    assert not notebook.available()
+    with pytest.raises(PlcError) as e:
+        notebook.show(sim.run(TANK, plant="tank", duration="5s"))
+    assert e.value.code == "PLC4031"
+
+
+def test_scenarios_failing_first_and_one_layout_for_all(recs):
+    assert not all(v.passed for v in recs[0].layout.info.verdicts)
+    plots = [[p.key for p in r.layout.plots] for r in recs]
+    lanes = [[ln.label for ln in r.layout.lanes] for r in recs]
+    assert all(p == plots[0] for p in plots) and all(ln == lanes[0] for ln in lanes)

@@ -1,0 +1,173 @@
+"""Screenshots of the default rerun view of every lab's reference run and its first mistake.
+
+    python tools/rerun_screenshots.py --out docs/figures/rerun [--labs tank-two-position,...]
+
+For each lab: grade the reference solution (the first ``solution/*.st``) and the first mistake
+(``mistakes/*.st`` in name order) in process, record its first failing scenario (else its first
+scenario) as ``plclab lab check --rrd`` does, open it in the rerun viewer under Xvfb
+(software Vulkan: ``apt-get install xvfb mesa-vulkan-drivers``), move the time cursor to the
+first failure (else to the middle of the run), park the mouse pointer out of the way (xdotool,
+if installed) and save what the window draws with
+``rerun.experimental.ViewerClient.save_screenshot`` (an X screen grab comes back black).
+
+Nothing is written into the source tree unless ``--out`` points there.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+
+def runs(lab_id: str) -> list[tuple[str, Path]]:
+    """(tag, program) of the reference solution and the first mistake."""
+    d = ROOT / "labs" / lab_id
+    sols = sorted((d / "solution").glob("*.st")) or sorted((d / "solution").glob("*"))
+    mistakes = sorted((d / "mistakes").glob("*.st")) or sorted((d / "mistakes").glob("*"))
+    out = [("reference", sols[0])] if sols else []
+    if mistakes:
+        out.append((mistakes[0].stem.replace("_", "-"), mistakes[0]))
+    return out
+
+
+def record(lab_id: str, program: Path, path: Path) -> tuple[float, str]:
+    """Grade ``program`` and write its recording; returns the time to show (the first
+    failure, else the end) and the recording id of the scenario to show (the first)."""
+    from plclab.grade.engine import grade_sources, read_submission
+    from plclab.grade.lab import load_lab
+    from plclab.viz.from_trace import lab_recordings
+    from plclab.viz.recording import write_many
+
+    lab = load_lab(lab_id)
+    src, _ = read_submission(str(program))
+    res = grade_sources(lab, src, student="", keep_traces=True)
+    recs = lab_recordings(lab, res, program.name)
+    first = recs[0]  # a failing scenario if there is one
+    # rerun 0.41's viewer opens only one recording of a file through its catalog (the
+    # default); the shot shows the first scenario, so write that one
+    write_many([first], path)
+    fails = [v.time for v in first.layout.info.verdicts if not v.passed and v.time is not None]
+    ts = first.layout.plots[0].lines[0].series.times if first.layout.plots else [0.0]
+    t = min(fails) if fails else 0.5 * (float(ts[0]) + float(ts[-1]))  # else mid-run
+    return t, first.layout.info.recording_id()
+
+
+def free_display() -> int:
+    for n in range(99, 140):
+        if not Path(f"/tmp/.X11-unix/X{n}").exists() and not Path(f"/tmp/.X{n}-lock").exists():
+            return n
+    raise SystemExit("no free X display number")
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def shoot(rrd: Path, png: Path, t: float, rid: str, env: dict[str, str], wait: float) -> None:
+    """Open ``rrd`` in a viewer of its own, show recording ``rid`` with the cursor at ``t``,
+    save the window."""
+    from rerun.experimental import ViewerClient
+
+    port = free_port()
+    viewer = subprocess.Popen([sys.executable, "-m", "rerun_cli", str(rrd), "--port", str(port),
+                               "--window-size", "1600x1000"],
+                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        client = None
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:
+            try:
+                client = ViewerClient.connect(f"rerun+http://127.0.0.1:{port}/proxy")
+                state = client.get_state()
+                if state.recordings and not state.loading:
+                    break
+            except Exception:  # noqa: BLE001 - not up yet
+                pass
+            time.sleep(1.0)
+        if client is None:
+            raise SystemExit(f"the viewer did not come up for {rrd}")
+        rec = next((r for r in state.recordings if r.store_id.endswith(":" + rid)), None)
+        if rec is None:
+            print(f"  (recording {rid} not among {[r.store_id for r in state.recordings]})")
+        if rec is not None:
+            client.set_location(rec.location)
+            time.sleep(1.0)
+        client.set_time("sim_time", duration=t, play_state="paused",
+                        recording=rec.store_id if rec is not None else None)
+        if shutil.which("xdotool"):  # park the pointer on the menu bar: no hover tooltip
+            subprocess.run(["xdotool", "mousemove", "5", "5"], env=env, check=False)
+        time.sleep(wait)
+        client.save_screenshot(str(png))
+        shrink(png)
+    finally:
+        viewer.terminate()
+        try:
+            viewer.wait(10)
+        except subprocess.TimeoutExpired:
+            viewer.kill()
+
+
+def shrink(png: Path) -> None:
+    """256 colours are plenty for the viewer's flat dark UI: a third of the bytes."""
+    try:
+        from PIL import Image
+    except ImportError:
+        return
+    with Image.open(png) as im:
+        small = im.convert("RGB").quantize(256)
+    small.save(png, optimize=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", required=True, help="folder for the PNGs")
+    ap.add_argument("--labs", default=None, help="comma separated lab ids (default: all)")
+    ap.add_argument("--keep-rrd", action="store_true", help="keep the .rrd files next to them")
+    ap.add_argument("--wait", type=float, default=8.0, help="seconds to let the viewer draw")
+    ns = ap.parse_args(argv)
+    out = Path(ns.out)
+    out.mkdir(parents=True, exist_ok=True)
+    labs = ns.labs.split(",") if ns.labs else sorted(
+        p.parent.name for p in (ROOT / "labs").glob("*/lab.toml"))
+    env = {**os.environ, "RUST_LOG": "warn", "RERUN_ANALYTICS": "0"}
+    xvfb = None
+    if not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB"):
+        if shutil.which("Xvfb") is None:
+            raise SystemExit("no display and no Xvfb: apt-get install xvfb mesa-vulkan-drivers")
+        n = free_display()
+        xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x1000x24"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        env["DISPLAY"] = f":{n}"
+        time.sleep(1.0)
+    try:
+        with tempfile.TemporaryDirectory(prefix="plclab-shots-") as tmp:
+            for lab_id in labs:
+                for tag, program in runs(lab_id):
+                    rrd = Path(tmp) / f"{lab_id}--{tag}.rrd"
+                    t, rid = record(lab_id, program, rrd)
+                    png = out / f"{lab_id}--{tag}.png"
+                    shoot(rrd, png, t, rid, env, ns.wait)
+                    if ns.keep_rrd:
+                        shutil.copy(rrd, out / rrd.name)
+                    print(f"{png}  ({program.relative_to(ROOT)}, cursor at {t:.1f} s)")
+    finally:
+        if xvfb is not None:
+            xvfb.terminate()
+            xvfb.wait(10)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
