@@ -5,7 +5,25 @@ Used by the CLI and by the simulator, so it lives below both (``docs/adr/0013-la
 
 from __future__ import annotations
 
-__all__ = ["split_names"]
+__all__ = ["split_names", "split_outside_brackets"]
+
+
+def split_outside_brackets(text: str, sep: str) -> list[str]:
+    """Split ``text`` at each ``sep`` that is not inside ``[...]`` (parts kept as written).
+
+    >>> split_outside_brackets("P.arr[1.5].x", ".")
+    ['P', 'arr[1.5]', 'x']
+    """
+    out, depth, cur = [], 0, ""
+    for ch in text:
+        depth += (ch == "[") - (ch == "]")
+        if ch == sep and depth == 0:
+            out.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    out.append(cur)
+    return out
 
 
 def split_names(text: str) -> list[str]:
@@ -14,14 +32,4 @@ def split_names(text: str) -> list[str]:
     >>> split_names("A, B[1,2] ,C")
     ['A', 'B[1,2]', 'C']
     """
-    out, depth, cur = [], 0, ""
-    for ch in text:
-        depth += ch == "["
-        depth -= ch == "]"
-        if ch == "," and depth == 0:
-            out.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    out.append(cur)
-    return [n.strip() for n in out if n.strip()]
+    return [n.strip() for n in split_outside_brackets(text, ",") if n.strip()]

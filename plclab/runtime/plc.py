@@ -27,6 +27,7 @@ from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
 from ..lang.check.symbols import instance_label
 from ..lang.limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
+from ..names import split_outside_brackets
 from . import natives
 from .rt import HELPERS, AssertFailure, Budget, Fault, format_value
 
@@ -749,19 +750,7 @@ def _split_path(path: str) -> list[tuple[str, list[list[int]]]]:
 
 
 def _split_dots(path: str) -> list[str]:
-    parts, depth, cur = [], 0, ""
-    for ch in path:
-        if ch == "[":
-            depth += 1
-        elif ch == "]":
-            depth -= 1
-        if ch == "." and depth == 0:
-            parts.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    parts.append(cur)
-    return parts
+    return split_outside_brackets(path, ".")
 
 
 def convert_in(value: Any, ty: T.Type, path: str = "") -> Any:
