@@ -12,7 +12,7 @@ from ..errors import PlcError
 
 
 @command("course")
-@arg("action", choices=["build", "list", "check"],
+@arg("action", choices=["build", "list", "check"], metavar="ACTION",
      help="build: run, draw and write the course; list: the chapters; check: run the code only")
 @arg("chapters", nargs="*", metavar="CHAPTER", help="chapter numbers or slugs (default: all)")
 @arg("--out", help="where the built course goes (default: a folder in the temp directory)")
