@@ -10,7 +10,8 @@ Each ``[[figure]]`` of a chapter's ``figures.toml`` names a ``file`` (``.svg`` o
   ``examples/``), ``inputs`` (BOOL name -> list of ``[start, end]`` seconds where it is TRUE),
   ``values`` (name -> ``[[t, value], ...]`` steps), ``signals`` to draw, ``duration``, ``cycle``.
 * ``plant``      - an example on a physics plant: ``program``, ``plant``, ``duration``,
-  ``signals``, optional ``scenario`` (a list of actions as in a lab scenario).
+  ``signals``, optional ``scenario`` (a list of actions as in a lab scenario) and
+  ``plant_params``.
 * ``ladder``     - a ``.ld`` example rendered as a ladder diagram (SVG only).
 """
 
@@ -115,7 +116,8 @@ def _plant_figure(source: Path, spec: dict[str, Any], path: Path) -> str:
     from ..viz.timing import timing_diagram
 
     trace = run([str(source)], plant=spec["plant"], duration=spec.get("duration", "1min"),
-                scenario=spec.get("scenario"), seed=int(spec.get("seed", 1)))
+                scenario=spec.get("scenario"), seed=int(spec.get("seed", 1)),
+                plant_params=spec.get("plant_params"))
     ss = series(trace, spec.get("signals"))
     timing_diagram(ss, path, title=spec.get("title", ""), width=float(spec.get("width", 8)))
     sw = {s.name: trace.switchings(s.name) for s in ss if s.kind == "bool"}
