@@ -109,7 +109,13 @@ def cmd_run(ns: argparse.Namespace) -> int:
 def cmd_explain(ns: argparse.Namespace) -> int:
     from .problems import explain_command
 
-    return explain_command(ns.code, ns.list_all)
+    status = explain_command(ns.code, ns.list_all)
+    if ns.code and not ns.list_all:
+        from .course.links import chapters_teaching
+
+        for line in chapters_teaching(ns.code.strip().upper()):
+            print(line)
+    return status
 
 
 def load_command(name: str) -> Registered:

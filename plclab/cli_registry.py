@@ -60,6 +60,10 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                          "plclab.modbus.commands"),
     "plant-serve": CommandInfo("run a plant in real time as a Modbus TCP server (remote I/O)",
                                "plclab.modbus.commands"),
+    "course": CommandInfo("the course: build (run examples, draw figures) [--out DIR], list, "
+                          "check", "plclab.course.commands"),
+    "quiz": CommandInfo("take a chapter's quiz in the terminal (plclab quiz 10); --check "
+                        "validates every key", "plclab.course.commands"),
 }
 
 REGISTRY: dict[str, Registered] = {}

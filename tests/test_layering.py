@@ -40,9 +40,12 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("viz", ("plclab.viz",)), ("modbus", ("plclab.modbus",))],
     # labs and the autograder: run simulations, draw the diagrams of failures.
     [("grade", ("plclab.grade",))],
+    # the course: chapters, their examples, figures from real runs and quizzes.
+    [("course", ("plclab.course",))],
     # the command line: every `commands` module is a CLI front end of its package.
     [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
-              "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands"))],
+              "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",
+              "plclab.course.commands"))],
 ]
 
 # Layers that must import nothing outside the standard library and plclab (the PLC runs
