@@ -10,7 +10,7 @@ from __future__ import annotations
 from functools import cache
 from pathlib import Path
 
-STDLIB_FILES = ("stdlib.st", "ctrllib.st")
+STDLIB_FILES = ("stdlib.st", "ctrllib.st", "sfclib.st")
 """The library files, parsed (with ``library=True``) before every project's own files."""
 
 

@@ -28,6 +28,7 @@ from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_de
 from ..lower import has_pending, lower_pending
 from ..parsing import ParseAbort
 from .il_lines import is_il_body, parse_il_body
+from .sfc_text import is_sfc_body, parse_sfc_body
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
@@ -281,6 +282,8 @@ class Parser:
         like IL (rule in :func:`plclab.lang.frontends.il.is_il_body`)."""
         if is_il_body(self, end_kw):
             return [], "IL", parse_il_body(self, end_kw)
+        if is_sfc_body(self):  # textual SFC: a chart, lowered once every file is parsed
+            return [], "SFC", parse_sfc_body(self, end_kw)
         return self.stmt_list({end_kw}), "ST", None
 
     def test_block(self) -> A.TestBlock:
