@@ -5,12 +5,14 @@ A chart comes from the textual SFC of a PROGRAM or FUNCTION_BLOCK body
 ``"SFC"`` holding one :class:`Chart`. Lowering checks it (:mod:`.sfc_checks`) and writes plain
 statements, in this order every scan (docs/adr/0016-sfc-semantics.md):
 
+0. **step times**: ``S.T`` of every active step follows a hidden TON started when ``S``
+   was activated (the virtual clock, sampled once per scan);
 1. **transitions** on the step flags at the start of the scan: ``__SFC_TR<k>`` is TRUE when all
    preceding steps are active, no transition of higher precedence took one of them, and the
    condition is TRUE (precedence: ``PRIORITY`` ascending, then declaration order);
 2. **evolution**: every fired transition deactivates its preceding steps, then every fired
-   transition activates its following steps (activation wins) and restarts their timers;
-   ``S.T`` follows a hidden TON while ``S.X``;
+   transition activates its following steps (activation wins), sets their ``T`` to 0 and
+   restarts their timers;
 3. **actions**: one ``ACTION_CONTROL`` (plclab/runtime/sfclib.st) per action, fed with the OR of
    the active steps' associations per qualifier; an action body runs while its ``A`` output is
    TRUE (``Q``, plus one final scan); a Boolean action's variable takes ``Q``.
@@ -116,6 +118,11 @@ def _bool(v: bool, loc: Location) -> A.Literal:
     return A.Literal(loc, v, "BOOL", text="TRUE" if v else "FALSE")
 
 
+def _time(ns: int, loc: Location) -> A.Literal:
+    text = "T#24d20h31m23s647ms" if ns == MAX_TIME_NS else f"T#{ns // 1_000_000}ms"
+    return A.Literal(loc, ns, "TIME", "TIME", text)
+
+
 def _any(terms: list[A.Expr], op: str, loc: Location) -> A.Expr:
     out = terms[0]
     for t in terms[1:]:
@@ -156,10 +163,10 @@ class _Lowering:
             self.decls.append(_decl(s.name, "SFC_STEP", s.loc, init))
             self.decls.append(_decl(f"__SFC_TMR_{s.name}", "TON", s.loc))
         order = transition_order(ch)
+        self.step_times()
         for k in order:
             self.transition(k)
         self.evolution(order)
-        self.step_times()
         self.actions()
         self.pou.body = self.out
         self.pou.decls.extend(self.decls)
@@ -210,9 +217,12 @@ class _Lowering:
         for k in order:
             t = self.chart.transitions[k]
             act: list[A.Stmt] = []
-            for n, l in t.targets:
+            for n, l in t.targets:  # activation wins; the step's time restarts now
                 act.append(A.Assign(l, _flag(n, "X", l), _bool(True, l)))
-                act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(False, l))], l))  # restart
+                act.append(A.Assign(l, _flag(n, "T", l), _time(0, l)))
+                act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(False, l))], l))
+                act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(True, l)),
+                                                    ("PT", _time(MAX_TIME_NS, l))], l))
             self.out.append(A.If(t.loc, [(_name(f"__SFC_TR{k}", t.loc), act)]))
 
     def step_times(self) -> None:
@@ -220,8 +230,7 @@ class _Lowering:
             loc = s.loc
             tmr = f"__SFC_TMR_{s.name}"
             self.out.append(_call(tmr, [("IN", _flag(s.name, "X", loc)),
-                                        ("PT", A.Literal(loc, MAX_TIME_NS, "TIME", "TIME",
-                                                         "T#24d20h31m23s647ms"))], loc))
+                                        ("PT", _time(MAX_TIME_NS, loc))], loc))
             self.out.append(A.If(loc, [(_flag(s.name, "X", loc), [
                 A.Assign(loc, _flag(s.name, "T", loc),
                          A.Member(loc, _name(tmr, loc), "ET", text="ET"))])]))
