@@ -127,7 +127,7 @@ def _step(p) -> Step:
     return step
 
 
-def _steps(p, after: str) -> list[tuple[str, Location]]:
+def _steps(p, after: str, spelling: dict[str, str]) -> list[tuple[str, Location]]:
     if p.accept("("):
         out = [_name(p, f"a step name after {after} (")]
         while p.accept(","):
@@ -135,6 +135,7 @@ def _steps(p, after: str) -> list[tuple[str, Location]]:
         p.expect(")", f"')' to close the list of steps after {after}")
     else:
         out = [_name(p, f"a step name (or a list in parentheses) after {after}")]
+    spelling.update((n, text) for n, text, _ in out)
     return [(n, loc) for n, _, loc in out]
 
 
@@ -156,11 +157,12 @@ def _transition(p) -> Transition:
     if not _word(p, "FROM"):
         p.fail_expected("FROM and the steps the transition leaves")
     p.advance()
-    sources = _steps(p, "FROM")
+    spelling: dict[str, str] = {}
+    sources = _steps(p, "FROM", spelling)
     if not (p.accept("TO") or (_word(p, "TO") and p.advance())):
         p.fail_expected("TO and the steps the transition activates")
-    targets = _steps(p, "TO")
-    tr = Transition(p.loc(head), name, sources, targets, priority)
+    targets = _steps(p, "TO", spelling)
+    tr = Transition(p.loc(head), name, sources, targets, priority, spelling=spelling)
     if p.accept(":="):
         tr.cond = p.expr()
         p.expect(";", "';' after the transition condition")

@@ -70,6 +70,7 @@ class Transition:
     sources: list[tuple[str, Location]]
     targets: list[tuple[str, Location]]
     priority: int | None = None
+    spelling: dict[str, str] = field(default_factory=dict)  # step name -> as written
     cond: A.Expr | None = None
     body: list[A.Stmt] | None = None
     il: list[Instr] | None = None
@@ -99,6 +100,8 @@ def lower_sfc(pou: A.Pou, payload: list[Chart], types: LoweringTypes) -> list[Di
     chart = payload[0]
     diags = check_chart(chart, pou, types)
     if any(d.severity == "error" for d in diags):
+        for d in pou.decls:  # the body stays empty: no "never used" on top of the error
+            d.used = True
         return diags
     low = _Lowering(pou, chart, types)
     low.run()

@@ -52,7 +52,7 @@ def check_chart(chart: Chart, pou: A.Pou, types: LoweringTypes) -> list[Diagnost
                 close = suggest(n, list(steps), n=1)
                 hint = f"; did you mean {steps[close[0]].text}?" if close else \
                     "; declare it with STEP ... END_STEP"
-                err("PLC0150", f"transition uses step '{n}', which is not declared{hint}", loc)
+                err("PLC0150", f"transition uses step '{t.spelling.get(n, n)}', which is not declared{hint}", loc)
         if t.cond is None and t.il is None and not _assigns(t.body or [], t.name):
             what = t.name or "the transition"
             err("PLC0159", f"the body of transition {what} never assigns its condition; write "
