@@ -141,9 +141,10 @@ def _steps(p, after: str, spelling: dict[str, str]) -> list[tuple[str, Location]
 
 def _transition(p) -> Transition:
     head = p.advance()
-    name = None
+    name, text = None, ""
     if p.tok.kind == "IDENT" and p.tok.value != "FROM":
-        name = str(p.advance().value)
+        t = p.advance()
+        name, text = str(t.value), t.text
     priority = None
     if p.accept("("):
         t = p.tok
@@ -162,7 +163,7 @@ def _transition(p) -> Transition:
     if not (p.accept("TO") or (_word(p, "TO") and p.advance())):
         p.fail_expected("TO and the steps the transition activates")
     targets = _steps(p, "TO", spelling)
-    tr = Transition(p.loc(head), name, sources, targets, priority, spelling=spelling)
+    tr = Transition(p.loc(head), name, sources, targets, priority, spelling=spelling, text=text)
     if p.accept(":="):
         tr.cond = p.expr()
         p.expect(";", "';' after the transition condition")

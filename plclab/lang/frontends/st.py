@@ -998,10 +998,11 @@ def parse_st_collect(text: str, file: str = "<input>",
     return out, diags + lower_alone(out)
 
 
-def parse_library() -> list[A.SourceFile]:
-    """plclab's block library, freshly parsed (a project's checker annotates its own copy)."""
+def parse_library(names: tuple[str, ...] = STDLIB_FILES) -> list[A.SourceFile]:
+    """plclab's block library, freshly parsed (a project's checker annotates its own copy);
+    ``names``: which library files (default: those every project gets)."""
     files = []
-    for name in STDLIB_FILES:
+    for name in names:
         f, d = parse(stdlib_text(name), stdlib_filename(name), library=True)
         assert not d, d
         files.append(f)

@@ -71,6 +71,7 @@ class Transition:
     targets: list[tuple[str, Location]]
     priority: int | None = None
     spelling: dict[str, str] = field(default_factory=dict)  # step name -> as written
+    text: str = ""  # the name as written
     cond: A.Expr | None = None
     body: list[A.Stmt] | None = None
     il: list[Instr] | None = None
@@ -113,8 +114,8 @@ def _name(n: str, loc: Location, text: str = "") -> A.Name:
     return A.Name(loc, n, text=text or n)
 
 
-def _flag(step: str, field_name: str, loc: Location) -> A.Member:
-    return A.Member(loc, _name(step, loc), field_name, text=field_name)
+def _flag(step: str, field_name: str, loc: Location, text: str = "") -> A.Member:
+    return A.Member(loc, _name(step, loc, text), field_name, text=field_name)
 
 
 def _bool(v: bool, loc: Location) -> A.Literal:
@@ -138,8 +139,10 @@ def _call(inst: str, args: list[tuple[str, A.Expr]], loc: Location) -> A.CallStm
                                   [A.Arg(loc, k, v) for k, v in args]))
 
 
-def _decl(name: str, type_name: str, loc: Location, init: A.Expr | None = None) -> A.VarDecl:
-    return A.VarDecl(loc, name, A.NamedTypeRef(loc, type_name), init, spelling=name)
+def _decl(name: str, type_name: str, loc: Location, init: A.Expr | None = None,
+          spelling: str = "", section: str = "VAR") -> A.VarDecl:
+    return A.VarDecl(loc, name, A.NamedTypeRef(loc, type_name), init, section=section,
+                     spelling=spelling or name)
 
 
 def transition_order(chart: Chart) -> list[int]:
@@ -154,6 +157,7 @@ def transition_order(chart: Chart) -> list[int]:
 class _Lowering:
     def __init__(self, pou: A.Pou, chart: Chart, types: LoweringTypes) -> None:
         self.pou, self.chart, self.types = pou, chart, types
+        self.text: dict[str, str] = {}
         self.out: list[A.Stmt] = []
         self.decls: list[A.VarDecl] = []
         self.diags: list[Diagnostic] = []
@@ -163,8 +167,9 @@ class _Lowering:
         for s in ch.steps:
             init = (A.StructInit(s.loc, [("X", _bool(True, s.loc), s.loc)]) if s.initial
                     else None)
-            self.decls.append(_decl(s.name, "SFC_STEP", s.loc, init))
+            self.decls.append(_decl(s.name, "SFC_STEP", s.loc, init, s.text))
             self.decls.append(_decl(f"__SFC_TMR_{s.name}", "TON", s.loc))
+        self.text = {s.name: s.text for s in ch.steps}
         order = transition_order(ch)
         self.step_times()
         for k in order:
@@ -172,16 +177,19 @@ class _Lowering:
         self.evolution(order)
         self.actions()
         self.pou.body = self.out
-        self.pou.decls.extend(self.decls)
+        self.pou.decls.extend(sorted(self.decls, key=lambda d: d.section == "VAR_TEMP"))
+
+    def flag(self, step: str, field_name: str, loc: Location) -> A.Member:
+        """``S.X`` / ``S.T`` with the step's name as written."""
+        return _flag(step, field_name, loc, self.text.get(step, ""))
 
     # 1. transitions -----------------------------------------------------------------------
     def transition(self, k: int) -> None:
         t = self.chart.transitions[k]
         loc = t.loc
         fired = f"__SFC_TR{k}"
-        self.decls.append(A.VarDecl(loc, fired, A.NamedTypeRef(loc, "BOOL"), spelling=fired,
-                                    section="VAR_TEMP"))
-        enabled: list[A.Expr] = [_flag(n, "X", l) for n, l in t.sources]
+        self.decls.append(_decl(fired, "BOOL", loc, section="VAR_TEMP"))
+        enabled: list[A.Expr] = [self.flag(n, "X", l) for n, l in t.sources]
         # a step gives its token to one transition only: the first by precedence
         for j in self.earlier_rivals(k):
             enabled.append(A.Unary(loc, "NOT", _name(f"__SFC_TR{j}", loc)))
@@ -202,7 +210,7 @@ class _Lowering:
         self.out.append(A.Assign(loc, _name(fired, loc), _bool(False, loc)))
         self.out.append(A.If(loc, [(_any(enabled, "AND", loc), body)]))
         if t.name:
-            self.decls.append(_decl(t.name, "BOOL", loc))
+            self.decls.append(_decl(t.name, "BOOL", loc, spelling=t.text))
 
     def earlier_rivals(self, k: int) -> list[int]:
         """Transitions of higher precedence that share a preceding step with transition k."""
@@ -216,13 +224,13 @@ class _Lowering:
         for k in order:
             t = self.chart.transitions[k]
             self.out.append(A.If(t.loc, [(_name(f"__SFC_TR{k}", t.loc), [
-                A.Assign(l, _flag(n, "X", l), _bool(False, l)) for n, l in t.sources])]))
+                A.Assign(l, self.flag(n, "X", l), _bool(False, l)) for n, l in t.sources])]))
         for k in order:
             t = self.chart.transitions[k]
             act: list[A.Stmt] = []
             for n, l in t.targets:  # activation wins; the step's time restarts now
-                act.append(A.Assign(l, _flag(n, "X", l), _bool(True, l)))
-                act.append(A.Assign(l, _flag(n, "T", l), _time(0, l)))
+                act.append(A.Assign(l, self.flag(n, "X", l), _bool(True, l)))
+                act.append(A.Assign(l, self.flag(n, "T", l), _time(0, l)))
                 act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(False, l))], l))
                 act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(True, l)),
                                                     ("PT", _time(MAX_TIME_NS, l))], l))
@@ -232,10 +240,10 @@ class _Lowering:
         for s in self.chart.steps:
             loc = s.loc
             tmr = f"__SFC_TMR_{s.name}"
-            self.out.append(_call(tmr, [("IN", _flag(s.name, "X", loc)),
+            self.out.append(_call(tmr, [("IN", self.flag(s.name, "X", loc)),
                                         ("PT", _time(MAX_TIME_NS, loc))], loc))
-            self.out.append(A.If(loc, [(_flag(s.name, "X", loc), [
-                A.Assign(loc, _flag(s.name, "T", loc),
+            self.out.append(A.If(loc, [(self.flag(s.name, "X", loc), [
+                A.Assign(loc, self.flag(s.name, "T", loc),
                          A.Member(loc, _name(tmr, loc), "ET", text="ET"))])]))
 
     # 3. actions ---------------------------------------------------------------------------
@@ -253,7 +261,8 @@ class _Lowering:
                 inst = f"__SFC_AC_{name}"
             else:
                 loc, inst = action.loc, name
-            self.decls.append(_decl(inst, "ACTION_CONTROL", loc))
+            self.decls.append(_decl(inst, "ACTION_CONTROL", loc,
+                                    spelling=action.text if action else ""))
             self.control(inst, used.get(name, []), loc)
             if action is None:
                 self.out.append(A.Assign(loc, _name(name, loc, used[name][0][1].text),
@@ -270,11 +279,11 @@ class _Lowering:
         by_input: dict[str, list[A.Expr]] = {}
         timed = [(s, a) for s, a in assocs if a.time is not None]
         for s, a in assocs:
-            by_input.setdefault(_INPUT[a.qualifier], []).append(_flag(s.name, "X", a.loc))
+            by_input.setdefault(_INPUT[a.qualifier], []).append(self.flag(s.name, "X", a.loc))
         if len(timed) > 1:
             for s, a in timed:
                 assert a.time is not None
-                self.out.append(A.If(a.loc, [(_flag(s.name, "X", a.loc), [A.Assign(
+                self.out.append(A.If(a.loc, [(self.flag(s.name, "X", a.loc), [A.Assign(
                     a.loc, A.Member(a.loc, _name(inst, a.loc), "T", text="T"),
                     A.copy_expr(a.time))])]))
         args = [(k, _any(v, "OR", loc)) for k, v in by_input.items()]
