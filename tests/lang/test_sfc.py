@@ -239,3 +239,13 @@ def test_an_sfc_and_its_st_state_machine_twin_give_identical_traces(inputs):
         twin = [plc[f"Twin.{t}"] for _, t in PAIRS]
         names = [s for s, _ in PAIRS]
         assert sfc == twin, f"scan {scan}: {list(zip(names, sfc, twin, strict=True))}"
+
+
+def test_a_chart_in_a_function_and_jumps_in_an_il_action_are_errors_at_their_place():
+    fn = "FUNCTION F : INT\nINITIAL_STEP A: END_STEP\nEND_FUNCTION\n"
+    (d,) = [d for d in diags(fn) if d.code == "PLC0010"]
+    assert d.location.line == 2 and "FUNCTION_BLOCK or a PROGRAM" in d.message
+    il = CHART.replace("ACTION Count: n := n + 1; END_ACTION",
+                       "ACTION Count:\n  LD n\n  JMPC skip\nskip:\nEND_ACTION")
+    found = [d for d in diags(il) if d.code == "PLC0145"]
+    assert found and found[0].location.line == 10 and "IL action" in found[0].message

@@ -55,6 +55,9 @@ def parse_sfc_body(p, end_kw: str) -> A.PendingBody:
     """Parse steps, transitions and actions up to ``end_kw``; return the chart as a pending
     body for :mod:`plclab.lang.lower`."""
     where = p.loc()
+    if end_kw == "END_FUNCTION":
+        p.error("PLC0010", "a FUNCTION keeps nothing from one call to the next, so it cannot "
+                "hold an SFC chart; write the chart in a FUNCTION_BLOCK or a PROGRAM")
     _mark_ends(p, end_kw)
     chart = Chart(where)
     while p.tok.kind not in _BODY_ENDS and p.tok.kind != end_kw:

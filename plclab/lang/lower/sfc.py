@@ -293,6 +293,13 @@ class _Lowering:
 
     def il_statements(self, instrs: list[Instr]) -> list[A.Stmt]:
         """IL lines as statements (hidden ``__CR_*`` variables shared with the POU)."""
+        jumps = [x for x in instrs if x.op == "LABEL" or x.op.startswith(("JMP", "RET"))]
+        if jumps:  # the body runs inside an IF: a jump could not leave it
+            self.diags.append(Diagnostic(
+                "PLC0145", f"{jumps[0].text or 'a label'} in an IL action or transition: jumps, "
+                "labels and RET are not supported there; write the choice in ST (IF ... "
+                "END_IF) or with JMP-free IL (S, R, conditional CALC)", jumps[0].loc))
+            return []
         tmp = A.Pou(self.pou.loc, self.pou.kind, self.pou.name,
                     list(self.pou.decls) + self.decls, [], self.pou.return_type,
                     self.pou.spelling)
