@@ -16,6 +16,7 @@ from .lang import ast as A
 from .lang.frontends import for_file
 from .lang.frontends.st import parse_library
 from .lang.lexer import cap_per_file
+from .lang.library import SFC_LIBRARY, STDLIB_FILES
 from .lang.lower import lower_pending
 
 
@@ -24,7 +25,8 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
 
     The order is the pipeline's: parse every file (each by the front end the registry picks for
     its suffix) -> every declaration known -> lower the pending IL bodies and LD/FBD networks
-    of all files at once (:mod:`plclab.lang.lower`); the checker comes next."""
+    of all files at once (:mod:`plclab.lang.lower`); the checker comes next. A project with an
+    SFC chart also gets the SFC library (``SFC_STEP``, ``ACTION_CONTROL``)."""
     front_ends = [for_file(filename) for _, filename in sources]  # PLC3003 before any parsing
     files: list[A.SourceFile] = parse_library()
     diags: list[Diagnostic] = []
@@ -32,6 +34,8 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
         f, d = fe.parse(text, filename)
         files.append(f)
         diags.extend(d)
+    if any(b.kind == "SFC" for f in files for p in f.pous for b in p.pending):
+        files[len(STDLIB_FILES):len(STDLIB_FILES)] = parse_library((SFC_LIBRARY,))
     diags.extend(lower_pending(files))
     return files, diags
 

@@ -13,6 +13,10 @@ from pathlib import Path
 STDLIB_FILES = ("stdlib.st", "ctrllib.st")
 """The library files, parsed (with ``library=True``) before every project's own files."""
 
+SFC_LIBRARY = "sfclib.st"
+"""What lowered SFC charts use (``SFC_STEP``, ``ACTION_CONTROL``): added to a project only when
+it holds a chart, so that other programs compile no more code than before."""
+
 
 @cache
 def stdlib_text(name: str) -> str:
@@ -25,4 +29,4 @@ def stdlib_filename(name: str) -> str:
     return f"<plclab>/{name}"
 
 
-__all__ = ["STDLIB_FILES", "stdlib_text", "stdlib_filename"]
+__all__ = ["STDLIB_FILES", "SFC_LIBRARY", "stdlib_text", "stdlib_filename"]

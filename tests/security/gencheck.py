@@ -37,9 +37,9 @@ FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "
                    "globals", "locals", "vars", "breakpoint", "input", "delattr"}
 
 
-# hidden variables of the IL and LD front ends (``__CR_INT``, ``__LD_M3``): private names, which
-# work only because nothing outside their class reads them
-HIDDEN = re.compile(r"^__(?:CR|LD)_[A-Z0-9_]+$")
+# hidden variables of the IL, LD and SFC lowerings (``__CR_INT``, ``__LD_M3``, ``__SFC_TR0``):
+# private names, which work only because nothing outside their class reads them
+HIDDEN = re.compile(r"^__(?:CR|LD|SFC)_[A-Z0-9_]+$")
 
 
 def _private(name: str) -> bool:

@@ -49,9 +49,10 @@ def test_snapshot_programs_cover_each_front_end():
 
 def test_lowered_st_checks_clean_again():
     """The ST a ladder network or an FBD lowers to is a program the checker accepts (IL bodies
-    keep their current-result variables and jumps, which are not user ST)."""
+    keep their current-result variables and jumps, SFC charts their hidden step timers and
+    transition flags: neither is user ST)."""
     for program in PROGRAMS:
-        if program.suffix == ".il":
+        if program.suffix == ".il" or program.name.startswith("sfc"):
             continue
         st_text, _ = emit([(program.read_text(encoding="utf-8"), program.name)], "st")
         assert "|---" not in st_text and "<FBD>" not in st_text

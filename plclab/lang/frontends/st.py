@@ -28,6 +28,7 @@ from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_de
 from ..lower import has_pending, lower_pending
 from ..parsing import ParseAbort
 from .il_lines import is_il_body, parse_il_body
+from .sfc_text import is_sfc_body, parse_sfc_body
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
@@ -281,6 +282,8 @@ class Parser:
         like IL (rule in :func:`plclab.lang.frontends.il.is_il_body`)."""
         if is_il_body(self, end_kw):
             return [], "IL", parse_il_body(self, end_kw)
+        if is_sfc_body(self):  # textual SFC: a chart, lowered once every file is parsed
+            return [], "SFC", parse_sfc_body(self, end_kw)
         return self.stmt_list({end_kw}), "ST", None
 
     def test_block(self) -> A.TestBlock:
@@ -995,10 +998,11 @@ def parse_st_collect(text: str, file: str = "<input>",
     return out, diags + lower_alone(out)
 
 
-def parse_library() -> list[A.SourceFile]:
-    """plclab's block library, freshly parsed (a project's checker annotates its own copy)."""
+def parse_library(names: tuple[str, ...] = STDLIB_FILES) -> list[A.SourceFile]:
+    """plclab's block library, freshly parsed (a project's checker annotates its own copy);
+    ``names``: which library files (default: those every project gets)."""
     files = []
-    for name in STDLIB_FILES:
+    for name in names:
         f, d = parse(stdlib_text(name), stdlib_filename(name), library=True)
         assert not d, d
         files.append(f)

@@ -6,9 +6,10 @@ check) and turns each pending body into ordinary statements and hidden declarati
 
 * ``"IL"``: instruction lists (:mod:`.il`);
 * ``"NETWORK"``: LD and FBD networks, from the text ladder and from PLCopen graphics alike
-  (:mod:`.network`).
+  (:mod:`.network`);
+* ``"SFC"``: sequential function charts, textual (:mod:`.sfc`).
 
-It is also the place where SFC charts and the object-oriented constructs will be lowered to
+It is also the place where the object-oriented constructs will be lowered to
 the core AST, so that the checker and the compiler keep seeing one language. The type questions
 the lowering asks go through :class:`~.types.LoweringTypes` only.
 """
@@ -22,11 +23,13 @@ from .. import ast as A
 from ..limits import compiler_guard
 from .il import lower_il
 from .network import lower_network
+from .sfc import lower_sfc
 from .types import DeclarationTypes, LoweringTypes
 
 LOWERINGS: dict[str, Callable[[A.Pou, list, LoweringTypes], list[Diagnostic]]] = {
     "IL": lower_il,
     "NETWORK": lower_network,
+    "SFC": lower_sfc,
 }
 
 
