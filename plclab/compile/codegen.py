@@ -84,6 +84,7 @@ class Codegen:
         self._levels = [0]  # expression nesting since the last temporary, per open ex() call
         self._memo: dict[int, tuple[str, int]] = {}  # code of chain nodes made ahead, by id
         self.helpers: list[tuple[list[str], list[int]]] = []  # outlined blocks (module level)
+        self.struct_cls: dict[int, str] = {}  # id(StructType) -> its generated class
         self.tables: list[str] = []  # module-level CASE tables
         self.locals: set[str] = set()  # Python locals (v_X) of the function being generated
         self.has_self = False  # the function being generated is a method (self.X members)
@@ -145,11 +146,12 @@ class Codegen:
                         [a for d, _ in self.located() for a in [d.address]])
 
     def generate_source(self) -> None:
-        for name, t in self.p.types.items():
-            rt = t
-            if isinstance(rt, T.StructType):
-                self.struct_class(name, rt)
-        # anonymous structs are not supported as separate classes: they are named by TYPE
+        # one class per structure type: TYPEs by name, a STRUCT written in a VAR section under
+        # the __STRUCT_n key the checker gave it
+        structs = [(name, t) for name, t in self.p.types.items() if isinstance(t, T.StructType)]
+        self.struct_cls.update({id(t): f"S_{ident(name)}" for name, t in structs})
+        for name, t in structs:
+            self.struct_class(name, t)
         for pou in self.p.pous.values():
             if pou.kind == "FUNCTION":
                 if pou.native:
@@ -181,7 +183,7 @@ class Codegen:
                 return f"[{d} for _ in range({t.size})]"
             return f"[{d}] * {t.size}"
         if isinstance(t, T.StructType):
-            return f"S_{ident(t.name)}()"
+            return f"{self.struct_cls[id(t)]}()"
         if isinstance(t, T.FBType):
             if t.pou.native:
                 return f"P_{ident(t.name)}(_CTX)"

@@ -149,6 +149,9 @@ class Declarations(Pass):
             return et
         if isinstance(r, A.StructTypeRef):
             st = T.StructType(name or f"struct@{r.loc.line}", {})
+            if name is None:  # a STRUCT written in a VAR section: the compiler makes it a class
+                # too, under a name no program can write (PLC0006 forbids '__')
+                self.table.types[f"__STRUCT_{sum(k.startswith('__STRUCT_') for k in self.table.types)}"] = st
             for d in r.fields:
                 self.decl_type(d)
                 if d.name in st.fields:
