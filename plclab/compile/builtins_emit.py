@@ -122,6 +122,15 @@ def _shift(m: Emission) -> str:
     return m.cg.wrap(r, t) if getattr(t, "signed", False) and t.kind == "int" else r
 
 
+def _not(m: Emission) -> str:  # NOT(x) as the operator NOT x
+    t, x = m.t, m.codes[0]
+    if t is T.BOOL:
+        return f"(not {x})"
+    if isinstance(t, T.Elementary) and not t.signed:
+        return f"({x} ^ {(1 << t.bits) - 1})"
+    return f"(~{x})"
+
+
 def _compare(m: Emission) -> str:
     common = _common([a.ty for a in m.args])
     codes = [m.cg.widen(c, a.ty, common) for c, a in zip(m.codes, m.args, strict=True)]
@@ -180,6 +189,8 @@ EMITTERS: dict[str, Callable[[Emission], str]] = {
     "move": lambda m: m.cg.copy_code(m.codes[0], m.args[0].ty),
     "expt": lambda m: f"{m.native}({m.codes[0]}, {m.codes[1]})",
     "operator": _operator,
+    "bitwise": _operator,
+    "not": _not,
     "div": _div,
     "mod": lambda m: f"{m.native}({m.codes[0]}, {m.codes[1]})",
     "extremum": _extremum,

@@ -90,6 +90,11 @@ _add(
     _B("SUB", ("IN1", "IN2"), "arithmetic", "operator", min_args=2, operator="-"),
     _B("DIV", ("IN1", "IN2"), "arithmetic", "div", min_args=2, natives=("_idiv", "_rdiv")),
     _B("MOD", ("IN1", "IN2"), "arithmetic", "mod", min_args=2, natives=("_imod",)),
+    # the bitwise Boolean functions of IEC 61131-3 ed.2 Table 24 / ed.3 Table 31 (items 21-24):
+    # AND, OR, XOR are extensible; written as calls by Beremiz for every FBD/LD network
+    *(_B(n, ("IN1", "IN2"), "bitwise", "bitwise", variadic=True, min_args=2, operator=op)
+      for n, op in (("AND", "&"), ("OR", "|"), ("XOR", "^"))),
+    _B("NOT", ("IN",), "bitwise", "not"),
     _B("MIN", ("IN1", "IN2"), "extremum", "extremum", variadic=True, min_args=1),
     _B("MAX", ("IN1", "IN2"), "extremum", "extremum", variadic=True, min_args=1),
     _B("LIMIT", ("MN", "IN", "MX"), "limit", "limit", min_args=3, natives=("_limit",)),

@@ -99,6 +99,15 @@ def _multiplex(t: Typing) -> T.Type:
     return t.common(t.bs[1:])
 
 
+def _bitwise(t: Typing) -> T.Type:  # AND, OR, XOR, NOT: all BOOL, or bit strings/integers
+    if all(b is T.BOOL for b in t.bs):
+        return T.BOOL
+    if not t.kinds("bits", "int"):
+        t.need(False, "BOOLs or bit strings")
+        return T.ANY
+    return t.common(t.bs) if len(t.bs) > 1 else t.ts[0]
+
+
 def _shift(t: Typing) -> T.Type:
     t.need(t.bs[0].kind in ("bits", "int") and t.bs[1].kind == "int",
            "a bit string and a shift count")
@@ -152,6 +161,7 @@ TYPING_RULES: dict[str, Callable[[Typing], T.Type]] = {
     "number_same": _number_same, "float": _float, "atan2": _atan2, "to_dint": _to_dint,
     "same": _same, "expt": _expt, "arithmetic": _arithmetic, "extremum": _extremum,
     "limit": _extremum, "select": _select, "multiplex": _multiplex, "shift": _shift,
+    "bitwise": _bitwise,
     "compare": _compare, "signature": _signature, "concat": _concat,
     "assert_compare": _assert_compare, "assert_bool": _assert_bool,
     "assert_near": _assert_near, "advance_time": _advance_time,

@@ -62,6 +62,9 @@ _NATIVE_RE = re.compile(r"^native\s+'([A-Z][A-Z0-9_]*)'$")
 _NATIVE_WORD = re.compile(r"^native\b", re.IGNORECASE)
 
 
+_OPERATOR_FUNCTIONS = ("AND", "OR", "XOR", "MOD", "NOT")
+
+
 class _TooDeep(ParseAbort):
     """Internal: nesting beyond the limits (PLC0190 is reported). Statements do not recover
     from it one by one (that would report every level again): the body is skipped."""
@@ -844,7 +847,7 @@ class Parser:
     def unary(self) -> A.Expr:
         """Prefix operators (a loop, not recursion: NOT NOT NOT x is fine), then the operand."""
         prefix: list[Token] = []
-        while self.tok.kind in ("-", "+", "NOT"):
+        while self.tok.kind in ("-", "+", "NOT") and not self._named_not_call():
             prefix.append(self.advance())
             if self.expr_depth + len(prefix) > MAX_EXPR_NESTING:
                 self._too_deep("expressions", MAX_EXPR_NESTING)
@@ -852,6 +855,11 @@ class Parser:
         for t in reversed(prefix):
             operand = self._apply_unary(t, operand)
         return operand
+
+    def _named_not_call(self) -> bool:
+        """``NOT(IN := x)``: the function NOT with a formal argument, not the operator."""
+        return (self.tok.kind == "NOT" and self.peek().kind == "(" and
+                self.peek(2).kind == "IDENT" and self.peek(3).kind == ":=")
 
     def _apply_unary(self, t: Token, operand: A.Expr) -> A.Expr:
         if t.kind == "-" and isinstance(operand, A.Literal) and operand.kind in ("INT", "REAL",
@@ -896,9 +904,13 @@ class Parser:
             e = self.expr()
             self.expect(")", "')' to close the parenthesis")
             return e
+        if k in _OPERATOR_FUNCTIONS and self.peek().kind == "(":
+            # a standard function named like an operator, called: AND(a, b, c), MOD(a, 3)
+            # (IEC 61131-3 ed.3 Table 31; Beremiz writes FBD/LD networks this way)
+            self.advance()
+            return A.Name(loc, k, t.text)
         if k in ("NOT",):
             return self.unary()
-        # functions named like keywords (AND(...), MOD(...)) are not supported as calls
         self.fail_expected("an expression")
         raise AssertionError
 
