@@ -66,8 +66,14 @@ def _to_dint(m: Emission) -> str:  # TRUNC, ROUND: a conversion to DINT, wraps l
     return m.cg.wrap(f"{m.native}({m.codes[0]})", T.DINT)
 
 
-def _operator(m: Emission) -> str:  # ADD, MUL, SUB
-    return "(" + f" {m.spec.operator} ".join(m.codes) + ")"
+def _operator(m: Emission) -> str:  # ADD, MUL, SUB; AND, OR, XOR
+    code = "(" + f" {m.spec.operator} ".join(m.codes) + ")"
+    t = m.t
+    if m.spec.typing == "arithmetic" and t.kind in ("int", "bits") and \
+            isinstance(t, T.Elementary) and t is not T.ANY_INT_LIT and \
+            m.cg.operand_width(m.call.loc):
+        return m.cg.wrap(code, t)  # S7: the operand type's width (ADR 0017)
+    return code
 
 
 def _div(m: Emission) -> str:

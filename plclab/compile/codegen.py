@@ -23,6 +23,7 @@ from ..lang import ast as A
 from ..lang import types as T
 from ..lang.builtins import BUILTINS
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
+from ..lang.dialect import profile as dialect_profile
 from ..lang.limits import compiler_guard
 from ..lang.walk import UnhandledNode
 from .builtins_emit import EMITTERS, Emission, const_int
@@ -1117,6 +1118,8 @@ class Codegen:
         return self.addr_read(e.address)
 
     def e_Member(self, e: A.Member) -> str:
+        if isinstance(e.sym, EnumSym):  # Color.Red (CODESYS)
+            return repr(e.sym.value)
         obj = self.ex(e.obj)
         if e.field_name.startswith("%"):
             return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"
@@ -1214,7 +1217,16 @@ class Codegen:
             return f"_expt({left}, {right})"
         if op == "*" and t.kind == "time" and (lt.kind == "real" or rt.kind == "real"):
             return f"_round({left} * {right})"
+        if op in ("+", "-", "*") and t.kind in ("int", "bits") and isinstance(t, T.Elementary) \
+                and t is not T.ANY_INT_LIT and self.operand_width(e.loc):
+            return self.wrap(f"{left} {op} {right}", t)  # S7: the operand type's width
         return f"({left} {op} {right})"
+
+    def operand_width(self, loc: Location | None) -> bool:
+        """Whether integer intermediates wrap to their type here (the S7 dialect, ADR 0017)
+        instead of staying exact (CODESYS computes them in a register)."""
+        name = self.p.dialects.get(loc.file) if loc is not None else None
+        return dialect_profile(name).operand_width
 
     def e_Call(self, e: A.Call) -> str:
         info: CallInfo | None = e.target

@@ -22,6 +22,7 @@ from ...errors import Diagnostic, Location, PlcError
 from ...suggest import suggest
 from .. import ast as A
 from ..datasize import NESTING_LIMIT
+from ..dialect import current as current_dialect
 from ..lexer import KEYWORDS, Lexer, Token, add_capped
 from ..library import STDLIB_FILES, stdlib_filename, stdlib_text
 from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
@@ -109,6 +110,7 @@ class Parser:
         self.depth = 0  # nesting of types and initial values (see nested())
         self.expr_depth = 0  # nesting of expr() calls
         self.block_depth = 0  # nesting of statement lists
+        self.dialect = current_dialect()
 
     def _reject_native_pragmas(self, text: str) -> None:
         lines = text.splitlines()
@@ -477,13 +479,29 @@ class Parser:
                 init = None
                 if self.accept(":="):
                     init = self.initializer()
-                self.expect(";")
+                self.type_end()
                 out.append(A.TypeDecl(self.loc(n), n.value, tref, init, n.text))
             except ParseAbort:
                 self.sync({"END_TYPE"} | _POU_START)
                 self.ensure_progress(start)
         self.expect("END_TYPE")
         return out
+
+    def type_end(self) -> None:
+        """The ``;`` after a type declaration; CODESYS and TIA Portal let a declaration that
+        ends with END_STRUCT (or the last one, before END_TYPE) go without it."""
+        if self.accept(";"):
+            return
+        prev = self.toks[self.i - 1] if self.i else None
+        if self.dialect.type_semicolon_optional and (
+                self.at("END_TYPE") or (prev is not None and prev.kind == "END_STRUCT")):
+            return
+        if prev is not None and prev.kind == "END_STRUCT" or self.at("END_TYPE"):
+            self.error("PLC0171", f"';' missing after this type declaration: the dialect "
+                       f"'{self.dialect.name}' needs it (CODESYS and S7 do not); add ';' or "
+                       "choose {dialect 'codesys'}")
+            raise ParseAbort
+        self.expect(";")
 
     def type_ref(self, allow_decl: bool = True) -> A.TypeRef:
         with self.nested("type"):
