@@ -1084,7 +1084,7 @@ class Codegen:
     def e_Literal(self, e: A.Literal) -> str:
         v = e.value
         k = e.kind
-        if k == "BOOL":
+        if k == "BOOL" or (k == "INT" and e.ty is T.BOOL):  # TRUE, FALSE, and 0/1 as BOOL
             return "True" if v else "False"
         if k == "TIME":
             t = T.resolve(e.ty) if e.ty is not None else T.TIME

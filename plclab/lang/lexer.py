@@ -94,6 +94,7 @@ _TOKEN_RE = re.compile(
   | (?P<int>[0-9][0-9_]*)
   | (?P<ident>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<addr>%[IQM][XBWDL]?[0-9]+(?:\.[0-9]+)*|%[IQM]\*)
+  | (?P<partial>%[XBWDxbwd][0-9]+)
   | (?P<sstring>')
   | (?P<dstring>")
   | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|[-+*/<>=()\[\],;:.&^\#])
@@ -283,6 +284,8 @@ class Lexer:
                 out.append(Token("REAL", self._real(s, s, line, col), s, line, col))
             elif kind == "addr":
                 out.append(Token("ADDR", s.upper(), s, line, col))
+            elif kind == "partial":  # w.%X15: partial access to a bit (IEC ed.3 Table 17)
+                out.append(Token("PARTIAL", s.upper(), s, line, col))
             else:
                 out.append(Token(s, s, s, line, col))
         out.append(Token("EOF", None, "", line, pos - line_start + 1))

@@ -88,3 +88,15 @@ def test_lab_toml_key_reaches_the_compiler(tmp_path):
     with pytest.raises(PlcError) as ei:
         load_lab(copy)
     assert ei.value.code == "PLC5004"
+
+
+def test_iec_address_forms_reach_the_image():
+    """%QX75 = %Q75 = byte 9 bit 3; the unnamed AT and the hierarchical word (PLC0175)."""
+    plc = plclab.loads("PROGRAM P VAR a AT %QX75 : BOOL; b AT %Q76 : BOOL; AT %QX9.7 : BOOL;\n"
+                       "w AT %IW2.5.7.1 : WORD; x : WORD; END_VAR\n"
+                       "a := TRUE; b := 1; x := w; END_PROGRAM")
+    assert [d.code for d in plc.compiled.diagnostics] == ["PLC0175"]
+    plc["%IW1"] = 1234
+    plc.scan()
+    assert plc.outputs[9] == 0b0001_1000 and plc["%QX75"] and plc["%Q76"]
+    assert plc["P.x"] == 1234

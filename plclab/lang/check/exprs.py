@@ -23,6 +23,10 @@ class Expressions(Pass, NodeVisitor):
         if src is T.ANY or dst is T.ANY:
             return
         rs, rd = T.resolve(src), T.resolve(dst)
+        if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
+                and e.value in (0, 1):
+            e.ty = T.BOOL  # 0 and 1 are BOOL literals (IEC 61131-3 ed.2 2.2.1, ed.3 Table 5)
+            return
         if isinstance(rd, T.FBType):
             self.err("PLC0103", f"cannot assign to a function block instance of {rd.name}; "
                      "call it or assign its members", loc)

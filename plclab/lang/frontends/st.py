@@ -21,6 +21,7 @@ from functools import cache
 from ...errors import Diagnostic, Location, PlcError
 from ...suggest import suggest
 from .. import ast as A
+from ..addresses import canonical, hierarchical
 from ..datasize import NESTING_LIMIT
 from ..dialect import current as current_dialect
 from ..lexer import KEYWORDS, Lexer, Token, add_capped
@@ -405,12 +406,19 @@ class Parser:
         return out
 
     def var_decl(self, section: str, constant: bool, retain: bool) -> list[A.VarDecl]:
-        names: list[Token] = [self.expect("IDENT", "a variable name")]
-        while self.accept(","):
-            names.append(self.expect("IDENT", "a variable name"))
+        if self.at("AT"):  # unnamed: AT %IX1.1 : BOOL; (IEC 61131-3 ed.3 Table 16)
+            at = self.tok
+            names = [Token("IDENT", "", "", at.line, at.col)]
+        else:
+            names = [self.expect("IDENT", "a variable name")]
+            while self.accept(","):
+                names.append(self.expect("IDENT", "a variable name"))
         address = None
         if self.accept("AT"):
-            address = self.expect("ADDR", "a direct address such as %IX0.0").value
+            address = self.address(self.expect("ADDR", "a direct address such as %IX0.0"))
+            if not names[0].value:  # the unnamed variable is called by its address
+                text = address.replace("%", "").replace(".", "_")
+                names = [Token("IDENT", f"AT_{text}", address, names[0].line, names[0].col)]
         if self.at(":="):
             self.error("PLC0010", "a declaration needs a type before the initial value: "
                        "write  name : TYPE := value;")
@@ -426,6 +434,18 @@ class Parser:
             A.VarDecl(self.loc(n), n.value, tref, init, address, section, constant, retain, n.text)
             for n in names
         ]
+
+    def address(self, t: Token) -> str:
+        """A direct address in its canonical form (:mod:`plclab.lang.addresses`); a
+        hierarchical one is read by its last field, with a warning."""
+        address = canonical(t.value)
+        if t.value != address and hierarchical(t.value):
+            add_capped(self.diagnostics, Diagnostic(
+                "PLC0175", f"{t.text[:40]} is hierarchical; plclab's process image is flat, so "
+                f"it is read as {address} (the leading fields name hardware a simulated PLC "
+                "does not have); write the flat address to say so", self.loc(t), "warning"),
+                self.file)
+        return address
 
     def initializer(self) -> A.Expr:
         if self.at("["):
@@ -913,7 +933,7 @@ class Parser:
             return A.Literal(loc, t.value, "ENUM", t.prefix, t.text)
         if k == "ADDR":
             self.advance()
-            return A.DirectAddr(loc, t.value)
+            return A.DirectAddr(loc, self.address(t) if not t.value.endswith("*") else t.value)
         if k == "IDENT":
             self.advance()
             return A.Name(loc, t.value, t.text)
@@ -946,6 +966,15 @@ class Parser:
                 if self.at("INT"):  # bit access x.3
                     bit = self.advance()
                     e = A.Member(self.loc(dot), e, f"%{bit.value}")
+                    continue
+                if self.at("PARTIAL"):  # x.%X3 is x.3 (IEC ed.3 Table 17)
+                    part = self.advance()
+                    if part.value[1] != "X":
+                        self.error("PLC0176", f"partial access {part.text} to a byte, word or "
+                                   "double word is not supported; use bit access .%Xn or SHR "
+                                   "and a conversion", part)
+                        raise ParseAbort
+                    e = A.Member(self.loc(dot), e, f"%{int(part.value[2:])}")
                     continue
                 n = self.expect("IDENT", "a member name after '.'")
                 e = A.Member(self.loc(n), e, n.value, n.text)
