@@ -13,7 +13,7 @@ from typing import Any
 
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
-from .lang.dialect import choose, using
+from .lang.dialect import DEFAULT, choose, using
 from .lang.frontends import for_file
 from .lang.frontends.st import parse_library
 from .lang.lexer import cap_per_file
@@ -43,7 +43,7 @@ def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
             name = choose("", dialect, filename)
         with using(name):
             f, d = fe.parse(text, filename)
-        f.dialect = name
+        f.dialect = None if name == DEFAULT else name  # None: the default (dumps unchanged)
         files.append(f)
         diags.extend(d)
     diags.extend(lower_pending(files))

@@ -544,7 +544,21 @@ class Codegen:
         if info is None:
             return
         if info.kind in ("fb", "program"):
+            if info.en is None and info.eno is None:
+                self.fb_call(c, info)
+                return
+            # EN/ENO (IEC 61131-3 ed.3 6.6.1.6): the body runs only when EN; ENO tells whether
+            en = self.new_tmp("_en")
+            code = self.ex(info.en) if info.en is not None else "True"
+            self.flush_pre()
+            self.emit(f"{en} = {code}")
+            self.emit(f"if {en}:")
+            self.ind += 1
             self.fb_call(c, info)
+            self.emit("pass")
+            self.ind -= 1
+            if info.eno is not None:
+                self.assign_to(info.eno, en)
             return
         if info.kind == "builtin" and info.callee.statement_only:
             self.test_builtin(c, info)
@@ -1232,6 +1246,39 @@ class Codegen:
         info: CallInfo | None = e.target
         if info is None:
             return "None"
+        if info.en is not None or info.eno is not None:
+            return self.enabled_call(e, info)
+        return self.plain_call(e, info)
+
+    def enabled_call(self, e: A.Call, info: CallInfo) -> str:
+        """A function call with EN/ENO (IEC 61131-3 ed.3 6.6.1.6): EN is evaluated first; when
+        it is FALSE the function is not called, the result is its type's default (as MATIEC)
+        and ENO is FALSE; else ENO is TRUE."""
+        en = self.new_tmp("_en")
+        self.pre.append(f"{en} = {self.ex(info.en) if info.en is not None else 'True'}")
+        mark = len(self.pre)
+        code = self.plain_call(e, info)
+        inner = self.pre[mark:]
+        del self.pre[mark:]
+        if inner:  # the call's own statements (outputs, spilled temporaries) run only if EN
+            self.pre.append(f"if {en}: " + "; ".join(inner))
+        if info.eno is not None:
+            self.pre.append(self.store_code(info.eno, en))
+        default = self.default_code(e.ty) if e.ty is not None and e.ty is not T.VOID \
+            else "None"
+        return f"({code} if {en} else {default})"
+
+    def store_code(self, target: A.Expr, val: str) -> str:
+        """One line storing ``val`` (a BOOL) into ``target`` (see :meth:`assign_to`)."""
+        if isinstance(target, A.Member) and target.field_name.startswith("%"):
+            bit = int(target.field_name[1:])
+            obj = self.ex(target.obj)
+            return f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})"
+        if isinstance(target, A.DirectAddr):
+            return self.addr_write(target.address, val)
+        return f"{self.ex(target)} = {val}"
+
+    def plain_call(self, e: A.Call, info: CallInfo) -> str:
         if info.kind == "conv":
             return self.conversion(info, e)
         if info.kind == "builtin":
