@@ -548,7 +548,7 @@ class Codegen:
                 self.fb_call(c, info)
                 return
             # EN/ENO (IEC 61131-3 ed.3 6.6.1.6): the body runs only when EN; ENO tells whether
-            en = self.new_tmp("_en")
+            en = self.new_tmp()
             code = self.ex(info.en) if info.en is not None else "True"
             self.flush_pre()
             self.emit(f"{en} = {code}")
@@ -1254,7 +1254,7 @@ class Codegen:
         """A function call with EN/ENO (IEC 61131-3 ed.3 6.6.1.6): EN is evaluated first; when
         it is FALSE the function is not called, the result is its type's default (as MATIEC)
         and ENO is FALSE; else ENO is TRUE."""
-        en = self.new_tmp("_en")
+        en = self.new_tmp()
         self.pre.append(f"{en} = {self.ex(info.en) if info.en is not None else 'True'}")
         mark = len(self.pre)
         code = self.plain_call(e, info)
