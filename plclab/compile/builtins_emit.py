@@ -137,6 +137,25 @@ def _not(m: Emission) -> str:  # NOT(x) as the operator NOT x
     return f"(~{x})"
 
 
+def _datetime(m: Emission) -> str:
+    """TIME and TOD count milliseconds, DT milliseconds since 1970, DATE seconds since 1970."""
+    a, b = m.codes
+    how = m.spec.operator
+    if how == "date-":
+        code = f"(({a} - {b}) * 1000)"
+    elif how == "date+tod":
+        code = f"({a} * 1000 + {b})"
+    elif how == "*":
+        real = T.base_of(m.args[1].ty).kind == "real"
+        code = f"_round({a} * {b})" if real else f"({a} * {b})"
+    elif how == "/":
+        real = T.base_of(m.args[1].ty).kind == "real"
+        code = f"_round(_rdiv({a}, {b}))" if real else f"_idiv({a}, {b})"
+    else:
+        code = f"({a} {how} {b})"
+    return m.cg.wrap(code, m.t) if isinstance(m.t, T.Elementary) else code
+
+
 def _compare(m: Emission) -> str:
     common = _common([a.ty for a in m.args])
     codes = [m.cg.widen(c, a.ty, common) for c, a in zip(m.codes, m.args, strict=True)]
@@ -197,6 +216,7 @@ EMITTERS: dict[str, Callable[[Emission], str]] = {
     "operator": _operator,
     "bitwise": _operator,
     "not": _not,
+    "datetime": _datetime,
     "div": _div,
     "mod": lambda m: f"{m.native}({m.codes[0]}, {m.codes[1]})",
     "extremum": _extremum,

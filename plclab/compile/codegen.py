@@ -1227,6 +1227,8 @@ class Codegen:
             return f"_rdiv({left}, {right})"
         if op == "MOD":
             return f"_imod({left}, {right})"
+        if op == "-" and lt.kind == "date" and rt.kind == "date":  # seconds -> TIME in ms
+            return f"(({left} - {right}) * 1000)"
         if op == "**":
             return f"_expt({left}, {right})"
         if op == "*" and t.kind == "time" and (lt.kind == "real" or rt.kind == "real"):
@@ -1361,6 +1363,10 @@ class Codegen:
                 return f"({code} * 1000000)"
             if s is T.BOOL:
                 return f"int({code})"
+            if s is T.DT and d is T.DATE:  # DT counts ms since 1970, DATE seconds
+                return f"({code} // 86400000 * 86400)"
+            if s is T.DT and d is T.TOD:  # ... TOD ms since midnight
+                return f"({code} % 86400000)"
             if isinstance(s, T.Elementary) and s.kind in ("int", "bits", "time", "date", "tod",
                                                           "dt") and T.can_widen(s, d):
                 return code

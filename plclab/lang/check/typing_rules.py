@@ -128,6 +128,16 @@ def _signature(t: Typing) -> T.Type:
     return t.ts[0] if t.spec.result == "IN" else T.lookup_elementary(t.spec.result)
 
 
+def _datetime(t: Typing) -> T.Type:
+    """ADD_TIME, SUB_DT_DT, ...: each argument of the type ``Builtin.args`` names (NUM: any
+    integer or REAL), the result ``Builtin.result``."""
+    ok = all(b.kind in ("int", "real") and b is not T.BOOL if k == "NUM" else
+             T.same_type(b, T.lookup_elementary(k))
+             for k, b in zip(t.spec.args, t.bs, strict=False))
+    t.need(ok, t.spec.needs)
+    return T.lookup_elementary(t.spec.result)
+
+
 def _concat(t: Typing) -> T.Type:
     t.need(all(isinstance(b, T.StringType) for b in t.bs), "STRINGs")
     wide = any(getattr(b, "wide", False) for b in t.bs)
@@ -161,7 +171,7 @@ TYPING_RULES: dict[str, Callable[[Typing], T.Type]] = {
     "number_same": _number_same, "float": _float, "atan2": _atan2, "to_dint": _to_dint,
     "same": _same, "expt": _expt, "arithmetic": _arithmetic, "extremum": _extremum,
     "limit": _extremum, "select": _select, "multiplex": _multiplex, "shift": _shift,
-    "bitwise": _bitwise,
+    "bitwise": _bitwise, "datetime": _datetime,
     "compare": _compare, "signature": _signature, "concat": _concat,
     "assert_compare": _assert_compare, "assert_bool": _assert_bool,
     "assert_near": _assert_near, "advance_time": _advance_time,
