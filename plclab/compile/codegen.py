@@ -611,8 +611,11 @@ class Codegen:
             else:
                 self.emit(f"_CTX.advance_ns({args[0]} * 1000000)")
             return
-        texts = [A.expr_text(e) for _, e in info.inputs]
-        self.assert_texts[w] = ", ".join(texts)
+        nargs = {"ASSERT_EQ": 2, "ASSERT_NE": 2, "ASSERT_NEAR": 3}.get(name, 1)
+        texts = [A.expr_text(e) for _, e in info.inputs[:nargs]]
+        msg = info.inputs[nargs][1] if len(info.inputs) > nargs else None
+        self.assert_texts[w] = ", ".join(texts) + (
+            f": {msg.value}" if isinstance(msg, A.Literal) else "")
         kinds = [kind_name(e.ty) for _, e in info.inputs]
         if name in ("ASSERT_EQ", "ASSERT_NE"):
             k = kinds[0] if kinds[0] != "int?" else kinds[1]

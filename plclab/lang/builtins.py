@@ -118,11 +118,13 @@ _add(
     _text("REPLACE", ("IN1", "IN2", "L", "P"), "_replace", ("STRING", "STRING", "INT", "INT"),
           "two STRINGs, a length and a position"),
     _text("FIND", ("IN1", "IN2"), "_find", ("STRING", "STRING"), "two STRINGs", result="INT"),
-    *(_B(n, ("ACTUAL", "EXPECTED"), "assert_compare", "test", min_args=2, test_only=True,
-         statement_only=True, natives=("_assert_cmp",)) for n in ("ASSERT_EQ", "ASSERT_NE")),
-    *(_B(n, ("IN",), "assert_bool", "test", test_only=True, statement_only=True,
+    # the assertions take an optional message last, as other ST test frameworks do
+    *(_B(n, ("ACTUAL", "EXPECTED", "MSG"), "assert_compare", "test", min_args=2,
+         test_only=True, statement_only=True, natives=("_assert_cmp",))
+      for n in ("ASSERT_EQ", "ASSERT_NE")),
+    *(_B(n, ("IN", "MSG"), "assert_bool", "test", test_only=True, statement_only=True,
          natives=("_assert_bool",)) for n in ("ASSERT_TRUE", "ASSERT_FALSE")),
-    _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL"), "assert_near", "test", min_args=3,
+    _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL", "MSG"), "assert_near", "test", min_args=3,
        test_only=True, statement_only=True, natives=("_assert_near",)),
     _B("ADVANCE_TIME", ("T",), "advance_time", "test", test_only=True, statement_only=True),
     # the functions of time data types, IEC 61131-3 ed.3 Table 37 (ed.2 Table 30): ``args`` the

@@ -68,6 +68,12 @@ class Calls(Pass):
         if isinstance(ft, T.FBType):
             if ft.pou.kind == "FUNCTION_BLOCK":
                 return self.call_fb(c, ft.pou, statement)
+            if ft.pou.kind == "PROGRAM":
+                if not self.cx.in_test:
+                    self.err("PLC0178", f"{ft.pou.name} is a PROGRAM: only a TEST block may "
+                             "declare instances of a program; a POU calls the program by its "
+                             f"name ({ft.pou.name}();)", c.loc)
+                return self.call_fb(c, ft.pou, statement)
         if ft is not T.ANY:
             self.err("PLC0106", f"a value of type {ft} cannot be called", c.loc)
         self._args_only(c)

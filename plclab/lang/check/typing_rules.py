@@ -144,7 +144,18 @@ def _concat(t: Typing) -> T.Type:
     return T.StringType(wide, 80)
 
 
+def _message(t: Typing, n: int) -> None:
+    """The optional last argument of an assertion: a STRING literal shown when it fails."""
+    if len(t.call.target.inputs) > n:
+        msg = t.call.target.inputs[n][1]
+        if not (isinstance(msg, A.Literal) and msg.kind in ("STRING", "WSTRING")):
+            t.cx.err("PLC0107", f"the message of {t.spec.name} is a string literal, e.g. "
+                     "'the motor starts'", msg.loc)
+        del t.bs[n:], t.ts[n:]
+
+
 def _assert_compare(t: Typing) -> T.Type:
+    _message(t, 2)
     a, b = t.bs[0], t.bs[1]
     if T.common_type(a, b) is None and not (isinstance(a, T.EnumType) and a is b):
         t.cx.err("PLC0107", f"{t.spec.name} compares values of one type, not {T.concrete(a)} "
@@ -153,11 +164,13 @@ def _assert_compare(t: Typing) -> T.Type:
 
 
 def _assert_bool(t: Typing) -> T.Type:
+    _message(t, 1)
     t.need(t.bs[0] is T.BOOL, "a BOOL")
     return T.VOID
 
 
 def _assert_near(t: Typing) -> T.Type:
+    _message(t, 3)
     t.need(t.kinds("int", "real", "time"), "numbers")
     return T.VOID
 
