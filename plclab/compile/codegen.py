@@ -1244,6 +1244,8 @@ class Codegen:
     def operand_width(self, loc: Location | None) -> bool:
         """Whether integer intermediates wrap to their type here (the S7 dialect, ADR 0017)
         instead of staying exact (CODESYS computes them in a register)."""
+        if not self.p.dialects:  # every file in the default dialect (the common case)
+            return dialect_profile(None).operand_width
         name = self.p.dialects.get(loc.file) if loc is not None else None
         return dialect_profile(name).operand_width
 
