@@ -40,10 +40,10 @@ def loads(text: str, filename: str = "<string>.st", **options):
     return _loads(text, filename, **options)
 
 
-def compile_sources(sources, filename: str = "<plclab>"):
+def compile_sources(sources, filename: str = "<plclab>", dialect: str | None = None):
     from .project import compile_sources as _c
 
-    return _c(sources, filename)
+    return _c(sources, filename, dialect)
 
 
 def run_tests(*paths):

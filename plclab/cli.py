@@ -19,6 +19,8 @@ from .cli_registry import COMMAND_TABLE, REGISTRY, Registered, arg, command
 from .errors import PlcError
 from .names import split_names
 
+DIALECTS = ("iec", "codesys", "s7", "matiec")  # plclab.lang.dialect.PROFILES (not imported here)
+
 __all__ = ["COMMANDS", "build_parser", "load_command", "main", "split_names"]
 
 COMMANDS = REGISTRY  # the commands registered so far (name -> Registered); kept for old callers
@@ -39,10 +41,12 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
 @command("check")
 @arg("files", nargs="+", metavar="FILE", help="source files (.st, .il, .ld, .xml)")
 @arg("--no-warnings", action="store_true", help="print errors only")
+@arg("--dialect", default=None, choices=DIALECTS,
+     help="dialect of files without a {dialect} pragma (default codesys; ADR 0017)")
 def cmd_check(ns: argparse.Namespace) -> int:
     from .project import check_sources, read_sources
 
-    _, diags = check_sources(read_sources(ns.files))
+    _, diags = check_sources(read_sources(ns.files), ns.dialect)
     if ns.no_warnings:
         diags = [d for d in diags if d.severity == "error"]
     errors, warnings = _print_diags(diags)
@@ -54,11 +58,13 @@ def cmd_check(ns: argparse.Namespace) -> int:
 @arg("files", nargs="+", metavar="FILE")
 @arg("-k", dest="keyword", default=None, help="only tests whose name contains this text")
 @arg("-v", "--verbose", action="store_true", help="print passing tests too")
+@arg("--dialect", default=None, choices=DIALECTS,
+     help="dialect of files without a {dialect} pragma (default codesys; ADR 0017)")
 def cmd_test(ns: argparse.Namespace) -> int:
     from .project import compile_sources, read_sources
     from .testing import run_compiled_tests
 
-    compiled = compile_sources(read_sources(ns.files))
+    compiled = compile_sources(read_sources(ns.files), dialect=ns.dialect)
     for d in getattr(compiled, "diagnostics", []):
         print(str(d))
     if ns.keyword:
@@ -83,10 +89,12 @@ def cmd_test(ns: argparse.Namespace) -> int:
      help="set a variable before the first scan (IEC literal, e.g. T#5s, TRUE, 16#FF)")
 @arg("--print", dest="print_", default=None, metavar="NAME,...",
      help="variables to print after the run (default: every program variable)")
+@arg("--dialect", default=None, choices=DIALECTS,
+     help="dialect of files without a {dialect} pragma (default codesys; ADR 0017)")
 def cmd_run(ns: argparse.Namespace) -> int:
     from .project import load
 
-    plc = load(*ns.files, cycle_time=ns.cycle_time)
+    plc = load(*ns.files, dialect=ns.dialect, cycle_time=ns.cycle_time)
     for item in ns.set:
         if "=" not in item:
             raise PlcError("PLC3002", f"--set {item}: write NAME=VALUE, e.g. --set Start=TRUE")

@@ -13,6 +13,7 @@ from typing import Any
 
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
+from .lang.dialect import DEFAULT, choose, using
 from .lang.frontends import for_file
 from .lang.frontends.st import parse_library
 from .lang.lexer import cap_per_file
@@ -20,8 +21,12 @@ from .lang.library import SFC_LIBRARY, STDLIB_FILES
 from .lang.lower import lower_pending
 
 
-def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], list[Diagnostic]]:
+def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
+                  ) -> tuple[list[A.SourceFile], list[Diagnostic]]:
     """Parse (text, filename) pairs plus the standard library; collect every diagnostic.
+
+    Each file is read in its dialect: its ``{dialect 'NAME'}`` pragma, else ``dialect``, else
+    the default (:mod:`plclab.lang.dialect`, ADR 0017).
 
     The order is the pipeline's: parse every file (each by the front end the registry picks for
     its suffix) -> every declaration known -> lower the pending IL bodies and LD/FBD networks
@@ -31,7 +36,16 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
     files: list[A.SourceFile] = parse_library()
     diags: list[Diagnostic] = []
     for (text, filename), fe in zip(sources, front_ends, strict=True):
-        f, d = fe.parse(text, filename)
+        try:
+            name = choose(text, dialect, filename)
+        except PlcError as exc:  # an unknown {dialect} pragma: report it, read the file anyway
+            if exc.location is None:
+                raise
+            diags.append(exc.diagnostics[0])
+            name = choose("", dialect, filename)
+        with using(name):
+            f, d = fe.parse(text, filename)
+        f.dialect = None if name == DEFAULT else name  # None: the default (dumps unchanged)
         files.append(f)
         diags.extend(d)
     if any(b.kind == "SFC" for f in files for p in f.pous for b in p.pending):
@@ -40,11 +54,11 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
     return files, diags
 
 
-def check_sources(sources: list[tuple[str, str]]):
+def check_sources(sources: list[tuple[str, str]], dialect: str | None = None):
     """Parse and check; return (project or None, diagnostics). Never raises for user errors."""
     from .lang.check import Checker
 
-    files, diags = parse_sources(sources)
+    files, diags = parse_sources(sources, dialect)
     ck = Checker(files)
     project = ck.run()
     all_diags = diags + ck.diags
@@ -61,11 +75,13 @@ def check_sources(sources: list[tuple[str, str]]):
     return (None if has_err else project), cap_per_file(all_diags)
 
 
-def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>"):
-    """Parse, check and compile; raise one PlcError carrying every diagnostic on error."""
+def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>",
+                    dialect: str | None = None):
+    """Parse, check and compile; raise one PlcError carrying every diagnostic on error.
+    ``dialect``: the dialect of files without a ``{dialect}`` pragma (ADR 0017)."""
     from .compile.codegen import generate
 
-    project, diags = check_sources(sources)
+    project, diags = check_sources(sources, dialect)
     if project is None:
         errors = [d for d in diags if d.severity == "error"]
         raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
@@ -90,19 +106,22 @@ def read_sources(paths: list[str | os.PathLike]) -> list[tuple[str, str]]:
     return out
 
 
-def load(*paths: str | os.PathLike, **options: Any):
+def load(*paths: str | os.PathLike, dialect: str | None = None, **options: Any):
     """Load PLC source files into a ready-to-scan :class:`~plclab.runtime.plc.Plc`.
 
-    ``options`` go to :class:`Plc` (``cycle_time="10ms"``, ``watchdog=...``).
+    ``dialect`` (``"codesys"`` by default; ``"iec"``, ``"s7"``, ``"matiec"``) is the dialect
+    of files without a ``{dialect}`` pragma (ADR 0017); the other ``options`` go to
+    :class:`Plc` (``cycle_time="10ms"``, ``watchdog=...``).
     """
     from .runtime.plc import Plc
 
-    compiled = compile_sources(read_sources(list(paths)))
+    compiled = compile_sources(read_sources(list(paths)), dialect=dialect)
     return Plc(compiled, **options)
 
 
-def loads(text: str, filename: str = "<string>.st", **options: Any):
+def loads(text: str, filename: str = "<string>.st", dialect: str | None = None,
+          **options: Any):
     """Like :func:`load`, from a string."""
     from .runtime.plc import Plc
 
-    return Plc(compile_sources([(text, filename)]), **options)
+    return Plc(compile_sources([(text, filename)], dialect=dialect), **options)

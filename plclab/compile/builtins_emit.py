@@ -66,8 +66,14 @@ def _to_dint(m: Emission) -> str:  # TRUNC, ROUND: a conversion to DINT, wraps l
     return m.cg.wrap(f"{m.native}({m.codes[0]})", T.DINT)
 
 
-def _operator(m: Emission) -> str:  # ADD, MUL, SUB
-    return "(" + f" {m.spec.operator} ".join(m.codes) + ")"
+def _operator(m: Emission) -> str:  # ADD, MUL, SUB; AND, OR, XOR
+    code = "(" + f" {m.spec.operator} ".join(m.codes) + ")"
+    t = m.t
+    if m.spec.typing == "arithmetic" and t.kind in ("int", "bits") and \
+            isinstance(t, T.Elementary) and t is not T.ANY_INT_LIT and \
+            m.cg.operand_width(m.call.loc):
+        return m.cg.wrap(code, t)  # S7: the operand type's width (ADR 0017)
+    return code
 
 
 def _div(m: Emission) -> str:
@@ -120,6 +126,34 @@ def _shift(m: Emission) -> str:
     else:
         r = f"{m.native}({codes[0]}, {codes[1]}, {bits})"
     return m.cg.wrap(r, t) if getattr(t, "signed", False) and t.kind == "int" else r
+
+
+def _not(m: Emission) -> str:  # NOT(x) as the operator NOT x
+    t, x = m.t, m.codes[0]
+    if t is T.BOOL:
+        return f"(not {x})"
+    if isinstance(t, T.Elementary) and not t.signed:
+        return f"({x} ^ {(1 << t.bits) - 1})"
+    return f"(~{x})"
+
+
+def _datetime(m: Emission) -> str:
+    """TIME and TOD count milliseconds, DT milliseconds since 1970, DATE seconds since 1970."""
+    a, b = m.codes
+    how = m.spec.operator
+    if how == "date-":
+        code = f"(({a} - {b}) * 1000)"
+    elif how == "date+tod":
+        code = f"({a} * 1000 + {b})"
+    elif how == "*":
+        real = T.base_of(m.args[1].ty).kind == "real"
+        code = f"_round({a} * {b})" if real else f"({a} * {b})"
+    elif how == "/":
+        real = T.base_of(m.args[1].ty).kind == "real"
+        code = f"_round(_rdiv({a}, {b}))" if real else f"_idiv({a}, {b})"
+    else:
+        code = f"({a} {how} {b})"
+    return m.cg.wrap(code, m.t) if isinstance(m.t, T.Elementary) else code
 
 
 def _compare(m: Emission) -> str:
@@ -180,6 +214,9 @@ EMITTERS: dict[str, Callable[[Emission], str]] = {
     "move": lambda m: m.cg.copy_code(m.codes[0], m.args[0].ty),
     "expt": lambda m: f"{m.native}({m.codes[0]}, {m.codes[1]})",
     "operator": _operator,
+    "bitwise": _operator,
+    "not": _not,
+    "datetime": _datetime,
     "div": _div,
     "mod": lambda m: f"{m.native}({m.codes[0]}, {m.codes[1]})",
     "extremum": _extremum,

@@ -23,6 +23,7 @@ from ..lang import ast as A
 from ..lang import types as T
 from ..lang.builtins import BUILTINS
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
+from ..lang.dialect import profile as dialect_profile
 from ..lang.limits import compiler_guard
 from ..lang.walk import UnhandledNode
 from .builtins_emit import EMITTERS, Emission, const_int
@@ -545,7 +546,21 @@ class Codegen:
         if info is None:
             return
         if info.kind in ("fb", "program"):
+            if info.en is None and info.eno is None:
+                self.fb_call(c, info)
+                return
+            # EN/ENO (IEC 61131-3 ed.3 6.6.1.6): the body runs only when EN; ENO tells whether
+            en = self.new_tmp()
+            code = self.ex(info.en) if info.en is not None else "True"
+            self.flush_pre()
+            self.emit(f"{en} = {code}")
+            self.emit(f"if {en}:")
+            self.ind += 1
             self.fb_call(c, info)
+            self.emit("pass")
+            self.ind -= 1
+            if info.eno is not None:
+                self.assign_to(info.eno, en)
             return
         if info.kind == "builtin" and info.callee.statement_only:
             self.test_builtin(c, info)
@@ -598,8 +613,11 @@ class Codegen:
             else:
                 self.emit(f"_CTX.advance_ns({args[0]} * 1000000)")
             return
-        texts = [A.expr_text(e) for _, e in info.inputs]
-        self.assert_texts[w] = ", ".join(texts)
+        nargs = {"ASSERT_EQ": 2, "ASSERT_NE": 2, "ASSERT_NEAR": 3}.get(name, 1)
+        texts = [A.expr_text(e) for _, e in info.inputs[:nargs]]
+        msg = info.inputs[nargs][1] if len(info.inputs) > nargs else None
+        self.assert_texts[w] = ", ".join(texts) + (
+            f": {msg.value}" if isinstance(msg, A.Literal) else "")
         kinds = [kind_name(e.ty) for _, e in info.inputs]
         if name in ("ASSERT_EQ", "ASSERT_NE"):
             k = kinds[0] if kinds[0] != "int?" else kinds[1]
@@ -1085,7 +1103,7 @@ class Codegen:
     def e_Literal(self, e: A.Literal) -> str:
         v = e.value
         k = e.kind
-        if k == "BOOL":
+        if k == "BOOL" or (k == "INT" and e.ty is T.BOOL):  # TRUE, FALSE, and 0/1 as BOOL
             return "True" if v else "False"
         if k == "TIME":
             t = T.resolve(e.ty) if e.ty is not None else T.TIME
@@ -1119,6 +1137,8 @@ class Codegen:
         return self.addr_read(e.address)
 
     def e_Member(self, e: A.Member) -> str:
+        if isinstance(e.sym, EnumSym):  # Color.Red (CODESYS)
+            return repr(e.sym.value)
         obj = self.ex(e.obj)
         if e.field_name.startswith("%"):
             return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"
@@ -1212,16 +1232,62 @@ class Codegen:
             return f"_rdiv({left}, {right})"
         if op == "MOD":
             return f"_imod({left}, {right})"
+        if op == "-" and lt.kind == "date" and rt.kind == "date":  # seconds -> TIME in ms
+            return f"(({left} - {right}) * 1000)"
         if op == "**":
             return f"_expt({left}, {right})"
         if op == "*" and t.kind == "time" and (lt.kind == "real" or rt.kind == "real"):
             return f"_round({left} * {right})"
+        if op in ("+", "-", "*") and t.kind in ("int", "bits") and isinstance(t, T.Elementary) \
+                and t is not T.ANY_INT_LIT and self.operand_width(e.loc):
+            return self.wrap(f"{left} {op} {right}", t)  # S7: the operand type's width
         return f"({left} {op} {right})"
+
+    def operand_width(self, loc: Location | None) -> bool:
+        """Whether integer intermediates wrap to their type here (the S7 dialect, ADR 0017)
+        instead of staying exact (CODESYS computes them in a register)."""
+        if not self.p.dialects:  # every file in the default dialect (the common case)
+            return dialect_profile(None).operand_width
+        name = self.p.dialects.get(loc.file) if loc is not None else None
+        return dialect_profile(name).operand_width
 
     def e_Call(self, e: A.Call) -> str:
         info: CallInfo | None = e.target
         if info is None:
             return "None"
+        if info.en is not None or info.eno is not None:
+            return self.enabled_call(e, info)
+        return self.plain_call(e, info)
+
+    def enabled_call(self, e: A.Call, info: CallInfo) -> str:
+        """A function call with EN/ENO (IEC 61131-3 ed.3 6.6.1.6): EN is evaluated first; when
+        it is FALSE the function is not called, the result is its type's default (as MATIEC)
+        and ENO is FALSE; else ENO is TRUE."""
+        en = self.new_tmp()
+        self.pre.append(f"{en} = {self.ex(info.en) if info.en is not None else 'True'}")
+        mark = len(self.pre)
+        code = self.plain_call(e, info)
+        inner = self.pre[mark:]
+        del self.pre[mark:]
+        if inner:  # the call's own statements (outputs, spilled temporaries) run only if EN
+            self.pre.append(f"if {en}: " + "; ".join(inner))
+        if info.eno is not None:
+            self.pre.append(self.store_code(info.eno, en))
+        default = self.default_code(e.ty) if e.ty is not None and e.ty is not T.VOID \
+            else "None"
+        return f"({code} if {en} else {default})"
+
+    def store_code(self, target: A.Expr, val: str) -> str:
+        """One line storing ``val`` (a BOOL) into ``target`` (see :meth:`assign_to`)."""
+        if isinstance(target, A.Member) and target.field_name.startswith("%"):
+            bit = int(target.field_name[1:])
+            obj = self.ex(target.obj)
+            return f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})"
+        if isinstance(target, A.DirectAddr):
+            return self.addr_write(target.address, val)
+        return f"{self.ex(target)} = {val}"
+
+    def plain_call(self, e: A.Call, info: CallInfo) -> str:
         if info.kind == "conv":
             return self.conversion(info, e)
         if info.kind == "builtin":
@@ -1304,6 +1370,10 @@ class Codegen:
                 return f"({code} * 1000000)"
             if s is T.BOOL:
                 return f"int({code})"
+            if s is T.DT and d is T.DATE:  # DT counts ms since 1970, DATE seconds
+                return f"({code} // 86400000 * 86400)"
+            if s is T.DT and d is T.TOD:  # ... TOD ms since midnight
+                return f"({code} % 86400000)"
             if isinstance(s, T.Elementary) and s.kind in ("int", "bits", "time", "date", "tod",
                                                           "dt") and T.can_widen(s, d):
                 return code

@@ -28,18 +28,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--emit", choices=EMITS, default="python",
                    help="python: the generated code; st: the core AST as ST (IL and LD lowered); "
                    "ast: an indented dump of the AST")
+    p.add_argument("--dialect", default=None, choices=("iec", "codesys", "s7", "matiec"),
+                   help="dialect of files without a {dialect} pragma (default codesys)")
     p.add_argument("-o", "--output", metavar="OUT", default=None,
                    help="write to this file instead of standard output")
 
 
-def emit(sources: list[tuple[str, str]], kind: str) -> tuple[str, list[Diagnostic]]:
+def emit(sources: list[tuple[str, str]], kind: str,
+         dialect: str | None = None) -> tuple[str, list[Diagnostic]]:
     """The text ``--emit kind`` prints for (text, filename) sources, and the warnings; PlcError
     with every diagnostic when the program has errors."""
     from ..project import check_sources
 
     if kind not in EMITS:
         raise PlcError("PLC3002", f"--emit {kind}: choose one of {', '.join(EMITS)}")
-    project, diags = check_sources(sources)
+    project, diags = check_sources(sources, dialect)
     if project is None:
         errors = [d for d in diags if d.severity == "error"]
         raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
@@ -62,7 +65,7 @@ def run(ns: argparse.Namespace) -> int:
     """The ``compile`` sub-command."""
     from ..project import read_sources
 
-    text, warnings = emit(read_sources(ns.files), ns.emit)
+    text, warnings = emit(read_sources(ns.files), ns.emit, getattr(ns, "dialect", None))
     for d in warnings:
         print(str(d), file=sys.stderr)
     if ns.output is None:

@@ -255,7 +255,7 @@ def compile_submission(lab: Lab, sources: list[tuple[str, str]]) -> tuple[Any, l
         return None, [f"error PLC5022: {n}: this lab accepts {allowed} programs" for n in bad], \
             "language"
     try:
-        compiled = compile_sources(sources)
+        compiled = compile_sources(sources, dialect=lab.dialect)
     except PlcError as e:
         return None, cap_diagnostics(e.diagnostics), "compile_error"
     diags = cap_diagnostics(getattr(compiled, "diagnostics", []))

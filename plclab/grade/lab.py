@@ -38,6 +38,7 @@ LANGUAGES = {"st": (".st",), "il": (".il",), "ld": (".ld",), "xml": (".xml",)}
 SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
+            "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
             "criterion", "mistake")
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
@@ -273,6 +274,7 @@ class Lab:
     diagram_window: float = 20.0
     hash: str = ""
     mistakes: list[MistakeSpec] = field(default_factory=list)
+    dialect: str | None = None  # of submissions without a {dialect} pragma (ADR 0017)
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -538,6 +540,7 @@ class _Builder:
                   summary, goals, params, str(scan) if isinstance(scan, str) else f"{scan_s}s",
                   langs, tl, mem, watch, dsig, dwin)
         lab.mistakes = self.mistakes(d, criteria)
+        lab.dialect = self.dialect(d)
         return lab
 
     def mistakes(self, d: Mapping[str, Any], criteria: list[CriterionSpec]
@@ -568,6 +571,18 @@ class _Builder:
             out.append(MistakeSpec(file, float(top), viol,
                                    self.string(m, "description", what, "mistake", i)))
         return out
+
+    def dialect(self, d: Mapping[str, Any]) -> str | None:
+        """``dialect = "codesys"`` (iec, codesys, s7, matiec): how submissions are read."""
+        from plclab.lang.dialect import PROFILES
+
+        v = d.get("dialect")
+        if v is None:
+            return None
+        if not isinstance(v, str) or v.lower() not in PROFILES:
+            raise self.err("PLC5004", f"dialect = {v!r}: choose one of "
+                           f"{', '.join(PROFILES)}", key="dialect")
+        return v.lower()
 
     def memory(self, v: Any) -> int:
         if isinstance(v, bool) or not isinstance(v, int | float | str):

@@ -359,6 +359,7 @@ class SourceFile:
     globals: list[GlobalVars] = field(default_factory=list)
     configs: list[Configuration] = field(default_factory=list)
     tests: list[TestBlock] = field(default_factory=list)
+    dialect: str | None = None  # the file's dialect (plclab.lang.dialect); None: the default
 
 
 def child_bodies(s: Stmt) -> list[list[Stmt]]:

@@ -90,6 +90,11 @@ _add(
     _B("SUB", ("IN1", "IN2"), "arithmetic", "operator", min_args=2, operator="-"),
     _B("DIV", ("IN1", "IN2"), "arithmetic", "div", min_args=2, natives=("_idiv", "_rdiv")),
     _B("MOD", ("IN1", "IN2"), "arithmetic", "mod", min_args=2, natives=("_imod",)),
+    # the bitwise Boolean functions of IEC 61131-3 ed.2 Table 24 / ed.3 Table 31 (items 21-24):
+    # AND, OR, XOR are extensible; written as calls by Beremiz for every FBD/LD network
+    *(_B(n, ("IN1", "IN2"), "bitwise", "bitwise", variadic=True, min_args=2, operator=op)
+      for n, op in (("AND", "&"), ("OR", "|"), ("XOR", "^"))),
+    _B("NOT", ("IN",), "bitwise", "not"),
     _B("MIN", ("IN1", "IN2"), "extremum", "extremum", variadic=True, min_args=1),
     _B("MAX", ("IN1", "IN2"), "extremum", "extremum", variadic=True, min_args=1),
     _B("LIMIT", ("MN", "IN", "MX"), "limit", "limit", min_args=3, natives=("_limit",)),
@@ -113,13 +118,32 @@ _add(
     _text("REPLACE", ("IN1", "IN2", "L", "P"), "_replace", ("STRING", "STRING", "INT", "INT"),
           "two STRINGs, a length and a position"),
     _text("FIND", ("IN1", "IN2"), "_find", ("STRING", "STRING"), "two STRINGs", result="INT"),
-    *(_B(n, ("ACTUAL", "EXPECTED"), "assert_compare", "test", min_args=2, test_only=True,
-         statement_only=True, natives=("_assert_cmp",)) for n in ("ASSERT_EQ", "ASSERT_NE")),
-    *(_B(n, ("IN",), "assert_bool", "test", test_only=True, statement_only=True,
+    # the assertions take an optional message last, as other ST test frameworks do
+    *(_B(n, ("ACTUAL", "EXPECTED", "MSG"), "assert_compare", "test", min_args=2,
+         test_only=True, statement_only=True, natives=("_assert_cmp",))
+      for n in ("ASSERT_EQ", "ASSERT_NE")),
+    *(_B(n, ("IN", "MSG"), "assert_bool", "test", test_only=True, statement_only=True,
          natives=("_assert_bool",)) for n in ("ASSERT_TRUE", "ASSERT_FALSE")),
-    _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL"), "assert_near", "test", min_args=3,
+    _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL", "MSG"), "assert_near", "test", min_args=3,
        test_only=True, statement_only=True, natives=("_assert_near",)),
     _B("ADVANCE_TIME", ("T",), "advance_time", "test", test_only=True, statement_only=True),
+    # the functions of time data types, IEC 61131-3 ed.3 Table 37 (ed.2 Table 30): ``args`` the
+    # argument types (NUM: any number), ``operator`` how the emitter combines them
+    *(_B(n, ("IN1", "IN2"), "datetime", "datetime", min_args=2, args=args, result=res,
+         operator=how, needs=" and ".join("a number" if a == "NUM" else f"a {a}" for a in args))
+      for n, args, res, how in (
+          ("ADD_TIME", ("TIME", "TIME"), "TIME", "+"),
+          ("ADD_TOD_TIME", ("TOD", "TIME"), "TOD", "+"),
+          ("ADD_DT_TIME", ("DT", "TIME"), "DT", "+"),
+          ("SUB_TIME", ("TIME", "TIME"), "TIME", "-"),
+          ("SUB_DATE_DATE", ("DATE", "DATE"), "TIME", "date-"),
+          ("SUB_TOD_TIME", ("TOD", "TIME"), "TOD", "-"),
+          ("SUB_TOD_TOD", ("TOD", "TOD"), "TIME", "-"),
+          ("SUB_DT_TIME", ("DT", "TIME"), "DT", "-"),
+          ("SUB_DT_DT", ("DT", "DT"), "TIME", "-"),
+          ("MUL_TIME", ("TIME", "NUM"), "TIME", "*"),
+          ("DIV_TIME", ("TIME", "NUM"), "TIME", "/"),
+          ("CONCAT_DATE_TOD", ("DATE", "TOD"), "DT", "date+tod"))),
 )
 
 _STD, _CTRL = "stdlib.st", "ctrllib.st"
@@ -136,6 +160,11 @@ BLOCKS: dict[str, Block] = {b.name: b for b in (
     Block("TON", _STD, ("IN", "Q"), ("IN", "PT")),
     Block("TOF", _STD, ("IN", "Q"), ("IN", "PT")),
     Block("TONR", _STD, ("IN", "Q"), ("IN", "PT")),
+    # the typed counters of IEC 61131-3 ed.3 Table 45 (CV and PV of the named type)
+    *(Block(f"{base}_{t}", _STD, power, ops) for base, power, ops in (
+        ("CTU", ("CU", "Q"), ("CU", "PV")), ("CTD", ("CD", "Q"), ("CD", "PV")),
+        ("CTUD", ("CU", "QU"), ("CU", "CD", "PV")))
+      for t in ("INT", "DINT", "LINT", "UDINT", "ULINT")),
     # control blocks (a ladder box takes its first BOOL input and output)
     *(Block(n, _CTRL) for n in ("PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE",
                                 "BLINKER", "RAMP", "PT1", "MOVING_AVG", "LIMIT_ALARM")),

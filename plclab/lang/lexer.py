@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from ..durations import parse_duration
 from ..errors import Diagnostic, Location
+from .dialect import current as current_dialect
 
 KEYWORDS = frozenset(
     """
@@ -93,6 +94,7 @@ _TOKEN_RE = re.compile(
   | (?P<int>[0-9][0-9_]*)
   | (?P<ident>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<addr>%[IQM][XBWDL]?[0-9]+(?:\.[0-9]+)*|%[IQM]\*)
+  | (?P<partial>%[XBWDxbwd][0-9]+)
   | (?P<sstring>')
   | (?P<dstring>")
   | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|[-+*/<>=()\[\],;:.&^\#])
@@ -157,6 +159,11 @@ class Lexer:
         self.file = file
         self.diagnostics: list[Diagnostic] = []
         self.pragmas: list[tuple[int, str]] = []
+        self.nested_comments = current_dialect().nested_comments
+
+    def warn(self, code: str, msg: str, line: int, col: int) -> None:
+        add_capped(self.diagnostics, Diagnostic(code, msg, Location(self.file, line, col),
+                                                "warning"), self.file)
 
     def error(self, code: str, msg: str, line: int, col: int) -> None:
         add_capped(self.diagnostics, Diagnostic(code, msg, Location(self.file, line, col)),
@@ -215,6 +222,22 @@ class Lexer:
                 end_pos, line, line_start = self._skip_comment(pos, line, line_start, kind)
                 pos = end_pos
                 continue
+            if kind == "pragma" and text.startswith("{{", pos):
+                # MATIEC's inline C (Beremiz): {{ C code }} -- skipped, like any pragma
+                end = text.find("}}", pos + 2)
+                if end < 0:
+                    self.error("PLC0002", "inline code '{{' is never closed with '}}'", line, col)
+                    pos = n
+                    continue
+                self.warn("PLC0172", "MATIEC inline C code {{ ... }} is skipped: plclab does not "
+                          "run C; write the logic in ST", line, col)
+                body = text[pos + 2:end]
+                nl = body.count("\n")
+                if nl:
+                    line += nl
+                    line_start = pos + 2 + body.rfind("\n") + 1
+                pos = end + 2
+                continue
             if kind == "pragma":
                 end = text.find("}", pos)
                 if end < 0:
@@ -261,6 +284,8 @@ class Lexer:
                 out.append(Token("REAL", self._real(s, s, line, col), s, line, col))
             elif kind == "addr":
                 out.append(Token("ADDR", s.upper(), s, line, col))
+            elif kind == "partial":  # w.%X15: partial access to a bit (IEC ed.3 Table 17)
+                out.append(Token("PARTIAL", s.upper(), s, line, col))
             else:
                 out.append(Token(s, s, s, line, col))
         out.append(Token("EOF", None, "", line, pos - line_start + 1))
@@ -274,6 +299,13 @@ class Lexer:
             end = text.find("*/", pos + 2)
             if end < 0:
                 self.error("PLC0002", "comment '/*' is never closed; add '*/'", start_line, start_col)
+                return len(text), line, line_start
+            seg = text[pos:end + 2]
+        elif not self.nested_comments:  # ed.2, MATIEC, S7: the first '*)' ends the comment
+            end = text.find("*)", pos + 2)
+            if end < 0:
+                self.error("PLC0002", "comment '(*' is never closed; add '*)'", start_line,
+                           start_col)
                 return len(text), line, line_start
             seg = text[pos:end + 2]
         else:

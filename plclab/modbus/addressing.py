@@ -42,6 +42,8 @@ import json
 import re
 from dataclasses import dataclass
 
+from ..lang.addresses import canonical
+
 #: bytes of each area that are mapped (8192 bits, 512 words)
 MAPPED_BYTES = 1024
 MAPPED_BITS = MAPPED_BYTES * 8
@@ -99,7 +101,7 @@ class Entry:
 
 def parse_address(address: str) -> tuple[str, str, int, int | None]:
     """``"%QX1.2"`` -> ``("Q", "X", 1, 2)``; ``"%MW4"`` -> ``("M", "W", 4, None)``."""
-    m = _ADDR_RE.fullmatch(address.strip().upper())
+    m = _ADDR_RE.fullmatch(canonical(address))
     if not m:
         raise ValueError(f"{address} is not a direct address (e.g. %IX0.0, %QW2, %MD4)")
     area, size = m.group(1), m.group(2) or "X"

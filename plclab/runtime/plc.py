@@ -25,6 +25,7 @@ from ..compile.codegen import Compiled, kind_name
 from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
+from ..lang.addresses import canonical
 from ..lang.check.symbols import instance_label
 from ..lang.limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
 from ..names import split_outside_brackets
@@ -119,7 +120,7 @@ def check_address(addr: str, image_size: int, location: Location | None = None,
                   what: str = "") -> tuple[str, str, int, int | None]:
     """Split ``%QX1.2``/``%IW4`` into (area, size, byte, bit), checking that it lies inside a
     process image of ``image_size`` bytes: PlcError PLC3001 (not an address) or PLC3010."""
-    m = _ADDR_RE.fullmatch(addr.strip().upper())
+    m = _ADDR_RE.fullmatch(canonical(addr))
     if not m:
         raise PlcError("PLC3001", f"{what}{addr} is not a direct address (e.g. %IX0.0, %QW2, "
                        "%MD4)", location)

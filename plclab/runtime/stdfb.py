@@ -150,7 +150,9 @@ class TOF(NativeBlock):
 
 class TONR(NativeBlock):
     """Retentive on-delay (S7 TONR): ET accumulates while IN is TRUE, holds while it is FALSE,
-    Q = ET >= PT; R resets ET and Q. PT is taken when the timer starts or resumes."""
+    Q = ET >= PT; R resets ET and Q. PT is taken when the timer starts or resumes. The call
+    that sees IN fall still adds the time since the previous call (IN was TRUE until then, as
+    far as the PLC knows), so no pause loses a scan period."""
 
     __slots__ = ("IN", "R", "PT", "Q", "ET", "_prev", "_last", "_pt")
 
@@ -177,6 +179,8 @@ class TONR(NativeBlock):
                 self._pt = self.PT
             self.Q = self.ET >= self._pt
         else:
+            if self._prev:  # the scan that sees IN fall: count the interval up to it
+                self.ET = min(self.ET + (now - self._last), self._pt)
             self.Q = self.ET >= self._pt and self.ET > 0
         self._prev = self.IN and not self.R
         self._last = now
@@ -186,6 +190,7 @@ class CTU(NativeBlock):
     """Up counter: CV counts rising edges of CU (up to 32767); R resets; Q = CV >= PV."""
 
     __slots__ = ("CU", "R", "PV", "Q", "CV", "_prev")
+    _lo, _hi = -32768, 32767  # CV's type (INT; the typed counters CTU_DINT ... below)
 
     def __init__(self, ctx) -> None:
         self._ctx = ctx
@@ -200,7 +205,7 @@ class CTU(NativeBlock):
         cu = self.CU
         if self.R:
             self.CV = 0
-        elif cu and not self._prev and self.CV < 32767:
+        elif cu and not self._prev and self.CV < self._hi:
             self.CV += 1
         self._prev = cu
         self.Q = self.CV >= self.PV
@@ -210,6 +215,7 @@ class CTD(NativeBlock):
     """Down counter: LD loads PV; rising edges of CD count down (to -32768); Q = CV <= 0."""
 
     __slots__ = ("CD", "LD", "PV", "Q", "CV", "_prev")
+    _lo, _hi = -32768, 32767
 
     def __init__(self, ctx) -> None:
         self._ctx = ctx
@@ -224,7 +230,7 @@ class CTD(NativeBlock):
         cd = self.CD
         if self.LD:
             self.CV = self.PV
-        elif cd and not self._prev and self.CV > -32768:
+        elif cd and not self._prev and self.CV > self._lo:
             self.CV -= 1
         self._prev = cd
         self.Q = self.CV <= 0
@@ -234,6 +240,7 @@ class CTUD(NativeBlock):
     """Up/down counter: R resets, LD loads PV, else rising CU counts up and rising CD down."""
 
     __slots__ = ("CU", "CD", "R", "LD", "PV", "QU", "QD", "CV", "_pu", "_pd")
+    _lo, _hi = -32768, 32767
 
     def __init__(self, ctx) -> None:
         self._ctx = ctx
@@ -257,10 +264,10 @@ class CTUD(NativeBlock):
         elif self.LD:
             self.CV = self.PV
         elif up and not down:
-            if self.CV < 32767:
+            if self.CV < self._hi:
                 self.CV += 1
         elif down and not up:
-            if self.CV > -32768:
+            if self.CV > self._lo:
                 self.CV -= 1
         self._pu, self._pd = cu, cd
         self.QU = self.CV >= self.PV
@@ -330,3 +337,20 @@ class RS(NativeBlock):
 
     def _body(self) -> None:
         self.Q1 = not self.R1 and (self.S or self.Q1)
+
+
+# The typed counters of IEC 61131-3 ed.3 Table 45 (CTU_DINT ... CTUD_ULINT): the same bodies,
+# counting within their CV type's range (an unsigned down counter stops at 0).
+_RANGES = {"INT": (-(1 << 15), (1 << 15) - 1), "DINT": (-(1 << 31), (1 << 31) - 1),
+           "LINT": (-(1 << 63), (1 << 63) - 1), "UDINT": (0, (1 << 32) - 1),
+           "ULINT": (0, (1 << 64) - 1)}
+
+
+def _typed(base: type, suffix: str) -> type:
+    lo, hi = _RANGES[suffix]
+    return type(f"{base.__name__}_{suffix}", (base,), {"__slots__": (), "_lo": lo, "_hi": hi})
+
+
+CTU_INT, CTU_DINT, CTU_LINT, CTU_UDINT, CTU_ULINT = (_typed(CTU, s) for s in _RANGES)
+CTD_INT, CTD_DINT, CTD_LINT, CTD_UDINT, CTD_ULINT = (_typed(CTD, s) for s in _RANGES)
+CTUD_INT, CTUD_DINT, CTUD_LINT, CTUD_UDINT, CTUD_ULINT = (_typed(CTUD, s) for s in _RANGES)

@@ -117,6 +117,12 @@ END_PROGRAM"""
 
 
 def test_the_control_variable_must_be_an_integer():
+    src = "PROGRAM P VAR b : BYTE; END_VAR FOR b := 0 TO 254 DO ; END_FOR END_PROGRAM"
     with pytest.raises(PlcError) as ei:
-        plclab.loads("PROGRAM P VAR b : BYTE; END_VAR FOR b := 0 TO 255 DO ; END_FOR END_PROGRAM")
+        plclab.loads(src, dialect="iec")
     assert ei.value.code == "PLC0113"  # IEC: ANY_INT; BYTE is a bit string
+    # CODESYS (the default dialect, ADR 0017) accepts it with a teaching warning
+    plc = plclab.loads(src)
+    assert [d.code for d in plc.compiled.diagnostics] == ["PLC0173"]
+    plc.scan()
+    assert plc["b"] == 255

@@ -66,10 +66,16 @@ def test_input_window():
     assert A.input_window("%QX0.0") is None
 
 
-@pytest.mark.parametrize("bad", ["%QX0", "%QX0.8", "%ZW0", "QW0", "%MW2.1", ""])
+@pytest.mark.parametrize("bad", ["%QX0.8", "%ZW0", "QW0", "%MW2.1", ""])
 def test_bad_addresses(bad):
     with pytest.raises(ValueError):
         A.parse_address(bad)
+
+
+def test_iec_flat_bit_numbers():
+    # IEC 61131-3 ed.3 Table 16: %QX75 and %Q75 are output bit 75 (byte 9, bit 3)
+    assert A.parse_address("%QX75") == A.parse_address("%Q75") == ("Q", "X", 9, 3)
+    assert A.parse_address("%QX0") == ("Q", "X", 0, 0)
 
 
 def test_map_rows_and_files(plc, tmp_path):

@@ -26,6 +26,8 @@ class CallInfo:
     inputs: list[tuple[Any, A.Expr]] = field(default_factory=list)  # (VarDecl|index, expr)
     outputs: list[tuple[Any, A.Expr, bool]] = field(default_factory=list)  # (VarDecl, target, neg)
     inouts: list[tuple[Any, A.Expr]] = field(default_factory=list)
+    en: A.Expr | None = None  # EN := c (IEC 61131-3 ed.3 6.6.1.6): call only when TRUE
+    eno: A.Expr | None = None  # ENO => ok: TRUE when the body ran
 
 
 class Calls(Pass):
@@ -66,6 +68,12 @@ class Calls(Pass):
         if isinstance(ft, T.FBType):
             if ft.pou.kind == "FUNCTION_BLOCK":
                 return self.call_fb(c, ft.pou, statement)
+            if ft.pou.kind == "PROGRAM":
+                if not self.cx.in_test:
+                    self.err("PLC0178", f"{ft.pou.name} is a PROGRAM: only a TEST block may "
+                             "declare instances of a program; a POU calls the program by its "
+                             f"name ({ft.pou.name}();)", c.loc)
+                return self.call_fb(c, ft.pou, statement)
         if ft is not T.ANY:
             self.err("PLC0106", f"a value of type {ft} cannot be called", c.loc)
         self._args_only(c)
@@ -83,7 +91,7 @@ class Calls(Pass):
         by_name = {d.name: d for d in params}
         pos = 0
         seen: set[str] = set()
-        for a in c.args:
+        for a in self.plain_args(c, params):
             if a.name is None:
                 if pos >= len(positional_params):
                     self.err("PLC0107", f"too many arguments for {who} (it takes "
@@ -140,6 +148,39 @@ class Calls(Pass):
                          "call", c.loc)
         return inputs, outputs, inouts
 
+    def plain_args(self, c: A.Call, params: list[A.VarDecl] | None = None) -> list[A.Arg]:
+        """The arguments without EN and ENO, unless the callee declares them itself."""
+        own = {d.name for d in params or ()}
+        return [a for a in c.args if not (a.name in ("EN", "ENO") and a.name not in own)]
+
+    def en_eno(self, c: A.Call, info: CallInfo, params: list[A.VarDecl] | None = None) -> None:
+        """Check the implicit EN input and ENO output of a call and record them on ``info``
+        (IEC 61131-3 ed.3 6.6.1.6: with EN FALSE the body is not executed and ENO is FALSE)."""
+        own = {d.name for d in params or ()}
+        for a in c.args:
+            if a.name not in ("EN", "ENO") or a.name in own:
+                continue
+            if a.name == "EN":
+                if a.output or a.value is None:
+                    self.err("PLC0177", "EN is an input: connect it with ':=' (EN := cond)",
+                             a.loc)
+                    continue
+                t = self.cx.exprs.expr(a.value, T.BOOL)
+                self.cx.exprs.check_assignable(t, T.BOOL, a.value, a.loc)
+                info.en = a.value
+            else:
+                if not a.output:
+                    self.err("PLC0177", "ENO is an output: connect it with '=>' (ENO => ok)",
+                             a.loc)
+                    if a.value is not None:
+                        self.cx.exprs.expr(a.value, None)
+                    continue
+                if a.value is None:
+                    continue
+                t = self.cx.exprs.lvalue(a.value)
+                self.cx.exprs.check_assignable(T.BOOL, t, a.value, a.loc)
+                info.eno = a.value
+
     def params(self, pou: A.Pou) -> list[A.VarDecl]:
         """The declarations of a called POU, its parameters among them."""
         return list(self.table.members(pou).values())
@@ -152,8 +193,10 @@ class Calls(Pass):
 
     def call_function(self, c: A.Call, pou: A.Pou) -> T.Type:
         self._called(pou, c.loc)
-        ins, outs, inouts = self._bind(c, self.params(pou), f"function {pou.spelling or pou.name}")
+        params = self.params(pou)
+        ins, outs, inouts = self._bind(c, params, f"function {pou.spelling or pou.name}")
         c.target = CallInfo("function", pou, ins, outs, inouts)
+        self.en_eno(c, c.target, params)
         rd = pou.return_decl
         return rd.ty if rd is not None else T.VOID
 
@@ -162,18 +205,21 @@ class Calls(Pass):
             self.err("PLC0106", f"a function block call is a statement: call {pou.name} on its "
                      "own line, then read its outputs (inst.Q)", c.loc)
         self._called(pou, c.loc)
-        ins, outs, inouts = self._bind(c, self.params(pou), f"{pou.name}")
+        params = self.params(pou)
+        ins, outs, inouts = self._bind(c, params, f"{pou.name}")
         c.target = CallInfo("program" if program else "fb", pou, ins, outs, inouts)
+        self.en_eno(c, c.target, params)
         return T.VOID
 
     def call_builtin(self, c: A.Call, name: str, statement: bool) -> T.Type:
         conv = conversion(name)
+        args = self.plain_args(c)
         if conv is not None and name not in BUILTINS:
-            if len(c.args) != 1 or c.args[0].output:
+            if len(args) != 1 or args[0].output:
                 self.err("PLC0107", f"{name} takes exactly one argument", c.loc)
                 self._args_only(c)
                 return conv[1]
-            a = c.args[0]
+            a = args[0]
             at = self.cx.exprs.expr(a.value, None)
             src, dst = conv
             ra = T.base_of(at)
@@ -187,6 +233,7 @@ class Calls(Pass):
                                                     f"{dst.name}" if hasattr(dst, 'name') else ""),
                              a.loc)
             c.target = CallInfo("conv", (src, dst), [(0, a.value)])
+            self.en_eno(c, c.target)
             return dst
         b: Builtin = BUILTINS[name]
         if b.test_only and not self.cx.in_test:
@@ -196,7 +243,7 @@ class Calls(Pass):
             self.err("PLC0106", f"{name} is a statement, not a value", c.loc)
         vals: list[A.Expr] = []
         names = list(b.params)
-        for a in c.args:
+        for a in args:
             if a.output:
                 self.err("PLC0107", f"{name} has no outputs to connect with '=>'", a.loc)
                 continue
@@ -227,6 +274,8 @@ class Calls(Pass):
                     self.cx.exprs.expr(v, None)
             return T.ANY
         c.target = CallInfo("builtin", b, list(enumerate(vals)))
+        if not b.test_only:
+            self.en_eno(c, c.target)
         return self.builtin_type(name, vals, c)
 
     def builtin_type(self, name: str, vals: list[A.Expr], c: A.Call) -> T.Type:

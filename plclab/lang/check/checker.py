@@ -47,6 +47,7 @@ class Project:
     # the process image the addresses need: (bytes, the address that needs most, where)
     image_needed: tuple[int, str, Location] | None = None
     symbols: SymbolTable = field(default_factory=SymbolTable)  # declarations, by name
+    dialects: dict[str, str] = field(default_factory=dict)  # file -> dialect (ADR 0017)
 
 
 class Checker:
@@ -56,6 +57,7 @@ class Checker:
         self.files = files
         self.diags: list[Diagnostic] = []
         cx = self.cx = CheckContext(SymbolTable(), self.diags)
+        cx.dialects = {f.file: f.dialect for f in files if f.dialect}
         cx.decls = Declarations(cx)
         cx.consts = Constants(cx)
         cx.exprs = Expressions(cx)
@@ -80,7 +82,7 @@ class Checker:
             cx.stmts.check_test(t)
         cx.program.check_data(programs, tests)
         return Project(self.files, table.types, table.pous, table.globals, programs, tasks,
-                       tests, self.diags, cx.const_values, cx.image_needed, table)
+                       tests, self.diags, cx.const_values, cx.image_needed, table, cx.dialects)
 
 
 def check(files: list[A.SourceFile]) -> Project:

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from ...errors import Diagnostic, Location
 from .. import ast as A
+from ..dialect import Dialect, profile
 from .symbols import Scope, SymbolTable, close_hint
 
 __all__ = ["CheckContext", "Pass", "close_hint"]
@@ -40,6 +41,7 @@ class CheckContext:
     image_needed: tuple[int, str, Location] | None = None  # (bytes, address, where)
     call_graph: dict[str, set[str]] = field(default_factory=dict)  # pou -> pous it calls
     call_sites: dict[tuple[str, str], Location] = field(default_factory=dict)  # first call
+    dialects: dict[str, str] = field(default_factory=dict)  # file -> its dialect's name
     # the passes (set by the Checker)
     decls: Declarations = field(init=False)
     consts: Constants = field(init=False)
@@ -47,6 +49,10 @@ class CheckContext:
     calls: Calls = field(init=False)
     stmts: Statements = field(init=False)
     program: ProgramChecks = field(init=False)
+
+    def dialect(self, loc: Location | None) -> Dialect:
+        """The dialect of the file ``loc`` is in (ADR 0017)."""
+        return profile(self.dialects.get(loc.file) if loc is not None else None)
 
     def err(self, code: str, msg: str, loc: Location | None) -> None:
         self.diags.append(Diagnostic(code, msg, loc))

@@ -23,6 +23,10 @@ class Expressions(Pass, NodeVisitor):
         if src is T.ANY or dst is T.ANY:
             return
         rs, rd = T.resolve(src), T.resolve(dst)
+        if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
+                and e.value in (0, 1):
+            e.ty = T.BOOL  # 0 and 1 are BOOL literals (IEC 61131-3 ed.2 2.2.1, ed.3 Table 5)
+            return
         if isinstance(rd, T.FBType):
             self.err("PLC0103", f"cannot assign to a function block instance of {rd.name}; "
                      "call it or assign its members", loc)
@@ -262,6 +266,9 @@ class Expressions(Pass, NodeVisitor):
         return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
 
     def member(self, e: A.Member, write: bool) -> T.Type:
+        qualified = self.qualified_enum(e, write)
+        if qualified is not None:
+            return qualified
         ot = T.resolve(self.expr(e.obj, None))
         f = e.field_name
         if ot is T.ANY:
@@ -305,11 +312,51 @@ class Expressions(Pass, NodeVisitor):
                  "instance", e.loc)
         return T.ANY
 
+    def qualified_enum(self, e: A.Member, write: bool) -> T.Type | None:
+        """``Color.Red``: a CODESYS qualified enumeration value (IEC writes ``Color#Red``);
+        None when ``e`` is not one."""
+        obj = e.obj
+        if not isinstance(obj, A.Name) or self.lookup(obj.name) is not None:
+            return None
+        et = self.table.types.get(obj.name)
+        if not isinstance(et, T.EnumType):
+            return None
+        sym = next((m for m in self.table.enum_members.get(e.field_name, ())
+                    if m.type is et), None)
+        spelled = f"{obj.text or obj.name}.{e.text or e.field_name}"
+        if sym is None:
+            self.err("PLC0102", f"{obj.name} has no value {e.field_name}" +
+                     close_hint(e.field_name, list(et.members)), e.loc)
+            return T.ANY
+        if write:
+            self.err("PLC0103", f"{spelled} is a constant; assign it to a variable instead",
+                     e.loc)
+        dialect = self.cx.dialect(e.loc)
+        if not dialect.qualified_enums:
+            self.err("PLC0174", f"{spelled}: the dialect '{dialect.name}' writes a qualified "
+                     f"enumeration value as {obj.text or obj.name}#{e.text or e.field_name}",
+                     e.loc)
+        e.sym = sym
+        e.ty = et
+        return et
+
+    def bits_accepted(self, t: T.Type, what: str, loc: Location) -> bool:
+        """A bit string (BYTE, WORD, DWORD, LWORD) used as a number: the dialects that accept it
+        (CODESYS, S7) get a teaching warning PLC0173; the caller reports the error otherwise."""
+        b = T.base_of(t)
+        if b.kind != "bits" or b is T.BOOL or not self.cx.dialect(loc).bit_arithmetic:
+            return False
+        self.warn("PLC0173", f"{what} on {T.concrete(b).name}, a bit string: accepted as in "
+                  "CODESYS, but IEC 61131-3 keeps bit strings for bit patterns; an unsigned "
+                  f"integer (USINT, UINT, UDINT) says what you mean", loc)
+        return True
+
     def index(self, e: A.Index) -> T.Type:
         ot = T.resolve(self.expr(e.obj, None))
         for ix in e.indices:
             it = T.resolve(self.expr(ix, T.DINT))
-            if it is not T.ANY and it.kind not in ("int", "enum") and it is not T.ANY_INT_LIT:
+            if it is not T.ANY and it.kind not in ("int", "enum") and it is not T.ANY_INT_LIT \
+                    and not self.bits_accepted(it, "an array index", ix.loc):
                 self.err("PLC0117", f"an array index must be an integer, not {it}", ix.loc)
         if ot is T.ANY:
             return T.ANY
@@ -420,6 +467,8 @@ class Expressions(Pass, NodeVisitor):
             if c is not None and c.kind != "bits":
                 return c
             if c is not None and c.kind == "bits":
+                if self.bits_accepted(c, f"arithmetic '{op}'", e.loc):
+                    return c
                 self.err("PLC0104", f"arithmetic '{op}' is not defined on bit strings ({c}); "
                          f"convert to an integer first, e.g. {c.name}_TO_UINT(...)", e.loc)
                 return T.ANY

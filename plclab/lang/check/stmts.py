@@ -217,11 +217,14 @@ class Statements(Pass, NodeVisitor):
     def for_stmt(self, s: A.For) -> None:
         vt = self.cx.exprs.lvalue(s.var)
         sym = s.var.sym
-        if T.resolve(vt).kind not in ("int", "any"):
+        if T.resolve(vt).kind not in ("int", "any") and not self.cx.exprs.bits_accepted(
+                vt, "a FOR counter", s.var.loc):
             self.err("PLC0113", f"the FOR variable must be an integer, not {vt}", s.var.loc)
         for e in (s.start, s.end) + ((s.step,) if s.step else ()):
             et = self.cx.exprs.expr(e, vt)
-            if T.resolve(et).kind not in ("int", "any"):
+            if T.resolve(et).kind not in ("int", "any") and not (
+                    T.resolve(et).kind == "bits" and T.resolve(vt).kind == "bits" and
+                    self.cx.dialect(e.loc).bit_arithmetic):
                 self.err("PLC0113", f"FOR bounds and step must be integers, not {et}", e.loc)
         if s.step is not None:
             v = self.cx.consts.const_value(s.step)

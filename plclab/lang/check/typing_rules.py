@@ -99,6 +99,15 @@ def _multiplex(t: Typing) -> T.Type:
     return t.common(t.bs[1:])
 
 
+def _bitwise(t: Typing) -> T.Type:  # AND, OR, XOR, NOT: all BOOL, or bit strings/integers
+    if all(b is T.BOOL for b in t.bs):
+        return T.BOOL
+    if not t.kinds("bits", "int"):
+        t.need(False, "BOOLs or bit strings")
+        return T.ANY
+    return t.common(t.bs) if len(t.bs) > 1 else t.ts[0]
+
+
 def _shift(t: Typing) -> T.Type:
     t.need(t.bs[0].kind in ("bits", "int") and t.bs[1].kind == "int",
            "a bit string and a shift count")
@@ -119,13 +128,34 @@ def _signature(t: Typing) -> T.Type:
     return t.ts[0] if t.spec.result == "IN" else T.lookup_elementary(t.spec.result)
 
 
+def _datetime(t: Typing) -> T.Type:
+    """ADD_TIME, SUB_DT_DT, ...: each argument of the type ``Builtin.args`` names (NUM: any
+    integer or REAL), the result ``Builtin.result``."""
+    ok = all(b.kind in ("int", "real") and b is not T.BOOL if k == "NUM" else
+             T.same_type(b, T.lookup_elementary(k))
+             for k, b in zip(t.spec.args, t.bs, strict=False))
+    t.need(ok, t.spec.needs)
+    return T.lookup_elementary(t.spec.result)
+
+
 def _concat(t: Typing) -> T.Type:
     t.need(all(isinstance(b, T.StringType) for b in t.bs), "STRINGs")
     wide = any(getattr(b, "wide", False) for b in t.bs)
     return T.StringType(wide, 80)
 
 
+def _message(t: Typing, n: int) -> None:
+    """The optional last argument of an assertion: a STRING literal shown when it fails."""
+    if len(t.call.target.inputs) > n:
+        msg = t.call.target.inputs[n][1]
+        if not (isinstance(msg, A.Literal) and msg.kind in ("STRING", "WSTRING")):
+            t.cx.err("PLC0107", f"the message of {t.spec.name} is a string literal, e.g. "
+                     "'the motor starts'", msg.loc)
+        del t.bs[n:], t.ts[n:]
+
+
 def _assert_compare(t: Typing) -> T.Type:
+    _message(t, 2)
     a, b = t.bs[0], t.bs[1]
     if T.common_type(a, b) is None and not (isinstance(a, T.EnumType) and a is b):
         t.cx.err("PLC0107", f"{t.spec.name} compares values of one type, not {T.concrete(a)} "
@@ -134,11 +164,13 @@ def _assert_compare(t: Typing) -> T.Type:
 
 
 def _assert_bool(t: Typing) -> T.Type:
+    _message(t, 1)
     t.need(t.bs[0] is T.BOOL, "a BOOL")
     return T.VOID
 
 
 def _assert_near(t: Typing) -> T.Type:
+    _message(t, 3)
     t.need(t.kinds("int", "real", "time"), "numbers")
     return T.VOID
 
@@ -152,6 +184,7 @@ TYPING_RULES: dict[str, Callable[[Typing], T.Type]] = {
     "number_same": _number_same, "float": _float, "atan2": _atan2, "to_dint": _to_dint,
     "same": _same, "expt": _expt, "arithmetic": _arithmetic, "extremum": _extremum,
     "limit": _extremum, "select": _select, "multiplex": _multiplex, "shift": _shift,
+    "bitwise": _bitwise, "datetime": _datetime,
     "compare": _compare, "signature": _signature, "concat": _concat,
     "assert_compare": _assert_compare, "assert_bool": _assert_bool,
     "assert_near": _assert_near, "advance_time": _advance_time,

@@ -21,7 +21,9 @@ from functools import cache
 from ...errors import Diagnostic, Location, PlcError
 from ...suggest import suggest
 from .. import ast as A
+from ..addresses import canonical, hierarchical
 from ..datasize import NESTING_LIMIT
+from ..dialect import current as current_dialect
 from ..lexer import KEYWORDS, Lexer, Token, add_capped
 from ..library import STDLIB_FILES, stdlib_filename, stdlib_text
 from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
@@ -61,6 +63,9 @@ _BINARY = {
 }
 _NATIVE_RE = re.compile(r"^native\s+'([A-Z][A-Z0-9_]*)'$")
 _NATIVE_WORD = re.compile(r"^native\b", re.IGNORECASE)
+
+
+_OPERATOR_FUNCTIONS = ("AND", "OR", "XOR", "MOD", "NOT")
 
 
 class _TooDeep(ParseAbort):
@@ -107,6 +112,7 @@ class Parser:
         self.depth = 0  # nesting of types and initial values (see nested())
         self.expr_depth = 0  # nesting of expr() calls
         self.block_depth = 0  # nesting of statement lists
+        self.dialect = current_dialect()
 
     def _reject_native_pragmas(self, text: str) -> None:
         lines = text.splitlines()
@@ -403,12 +409,19 @@ class Parser:
         return out
 
     def var_decl(self, section: str, constant: bool, retain: bool) -> list[A.VarDecl]:
-        names: list[Token] = [self.expect("IDENT", "a variable name")]
-        while self.accept(","):
-            names.append(self.expect("IDENT", "a variable name"))
+        if self.at("AT"):  # unnamed: AT %IX1.1 : BOOL; (IEC 61131-3 ed.3 Table 16)
+            at = self.tok
+            names = [Token("IDENT", "", "", at.line, at.col)]
+        else:
+            names = [self.expect("IDENT", "a variable name")]
+            while self.accept(","):
+                names.append(self.expect("IDENT", "a variable name"))
         address = None
         if self.accept("AT"):
-            address = self.expect("ADDR", "a direct address such as %IX0.0").value
+            address = self.address(self.expect("ADDR", "a direct address such as %IX0.0"))
+            if not names[0].value:  # the unnamed variable is called by its address
+                text = address.replace("%", "").replace(".", "_")
+                names = [Token("IDENT", f"AT_{text}", address, names[0].line, names[0].col)]
         if self.at(":="):
             self.error("PLC0010", "a declaration needs a type before the initial value: "
                        "write  name : TYPE := value;")
@@ -424,6 +437,18 @@ class Parser:
             A.VarDecl(self.loc(n), n.value, tref, init, address, section, constant, retain, n.text)
             for n in names
         ]
+
+    def address(self, t: Token) -> str:
+        """A direct address in its canonical form (:mod:`plclab.lang.addresses`); a
+        hierarchical one is read by its last field, with a warning."""
+        address = canonical(t.value)
+        if t.value != address and hierarchical(t.value):
+            add_capped(self.diagnostics, Diagnostic(
+                "PLC0175", f"{t.text[:40]} is hierarchical; plclab's process image is flat, so "
+                f"it is read as {address} (the leading fields name hardware a simulated PLC "
+                "does not have); write the flat address to say so", self.loc(t), "warning"),
+                self.file)
+        return address
 
     def initializer(self) -> A.Expr:
         if self.at("["):
@@ -477,13 +502,29 @@ class Parser:
                 init = None
                 if self.accept(":="):
                     init = self.initializer()
-                self.expect(";")
+                self.type_end()
                 out.append(A.TypeDecl(self.loc(n), n.value, tref, init, n.text))
             except ParseAbort:
                 self.sync({"END_TYPE"} | _POU_START)
                 self.ensure_progress(start)
         self.expect("END_TYPE")
         return out
+
+    def type_end(self) -> None:
+        """The ``;`` after a type declaration; CODESYS and TIA Portal let a declaration that
+        ends with END_STRUCT (or the last one, before END_TYPE) go without it."""
+        if self.accept(";"):
+            return
+        prev = self.toks[self.i - 1] if self.i else None
+        if self.dialect.type_semicolon_optional and (
+                self.at("END_TYPE") or (prev is not None and prev.kind == "END_STRUCT")):
+            return
+        if prev is not None and prev.kind == "END_STRUCT" or self.at("END_TYPE"):
+            self.error("PLC0171", f"';' missing after this type declaration: the dialect "
+                       f"'{self.dialect.name}' needs it (CODESYS and S7 do not); add ';' or "
+                       "choose {dialect 'codesys'}")
+            raise ParseAbort
+        self.expect(";")
 
     def type_ref(self, allow_decl: bool = True) -> A.TypeRef:
         with self.nested("type"):
@@ -847,7 +888,7 @@ class Parser:
     def unary(self) -> A.Expr:
         """Prefix operators (a loop, not recursion: NOT NOT NOT x is fine), then the operand."""
         prefix: list[Token] = []
-        while self.tok.kind in ("-", "+", "NOT"):
+        while self.tok.kind in ("-", "+", "NOT") and not self._named_not_call():
             prefix.append(self.advance())
             if self.expr_depth + len(prefix) > MAX_EXPR_NESTING:
                 self._too_deep("expressions", MAX_EXPR_NESTING)
@@ -855,6 +896,11 @@ class Parser:
         for t in reversed(prefix):
             operand = self._apply_unary(t, operand)
         return operand
+
+    def _named_not_call(self) -> bool:
+        """``NOT(IN := x)``: the function NOT with a formal argument, not the operator."""
+        return (self.tok.kind == "NOT" and self.peek().kind == "(" and
+                self.peek(2).kind == "IDENT" and self.peek(3).kind == ":=")
 
     def _apply_unary(self, t: Token, operand: A.Expr) -> A.Expr:
         if t.kind == "-" and isinstance(operand, A.Literal) and operand.kind in ("INT", "REAL",
@@ -890,7 +936,7 @@ class Parser:
             return A.Literal(loc, t.value, "ENUM", t.prefix, t.text)
         if k == "ADDR":
             self.advance()
-            return A.DirectAddr(loc, t.value)
+            return A.DirectAddr(loc, self.address(t) if not t.value.endswith("*") else t.value)
         if k == "IDENT":
             self.advance()
             return A.Name(loc, t.value, t.text)
@@ -899,9 +945,13 @@ class Parser:
             e = self.expr()
             self.expect(")", "')' to close the parenthesis")
             return e
+        if k in _OPERATOR_FUNCTIONS and self.peek().kind == "(":
+            # a standard function named like an operator, called: AND(a, b, c), MOD(a, 3)
+            # (IEC 61131-3 ed.3 Table 31; Beremiz writes FBD/LD networks this way)
+            self.advance()
+            return A.Name(loc, k, t.text)
         if k in ("NOT",):
             return self.unary()
-        # functions named like keywords (AND(...), MOD(...)) are not supported as calls
         self.fail_expected("an expression")
         raise AssertionError
 
@@ -919,6 +969,15 @@ class Parser:
                 if self.at("INT"):  # bit access x.3
                     bit = self.advance()
                     e = A.Member(self.loc(dot), e, f"%{bit.value}")
+                    continue
+                if self.at("PARTIAL"):  # x.%X3 is x.3 (IEC ed.3 Table 17)
+                    part = self.advance()
+                    if part.value[1] != "X":
+                        self.error("PLC0176", f"partial access {part.text} to a byte, word or "
+                                   "double word is not supported; use bit access .%Xn or SHR "
+                                   "and a conversion", part)
+                        raise ParseAbort
+                    e = A.Member(self.loc(dot), e, f"%{int(part.value[2:])}")
                     continue
                 n = self.expect("IDENT", "a member name after '.'")
                 e = A.Member(self.loc(n), e, n.value, n.text)

@@ -1,0 +1,59 @@
+"""Direct addresses: the IEC 61131-3 forms, and the one canonical form the rest of plclab reads.
+
+plclab has one flat process image per area (%I, %Q, %M), addressed S7-style by byte and bit.
+IEC 61131-3 (ed.3 6.5.5, Table 16) writes the same places in more ways; :func:`canonical` turns
+each into the S7 form once, where a front end reads it, so the checker, the compiler, the
+runtime, the simulator and the Modbus server keep reading one form:
+
+* ``%IX1.2``, ``%I1.2``: byte 1, bit 2 (as S7; unchanged, the size X added);
+* ``%QX75``, ``%Q75``: IEC's flat bit number 75 = byte 9, bit 3;
+* ``%IW2.5.7.1`` (hierarchical, three fields or more: bus, rack, module, channel): the leading
+  fields name hardware a simulated PLC does not have; the last field is the item (here
+  ``%IW1``), and the front end warns (PLC0175). A hierarchical bit address keeps its last two
+  fields as byte.bit. (``%MW1.2``, two fields, stays an error: a bit part on a word.)
+
+Anything else (a bit number above 7, an oversized number) is left as written for the checker's
+PLC0120 and PLC0127.
+
+>>> canonical("%QX75"), canonical("%Q75"), canonical("%ix1.2"), canonical("%MW4")
+('%QX9.3', '%QX9.3', '%IX1.2', '%MW4')
+>>> canonical("%IW2.5.7.1"), hierarchical("%IW2.5.7.1")
+('%IW1', True)
+"""
+
+from __future__ import annotations
+
+import re
+
+__all__ = ["ADDRESS_RE", "canonical", "hierarchical"]
+
+ADDRESS_RE = re.compile(r"%([IQM])([XBWDL]?)([0-9]+(?:\.[0-9]+)*)")
+_MAX_DIGITS = 9  # longer numbers are left for the checker (PLC0127)
+
+
+def hierarchical(text: str) -> bool:
+    """Three fields or more (``%IW2.5.7.1``, ``%IX0.1.2``)."""
+    m = ADDRESS_RE.fullmatch(text.strip().upper())
+    if m is None:
+        return False
+    return m.group(3).count(".") >= 2
+
+
+def canonical(text: str) -> str:
+    """The S7 form of an IEC direct address (see the module text); ``text`` upper-cased and
+    otherwise unchanged when it is not an address this module rewrites."""
+    up = text.strip().upper()
+    m = ADDRESS_RE.fullmatch(up)
+    if m is None:
+        return up
+    area, size, fields = m.group(1), m.group(2) or "X", m.group(3).split(".")
+    if any(len(f) > _MAX_DIGITS for f in fields):
+        return up
+    if size == "X" and len(fields) == 1:  # a flat bit number
+        n = int(fields[0])
+        return f"%{area}X{n // 8}.{n % 8}"
+    if len(fields) < 3:  # byte.bit, a byte/word number (%MW1.2 stays: PLC0120 explains it)
+        return f"%{area}{size}{'.'.join(fields)}"
+    if size == "X":
+        return f"%{area}X{int(fields[-2])}.{fields[-1]}"
+    return f"%{area}{size}{int(fields[-1])}"

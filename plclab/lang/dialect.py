@@ -1,0 +1,93 @@
+"""Dialects: what differs between strict IEC 61131-3, CODESYS, TIA Portal (S7) and MATIEC.
+
+A file's dialect is, first found: its ``{dialect 'NAME'}`` pragma, the dialect the caller gives
+(``plclab check --dialect``, ``plclab.load(..., dialect=...)``, ``dialect`` in ``lab.toml``), or
+:data:`DEFAULT`. ADR 0017 says why the default is ``codesys``; the README's compliance list has the
+table of differences.
+
+>>> profile("s7").operand_width, profile("codesys").operand_width
+(True, False)
+>>> dialect_pragma("{dialect 'iec'}\\nPROGRAM P END_PROGRAM")
+'iec'
+"""
+
+from __future__ import annotations
+
+import re
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass
+
+from ..errors import Location, PlcError
+
+__all__ = ["Dialect", "PROFILES", "DEFAULT", "profile", "current", "using", "dialect_pragma",
+           "choose"]
+
+
+@dataclass(frozen=True)
+class Dialect:
+    """One profile: each field a point where the dialects differ."""
+
+    name: str
+    title: str
+    type_semicolon_optional: bool  # `END_STRUCT END_TYPE` without `;` (CODESYS, TIA Portal)
+    bit_arithmetic: bool  # BYTE/WORD/DWORD in arithmetic, FOR counters, indices: warn, not error
+    qualified_enums: bool  # `Color.Red` as well as `Color#Red`
+    nested_comments: bool  # `(* (* *) *)` is one comment (ed.3, CODESYS V3)
+    operand_width: bool  # integer intermediates wrap to the operand type (S7), not exact
+
+
+PROFILES: dict[str, Dialect] = {d.name: d for d in (
+    Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False),
+    Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False),
+    Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
+    Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False),
+)}
+DEFAULT = "codesys"
+
+_CURRENT: ContextVar[str] = ContextVar("plclab_dialect", default=DEFAULT)
+_PRAGMA = re.compile(r"\{\s*dialect\s+'?([A-Za-z0-9_]+)'?\s*\}", re.IGNORECASE)
+
+
+def profile(name: str | None = None) -> Dialect:
+    """The profile called ``name`` (the current one for None); PLC0170 for an unknown name."""
+    key = (name or _CURRENT.get()).lower()
+    d = PROFILES.get(key)
+    if d is None:
+        raise PlcError("PLC0170", f"unknown dialect '{name}'; choose one of "
+                       f"{', '.join(PROFILES)}")
+    return d
+
+
+def current() -> Dialect:
+    """The dialect of the file being read (see :func:`using`)."""
+    return PROFILES[_CURRENT.get()]
+
+
+@contextmanager
+def using(name: str):
+    """Read (lex and parse) a file in the dialect ``name``."""
+    token = _CURRENT.set(profile(name).name)
+    try:
+        yield
+    finally:
+        _CURRENT.reset(token)
+
+
+def dialect_pragma(text: str) -> str | None:
+    """The name in a file's ``{dialect 'NAME'}`` pragma, or None."""
+    m = _PRAGMA.search(text)
+    return m.group(1).lower() if m else None
+
+
+def choose(text: str, given: str | None, file: str = "<input>") -> str:
+    """A file's dialect: its pragma, else ``given``, else :data:`DEFAULT` (PLC0170 if unknown)."""
+    named = dialect_pragma(text)
+    try:
+        return profile(named or given or DEFAULT).name
+    except PlcError as exc:
+        where = None
+        if named:
+            line = text[:_PRAGMA.search(text).start()].count("\n") + 1
+            where = Location(file, line, 1)
+        raise PlcError(exc.code, exc.message, where) from None
