@@ -110,6 +110,13 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
     sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
     add_export_args(sp)
     _labs_arg(sp)
+    sp = sub.add_parser("get", help="copy a lab's task, starter and notebook into a working "
+                        "folder")
+    sp.add_argument("lab", metavar="LAB")
+    sp.add_argument("dir", nargs="?", default=None, metavar="DIR",
+                    help="working folder (default: ./LAB)")
+    sp.add_argument("--force", action="store_true", help="overwrite files that are there")
+    _labs_arg(sp)
     sp = sub.add_parser("new", help="create a lab folder with a working example (instructors)")
     sp.add_argument("id", metavar="ID", help="lab id: lower-case words with dashes")
     sp.add_argument("--dir", default=None, help="parent folder (default: ./labs if it exists, "
@@ -126,6 +133,8 @@ def cmd_lab(ns: argparse.Namespace) -> int:
         return lab_show(ns)
     if action == "check":
         return lab_check(ns)
+    if action == "get":
+        return lab_get(ns)
     if action == "new":
         return lab_new(ns)
     ns._lab_parser.print_help()
@@ -135,6 +144,7 @@ def cmd_lab(ns: argparse.Namespace) -> int:
 def lab_list(ns: argparse.Namespace) -> int:
     from .lab import list_labs, load_lab, repo_labs_dir
 
+    own = repo_labs_dir().resolve()
     rows = [("lab", "plant", "languages", "points", "title")]
     for p in list_labs(ns.labs):
         try:
@@ -142,7 +152,7 @@ def lab_list(ns: argparse.Namespace) -> int:
         except Exception as e:  # noqa: BLE001 - show the broken lab, go on
             rows.append((p.name, "?", "?", "?", f"(broken: {e})"))
             continue
-        where = "" if p.parent == repo_labs_dir() else f"  [{p}]"
+        where = "" if p.parent.resolve() == own else f"  [{p}]"
         rows.append((lab.id, lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
                      lab.title + where))
     widths = [max(len(r[i]) for r in rows) for i in range(4)]
@@ -251,6 +261,18 @@ def lab_check(ns: argparse.Namespace) -> int:
     if not ns.no_media and any(t.diagram for t in res.tests):
         print(f"feedback with diagrams: {out / 'feedback.md'}")
     print(f"score: {res.score:g}/{res.max_score:g}")
+    return 0
+
+
+def lab_get(ns: argparse.Namespace) -> int:
+    from .lab import get_lab_files
+
+    dest = Path(ns.dir) if ns.dir else Path(Path(str(ns.lab)).name)
+    files = get_lab_files(ns.lab, dest, ns.labs, force=ns.force)
+    print(f"{dest}: " + ", ".join(f.name for f in files))
+    starter = next((f for f in files if f.name.startswith("starter.")), None)
+    if starter is not None:
+        print(f"the task is in {dest / 'README.md'}; try: plclab lab check {ns.lab} {starter}")
     return 0
 
 
