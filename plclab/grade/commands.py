@@ -105,8 +105,9 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
     sp.add_argument("--scenario", default=None, help="only this scenario (and export it)")
     sp.add_argument("--hidden", action="store_true", help="also the hidden scenarios "
                     "(instructors)")
-    sp.add_argument("--out", default=None, metavar="DIR", help="folder for feedback.md, the "
-                    "diagrams and recordings (default: ./<lab>-feedback)")
+    sp.add_argument("--out", default=None, metavar="DIR", help="write feedback.md, the "
+                    "diagrams and recordings of the failures into DIR (replaced on each run; "
+                    "default: nothing is written)")
     sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
     add_export_args(sp)
     _labs_arg(sp)
@@ -233,18 +234,18 @@ def lab_check(ns: argparse.Namespace) -> int:
             raise grade_error("PLC5021", f"{f}: no such file or folder")
         got, _ = read_submission(f)
         sources += got
-    out = Path(ns.out or f"{lab.id}-feedback")
+    out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None
     scen = [ns.scenario] if ns.scenario else None
     if scen and not lab.scenario(ns.scenario).visible and not ns.hidden:
         raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
                           "work is graded")
     res = grade_sources(lab, sources, student="", scenarios=scen, include_hidden=ns.hidden,
-                        media_dir=None if ns.no_media else out, keep_traces=True)
+                        media_dir=out, keep_traces=True)
     from .feedback import render_feedback
     from .gradescope import write_atomic
 
     text = render_feedback(res, instructor=ns.hidden)
-    if not ns.no_media:
+    if out is not None:
         write_atomic(out / "feedback.md", text)
     print(text)
     wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
@@ -258,8 +259,10 @@ def lab_check(ns: argparse.Namespace) -> int:
             ns.rrd = None
         for line in run_exports(res.traces[name], ns):
             print(line)
-    if not ns.no_media and any(t.diagram for t in res.tests):
+    if out is not None:
         print(f"feedback with diagrams: {out / 'feedback.md'}")
+    elif any(not t.passed for t in res.tests) and not ns.no_media:
+        print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
     print(f"score: {res.score:g}/{res.max_score:g}")
     return 0
 
@@ -274,6 +277,36 @@ def lab_get(ns: argparse.Namespace) -> int:
     if starter is not None:
         print(f"the task is in {dest / 'README.md'}; try: plclab lab check {ns.lab} {starter}")
     return 0
+
+
+FEEDBACK_MARK = "feedback.md"
+"""The file that makes a folder one of ``lab check --out``'s, which a new run may replace."""
+
+
+def fresh_output_dir(out: Path) -> Path:
+    """An empty *out* for this run: a folder an earlier run wrote (it holds feedback.md) is
+    replaced, so no diagram of a criterion that now passes stays; any other folder with
+    files in it is refused (PLC5051), so --out never deletes someone's work."""
+    import shutil
+
+    if out.exists() and not out.is_dir():
+        raise grade_error("PLC5051", f"--out {out}: that is a file; give a folder")
+    if out.is_dir() and any(out.iterdir()):
+        if not (out / FEEDBACK_MARK).is_file():
+            raise grade_error("PLC5051", f"--out {out}: the folder holds other files; give a "
+                              "new or empty folder (a run replaces its folder)")
+        try:
+            shutil.rmtree(out)
+        except OSError as e:
+            raise grade_error("PLC5051", f"--out {out}: cannot replace it ({e.strerror or e})"
+                              ) from None
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / FEEDBACK_MARK).write_text("", encoding="utf-8")  # ours, even if this run stops
+    except OSError as e:
+        raise grade_error("PLC5051", f"--out {out}: cannot create it ({e.strerror or e})"
+                          ) from None
+    return out
 
 
 def lab_new(ns: argparse.Namespace) -> int:
