@@ -222,9 +222,15 @@ def lab_show(ns: argparse.Namespace) -> int:
 
 
 def lab_check(ns: argparse.Namespace) -> int:
-    from plclab.viz.from_trace import run_exports
+    """A student's run of the visible scenarios, in a child process with the lab's time and
+    memory limits, exactly as ``plclab grade`` runs it; exports run the program again here."""
+    import shutil
+    import tempfile
 
     from .engine import grade_sources, read_submission
+    from .feedback import render_feedback
+    from .grader import Grader
+    from .gradescope import write_atomic
     from .lab import load_lab
 
     lab = load_lab(ns.lab, ns.labs)
@@ -234,33 +240,47 @@ def lab_check(ns: argparse.Namespace) -> int:
             raise grade_error("PLC5021", f"{f}: no such file or folder")
         got, _ = read_submission(f)
         sources += got
-    out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None
     scen = [ns.scenario] if ns.scenario else None
     if scen and not lab.scenario(ns.scenario).visible and not ns.hidden:
         raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
                           "work is graded")
-    res = grade_sources(lab, sources, student="", scenarios=scen, include_hidden=ns.hidden,
-                        media_dir=out, keep_traces=True)
-    from .feedback import render_feedback
-    from .gradescope import write_atomic
-
+    names = scen or [s.name for s in lab.scenarios if s.visible or ns.hidden]
+    out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None
+    work = Path(tempfile.mkdtemp(prefix="plclab-check-"))
+    try:
+        grader = Grader(lab, work, jobs=1, media=out is not None, scenarios=names)
+        res = grader.grade_one(sources)
+        if out is not None:
+            for f in (work / "check").iterdir():
+                if f.suffix in (".png", ".rrd"):
+                    shutil.move(str(f), out / f.name)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    res = res.result
     text = render_feedback(res, instructor=ns.hidden)
     if out is not None:
-        write_atomic(out / "feedback.md", text)
+        write_atomic(out / FEEDBACK_MARK, text)
     print(text)
     wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
-    if wants_export and res.traces:
-        name = ns.scenario or next(iter(res.traces))
-        if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file and score
-            from plclab.viz.from_trace import write_lab_rrd
+    if wants_export and res.status in ("timeout", "memory", "crash", "rejected"):
+        print(f"no export: the program did not finish within the lab's limits ({res.status})")
+    elif wants_export:
+        from plclab.viz.from_trace import run_exports
 
-            print(write_lab_rrd(lab, res, ns.rrd, ", ".join(Path(f).name for f in ns.files),
-                                ns))
-            ns.rrd = None
-        for line in run_exports(res.traces[name], ns):
-            print(line)
+        # within the limits above, so running it again here is bounded
+        again = grade_sources(lab, sources, scenarios=names, keep_traces=True)
+        if again.traces:
+            name = ns.scenario or next(iter(again.traces))
+            if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file, score
+                from plclab.viz.from_trace import write_lab_rrd
+
+                print(write_lab_rrd(lab, again, ns.rrd,
+                                    ", ".join(Path(f).name for f in ns.files), ns))
+                ns.rrd = None
+            for line in run_exports(again.traces[name], ns):
+                print(line)
     if out is not None:
-        print(f"feedback with diagrams: {out / 'feedback.md'}")
+        print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
     elif any(not t.passed for t in res.tests) and not ns.no_media:
         print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
     print(f"score: {res.score:g}/{res.max_score:g}")
