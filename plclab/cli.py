@@ -39,10 +39,18 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
 @command("check")
 @arg("files", nargs="+", metavar="FILE", help="source files (.st, .il, .ld, .xml)")
 @arg("--no-warnings", action="store_true", help="print errors only")
+@arg("--no-lint", action="store_true", help="without the beginner warnings (PLC0210-PLC0216)")
+@arg("--lab", default=None, metavar="LAB", help="also compare the addresses with the I/O "
+     "table of this lab")
 def cmd_check(ns: argparse.Namespace) -> int:
     from .project import check_sources, read_sources
 
-    _, diags = check_sources(read_sources(ns.files))
+    io_table = None
+    if ns.lab:
+        from .grade.lab import load_lab
+
+        io_table = load_lab(ns.lab).io
+    _, diags = check_sources(read_sources(ns.files), lint=not ns.no_lint, io_table=io_table)
     if ns.no_warnings:
         diags = [d for d in diags if d.severity == "error"]
     errors, warnings = _print_diags(diags)

@@ -36,8 +36,13 @@ def parse_sources(sources: list[tuple[str, str]]) -> tuple[list[A.SourceFile], l
     return files, diags
 
 
-def check_sources(sources: list[tuple[str, str]]):
-    """Parse and check; return (project or None, diagnostics). Never raises for user errors."""
+def check_sources(sources: list[tuple[str, str]], *, lint: bool = False,
+                  io_table: Any = None):
+    """Parse and check; return (project or None, diagnostics). Never raises for user errors.
+
+    ``lint=True`` adds the beginner warnings (:mod:`plclab.lang.check.lint`, PLC0210..),
+    with a lab's ``io_table`` (rows with ``name`` and ``address``) also the addresses that
+    contradict it."""
     from .lang.check import Checker
 
     files, diags = parse_sources(sources)
@@ -45,10 +50,15 @@ def check_sources(sources: list[tuple[str, str]]):
     project = ck.run()
     all_diags = diags + ck.diags
     if any(d.severity == "error" for d in diags):
-        # a statement with a syntax error was dropped: skip the checker's follow-ups on its line
+        # a statement with a syntax error was dropped: skip the checker's follow-ups on its
+        # line, and every warning (an unused variable may be used in the dropped statement)
         bad = {(d.location.file, d.location.line) for d in diags if d.location is not None}
-        all_diags = diags + [d for d in ck.diags if d.location is None or
-                             (d.location.file, d.location.line) not in bad]
+        all_diags = diags + [d for d in ck.diags if d.severity == "error" and (
+            d.location is None or (d.location.file, d.location.line) not in bad)]
+    elif lint and not any(d.severity == "error" for d in ck.diags):
+        from .lang.check.lint import lint as beginner_lint
+
+        all_diags += beginner_lint(files, io_table)
     # errors before warnings, each in source order (the checks of a whole program, like the
     # data size, run last; a student must see them before the warnings)
     all_diags.sort(key=lambda d: (d.severity != "error",) + (

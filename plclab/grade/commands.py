@@ -245,6 +245,8 @@ def lab_check(ns: argparse.Namespace) -> int:
         raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
                           "work is graded")
     names = scen or [s.name for s in lab.scenarios if s.visible or ns.hidden]
+    for line in lint_lines(lab, sources):
+        print(line)
     out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None
     work = Path(tempfile.mkdtemp(prefix="plclab-check-"))
     try:
@@ -297,6 +299,17 @@ def lab_get(ns: argparse.Namespace) -> int:
     if starter is not None:
         print(f"the task is in {dest / 'README.md'}; try: plclab lab check {ns.lab} {starter}")
     return 0
+
+
+def lint_lines(lab, sources: list[tuple[str, str]]) -> list[str]:
+    """The beginner warnings (PLC0210-PLC0216, the lab's I/O table included) that ``lab
+    check`` prints before it runs the program; none when the program does not compile (the
+    feedback shows those errors)."""
+    from plclab.project import check_sources
+
+    _, diags = check_sources(sources, lint=True, io_table=lab.io)
+    found = [str(d) for d in diags if d.code.startswith("PLC021")]
+    return [f"{len(found)} warning(s) about your program:", *found, ""] if found else []
 
 
 FEEDBACK_MARK = "feedback.md"

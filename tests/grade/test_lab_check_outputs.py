@@ -36,3 +36,12 @@ def test_a_folder_with_other_files_is_never_replaced(tmp_path, capsys):
                  str(tmp_path)]) == 1
     assert "PLC5051" in capsys.readouterr().err
     assert (tmp_path / "work.st").read_text(encoding="utf-8") == "my work"
+
+
+def test_lab_check_prints_the_beginner_warnings_first(tmp_path, capsys):
+    moved = SOLUTION.read_text(encoding="utf-8").replace("%IX0.0", "%IX0.7", 1)
+    f = tmp_path / "moved.st"
+    f.write_text(moved, encoding="utf-8")
+    assert main(["lab", "check", "motor-start-stop", str(f)]) == 0
+    out = capsys.readouterr().out
+    assert "PLC0215" in out.split("score:")[0].splitlines()[1]
