@@ -109,6 +109,9 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
                     "diagrams and recordings of the failures into DIR (replaced on each run; "
                     "default: nothing is written)")
     sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
+    sp.add_argument("--watch", action="append", default=[], metavar="NAME",
+                    help="also record and draw this variable of your program, e.g. "
+                    "Thermostat.temp (repeat or comma-separate)")
     add_export_args(sp)
     _labs_arg(sp)
     sp = sub.add_parser("get", help="copy a lab's task, starter and notebook into a working "
@@ -240,6 +243,7 @@ def lab_check(ns: argparse.Namespace) -> int:
             raise grade_error("PLC5021", f"{f}: no such file or folder")
         got, _ = read_submission(f)
         sources += got
+    lab.student_watch = [w.strip() for item in ns.watch for w in item.split(",") if w.strip()]
     scen = [ns.scenario] if ns.scenario else None
     if scen and not lab.scenario(ns.scenario).visible and not ns.hidden:
         raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
@@ -273,6 +277,7 @@ def lab_check(ns: argparse.Namespace) -> int:
         again = grade_sources(lab, sources, scenarios=names, keep_traces=True)
         if again.traces:
             name = ns.scenario or next(iter(again.traces))
+            student_picture(lab, again, name, ns)
             if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file, score
                 from plclab.viz.from_trace import write_lab_rrd
 
@@ -299,6 +304,25 @@ def lab_get(ns: argparse.Namespace) -> int:
     if starter is not None:
         print(f"the task is in {dest / 'README.md'}; try: plclab lab check {ns.lab} {starter}")
     return 0
+
+
+def student_picture(lab, res, scenario: str, ns: argparse.Namespace) -> None:
+    """Defaults of ``--png`` and the other exports in ``lab check``: the lab's diagram signals
+    and the student's ``--watch`` variables, over the window around the scenario's first
+    failure (or the lab's diagram window from the start)."""
+    from .feedback import _window
+
+    trace = res.traces[scenario]
+    if not getattr(ns, "signals", None):
+        names = [n for n in [*lab.diagram_signals, *lab.student_watch] if n in trace]
+        ns.signals = ",".join(names) or None
+    if not getattr(ns, "window", None):
+        fails = [t.t_fail for t in res.tests if t.scenario == scenario and not t.passed
+                 and t.t_fail is not None]
+        t0, t1 = _window(min(fails) if fails else None, lab.diagram_window, trace.t_end)
+        if not fails:
+            t0, t1 = 0.0, min(trace.t_end, lab.diagram_window)
+        ns.window = f"{t0:.3f}s..{t1:.3f}s"
 
 
 def lint_lines(lab, sources: list[tuple[str, str]]) -> list[str]:

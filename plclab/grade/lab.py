@@ -276,6 +276,7 @@ class Lab:
     diagram_window: float = 20.0
     hash: str = ""
     mistakes: list[MistakeSpec] = field(default_factory=list)
+    student_watch: list[str] = field(default_factory=list)  # lab check --watch: also drawn
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -305,6 +306,7 @@ class Lab:
                 out.append(r.address)
         if scenario is not None:
             out += [w for w in scenario.watch if w not in out]
+        out += [w for w in self.student_watch if w not in out]
         return out
 
     def io_table_markdown(self) -> str:

@@ -45,3 +45,25 @@ def test_lab_check_prints_the_beginner_warnings_first(tmp_path, capsys):
     assert main(["lab", "check", "motor-start-stop", str(f)]) == 0
     out = capsys.readouterr().out
     assert "PLC0215" in out.split("score:")[0].splitlines()[1]
+
+
+def test_png_shows_the_labs_signals_and_the_students_variable(tmp_path, capsys, monkeypatch):
+    from plclab.viz import from_trace
+
+    drawn = {}
+    real = from_trace.export
+
+    def spy(trace, **kw):
+        drawn.update(kw)
+        return real(trace, **kw)
+
+    monkeypatch.setattr(from_trace, "export", spy)
+    lab = load_lab("relay-thermostat")
+    bad = lab.path / "mistakes" / "no_hysteresis.st"
+    png = tmp_path / "t.png"
+    assert main(["lab", "check", "relay-thermostat", str(bad), "--watch", "Thermostat.temp",
+                 "--png", str(png)]) == 0
+    assert png.is_file()
+    assert drawn["signals"] == [*lab.diagram_signals, "Thermostat.temp"]
+    t0, _, t1 = drawn["window"].partition("..")
+    assert float(t0.rstrip("s")) > 0  # the failure window, not the start of the run
