@@ -30,7 +30,7 @@ def main() -> int:
     import matplotlib
 
     from plclab.grade import check
-    from plclab.grade.feedback import _names, _window, thresholds_of, timing_png
+    from plclab.grade.feedback import diagram_names, failure_window, thresholds_of, timing_png
     from plclab.grade.lab import load_lab
 
     matplotlib.use("Agg")
@@ -42,8 +42,8 @@ def main() -> int:
             t = next(t for t in res.tests if not t.passed and t.t_fail is not None)
             trace = res.traces[t.scenario]
             crit = next(c for c in lab.criteria if c.name == t.criterion)
-            t0, t1 = _window(t.t_fail, crit.window or lab.diagram_window, trace.t_end)
-            names = _names(trace, lab, crit)
+            t0, t1 = failure_window(t.t_fail, crit.window or lab.diagram_window, trace.t_end)
+            names = diagram_names(trace, lab, crit)
             limits = {trace.resolve(k): v for k, v in thresholds_of(crit).items() if k in trace}
             times = []
             for i in range(ns.repeat):

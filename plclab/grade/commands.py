@@ -310,7 +310,7 @@ def student_picture(lab, res, scenario: str, ns: argparse.Namespace) -> None:
     """Defaults of ``--png`` and the other exports in ``lab check``: the lab's diagram signals
     and the student's ``--watch`` variables, over the window around the scenario's first
     failure (or the lab's diagram window from the start)."""
-    from .feedback import _window
+    from .feedback import failure_window
 
     trace = res.traces[scenario]
     if not getattr(ns, "signals", None):
@@ -319,7 +319,7 @@ def student_picture(lab, res, scenario: str, ns: argparse.Namespace) -> None:
     if not getattr(ns, "window", None):
         fails = [t.t_fail for t in res.tests if t.scenario == scenario and not t.passed
                  and t.t_fail is not None]
-        t0, t1 = _window(min(fails) if fails else None, lab.diagram_window, trace.t_end)
+        t0, t1 = failure_window(min(fails) if fails else None, lab.diagram_window, trace.t_end)
         if not fails:
             t0, t1 = 0.0, min(trace.t_end, lab.diagram_window)
         ns.window = f"{t0:.3f}s..{t1:.3f}s"

@@ -38,7 +38,8 @@ def real_failure(t: Any) -> bool:
     return not t.passed and not t.detail.startswith(("not earned", "not run"))
 
 
-def _window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
+def failure_window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
+    """The window of width ``w`` a diagram shows around a failure at ``tf`` (None: the end)."""
     if tf is None:
         return max(0.0, t_end - w), t_end
     t0 = max(0.0, tf - 0.6 * w)
@@ -66,7 +67,8 @@ def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
     return out
 
 
-def _names(trace: Any, lab: Any, crit: Any) -> list[str]:
+def diagram_names(trace: Any, lab: Any, crit: Any) -> list[str]:
+    """The signals of a failure diagram: the lab's, the criterion's, the student's --watch."""
     out: list[str] = []
     for n in (list(lab.diagram_signals) + list(crit.relevant_signals())
               + list(getattr(lab, "student_watch", []))):
@@ -95,8 +97,8 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
         if t.t_fail is None:  # no single moment to blame: the whole scenario
             t0, t1 = 0.0, trace.t_end
         else:
-            t0, t1 = _window(t.t_fail, w, trace.t_end)
-        names = _names(trace, lab, crit)
+            t0, t1 = failure_window(t.t_fail, w, trace.t_end)
+        names = diagram_names(trace, lab, crit)
         key = (tuple(names), round(t0, 3), round(t1, 3))
         if key in drawn:  # same picture as another failed criterion
             t.diagram = drawn[key]
@@ -172,7 +174,7 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
     crits = {c.name: c for c in lab.criteria_for(sc.name)}
     names: list[str] = []
     for t in failed:
-        for n in _names(trace, lab, crits[t.criterion]):
+        for n in diagram_names(trace, lab, crits[t.criterion]):
             if n not in names:
                 names.append(n)
     for r in trace.io:
