@@ -43,10 +43,19 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
 @arg("--no-warnings", action="store_true", help="print errors only")
 @arg("--dialect", default=None, choices=DIALECTS,
      help="dialect of files without a {dialect} pragma (default codesys; ADR 0017)")
+@arg("--no-lint", action="store_true", help="without the beginner warnings (PLC0210-PLC0216)")
+@arg("--lab", default=None, metavar="LAB", help="also compare the addresses with the I/O "
+     "table of this lab")
 def cmd_check(ns: argparse.Namespace) -> int:
     from .project import check_sources, read_sources
 
-    _, diags = check_sources(read_sources(ns.files), ns.dialect)
+    io_table = None
+    if ns.lab:
+        from .grade.lab import load_lab
+
+        io_table = load_lab(ns.lab).io
+    _, diags = check_sources(read_sources(ns.files), ns.dialect, lint=not ns.no_lint,
+                             io_table=io_table)
     if ns.no_warnings:
         diags = [d for d in diags if d.severity == "error"]
     errors, warnings = _print_diags(diags)

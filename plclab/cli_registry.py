@@ -55,7 +55,8 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                            "runs", "plclab.viz.commands"),
     "grade": CommandInfo("grade a folder of submissions against a lab (Gradescope JSON, feedback, "
                          "CSV)", "plclab.grade.commands"),
-    "lab": CommandInfo("labs: list, show LAB, check LAB FILE..., new ID", "plclab.grade.commands"),
+    "lab": CommandInfo("labs: list, show LAB, get LAB [DIR], check LAB FILE..., new ID",
+                       "plclab.grade.commands"),
     "serve": CommandInfo("run programs in real time behind a Modbus TCP server",
                          "plclab.modbus.commands"),
     "plant-serve": CommandInfo("run a plant in real time as a Modbus TCP server (remote I/O)",

@@ -54,8 +54,13 @@ def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
     return files, diags
 
 
-def check_sources(sources: list[tuple[str, str]], dialect: str | None = None):
-    """Parse and check; return (project or None, diagnostics). Never raises for user errors."""
+def check_sources(sources: list[tuple[str, str]], dialect: str | None = None, *,
+                  lint: bool = False, io_table: Any = None):
+    """Parse and check; return (project or None, diagnostics). Never raises for user errors.
+
+    ``dialect``: of the files without a ``{dialect}`` pragma (ADR 0017). ``lint=True`` adds the
+    beginner warnings (:mod:`plclab.lang.check.lint`, PLC0210..), with a lab's ``io_table``
+    (rows with ``name`` and ``address``) also the addresses that contradict it."""
     from .lang.check import Checker
 
     files, diags = parse_sources(sources, dialect)
@@ -63,10 +68,15 @@ def check_sources(sources: list[tuple[str, str]], dialect: str | None = None):
     project = ck.run()
     all_diags = diags + ck.diags
     if any(d.severity == "error" for d in diags):
-        # a statement with a syntax error was dropped: skip the checker's follow-ups on its line
+        # a statement with a syntax error was dropped: skip the checker's follow-ups on its
+        # line, and every warning (an unused variable may be used in the dropped statement)
         bad = {(d.location.file, d.location.line) for d in diags if d.location is not None}
-        all_diags = diags + [d for d in ck.diags if d.location is None or
-                             (d.location.file, d.location.line) not in bad]
+        all_diags = diags + [d for d in ck.diags if d.severity == "error" and (
+            d.location is None or (d.location.file, d.location.line) not in bad)]
+    elif lint and not any(d.severity == "error" for d in ck.diags):
+        from .lang.check.lint import lint as beginner_lint
+
+        all_diags += beginner_lint(files, io_table)
     # errors before warnings, each in source order (the checks of a whole program, like the
     # data size, run last; a student must see them before the warnings)
     all_diags.sort(key=lambda d: (d.severity != "error",) + (
@@ -90,19 +100,40 @@ def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>",
     return compiled
 
 
+def decode_source(raw: bytes, name: str) -> str:
+    """The text of a source file, read the same way by every command: UTF-8 (a BOM is fine)
+    or UTF-16 with a BOM. Anything else (Latin-1, Windows-1252) is PLC5052, naming the line
+    and column of the first byte that is not UTF-8."""
+    from .errors import Location
+
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            return raw.decode("utf-16")
+        except UnicodeDecodeError:
+            pass
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        before = raw[:e.start]
+        line = before.count(b"\n") + 1
+        col = e.start - (before.rfind(b"\n") + 1) + 1
+        raise PlcError("PLC5052", f"{name} is not UTF-8 text (byte 0x{raw[e.start]:02X}: "
+                       "Latin-1 or Windows-1252?); save it as UTF-8 (your editor's 'Save "
+                       "with encoding' or 'Save as', UTF-8)", Location(name, line, col)
+                       ) from None
+
+
 def read_sources(paths: list[str | os.PathLike]) -> list[tuple[str, str]]:
     out = []
     for p in paths:
         p = str(p)
         try:
-            with open(p, encoding="utf-8-sig") as fh:
-                out.append((fh.read(), p))
+            with open(p, "rb") as fh:
+                out.append((decode_source(fh.read(), p), p))
         except FileNotFoundError:
             raise PlcError("PLC3003", f"{p}: no such file; check the path") from None
         except IsADirectoryError:
             raise PlcError("PLC3003", f"{p} is a folder; give the source files in it") from None
-        except UnicodeDecodeError:
-            raise PlcError("PLC3003", f"{p} is not UTF-8 text; save it as UTF-8") from None
     return out
 
 

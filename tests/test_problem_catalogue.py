@@ -25,7 +25,7 @@ RUNTIME = [c for c in EXAMPLES if c.startswith("PLC2")]
 
 def diagnostics(code: str, which: str):
     p = ENTRIES[code]
-    return check_sources([(getattr(p, which), f"{which}.{p.language}")])[1]
+    return check_sources([(getattr(p, which), f"{which}.{p.language}")], lint=True)[1]
 
 
 def run(code: str, which: str) -> str | None:

@@ -105,10 +105,21 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
     sp.add_argument("--scenario", default=None, help="only this scenario (and export it)")
     sp.add_argument("--hidden", action="store_true", help="also the hidden scenarios "
                     "(instructors)")
-    sp.add_argument("--out", default=None, metavar="DIR", help="folder for feedback.md, the "
-                    "diagrams and recordings (default: ./<lab>-feedback)")
+    sp.add_argument("--out", default=None, metavar="DIR", help="write feedback.md, the "
+                    "diagrams and recordings of the failures into DIR (replaced on each run; "
+                    "default: nothing is written)")
     sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
+    sp.add_argument("--watch", action="append", default=[], metavar="NAME",
+                    help="also record and draw this variable of your program, e.g. "
+                    "Thermostat.temp (repeat or comma-separate)")
     add_export_args(sp)
+    _labs_arg(sp)
+    sp = sub.add_parser("get", help="copy a lab's task, starter and notebook into a working "
+                        "folder")
+    sp.add_argument("lab", metavar="LAB")
+    sp.add_argument("dir", nargs="?", default=None, metavar="DIR",
+                    help="working folder (default: ./LAB)")
+    sp.add_argument("--force", action="store_true", help="overwrite files that are there")
     _labs_arg(sp)
     sp = sub.add_parser("new", help="create a lab folder with a working example (instructors)")
     sp.add_argument("id", metavar="ID", help="lab id: lower-case words with dashes")
@@ -126,6 +137,8 @@ def cmd_lab(ns: argparse.Namespace) -> int:
         return lab_show(ns)
     if action == "check":
         return lab_check(ns)
+    if action == "get":
+        return lab_get(ns)
     if action == "new":
         return lab_new(ns)
     ns._lab_parser.print_help()
@@ -135,6 +148,7 @@ def cmd_lab(ns: argparse.Namespace) -> int:
 def lab_list(ns: argparse.Namespace) -> int:
     from .lab import list_labs, load_lab, repo_labs_dir
 
+    own = repo_labs_dir().resolve()
     rows = [("lab", "plant", "languages", "points", "title")]
     for p in list_labs(ns.labs):
         try:
@@ -142,7 +156,7 @@ def lab_list(ns: argparse.Namespace) -> int:
         except Exception as e:  # noqa: BLE001 - show the broken lab, go on
             rows.append((p.name, "?", "?", "?", f"(broken: {e})"))
             continue
-        where = "" if p.parent == repo_labs_dir() else f"  [{p}]"
+        where = "" if p.parent.resolve() == own else f"  [{p}]"
         rows.append((lab.id, lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
                      lab.title + where))
     widths = [max(len(r[i]) for r in rows) for i in range(4)]
@@ -211,9 +225,15 @@ def lab_show(ns: argparse.Namespace) -> int:
 
 
 def lab_check(ns: argparse.Namespace) -> int:
-    from plclab.viz.from_trace import run_exports
+    """A student's run of the visible scenarios, in a child process with the lab's time and
+    memory limits, exactly as ``plclab grade`` runs it; exports run the program again here."""
+    import shutil
+    import tempfile
 
     from .engine import grade_sources, read_submission
+    from .feedback import render_feedback
+    from .grader import Grader
+    from .gradescope import write_atomic
     from .lab import load_lab
 
     lab = load_lab(ns.lab, ns.labs)
@@ -223,35 +243,127 @@ def lab_check(ns: argparse.Namespace) -> int:
             raise grade_error("PLC5021", f"{f}: no such file or folder")
         got, _ = read_submission(f)
         sources += got
-    out = Path(ns.out or f"{lab.id}-feedback")
+    lab.student_watch = [w.strip() for item in ns.watch for w in item.split(",") if w.strip()]
     scen = [ns.scenario] if ns.scenario else None
     if scen and not lab.scenario(ns.scenario).visible and not ns.hidden:
         raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
                           "work is graded")
-    res = grade_sources(lab, sources, student="", scenarios=scen, include_hidden=ns.hidden,
-                        media_dir=None if ns.no_media else out, keep_traces=True)
-    from .feedback import render_feedback
-    from .gradescope import write_atomic
-
+    names = scen or [s.name for s in lab.scenarios if s.visible or ns.hidden]
+    for line in lint_lines(lab, sources):
+        print(line)
+    out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None
+    work = Path(tempfile.mkdtemp(prefix="plclab-check-"))
+    try:
+        grader = Grader(lab, work, jobs=1, media=out is not None, scenarios=names)
+        res = grader.grade_one(sources)
+        if out is not None:
+            for f in (work / "check").iterdir():
+                if f.suffix in (".png", ".rrd"):
+                    shutil.move(str(f), out / f.name)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    res = res.result
     text = render_feedback(res, instructor=ns.hidden)
-    if not ns.no_media:
-        write_atomic(out / "feedback.md", text)
+    if out is not None:
+        write_atomic(out / FEEDBACK_MARK, text)
     print(text)
     wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
-    if wants_export and res.traces:
-        name = ns.scenario or next(iter(res.traces))
-        if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file and score
-            from plclab.viz.from_trace import write_lab_rrd
+    if wants_export and res.status in ("timeout", "memory", "crash", "rejected"):
+        print(f"no export: the program did not finish within the lab's limits ({res.status})")
+    elif wants_export:
+        from plclab.viz.from_trace import run_exports
 
-            print(write_lab_rrd(lab, res, ns.rrd, ", ".join(Path(f).name for f in ns.files),
-                                ns))
-            ns.rrd = None
-        for line in run_exports(res.traces[name], ns):
-            print(line)
-    if not ns.no_media and any(t.diagram for t in res.tests):
-        print(f"feedback with diagrams: {out / 'feedback.md'}")
+        # within the limits above, so running it again here is bounded
+        again = grade_sources(lab, sources, scenarios=names, keep_traces=True)
+        if again.traces:
+            name = ns.scenario or next(iter(again.traces))
+            student_picture(lab, again, name, ns)
+            if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file, score
+                from plclab.viz.from_trace import write_lab_rrd
+
+                print(write_lab_rrd(lab, again, ns.rrd,
+                                    ", ".join(Path(f).name for f in ns.files), ns))
+                ns.rrd = None
+            for line in run_exports(again.traces[name], ns):
+                print(line)
+    if out is not None:
+        print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
+    elif any(not t.passed for t in res.tests) and not ns.no_media:
+        print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
     print(f"score: {res.score:g}/{res.max_score:g}")
     return 0
+
+
+def lab_get(ns: argparse.Namespace) -> int:
+    from .lab import get_lab_files
+
+    dest = Path(ns.dir) if ns.dir else Path(Path(str(ns.lab)).name)
+    files = get_lab_files(ns.lab, dest, ns.labs, force=ns.force)
+    print(f"{dest}: " + ", ".join(f.name for f in files))
+    starter = next((f for f in files if f.name.startswith("starter.")), None)
+    if starter is not None:
+        print(f"the task is in {dest / 'README.md'}; try: plclab lab check {ns.lab} {starter}")
+    return 0
+
+
+def student_picture(lab, res, scenario: str, ns: argparse.Namespace) -> None:
+    """Defaults of ``--png`` and the other exports in ``lab check``: the lab's diagram signals
+    and the student's ``--watch`` variables, over the window around the scenario's first
+    failure (or the lab's diagram window from the start)."""
+    from .feedback import failure_window
+
+    trace = res.traces[scenario]
+    if not getattr(ns, "signals", None):
+        names = [n for n in [*lab.diagram_signals, *lab.student_watch] if n in trace]
+        ns.signals = ",".join(names) or None
+    if not getattr(ns, "window", None):
+        fails = [t.t_fail for t in res.tests if t.scenario == scenario and not t.passed
+                 and t.t_fail is not None]
+        t0, t1 = failure_window(min(fails) if fails else None, lab.diagram_window, trace.t_end)
+        if not fails:
+            t0, t1 = 0.0, min(trace.t_end, lab.diagram_window)
+        ns.window = f"{t0:.3f}s..{t1:.3f}s"
+
+
+def lint_lines(lab, sources: list[tuple[str, str]]) -> list[str]:
+    """The beginner warnings (PLC0210-PLC0216, the lab's I/O table included) that ``lab
+    check`` prints before it runs the program; none when the program does not compile (the
+    feedback shows those errors)."""
+    from plclab.project import check_sources
+
+    _, diags = check_sources(sources, lab.dialect, lint=True, io_table=lab.io)
+    found = [str(d) for d in diags if d.code.startswith("PLC021")]
+    return [f"{len(found)} warning(s) about your program:", *found, ""] if found else []
+
+
+FEEDBACK_MARK = "feedback.md"
+"""The file that makes a folder one of ``lab check --out``'s, which a new run may replace."""
+
+
+def fresh_output_dir(out: Path) -> Path:
+    """An empty *out* for this run: a folder an earlier run wrote (it holds feedback.md) is
+    replaced, so no diagram of a criterion that now passes stays; any other folder with
+    files in it is refused (PLC5051), so --out never deletes someone's work."""
+    import shutil
+
+    if out.exists() and not out.is_dir():
+        raise grade_error("PLC5051", f"--out {out}: that is a file; give a folder")
+    if out.is_dir() and any(out.iterdir()):
+        if not (out / FEEDBACK_MARK).is_file():
+            raise grade_error("PLC5051", f"--out {out}: the folder holds other files; give a "
+                              "new or empty folder (a run replaces its folder)")
+        try:
+            shutil.rmtree(out)
+        except OSError as e:
+            raise grade_error("PLC5051", f"--out {out}: cannot replace it ({e.strerror or e})"
+                              ) from None
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / FEEDBACK_MARK).write_text("", encoding="utf-8")  # ours, even if this run stops
+    except OSError as e:
+        raise grade_error("PLC5051", f"--out {out}: cannot create it ({e.strerror or e})"
+                          ) from None
+    return out
 
 
 def lab_new(ns: argparse.Namespace) -> int:

@@ -38,7 +38,8 @@ def real_failure(t: Any) -> bool:
     return not t.passed and not t.detail.startswith(("not earned", "not run"))
 
 
-def _window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
+def failure_window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
+    """The window of width ``w`` a diagram shows around a failure at ``tf`` (None: the end)."""
     if tf is None:
         return max(0.0, t_end - w), t_end
     t0 = max(0.0, tf - 0.6 * w)
@@ -46,14 +47,36 @@ def _window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
     return max(0.0, min(t0, t1 - w)), t1
 
 
-def _names(trace: Any, lab: Any, crit: Any) -> list[str]:
+_NUM = r"(-?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)"
+_CMP = re.compile(r"([A-Za-z_%][\w.%]*)\s*(>=|<=|>|<)\s*" + _NUM)
+_CMP_REV = re.compile(_NUM + r"\s*(>=|<=|>|<)\s*([A-Za-z_%][\w.%]*)")
+
+
+def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
+    """The limits a criterion compares signals with (``LEVEL >= 1.75``, ``0.4 <= LEVEL``):
+    signal name -> [(value, label)], drawn as lines in its diagram."""
+    out: dict[str, list[tuple[float, str]]] = {}
+    texts = [v for v in crit.params.values() if isinstance(v, str)]
+    for text in texts:
+        found = [(m.group(1), float(m.group(3))) for m in _CMP.finditer(text)]
+        found += [(m.group(3), float(m.group(1))) for m in _CMP_REV.finditer(text)]
+        for name, value in found:
+            lst = out.setdefault(name, [])
+            if all(v != value for v, _ in lst):
+                lst.append((value, "limit"))
+    return out
+
+
+def diagram_names(trace: Any, lab: Any, crit: Any) -> list[str]:
+    """The signals of a failure diagram: the lab's, the criterion's, the student's --watch."""
     out: list[str] = []
-    for n in list(crit.relevant_signals()) + list(lab.diagram_signals):
+    for n in (list(lab.diagram_signals) + list(crit.relevant_signals())
+              + list(getattr(lab, "student_watch", []))):
         if n in trace and trace.resolve(n) not in out:
             out.append(trace.resolve(n))
     if not out:
         out = [r["plant_column"] for r in trace.io][:MAX_SIGNALS]
-    return out[:MAX_SIGNALS]
+    return out[:MAX_SIGNALS + len(getattr(lab, "student_watch", []))]
 
 
 def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Path, run: Any,
@@ -74,8 +97,8 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
         if t.t_fail is None:  # no single moment to blame: the whole scenario
             t0, t1 = 0.0, trace.t_end
         else:
-            t0, t1 = _window(t.t_fail, w, trace.t_end)
-        names = _names(trace, lab, crit)
+            t0, t1 = failure_window(t.t_fail, w, trace.t_end)
+        names = diagram_names(trace, lab, crit)
         key = (tuple(names), round(t0, 3), round(t1, 3))
         if key in drawn:  # same picture as another failed criterion
             t.diagram = drawn[key]
@@ -83,9 +106,10 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
         fname = f"{slug(sc.name)}--{slug(crit.name)}.png"
         markers = [(t.t_fail, f"{crit.name} fails")] if t.t_fail is not None else []
         markers += [m for m in faults if t0 <= m[0] <= t1]
+        limits = {trace.resolve(k): v for k, v in thresholds_of(crit).items() if k in trace}
         try:
             timing_png(trace, names, media_dir / fname, t0, t1, markers,
-                       f"{sc.name}: {crit.name}", labels)
+                       f"{sc.name}: {crit.name}", labels, limits)
         except Exception as e:  # noqa: BLE001 - a picture must never cost a grade
             run.notes.append(f"(no diagram for {crit.name}: {type(e).__name__}: {e})")
             continue
@@ -97,16 +121,22 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
 
 def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
                markers: list[tuple[float, str]], title: str,
-               labels: dict[str, str] | None = None) -> None:
+               labels: dict[str, str] | None = None,
+               thresholds: dict[str, list[tuple[float, str]]] | None = None) -> None:
     """A timing diagram of ``names`` over [t0, t1], written atomically. ``labels`` renames
     PLC addresses for the reader (``%QX0.1`` -> ``REJECT (%QX0.1)``)."""
     from plclab.viz.from_trace import series
     from plclab.viz.timing import timing_diagram
 
     ss = series(trace, names, t0, t1)
+    limits = {}
     for s in ss:
-        s.name = (labels or {}).get(s.name.upper(), s.name)
-    fig = timing_diagram(ss, None, t0, t1, title=title, markers=markers, width=9.0)
+        shown = (labels or {}).get(s.name.upper(), s.name)
+        if s.name in (thresholds or {}):
+            limits[shown] = thresholds[s.name]
+        s.name = shown
+    fig = timing_diagram(ss, None, t0, t1, title=title, markers=markers, width=9.0,
+                         thresholds=limits, fixed_layout=True)
     tmp = _atomic_tmp(path)
     try:
         fig.savefig(str(tmp), dpi=72)
@@ -144,7 +174,7 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
     crits = {c.name: c for c in lab.criteria_for(sc.name)}
     names: list[str] = []
     for t in failed:
-        for n in _names(trace, lab, crits[t.criterion]):
+        for n in diagram_names(trace, lab, crits[t.criterion]):
             if n not in names:
                 names.append(n)
     for r in trace.io:

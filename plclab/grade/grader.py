@@ -233,12 +233,15 @@ class Grader:
         Draw diagrams and recordings of failures.
     progress : callable, optional
         ``progress(done, total, student, outcome)`` after each submission.
+    scenarios : names, optional
+        Only these scenarios (``plclab lab check``: the visible ones); default: all.
     """
 
     def __init__(self, lab: Lab, out: str | os.PathLike, jobs: int = 2,
                  timeout: float | None = None, memory_mb: int | None = None,
                  force: bool = False, media: bool = True,
-                 progress: Callable[[int, int, str, Outcome], None] | None = None) -> None:
+                 progress: Callable[[int, int, str, Outcome], None] | None = None,
+                 scenarios: list[str] | None = None) -> None:
         self.lab = lab
         self.out = Path(out)
         self.jobs = max(1, int(jobs))
@@ -247,6 +250,7 @@ class Grader:
         self.force = force
         self.media = media
         self.progress = progress
+        self.scenarios = None if scenarios is None else list(scenarios)
         self.selftest_crash = os.environ.get("PLCLAB_GRADE_SELFTEST_CRASH", "")
         self._payload: tuple[Any, dict[str, str]] | None = None
 
@@ -276,6 +280,14 @@ class Grader:
         results = [outcomes[s.student] for s in subs]
         self._write_gradebook([o.result for o in results])
         return results
+
+    def grade_one(self, sources: list[tuple[str, str]], student: str = "") -> Outcome:
+        """Grade sources already read (``plclab lab check``) in a child process with the same
+        limits as :meth:`grade_folder`; the files go to ``out/check/``."""
+        sub = Submission(student, [], sources=list(sources), hash=source_hash(sources),
+                         dirname="check", files=[n for _, n in sources])
+        self.out.mkdir(parents=True, exist_ok=True)
+        return self._run(deque([sub]), 1, 0)[0]
 
     def _previous(self, s: Submission) -> Result | None:
         """The result of an earlier run, if the submission, lab and grader are unchanged and
@@ -367,6 +379,7 @@ class Grader:
         lab, checks = self._lab_payload()
         job = {"lab": lab, "checks": checks, "sources": sub.sources, "student": sub.student,
                "workdir": str(workdir), "media": self.media, "memory_mb": self.memory_mb,
+               "scenarios": self.scenarios,
                "cpu_seconds": self.timeout + CPU_MARGIN, "grader_pid": os.getpid(),
                "selftest_crash": bool(self.selftest_crash) and self.selftest_crash == sub.student}
         sub.sources = []
@@ -451,7 +464,8 @@ class Grader:
         scenarios and tests in the lab's order."""
         lab = self.lab
         got = {s.name for s in res.scenarios}
-        rest = [s for s in lab.scenarios if s.name not in got]
+        rest = [s for s in lab.scenarios if s.name not in got
+                and (self.scenarios is None or s.name in self.scenarios)]
         if rest:
             why = res.status if res.status != "ok" else "crash"
             filler = failed_result(lab, why, "", rest)

@@ -62,8 +62,11 @@ _ID = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 
 
 def repo_labs_dir() -> Path:
-    """The repository's ``labs/`` folder (next to the ``plclab`` package)."""
-    return Path(__file__).resolve().parents[2] / "labs"
+    """The labs that come with plclab: the installed student copy (``plclab/courseware/labs``)
+    or, in a source checkout, the repository's ``labs/`` folder."""
+    from .courseware import courseware_root
+
+    return courseware_root() / "labs"
 
 
 # ---------------------------------------------------------------------------- locations
@@ -275,6 +278,7 @@ class Lab:
     hash: str = ""
     mistakes: list[MistakeSpec] = field(default_factory=list)
     dialect: str | None = None  # of submissions without a {dialect} pragma (ADR 0017)
+    student_watch: list[str] = field(default_factory=list)  # lab check --watch: also drawn
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -304,6 +308,7 @@ class Lab:
                 out.append(r.address)
         if scenario is not None:
             out += [w for w in scenario.watch if w not in out]
+        out += [w for w in self.student_watch if w not in out]
         return out
 
     def io_table_markdown(self) -> str:
@@ -360,7 +365,7 @@ class Lab:
 
 
 def lab_dirs(extra: Iterable[str | os.PathLike] = ()) -> list[Path]:
-    """Where labs are looked up: ``extra`` (``--labs``), ``PLCLAB_LABS``, the repo's labs/."""
+    """Where labs are looked up: ``extra`` (``--labs``), ``PLCLAB_LABS``, plclab's own labs."""
     out = [Path(p) for p in extra if p]
     env = os.environ.get("PLCLAB_LABS", "")
     out += [Path(p) for p in env.split(os.pathsep) if p]
@@ -387,17 +392,44 @@ def find_lab(lab: str | os.PathLike, extra: Iterable[str | os.PathLike] = ()) ->
         return p.parent
     if p.is_dir() and (p / "lab.toml").is_file():
         return p
+    for d in lab_dirs(extra):  # an id first: `plclab lab get` made a folder of that name
+        cand = d / str(lab)
+        if p.name == str(lab) and (cand / "lab.toml").is_file():
+            return cand
     if p.is_dir():
         raise grade_error("PLC5001", f"{p} has no lab.toml; a lab folder holds lab.toml, "
                           "README.md, a starter, solution/ and mistakes/")
-    for d in lab_dirs(extra):
-        cand = d / str(lab)
-        if (cand / "lab.toml").is_file():
-            return cand
     known = [x.name for x in list_labs(extra)]
     raise grade_error("PLC5020", f"no lab '{lab}'.{did_you_mean(str(lab), known)} Labs: "
                       f"{', '.join(known) or '(none)'}; give a lab id, a lab folder, or "
                       "--labs DIR")
+
+
+def get_lab_files(lab: str | os.PathLike, dest: Path, extra: Iterable[str | os.PathLike] = (),
+                  force: bool = False) -> list[Path]:
+    """Copy a lab's student files (``README.md``, ``starter.*``, its notebook) into *dest*;
+    never a solution, a mistake or a hidden scenario. PLC5050 when a file is there already
+    (unless *force*)."""
+    import shutil
+
+    from .courseware import courseware_root
+
+    folder = find_lab(lab, extra)
+    files = [folder / "README.md"] if (folder / "README.md").is_file() else []
+    files += sorted(p for p in folder.glob("starter.*") if p.suffix.lower() in SOURCE_EXTS)
+    for nb in (folder.parent.parent / "notebooks", courseware_root() / "notebooks"):
+        if (nb / f"{folder.name}.ipynb").is_file():
+            files.append(nb / f"{folder.name}.ipynb")
+            break
+    there = [dest / f.name for f in files if (dest / f.name).exists()]
+    if there and not force:
+        raise grade_error("PLC5050", f"{there[0]} exists already: give another folder "
+                          "(plclab lab get LAB DIR) or --force to overwrite it")
+    try:
+        dest.mkdir(parents=True, exist_ok=True)
+        return [Path(shutil.copyfile(f, dest / f.name)) for f in files]
+    except OSError as e:
+        raise grade_error("PLC5050", f"cannot write into {dest}: {e.strerror or e}") from None
 
 
 # ---------------------------------------------------------------------------- loading

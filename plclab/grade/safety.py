@@ -205,8 +205,8 @@ def walk_submission(path: str | os.PathLike, exts: dict[str, str]) -> tuple[list
 
 def read_source(f: SourceFile, budget: int = MAX_FILE_BYTES) -> str:
     """The text of a source file: opened without following a link, its size checked before
-    reading, at most ``min(cap, budget) + 1`` bytes read. UTF-8 (a BOM is fine), UTF-16 with a
-    BOM, else Latin-1."""
+    reading, at most ``min(cap, budget) + 1`` bytes read. UTF-8 (a BOM is fine) or UTF-16 with
+    a BOM; anything else is PLC5052, as in every command."""
     cap = min(MAX_FILE_BYTES, budget)
     flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
     try:
@@ -232,20 +232,15 @@ def read_source(f: SourceFile, budget: int = MAX_FILE_BYTES) -> str:
             raise _size_error(f.name, got, cap)
     finally:
         os.close(fd)
-    return decode_source(b"".join(chunks))
+    return decode_source(b"".join(chunks), f.name)
 
 
-def decode_source(raw: bytes) -> str:
-    """Bytes of a source file as text (UTF-8, UTF-16 with a BOM, else Latin-1)."""
-    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
-        try:
-            return raw.decode("utf-16")
-        except UnicodeDecodeError:
-            pass
-    try:
-        return raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        return raw.decode("latin-1")
+def decode_source(raw: bytes, name: str = "<source>") -> str:
+    """Bytes of a source file as text, as every command reads them
+    (:func:`plclab.project.decode_source`: UTF-8, UTF-16 with a BOM, else PLC5052)."""
+    from plclab.project import decode_source as decode
+
+    return decode(raw, name)
 
 
 def read_sources(path: str | os.PathLike, exts: dict[str, str]

@@ -237,7 +237,7 @@ def child_main(job: dict[str, Any], conn: Any) -> None:
 
         lab = lab_from_payload(job["lab"], job.get("checks", {}))
         res = grade_sources(lab, [tuple(s) for s in job["sources"]], student=job["student"],
-                            media_dir=media, rrd=bool(job.get("media")),
+                            scenarios=job.get("scenarios"), media_dir=media, rrd=bool(job.get("media")),
                             on_scenario=out.scenario,
                             on_compiled=lambda diags: out.send("compiled", diags),
                             guard=lambda: memory_limit(job.get("memory_mb")))

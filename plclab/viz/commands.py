@@ -19,8 +19,11 @@ from ..errors import PlcError
 @arg("--report", action="store_true", help="print the relay chatter / switching report")
 def cmd_view(ns: argparse.Namespace) -> int:
     from ..trace import load
+    from .display import require_display
     from .from_trace import run_exports
 
+    if not any(getattr(ns, k) for k in ("rrd", "vcd", "wavedrom", "png", "report")):
+        require_display(f"'{ns.trace}'")  # before anything slow: no hanging, exit 1
     trace = load(ns.trace)
     print(trace.summary(finals=False) if hasattr(trace, "summary") else repr(trace))
     if ns.report:

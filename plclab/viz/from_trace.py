@@ -366,6 +366,10 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
     """Write every requested file; returns lines saying what was written where."""
     t0, t1 = parse_window(window)
     done = []
+    if spawn:
+        from .display import require_display
+
+        require_display()
     ss = series(trace, signals, t0, t1) if (vcd or wavedrom or png or csv) else []
     if rrd or spawn:
         to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan)

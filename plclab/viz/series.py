@@ -45,6 +45,8 @@ class Series:
             return self
         lo = float("-inf") if t0 is None else t0
         hi = float("inf") if t1 is None else t1
+        if len(self.times) and self.times[0] >= lo and self.times[-1] <= hi:
+            return self  # already inside (a windowed series drawn again): no copy
         ts, vs = [], []
         before = None
         for t, v in zip(self.times, self.values, strict=True):

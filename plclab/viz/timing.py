@@ -7,7 +7,7 @@ can be searched and tested.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from .series import Series
@@ -26,14 +26,21 @@ def _mpl():
 def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
                    t0: float | None = None, t1: float | None = None, title: str = "",
                    markers: Sequence[tuple[float, str]] = (), width: float = 10.0,
-                   dpi: int = 110):
+                   dpi: int = 110,
+                   thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
+                   fixed_layout: bool = False):
     """Draw ``series`` stacked over a shared time axis; save to ``path`` (.png/.svg) if given.
 
-    ``markers`` are (time, label) pairs drawn as vertical lines (e.g. "chatter", "fault").
-    Returns the matplotlib figure.
+    ``markers`` are (time, label) pairs drawn as vertical lines (e.g. "chatter", "fault");
+    their labels are merged and stacked so that they never overlap. ``thresholds`` maps a
+    series name to (value, label) pairs drawn as dotted horizontal lines (a limit, a switch
+    level). Integer series with many values (ADC counts) are drawn as lines, like REALs.
+    ``fixed_layout`` places the rows with margins computed from the label lengths instead of
+    matplotlib's ``tight_layout`` (which measures every tick and costs about 0.1 s): for the
+    feedback diagrams drawn for every failure. Returns the matplotlib figure.
     """
     plt = _mpl()
-    series = [s.window(t0, t1) for s in series]
+    series = [_as_analog(s.window(t0, t1)) for s in series]
     rows = len(series)
     heights = [0.6 if s.kind in ("bool",) else 0.7 if s.kind != "real" else 1.6 for s in series]
     fig, axes = plt.subplots(rows, 1, sharex=True, figsize=(width, 0.5 + sum(heights)),
@@ -42,22 +49,80 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     hi = t1 if t1 is not None else max((s.times[-1] for s in series if len(s.times)), default=1)
     for ax, s in zip(axes[:, 0], series, strict=True):
         _draw(ax, s, lo, hi)
+        for value, label in (thresholds or {}).get(s.name, ()):
+            ax.axhline(value, color="tab:orange", lw=0.9, ls=":")
+            ax.annotate(f"{label} {value:g}", (1.0, value), xycoords=("axes fraction", "data"),
+                        xytext=(2, 0), textcoords="offset points", fontsize=7,
+                        color="tab:orange", va="center", annotation_clip=False)
         for t, _label in markers:
             if lo <= t <= hi:
                 ax.axvline(t, color="tab:red", lw=0.8, ls="--")
         ax.set_xlim(lo, hi)
-    for t, label in markers:
-        if lo <= t <= hi:
-            axes[0, 0].annotate(label, (t, 1.02), xycoords=("data", "axes fraction"),
-                                fontsize=7, color="tab:red", rotation=0)
+    for t, label, level in marker_labels(markers, lo, hi):
+        axes[0, 0].annotate(label, (t, 1.02 + 0.28 * level), xycoords=("data", "axes fraction"),
+                            fontsize=7, color="tab:red", rotation=0, annotation_clip=False)
     axes[-1, 0].set_xlabel("time [s]")
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
+    if fixed_layout:
+        h = 0.5 + sum(heights)
+        label = max((len(s.name) + (len(s.unit) + 3 if s.unit else 0) for s in series),
+                    default=4)
+        levels = max((lv for _, _, lv in marker_labels(markers, lo, hi)), default=-1) + 1
+        top_in = 0.35 + (0.2 if title else 0) + 0.16 * levels
+        right_in = 0.75 if thresholds else 0.2
+        fig.subplots_adjust(left=min(0.45, (0.1 + 0.065 * label + 0.35) / width),
+                            right=1 - right_in / width, bottom=0.45 / h,
+                            top=max(0.5, 1 - top_in / h), hspace=0.35)
+    else:
+        fig.tight_layout()
     if path is not None:
         fig.savefig(str(path), dpi=dpi)
         plt.close(fig)
     return fig
+
+
+ANALOG_VALUES = 12
+"""An integer series with more distinct values than this is analog (ADC counts): a line."""
+
+
+def _as_analog(s: Series) -> Series:
+    """Integers with many values as a line; a digital series reduced to its changes (the
+    same picture, a fraction of the points to draw)."""
+    if s.kind == "int" and len(set(s.values)) > ANALOG_VALUES:
+        return Series(s.name, s.times, s.values, "real", s.unit, s.labels)
+    if s.kind != "real" and len(s.times) > 2:
+        ch = s.changes()
+        return Series(s.name, [t for t, _ in ch], [v for _, v in ch], s.kind, s.unit,
+                      s.labels)
+    return s
+
+
+def marker_labels(markers: Sequence[tuple[float, str]], lo: float, hi: float,
+                  chars_per_span: float = 110.0) -> list[tuple[float, str, int]]:
+    """The labels of ``markers`` in [lo, hi] as (time, text, row): equal labels close together
+    are merged ("chatter x3"), and a label that would overlap the one before it on the same
+    row goes one row up. A label takes about ``len(text) / chars_per_span`` of the width."""
+    span = max(hi - lo, 1e-9)
+    inside = sorted((t, lab) for t, lab in markers if lo <= t <= hi)
+    merged: list[list] = []  # [time, label, count]
+    for t, lab in inside:
+        same = next((m for m in reversed(merged) if m[1] == lab), None)
+        if same is not None and t - same[0] < 0.05 * span:
+            same[2] += 1
+            continue
+        merged.append([t, lab, 1])
+    out: list[tuple[float, str, int]] = []
+    row_end: list[float] = []  # per row: where its last label ends
+    for t, lab, n in merged:
+        text = lab if n == 1 else f"{lab} x{n}"
+        width = (len(text) + 1) / chars_per_span * span
+        row = next((r for r, end in enumerate(row_end) if t >= end), len(row_end))
+        if row == len(row_end):
+            row_end.append(0.0)
+        row_end[row] = t + width
+        out.append((t, text, row))
+    return out
 
 
 def _draw(ax, s: Series, lo: float, hi: float) -> None:
