@@ -109,6 +109,8 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
                     "diagrams and recordings of the failures into DIR (replaced on each run; "
                     "default: nothing is written)")
     sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
+    sp.add_argument("--hint", type=int, default=1, metavar="N", help="hints of the failures: "
+                    "0 none, 1 the concept (default), 2 also the literal fix")
     sp.add_argument("--watch", action="append", default=[], metavar="NAME",
                     help="also record and draw this variable of your program, e.g. "
                     "Thermostat.temp (repeat or comma-separate)")
@@ -236,6 +238,9 @@ def lab_check(ns: argparse.Namespace) -> int:
     from .gradescope import write_atomic
     from .lab import load_lab
 
+    if ns.hint not in (0, 1, 2):
+        raise grade_error("PLC5054", f"--hint {ns.hint}: write --hint 0 (no hints), 1 (the "
+                          "concept, the default) or 2 (also the literal fix)")
     lab = load_lab(ns.lab, ns.labs)
     sources: list[tuple[str, str]] = []
     for f in ns.files:
@@ -263,7 +268,8 @@ def lab_check(ns: argparse.Namespace) -> int:
     finally:
         shutil.rmtree(work, ignore_errors=True)
     res = res.result
-    text = render_feedback(res, instructor=ns.hidden)
+    text = render_feedback(res, instructor=ns.hidden, hint_level=ns.hint,
+                           fixes={c.name: c.hint_fix for c in lab.criteria if c.hint_fix})
     if out is not None:
         write_atomic(out / FEEDBACK_MARK, text)
     print(text)
