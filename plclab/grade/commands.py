@@ -84,6 +84,23 @@ def cmd_grade(ns: argparse.Namespace) -> int:
     return 0
 
 
+@command("grade-bundle")
+@arg("lab", metavar="LAB", help="lab id (see: plclab lab list) or lab folder")
+@arg("-o", "--output", default=None, metavar="ZIP", help="the zip to write (default: "
+     "LAB-autograder.zip)")
+@arg("--wheel", default=None, metavar="FILE", help="a plclab wheel to ship (default: built "
+     "from this checkout with pip wheel . --no-deps)")
+@arg("--labs", action="append", default=[], metavar="DIR", help="also look for labs in DIR")
+def cmd_grade_bundle(ns: argparse.Namespace) -> int:
+    from .bundle import build_bundle
+
+    out = build_bundle(ns.lab, ns.output or f"{Path(str(ns.lab)).name}-autograder.zip",
+                       ns.labs, ns.wheel)
+    print(f"{out}: Gradescope autograder (setup.sh, run_autograder, the plclab wheel, the lab "
+          "with its hidden scenarios): upload it to Gradescope, never give it to students")
+    return 0
+
+
 # ---------------------------------------------------------------------------- plclab lab
 
 
