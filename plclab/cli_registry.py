@@ -55,6 +55,9 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                            "runs", "plclab.viz.commands"),
     "grade": CommandInfo("grade a folder of submissions against a lab (Gradescope JSON, feedback, "
                          "CSV)", "plclab.grade.commands"),
+    "grade-bundle": CommandInfo("build a Gradescope autograder zip of a lab (setup.sh, "
+                                "run_autograder, hidden scenarios: instructors only)",
+                                "plclab.grade.commands"),
     "lab": CommandInfo("labs: list, show LAB, get LAB [DIR], check LAB FILE..., new ID",
                        "plclab.grade.commands"),
     "serve": CommandInfo("run programs in real time behind a Modbus TCP server",

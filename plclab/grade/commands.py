@@ -84,6 +84,23 @@ def cmd_grade(ns: argparse.Namespace) -> int:
     return 0
 
 
+@command("grade-bundle")
+@arg("lab", metavar="LAB", help="lab id (see: plclab lab list) or lab folder")
+@arg("-o", "--output", default=None, metavar="ZIP", help="the zip to write (default: "
+     "LAB-autograder.zip)")
+@arg("--wheel", default=None, metavar="FILE", help="a plclab wheel to ship (default: built "
+     "from this checkout with pip wheel . --no-deps)")
+@arg("--labs", action="append", default=[], metavar="DIR", help="also look for labs in DIR")
+def cmd_grade_bundle(ns: argparse.Namespace) -> int:
+    from .bundle import build_bundle
+
+    out = build_bundle(ns.lab, ns.output or f"{Path(str(ns.lab)).name}-autograder.zip",
+                       ns.labs, ns.wheel)
+    print(f"{out}: Gradescope autograder (setup.sh, run_autograder, the plclab wheel, the lab "
+          "with its hidden scenarios): upload it to Gradescope, never give it to students")
+    return 0
+
+
 # ---------------------------------------------------------------------------- plclab lab
 
 
@@ -109,6 +126,8 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
                     "diagrams and recordings of the failures into DIR (replaced on each run; "
                     "default: nothing is written)")
     sp.add_argument("--no-media", action="store_true", help="no diagrams and recordings")
+    sp.add_argument("--hint", type=int, default=1, metavar="N", help="hints of the failures: "
+                    "0 none, 1 the concept (default), 2 also the literal fix")
     sp.add_argument("--watch", action="append", default=[], metavar="NAME",
                     help="also record and draw this variable of your program, e.g. "
                     "Thermostat.temp (repeat or comma-separate)")
@@ -236,6 +255,9 @@ def lab_check(ns: argparse.Namespace) -> int:
     from .gradescope import write_atomic
     from .lab import load_lab
 
+    if ns.hint not in (0, 1, 2):
+        raise grade_error("PLC5054", f"--hint {ns.hint}: write --hint 0 (no hints), 1 (the "
+                          "concept, the default) or 2 (also the literal fix)")
     lab = load_lab(ns.lab, ns.labs)
     sources: list[tuple[str, str]] = []
     for f in ns.files:
@@ -263,7 +285,8 @@ def lab_check(ns: argparse.Namespace) -> int:
     finally:
         shutil.rmtree(work, ignore_errors=True)
     res = res.result
-    text = render_feedback(res, instructor=ns.hidden)
+    text = render_feedback(res, instructor=ns.hidden, hint_level=ns.hint,
+                           fixes={c.name: c.hint_fix for c in lab.criteria if c.hint_fix})
     if out is not None:
         write_atomic(out / FEEDBACK_MARK, text)
     print(text)

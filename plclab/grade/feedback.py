@@ -209,10 +209,14 @@ def _cell(text: str) -> str:
     return clean_text(text, 4000).replace("|", "\\|")
 
 
-def render_feedback(result: Any, instructor: bool = False) -> str:
+def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
+                    fixes: dict[str, str] | None = None) -> str:
     """The feedback of a :class:`~plclab.grade.engine.Result` as Markdown.
 
-    ``instructor=True`` shows the hidden scenarios in full too.
+    ``instructor=True`` shows the hidden scenarios in full too. Hints come in tiers
+    (``lab check --hint N``): 0 none, 1 the concept (each criterion's ``hint``, the default and
+    all the grader shows), 2 also the literal fix (``hint_fix``, from *fixes*: criterion name
+    -> text).
     """
     lines: list[str] = []
     who = f" — {md_text(result.student)}" if result.student else ""
@@ -275,8 +279,10 @@ def render_feedback(result: Any, instructor: bool = False) -> str:
                 continue
             lines += ["", f"### FAIL: {t.criterion}", "", t.message + "."
                       if not t.message.endswith(".") else t.message]
-            if t.hint:
+            if t.hint and hint_level >= 1:
                 lines += ["", f"Hint: {t.hint}"]
+            if hint_level >= 2 and (fixes or {}).get(t.criterion):
+                lines += ["", f"The fix: {(fixes or {})[t.criterion]}"]
             if t.diagram:
                 at = f" around t = {t.t_fail:.2f} s" if t.t_fail is not None else ""
                 lines += ["", f"![timing diagram of {t.criterion}{at}]({t.diagram})"]

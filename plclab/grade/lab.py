@@ -44,7 +44,7 @@ TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", 
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
-                  "message", "hint", "signals", "window", "description", "requires",
+                  "message", "hint", "hint_fix", "signals", "window", "description", "requires",
                   "critical")
 MISTAKE_KEYS = ("file", "max_score", "violates", "description")
 IO_KEYS = ("name", "address", "type", "unit", "description")
@@ -179,6 +179,7 @@ class CriterionSpec:
     python: str = ""
     requires: list[str] = field(default_factory=list)
     critical: bool = False  # failing it voids every point of its scenario (safety)
+    hint_fix: str = ""  # tier 2 of the hint: the literal fix (lab check --hint 2 only)
 
     def evaluate(self, trace: Any) -> Verdict:
         """Run the check on a trace; a check that cannot run is a failed verdict."""
@@ -886,6 +887,12 @@ class _Builder:
                                  self.string(c, "message", what, "criterion", i),
                                  self.string(c, "hint", what, "criterion", i), sigs, win,
                                  self.string(c, "description", what, "criterion", i))
+            spec.hint_fix = self.string(c, "hint_fix", what, "criterion", i)
+            if spec.hint_fix and not spec.hint:
+                raise self.err("PLC5055", f"{what}: hint_fix (the literal fix, tier 2) needs "
+                               "hint (the concept, tier 1) too, e.g. hint = \"a start must "
+                               "survive its release: keep the motor on with its own output\"",
+                               "criterion", i, "hint_fix")
             if chk == "python":
                 spec.python = py or ""
                 if not py:
