@@ -5,7 +5,7 @@ this checkout, so plclab itself needs no package index), ``run_autograder`` (gra
 ``/autograder/submission`` into ``/autograder/results/results.json`` with
 ``python -m plclab.grade.autograder``), the wheel in ``wheels/`` and the whole lab in
 ``labs/LAB/`` — hidden scenarios included, so the bundle is for instructors only. Gradescope
-unpacks the zip into ``/autograder/source``. See docs/adr/0024-gradescope-bundle.md.
+unpacks the zip into ``/autograder/source``. See docs/adr/0020-gradescope-bundle.md.
 """
 
 from __future__ import annotations
