@@ -146,6 +146,26 @@ _add(
           ("CONCAT_DATE_TOD", ("DATE", "TOD"), "DT", "date+tod"))),
 )
 
+# BCD conversions, IEC 61131-3 ed.3 Table 22 (items 1-2: ``WORD_BCD_TO_UINT``,
+# ``UINT_TO_BCD_WORD``) and the ed.2 / CODESYS names ``BCD_TO_INT``, ``INT_TO_BCD`` (the BCD
+# width follows the integer's: SINT/USINT BYTE, INT/UINT WORD, ...). Invalid digits: see the
+# helpers ``_bcd_to_int`` and ``_int_to_bcd`` (the target's maximum; all ones).
+_WIDTH = {8: "BYTE", 16: "WORD", 32: "DWORD", 64: "LWORD"}
+_INTS = ("SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT")
+_add(
+    *(_B(f"BCD_TO_{n}", ("IN",), "signature", "bcd", natives=("_bcd_to_int",), args=("BITS",),
+         needs="a bit string (BYTE, WORD, DWORD, LWORD) holding BCD digits", result=n)
+      for n in _INTS),
+    *(_B(f"{n}_TO_BCD", ("IN",), "signature", "bcd", natives=("_int_to_bcd",), args=("INT",),
+         needs="an integer", result=_WIDTH[T.ELEMENTARY[n].bits]) for n in _INTS),
+    *(_B(f"{w}_BCD_TO_{n}", ("IN",), "signature", "bcd", natives=("_bcd_to_int",),
+         args=("BITS",), needs="a bit string holding BCD digits", result=n)
+      for w, n in (("BYTE", "USINT"), ("WORD", "UINT"), ("DWORD", "UDINT"), ("LWORD", "ULINT"))),
+    *(_B(f"{n}_TO_BCD_{w}", ("IN",), "signature", "bcd", natives=("_int_to_bcd",),
+         args=("INT",), needs="an integer", result=w)
+      for w, n in (("BYTE", "USINT"), ("WORD", "UINT"), ("DWORD", "UDINT"), ("LWORD", "ULINT"))),
+)
+
 _STD, _CTRL = "stdlib.st", "ctrllib.st"
 BLOCKS: dict[str, Block] = {b.name: b for b in (
     # IEC 61131-3 2.5.2.3: bistables, edge detection, counters, timers (TONR: plclab's own)

@@ -450,6 +450,28 @@ def _str_to_real(s: str) -> float:
     return 0.0 if v is None else float(v)
 
 
+def _bcd_to_int(x: int, hi: int) -> int:
+    """BCD_TO_*: the decimal value of the 4-bit digits of ``x``; a digit above 9 or a value above
+    ``hi`` (the target's maximum) gives ``hi``, as PLCnext Engineer documents."""
+    value, scale = 0, 1
+    while x:
+        digit = x & 15
+        if digit > 9:
+            return hi
+        value += digit * scale
+        x >>= 4
+        scale *= 10
+    return value if value <= hi else hi
+
+
+def _int_to_bcd(x: int, bits: int) -> int:
+    """*_TO_BCD: ``x`` as 4-bit decimal digits in ``bits`` bits; a negative value or one with
+    more digits than fit gives all ones (16#FF for a BYTE), as CODESYS Util and PLCnext do."""
+    if x < 0 or len(str(x)) > bits // 4:
+        return (1 << bits) - 1
+    return int(str(x), 16)
+
+
 def _str_to_bool(s: str) -> bool:
     return s.strip().upper() in ("TRUE", "1")
 
