@@ -205,7 +205,14 @@ def _string_call(m: Emission) -> str:
     return f"{m.native}({', '.join(codes)})"
 
 
+def _bcd(m: Emission) -> str:  # BCD_TO_* (limit: the target's maximum), *_TO_BCD (its width)
+    limit = m.t.hi if m.spec.name.startswith(("BCD_", "BYTE_", "WORD_", "DWORD_", "LWORD_")) \
+        else m.t.bits
+    return f"{m.native}({m.codes[0]}, {limit})"
+
+
 EMITTERS: dict[str, Callable[[Emission], str]] = {
+    "bcd": _bcd,
     "math": _math,
     "abs": lambda m: f"abs({m.codes[0]})",
     "neg": lambda m: f"(-{m.codes[0]})",

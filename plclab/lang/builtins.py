@@ -146,24 +146,45 @@ _add(
           ("CONCAT_DATE_TOD", ("DATE", "TOD"), "DT", "date+tod"))),
 )
 
+# BCD conversions, IEC 61131-3 ed.3 Table 22 (items 1-2: ``WORD_BCD_TO_UINT``,
+# ``UINT_TO_BCD_WORD``) and the ed.2 / CODESYS names ``BCD_TO_INT``, ``INT_TO_BCD`` (the BCD
+# width follows the integer's: SINT/USINT BYTE, INT/UINT WORD, ...). Invalid digits: see the
+# helpers ``_bcd_to_int`` and ``_int_to_bcd`` (the target's maximum; all ones).
+_WIDTH = {8: "BYTE", 16: "WORD", 32: "DWORD", 64: "LWORD"}
+_INTS = ("SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT")
+_add(
+    *(_B(f"BCD_TO_{n}", ("IN",), "signature", "bcd", natives=("_bcd_to_int",), args=("BITS",),
+         needs="a bit string (BYTE, WORD, DWORD, LWORD) holding BCD digits", result=n)
+      for n in _INTS),
+    *(_B(f"{n}_TO_BCD", ("IN",), "signature", "bcd", natives=("_int_to_bcd",), args=("INT",),
+         needs="an integer", result=_WIDTH[T.ELEMENTARY[n].bits]) for n in _INTS),
+    *(_B(f"{w}_BCD_TO_{n}", ("IN",), "signature", "bcd", natives=("_bcd_to_int",),
+         args=("BITS",), needs="a bit string holding BCD digits", result=n)
+      for w, n in (("BYTE", "USINT"), ("WORD", "UINT"), ("DWORD", "UDINT"), ("LWORD", "ULINT"))),
+    *(_B(f"{n}_TO_BCD_{w}", ("IN",), "signature", "bcd", natives=("_int_to_bcd",),
+         args=("INT",), needs="an integer", result=w)
+      for w, n in (("BYTE", "USINT"), ("WORD", "UINT"), ("DWORD", "UDINT"), ("LWORD", "ULINT"))),
+)
+
 _STD, _CTRL = "stdlib.st", "ctrllib.st"
 BLOCKS: dict[str, Block] = {b.name: b for b in (
-    # IEC 61131-3 2.5.2.3: bistables, edge detection, counters, timers (TONR: plclab's own)
-    Block("SR", _STD, ("S1", "Q1"), ("S1",)),
-    Block("RS", _STD, ("S", "Q1"), ("R1",)),
+    # IEC 61131-3 2.5.2.3: bistables, edge detection, counters, timers (TONR: plclab's own);
+    # il_inputs: the FB input operators of IEC 61131-3 ed.2 Table 53 (S, R, LD also name IL ops)
+    Block("SR", _STD, ("S1", "Q1"), ("S1", "R")),
+    Block("RS", _STD, ("S", "Q1"), ("S", "R1")),
     Block("R_TRIG", _STD, ("CLK", "Q"), ("CLK",)),
     Block("F_TRIG", _STD, ("CLK", "Q"), ("CLK",)),
-    Block("CTU", _STD, ("CU", "Q"), ("CU", "PV")),
-    Block("CTD", _STD, ("CD", "Q"), ("CD", "PV")),
-    Block("CTUD", _STD, ("CU", "QU"), ("CU", "CD", "PV")),
+    Block("CTU", _STD, ("CU", "Q"), ("CU", "R", "PV")),
+    Block("CTD", _STD, ("CD", "Q"), ("CD", "LD", "PV")),
+    Block("CTUD", _STD, ("CU", "QU"), ("CU", "CD", "R", "LD", "PV")),
     Block("TP", _STD, ("IN", "Q"), ("IN", "PT")),
     Block("TON", _STD, ("IN", "Q"), ("IN", "PT")),
     Block("TOF", _STD, ("IN", "Q"), ("IN", "PT")),
     Block("TONR", _STD, ("IN", "Q"), ("IN", "PT")),
     # the typed counters of IEC 61131-3 ed.3 Table 45 (CV and PV of the named type)
     *(Block(f"{base}_{t}", _STD, power, ops) for base, power, ops in (
-        ("CTU", ("CU", "Q"), ("CU", "PV")), ("CTD", ("CD", "Q"), ("CD", "PV")),
-        ("CTUD", ("CU", "QU"), ("CU", "CD", "PV")))
+        ("CTU", ("CU", "Q"), ("CU", "R", "PV")), ("CTD", ("CD", "Q"), ("CD", "LD", "PV")),
+        ("CTUD", ("CU", "QU"), ("CU", "CD", "R", "LD", "PV")))
       for t in ("INT", "DINT", "LINT", "UDINT", "ULINT")),
     # control blocks (a ladder box takes its first BOOL input and output)
     *(Block(n, _CTRL) for n in ("PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE",

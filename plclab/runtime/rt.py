@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import re
 import struct
 
 from ..compile.real32 import f32 as _f32  # REAL rounding, shared with the compiler
@@ -411,22 +412,64 @@ def _to_string(x, kind: str) -> str:
     return str(x)
 
 
+# CODESYS reads the leading number of the string and ignores what follows ('34abc' -> 34,
+# 'abc34' -> 0; CODESYS online help "Conversion: STRING, WSTRING", Schneider Machine Expert and
+# ABB Automation Builder "STRING_TO" examples): spaces before, an optional sign, '_' separators,
+# a based integer 16#FF or a decimal/exponent number.
+_LEADING_BASED = re.compile(r"\s*([+-]?)(2|8|16)#([0-9A-Fa-f_]+)")
+_LEADING_NUMBER = re.compile(r"\s*[+-]?[0-9][0-9_]*(?:\.[0-9_]+)?(?:[eE][+-]?[0-9]+)?")
+
+
+def _leading_number(s: str) -> float | int | None:
+    """The number at the start of ``s`` (CODESYS STRING_TO_*), or None when there is none."""
+    m = _LEADING_BASED.match(s)
+    if m:
+        base, first = int(m.group(2)), ""
+        for c in m.group(3).replace("_", ""):
+            if int(c, 16) >= base:  # stop at the first digit the base does not have
+                break
+            first += c
+        if not first:
+            return None
+        value = int(first, base)
+        return -value if m.group(1) == "-" else value
+    m = _LEADING_NUMBER.match(s)
+    if not m:
+        return None
+    text = m.group(0).strip().replace("_", "")
+    return float(text) if ("." in text or "e" in text.lower()) else int(text)
+
+
 def _str_to_int(s: str) -> int:
-    t = s.strip().replace("_", "")
-    try:
-        if "#" in t:
-            base, _, digits = t.partition("#")
-            return int(digits, int(base))
-        return int(float(t)) if "." in t else int(t)
-    except ValueError:
-        return 0
+    v = _leading_number(s)
+    return 0 if v is None or (isinstance(v, float) and not math.isfinite(v)) else int(v)
 
 
 def _str_to_real(s: str) -> float:
-    try:
-        return float(s.strip().replace("_", ""))
-    except ValueError:
-        return 0.0
+    v = _leading_number(s)
+    return 0.0 if v is None else float(v)
+
+
+def _bcd_to_int(x: int, hi: int) -> int:
+    """BCD_TO_*: the decimal value of the 4-bit digits of ``x``; a digit above 9 or a value above
+    ``hi`` (the target's maximum) gives ``hi``, as PLCnext Engineer documents."""
+    value, scale = 0, 1
+    while x:
+        digit = x & 15
+        if digit > 9:
+            return hi
+        value += digit * scale
+        x >>= 4
+        scale *= 10
+    return value if value <= hi else hi
+
+
+def _int_to_bcd(x: int, bits: int) -> int:
+    """*_TO_BCD: ``x`` as 4-bit decimal digits in ``bits`` bits; a negative value or one with
+    more digits than fit gives all ones (16#FF for a BYTE), as CODESYS Util and PLCnext do."""
+    if x < 0 or len(str(x)) > bits // 4:
+        return (1 << bits) - 1
+    return int(str(x), 16)
 
 
 def _str_to_bool(s: str) -> bool:

@@ -69,8 +69,10 @@ def test_the_derived_lists():
     assert set(natives.names()) == set(BLOCKS)
     assert {p.name for p in (pou for _, pou in LIBRARY.values()) if p.native} == set(BLOCKS)
     assert POWER_PINS["TON"] == ("IN", "Q") and POWER_PINS["CTUD"] == ("CU", "QU")
-    # IEC 61131-3 Table 53: the IL input operators of the standard blocks
-    assert set(FB_INPUT_OPS) == {"S1", "R1", "CLK", "CU", "CD", "PV", "IN", "PT"}
+    # IEC 61131-3 Table 53: the IL input operators of the standard blocks (S, R and LD also name
+    # IL operators: SR is S1,R; RS S,R1; CTD CD,LD,PV; CTUD CU,CD,R,LD,PV)
+    assert set(FB_INPUT_OPS) == {"S1", "R1", "S", "R", "LD", "CLK", "CU", "CD", "PV", "IN", "PT"}
+    assert BLOCKS["SR"].il_inputs == ("S1", "R") and BLOCKS["RS"].il_inputs == ("S", "R1")
 
 
 def test_no_other_module_keeps_its_own_list_of_standard_names():

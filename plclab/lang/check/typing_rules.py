@@ -120,9 +120,10 @@ def _compare(t: Typing) -> T.Type:
 
 
 def _signature(t: Typing) -> T.Type:
-    """Fixed argument kinds (``Builtin.args``: STRING or INT) and result (``Builtin.result``:
+    """Fixed argument kinds (``Builtin.args``: STRING, INT or BITS) and result (``Builtin.result``:
     ``IN`` for the first argument's type, else a type name)."""
-    ok = all(isinstance(b, T.StringType) if k == "STRING" else b.kind == "int"
+    ok = all(isinstance(b, T.StringType) if k == "STRING" else
+             b.kind == "bits" or b is T.ANY_INT_LIT if k == "BITS" else b.kind == "int"
              for k, b in zip(t.spec.args, t.bs, strict=False))
     t.need(ok, t.spec.needs)
     return t.ts[0] if t.spec.result == "IN" else T.lookup_elementary(t.spec.result)

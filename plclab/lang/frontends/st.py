@@ -108,6 +108,7 @@ class Parser:
         self.pragmas = pragmas
         self.file = file
         self.library = library
+        self.edge_inputs: list[tuple[str, bool, Location]] = []  # R_EDGE/F_EDGE of this POU
         self.i = 0
         self.depth = 0  # nesting of types and initial values (see nested())
         self.expr_depth = 0  # nesting of expr() calls
@@ -274,6 +275,7 @@ class Parser:
                 self.accept("END_VAR")
                 self.ensure_progress(start)
         body, language, pending = self.pou_body(end_kw)
+        edges, self.edge_inputs = self.edge_inputs, []
         end_loc = self.loc()
         if not self.accept(end_kw):
             self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
@@ -281,6 +283,8 @@ class Parser:
                     language=language, native=self._native_for(head.line), end_loc=end_loc)
         if pending is not None:  # IL: lowered once every file is parsed (types are known)
             pou.pending.append(pending)
+        if edges:  # R_EDGE / F_EDGE inputs, lowered after the body they qualify
+            pou.pending.append(A.PendingBody("EDGE", edges, self.loc(head)))
         return pou
 
     def pou_body(self, end_kw: str) -> tuple[list[A.Stmt], str, A.PendingBody | None]:
@@ -428,6 +432,8 @@ class Parser:
             raise ParseAbort
         self.expect(":", "':' and a type")
         tref = self.type_ref()
+        if self.at("IDENT") and self.tok.value in ("R_EDGE", "F_EDGE"):
+            self.edge_qualifier(section, tref, names)
         init = None
         if self.accept(":="):
             init = self.initializer()
@@ -437,6 +443,18 @@ class Parser:
             A.VarDecl(self.loc(n), n.value, tref, init, address, section, constant, retain, n.text)
             for n in names
         ]
+
+    def edge_qualifier(self, section: str, tref: A.TypeRef, names: list[Token]) -> None:
+        """``x : BOOL R_EDGE;`` (IEC 61131-3 ed.3 6.5.2.2): recorded for the lowering stage
+        (:mod:`plclab.lang.lower.edges`); only a BOOL VAR_INPUT may carry it (PLC0179)."""
+        qualifier = self.advance()
+        if section != "VAR_INPUT" or not (isinstance(tref, A.NamedTypeRef)
+                                          and tref.name == "BOOL"):
+            self.error("PLC0179", f"{qualifier.value} qualifies a BOOL input only: declare "
+                       f"it as  name : BOOL {qualifier.value};  in VAR_INPUT", qualifier)
+            return
+        self.edge_inputs.extend((n.value, qualifier.value == "R_EDGE", self.loc(n))
+                                for n in names)
 
     def address(self, t: Token) -> str:
         """A direct address in its canonical form (:mod:`plclab.lang.addresses`); a

@@ -7,7 +7,8 @@ check) and turns each pending body into ordinary statements and hidden declarati
 * ``"IL"``: instruction lists (:mod:`.il`);
 * ``"NETWORK"``: LD and FBD networks, from the text ladder and from PLCopen graphics alike
   (:mod:`.network`);
-* ``"SFC"``: sequential function charts, textual (:mod:`.sfc`).
+* ``"SFC"``: sequential function charts, textual (:mod:`.sfc`);
+* ``"EDGE"``: R_EDGE / F_EDGE inputs (:mod:`.edges`), after the body they qualify.
 
 It is also the place where the object-oriented constructs will be lowered to
 the core AST, so that the checker and the compiler keep seeing one language. The type questions
@@ -21,6 +22,7 @@ from collections.abc import Callable
 from ...errors import Diagnostic
 from .. import ast as A
 from ..limits import compiler_guard
+from .edges import lower_edges
 from .il import lower_il
 from .network import lower_network
 from .sfc import lower_sfc
@@ -30,6 +32,7 @@ LOWERINGS: dict[str, Callable[[A.Pou, list, LoweringTypes], list[Diagnostic]]] =
     "IL": lower_il,
     "NETWORK": lower_network,
     "SFC": lower_sfc,
+    "EDGE": lower_edges,
 }
 
 

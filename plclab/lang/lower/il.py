@@ -209,7 +209,9 @@ class _Lowering:
                          " close them with ')' first", x.loc)
                 continue
             self.reachable = True
-            if op in ("LD", "LDN"):
+            if op in ("S", "R", "LD") and self.fb_operand(x):  # S1 SR1 / R SR1 / LD CTD1:
+                self.op_fb_input(x)  # the FB input operators that share an IL name (Table 53)
+            elif op in ("LD", "LDN"):
                 self.op_ld(x)
             elif op in ("ST", "STN"):
                 self.op_st(k, x)
