@@ -37,9 +37,10 @@ FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "
                    "globals", "locals", "vars", "breakpoint", "input", "delattr"}
 
 
-# hidden variables of the IL, LD and SFC lowerings (``__CR_INT``, ``__LD_M3``, ``__SFC_TR0``):
+# hidden variables of the IL, LD, SFC and edge lowerings (``__CR_INT``, ``__LD_M3``, ``__SFC_TR0``,
+# ``__EDGE_M_X``):
 # private names, which work only because nothing outside their class reads them
-HIDDEN = re.compile(r"^__(?:CR|LD|SFC)_[A-Z0-9_]+$")
+HIDDEN = re.compile(r"^__(?:CR|LD|SFC|EDGE)_[A-Z0-9_]+$")
 
 
 def _private(name: str) -> bool:
