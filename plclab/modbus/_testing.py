@@ -51,10 +51,13 @@ def wait_until(predicate, timeout: float = 10.0, interval: float = 0.05):
 class PlclabProcess:
     """``python -m plclab ARGS...`` in a subprocess, output captured in a temporary file.
 
-    For example::
+    Entering waits until the server listens on ``port``; leaving stops it with SIGINT and keeps
+    what it printed in ``output``. For example::
 
         with PlclabProcess(["serve", "prog.st", "--port", str(port)], port=port) as p:
-            ...
+            c = connect(port=port)          # plclab.modbus.connect
+            c["%MW0"] = 42
+        assert "listening on" in p.output
     """
 
     def __init__(self, args: list[str], port: int | None = None, cwd: str | None = None,

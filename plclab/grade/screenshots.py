@@ -1,6 +1,6 @@
 """Screenshots of the default rerun view of every lab's reference run and its first mistake.
 
-    python tools/rerun_screenshots.py --out docs/figures/rerun [--labs tank-two-position,...]
+    python -m plclab.grade.screenshots --out docs/figures/rerun [--labs tank-two-position,...]
 
 For each lab: grade the reference solution (the first ``solution/*.st``) and the first mistake
 (``mistakes/*.st`` in name order) in process, record its first failing scenario (else its first
@@ -25,13 +25,12 @@ import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+from .lab import find_lab, list_labs
 
 
 def runs(lab_id: str) -> list[tuple[str, Path]]:
     """(tag, program) of the reference solution and the first mistake."""
-    d = ROOT / "labs" / lab_id
+    d = find_lab(lab_id)
     sols = sorted((d / "solution").glob("*.st")) or sorted((d / "solution").glob("*"))
     mistakes = sorted((d / "mistakes").glob("*.st")) or sorted((d / "mistakes").glob("*"))
     out = [("reference", sols[0])] if sols else []
@@ -139,8 +138,7 @@ def main(argv: list[str] | None = None) -> int:
     ns = ap.parse_args(argv)
     out = Path(ns.out)
     out.mkdir(parents=True, exist_ok=True)
-    labs = ns.labs.split(",") if ns.labs else sorted(
-        p.parent.name for p in (ROOT / "labs").glob("*/lab.toml"))
+    labs = ns.labs.split(",") if ns.labs else [p.name for p in list_labs()]
     env = {**os.environ, "RUST_LOG": "warn", "RERUN_ANALYTICS": "0"}
     xvfb = None
     if not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB"):
@@ -161,7 +159,7 @@ def main(argv: list[str] | None = None) -> int:
                     shoot(rrd, png, t, rid, env, ns.wait)
                     if ns.keep_rrd:
                         shutil.copy(rrd, out / rrd.name)
-                    print(f"{png}  ({program.relative_to(ROOT)}, cursor at {t:.1f} s)")
+                    print(f"{png}  ({program}, cursor at {t:.1f} s)")
     finally:
         if xvfb is not None:
             xvfb.terminate()
