@@ -1,12 +1,12 @@
 """The courseware a student gets: labs without their private part, examples, notebooks.
 
 The repository's ``labs/``, ``examples/`` and ``notebooks/`` are the instructor's source. A
-built wheel carries a *student copy* of them in ``plclab/courseware/`` (``setup.py`` calls
-:func:`copy_courseware` while building): every lab without ``solution/`` and ``mistakes/``,
+built wheel carries a *student copy* of them in ``plclab/courseware/`` (the build step
+:mod:`plclab.grade.courseware_build` calls :func:`copy_courseware`): every lab without ``solution/`` and ``mistakes/``,
 and its ``lab.toml`` without the hidden scenarios, the criteria only they use and the
 ``[[mistake]]`` tables (:func:`student_lab_toml`). See ``docs/adr/0019-installable-labs.md``.
 
-This module imports only the standard library and nothing of plclab, so ``setup.py`` can load
+This module imports only the standard library and nothing of plclab, so the build step can load
 it by its path in an isolated build environment.
 """
 

@@ -102,7 +102,7 @@ def _source_tree(dest: Path) -> Path:
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info", "build")
     for d in ("plclab", "plants", "labs", "examples", "notebooks"):
         shutil.copytree(ROOT / d, dest / d, ignore=ignore)
-    for f in ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md"):
+    for f in ("pyproject.toml", "README.md"):
         shutil.copyfile(ROOT / f, dest / f)
     return dest
 
