@@ -363,24 +363,18 @@ class _TextLadder:
         line = self.first + r
         text = ch + inner + ("]" if ch == "[" else ")")
         if ch == "(":
-            mode = COILS.get(inner.upper()) if len(inner) == 1 else None
-            if mode is None:
-                self.err("PLC0164", f"unknown coil '{text}'; coils are ( ) (/) (S) (R) (P) (N)",
-                         line, c0)
-                return None
-            e = self.new_elem("coil", r, c0, c1, text)
-            e.mode = mode
-            return e
-        if len(inner) <= 1:
-            mode = CONTACTS.get(inner.upper()) if len(inner) == 1 else None
-            if mode is None:
-                self.err("PLC0164", f"unknown contact '{text}'; contacts are [ ] [/] [P] [N]",
-                         line, c0)
-                return None
-            e = self.new_elem("contact", r, c0, c1, text)
-            e.mode = mode
-            return e
-        return self.box(r, c0, c1, inner, text)
+            kind, modes, forms = "coil", COILS, "coils are ( ) (/) (S) (R) (P) (N)"
+        elif len(inner) <= 1:
+            kind, modes, forms = "contact", CONTACTS, "contacts are [ ] [/] [P] [N]"
+        else:
+            return self.box(r, c0, c1, inner, text)
+        mode = modes.get(inner.upper()) if len(inner) == 1 else None
+        if mode is None:
+            self.err("PLC0164", f"unknown {kind} '{text}'; {forms}", line, c0)
+            return None
+        e = self.new_elem(kind, r, c0, c1, text)
+        e.mode = mode
+        return e
 
     # -- boxes ------------------------------------------------------------------------------
     def box(self, r: int, c0: int, c1: int, inner: str, text: str) -> Elem | None:
