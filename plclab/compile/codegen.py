@@ -177,6 +177,9 @@ class Codegen:
 
     # -- defaults and initial values ----------------------------------------------------------
     def default_code(self, ty: T.Type) -> str:
+        declared = T.declared_init(ty)
+        if declared is not None:  # TYPE LEVEL : (LOW, HIGH) := HIGH
+            return self.init_code(declared, ty)
         t = T.resolve(ty)
         if isinstance(t, T.ArrayType):
             d = self.default_code(t.elem)

@@ -286,4 +286,4 @@ class Calls(Pass):
         bs = [T.base_of(t) for t in ts]
         if any(t is T.ANY for t in bs):
             return T.BOOL if spec.typing == "compare" else T.ANY
-        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c))
+        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c, vals))

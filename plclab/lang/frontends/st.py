@@ -839,10 +839,11 @@ class Parser:
             nk = toks[j + 1].kind
             if nk == ":" or nk == ",":
                 return True
-            if nk == ".." :
+            if nk == "..":
                 return True
+            # Color.Red: a CODESYS-qualified enumeration value (no statement starts `a.b :`)
             if nk == "." and toks[j + 2].kind == "IDENT" and toks[j + 3].kind in (":", ",", ".."):
-                return False
+                return True
         return False
 
     def for_stmt(self) -> A.For:
