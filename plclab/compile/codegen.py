@@ -585,7 +585,7 @@ class Codegen:
         if "." in inst or "[" in inst:
             fb = "_fb"
         vals = [(ident(d.name), self.coerce(self.ex(e), e.ty, d.ty, e)) for d, e in info.inputs]
-        inouts = [(d, self.ex(e), e) for d, e in info.inouts]
+        inouts = [(d, self.inout_code(d, e), e) for d, e in info.inouts]
         self.flush_pre()
         if fb != inst:
             self.emit(f"{fb} = {inst}")
@@ -595,7 +595,7 @@ class Codegen:
             self.emit(f"{fb}.{ident(d.name)} = {code}")
         self.emit(f"{fb}._body()")
         for d, _code, e in inouts:
-            if not T.resolve(d.ty).is_aggregate:
+            if not T.resolve(d.ty).is_aggregate and not d.constant:
                 self.assign_to(e, f"{fb}.{ident(d.name)}")
         for d, target, neg in info.outputs:
             v = f"{fb}.{ident(d.name)}"
@@ -1299,6 +1299,11 @@ class Codegen:
             return self.user_function(info)
         return "None"
 
+    def inout_code(self, d: A.VarDecl, e: A.Expr) -> str:
+        """The value a VAR_IN_OUT receives: the variable itself, or for VAR_IN_OUT CONSTANT any
+        value of the type, converted as an input would be."""
+        return self.coerce(self.ex(e), e.ty, d.ty, e) if d.constant else self.ex(e)
+
     def user_function(self, info: CallInfo) -> str:
         pou: A.Pou = info.callee
         given = {d.name: x for d, x in info.inputs}
@@ -1316,7 +1321,7 @@ class Codegen:
                     args.append(code)
             elif d.section == "VAR_IN_OUT":
                 x = given_io.get(d.name)
-                args.append(self.ex(x) if x is not None else "None")
+                args.append(self.inout_code(d, x) if x is not None else "None")
         call = f"F_{ident(pou.name)}({', '.join(args)})"
         outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
         if not outs:
@@ -1325,7 +1330,7 @@ class Codegen:
         self.pre.append(f"{tmp} = {call}")
         bound = {d.name: (tgt, neg) for d, tgt, neg in info.outputs}
         for d, x in info.inouts:
-            if not T.resolve(d.ty).is_aggregate:
+            if not T.resolve(d.ty).is_aggregate and not d.constant:
                 bound[d.name] = (x, False)
         for i, d in enumerate(outs, start=1):
             if d.name in bound:

@@ -258,7 +258,7 @@ class Declarations(Pass):
             if d.address and p.kind != "PROGRAM" and not d.address.endswith("*"):
                 self.err("PLC0120", f"{d.name}: located variables (AT {d.address}) belong in a "
                          "PROGRAM or VAR_GLOBAL, not in a function or function block", d.loc)
-            if d.constant and d.init is None:
+            if d.constant and d.init is None and d.section not in ("VAR_EXTERNAL", "VAR_IN_OUT"):
                 self.err("PLC0109", f"constant {d.name} needs a value: {d.name} : "
                          f"{d.ty} := ...;", d.loc)
         self.check_scope(p)

@@ -97,13 +97,18 @@ class Expressions(Pass, NodeVisitor):
         root = e
         while isinstance(root, A.Member | A.Index):
             root = root.obj
+        if isinstance(root, A.Name) and root is not e and isinstance(root.sym, VarSym) and (
+                root.sym.decl.constant or root.sym.read_only):  # LIMITS[1] := ..., P.x := ...
+            self.err("PLC0105", f"{root.sym.decl.spelling or root.name} is a constant and "
+                     "cannot be changed", e.loc)
         if isinstance(e, A.Name):
             sym = e.sym
             if isinstance(sym, VarSym):
                 d = sym.decl
-                if d.constant:
+                if d.constant or sym.read_only:
                     self.err("PLC0105", f"{d.spelling or d.name} is a constant and cannot be "
-                             "changed", e.loc)
+                             "changed" + (" (it is declared VAR_EXTERNAL CONSTANT here)"
+                                          if sym.read_only and not d.constant else ""), e.loc)
                 elif d.address and d.address.startswith("%I"):
                     self.err("PLC0105", f"{d.spelling or d.name} is a physical input ({d.address}); "
                              "a program can read an input but not write it", e.loc)

@@ -42,6 +42,7 @@ class VarSym:
     decl: A.VarDecl
     storage: str  # "self" (member of the POU instance), "local", "global"
     owner: A.Pou | None = None
+    read_only: bool = False  # VAR_EXTERNAL CONSTANT: a global this POU may read, not write
 
     @property
     def ty(self) -> T.Type:
@@ -225,7 +226,8 @@ class SymbolTable:
         for d in [d for b in reversed(self.bases(p)) for d in b.decls] + p.decls:
             if d.section == "VAR_EXTERNAL":
                 g = self.globals.get(d.name)
-                names[d.name] = VarSym(g if g is not None else d, "global", p)
+                names[d.name] = VarSym(g if g is not None else d, "global", p,
+                                       read_only=d.constant)
                 continue
             st = "local" if (storage_local or d.section == "VAR_TEMP") else "self"
             names[d.name] = VarSym(d, st, p)
