@@ -41,6 +41,11 @@ def ident(name: str) -> str:
     return up
 
 
+def member_path(owner: str, via: tuple[str, ...], decl: A.VarDecl) -> str:
+    """``owner.fb1.x``: the Python path of ``decl`` reached through the members ``via``."""
+    return owner + "".join(f".{ident(m)}" for m in via) + f".{ident(decl.name)}"
+
+
 @dataclass
 class Compiled:
     source: str
@@ -115,9 +120,10 @@ class Codegen:
         self.tmp += 1
         return f"{stem}{self.tmp}"
 
-    def emit_init(self, lhs: str, d: A.VarDecl) -> None:
-        """``lhs = <initial value of d>``, after the temporaries the value needs."""
-        code = self.init_code(d.init, d.ty)
+    def emit_init(self, lhs: str, d: A.VarDecl, init: A.Expr | None = None) -> None:
+        """``lhs = <initial value of d>`` (or of ``init`` when given), after the temporaries
+        the value needs."""
+        code = self.init_code(init if init is not None else d.init, d.ty)
         self.flush_pre()
         self.emit(f"{lhs} = {code}")
 
@@ -144,7 +150,7 @@ class Codegen:
                            "smaller parts (FUNCTIONs, intermediate variables)", loc) from None
         return Compiled(src, code, self.filename, self.line_where, self.locations, self.p,
                         self.natives, self.tests, self.assert_texts,
-                        [a for d, _ in self.located() for a in [d.address]])
+                        [v.address for v, _ in self.located()])
 
     def generate_source(self) -> None:
         # one class per structure type: TYPEs by name, a STRUCT written in a VAR section under
@@ -349,6 +355,10 @@ class Codegen:
         self.ind += 1
         for n, pou, _ in self.p.programs:
             self.emit(f"self.{ident(n)} = P_{ident(pou.name)}()")
+        for b in self.p.symbols.config_bindings:  # VAR_CONFIG initial values, after the POUs'
+            if b.init is not None:
+                self.emit_init(member_path(f"self.{ident(b.instance)}", b.via, b.decl), b.decl,
+                               b.init)
         self.emit("pass")
         self.ind -= 2
         self.emit("")
@@ -357,13 +367,13 @@ class Codegen:
         """_sync_in copies frozen inputs (and %M) into located variables; _sync_out the reverse."""
         ins: list[str] = []
         outs: list[str] = []
-        for d, path in self.located():
-            area = d.address[1]
-            rd = self.addr_read(d.address, d.ty)
+        for v, path in self.located():
+            area = v.address[1]
+            rd = self.addr_read(v.address, v.decl.ty)
             if area in ("I", "M"):
                 ins.append(f"{path} = {rd}")
             if area in ("Q", "M"):
-                outs.append(self.addr_write(d.address, path, d.ty))
+                outs.append(self.addr_write(v.address, path, v.decl.ty))
         for name, body in (("_sync_in", ins), ("_sync_out", outs)):
             self.emit(f"def {name}():")
             self.ind += 1
@@ -378,7 +388,7 @@ class Codegen:
         for v in self.p.symbols.located_vars():
             if not v.wildcard:
                 owner = "_G" if v.instance is None else f"_P.{ident(v.instance)}"
-                yield v.decl, f"{owner}.{ident(v.decl.name)}"
+                yield v, member_path(owner, v.via, v.decl)
 
     # -- process image access -----------------------------------------------------------------
     @staticmethod
