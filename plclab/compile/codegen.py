@@ -346,7 +346,38 @@ class Codegen:
         self.ind -= 2
         self.emit("")
 
+    def connected_program(self, name: str, pou: A.Pou, info: CallInfo) -> str:
+        """``PROGRAM P1 : Prog(x := %IX1.1, y => %QX0.0)``: a class of the instance whose body
+        takes its inputs, runs the program, then hands its outputs on; its name."""
+        cls = f"C_{ident(name)}"
+        base = f"P_{ident(pou.name)}"
+        self.emit(f"class {cls}({base}):")
+        self.ind += 1
+        self.emit("__slots__ = ()")
+        self.emit("def _body(self):")
+        self.ind += 1
+        vals = [(ident(d.name), self.coerce(self.ex(e), e.ty, d.ty, e)) for d, e in info.inputs]
+        vals += [(ident(d.name), self.ex(e)) for d, e in info.inouts]
+        self.flush_pre()
+        for n, v in vals:
+            self.emit(f"self.{n} = {v}")
+        self.emit(f"{base}._body(self)")
+        for d, e in info.inouts:
+            if not T.resolve(d.ty).is_aggregate:
+                self.assign_to(e, f"self.{ident(d.name)}")
+        for d, target, neg in info.outputs:
+            v = f"self.{ident(d.name)}"
+            self.assign_to(target, self.coerce(f"(not {v})" if neg else v, d.ty, target.ty,
+                                               None))
+        self.ind -= 2
+        self.emit("")
+        return cls
+
     def programs_class(self) -> None:
+        connected = {i.name: i.call.target for c in self.p.symbols.configs for i in c.instances
+                     if i.call is not None and isinstance(i.call.target, CallInfo)}
+        classes = {n: self.connected_program(n, pou, connected[n])
+                   for n, pou, _ in self.p.programs if n in connected}
         self.emit("class _Programs:")
         self.ind += 1
         names = [n for n, _, _ in self.p.programs]
@@ -354,7 +385,7 @@ class Codegen:
         self.emit("def __init__(self):")
         self.ind += 1
         for n, pou, _ in self.p.programs:
-            self.emit(f"self.{ident(n)} = P_{ident(pou.name)}()")
+            self.emit(f"self.{ident(n)} = {classes.get(n, f'P_{ident(pou.name)}')}()")
         for b in self.p.symbols.config_bindings:  # VAR_CONFIG initial values, after the POUs'
             if b.init is not None:
                 self.emit_init(member_path(f"self.{ident(b.instance)}", b.via, b.decl), b.decl,

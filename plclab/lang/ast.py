@@ -332,6 +332,8 @@ class ProgramInstance:
     name: str
     task: str | None
     program: str
+    # PROGRAM P1 : Prog(x := %IX1.1, y => g): the connections, as a call of the program
+    call: Call | None = None
 
 
 @dataclass(eq=False)

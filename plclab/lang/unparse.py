@@ -269,7 +269,8 @@ class _Writer:
             self.line(f"TASK {t.name} ({', '.join(f'{k} := {expr(v)}' for k, v in props)});")
         for i in c.instances:
             task = f" WITH {i.task}" if i.task else ""
-            self.line(f"PROGRAM {i.name}{task} : {i.program};")
+            prog = expr(i.call) if i.call is not None else i.program
+            self.line(f"PROGRAM {i.name}{task} : {prog};")
         self.depth -= 1
         self.line("END_RESOURCE")
         self.config_vars(c.config_vars, set(c.resources))

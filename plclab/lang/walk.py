@@ -90,7 +90,7 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.TypeDecl: lambda n: [n.type] + flat([n.init]),
     A.GlobalVars: lambda n: list(n.decls),
     A.TaskDecl: lambda n: flat([n.interval, n.priority, n.single]),
-    A.ProgramInstance: lambda n: [],
+    A.ProgramInstance: lambda n: flat([n.call]),
     A.ConfigVar: lambda n: [n.type] + flat([n.init]),
     A.AccessPath: lambda n: [n.type],
     A.Configuration: lambda n: [*n.globals, *n.tasks, *n.instances, *n.config_vars,

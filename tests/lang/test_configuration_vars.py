@@ -142,3 +142,50 @@ def test_a_wrong_configuration_line_is_reported_where_it_is(name: str) -> None:
     assert errors and errors[0].code == code, errors
     assert words in errors[0].message
     assert errors[0].location is not None and errors[0].location.line > STATION.count("\n")
+
+
+COUNTER = """
+VAR_GLOBAL total : INT; enable : BOOL := TRUE; END_VAR
+PROGRAM Counter
+VAR_INPUT pulse : BOOL; run : BOOL; step : INT; END_VAR
+VAR_OUTPUT count : INT; busy : BOOL; END_VAR
+IF run AND pulse THEN count := count + step; END_IF
+busy := count > 0;
+END_PROGRAM
+CONFIGURATION Plant
+    RESOURCE Cpu ON PLC
+        TASK Fast (INTERVAL := T#10ms);
+        {instances}
+    END_RESOURCE
+END_CONFIGURATION
+"""
+
+
+def test_program_instances_take_inputs_and_hand_on_outputs_through_their_connections() -> None:
+    plc = plclab.loads(COUNTER.format(instances="""
+        PROGRAM C1 WITH Fast : Counter(pulse := %IX0.0, run := enable, step := 2,
+                                        count => total, busy => %QX0.0);
+        PROGRAM C2 WITH Fast : Counter(pulse := %IX0.1, run := TRUE, step := 5,
+                                        busy => %QX0.1);"""))
+    plc.scan()
+    assert (plc["total"], plc["%QX0.0"], plc["C2.count"]) == (0, False, 0)
+    plc["%IX0.0"] = True
+    plc["%IX0.1"] = True
+    plc.scan(2)
+    assert (plc["total"], plc["%QX0.0"], plc["C2.count"], plc["%QX0.1"]) == (4, True, 10, True)
+    plc["enable"] = False  # a global connected to an input is read at every call
+    plc.scan(2)
+    assert (plc["total"], plc["C1.count"]) == (4, 4)
+
+
+@pytest.mark.parametrize("connections, code, words", [
+    ("Counter(pulse := %IX0.0, speed := 3)", "PLC0107", "SPEED"),
+    ("Counter(count => 5)", "PLC0105", "must be a variable"),
+    ("Counter(run := 7)", "PLC0118", "BOOL"),
+])
+def test_a_wrong_connection_is_reported(connections: str, code: str, words: str) -> None:
+    src = COUNTER.format(instances=f"PROGRAM C1 WITH Fast : {connections};")
+    _, diags = check_sources([(src, "plant.st")])
+    errors = [d for d in diags if d.severity == "error"]
+    assert errors and errors[0].code == code, errors
+    assert words in errors[0].message and errors[0].location.line == 12

@@ -42,9 +42,22 @@ class ConfigVars(Pass):
             seen[key] = cv.loc
             self.table.config_bindings.append(b)
         for c in self.table.configs:
+            for inst in c.instances:
+                if inst.call is not None and inst.name in self.instances:
+                    self.connections(inst, self.instances[inst.name])
             for ap in c.access_paths:
                 self.access_path(ap)
 
+    # -- PROGRAM P1 : Prog(x := %IX1.1, y => g) ----------------------------------------------
+    def connections(self, inst: A.ProgramInstance, pou: A.Pou) -> None:
+        """The connections of a program instance are checked as a call of the program from
+        the configuration: inputs take globals, direct addresses and constants; outputs and
+        in-outs go to globals and direct addresses."""
+        assert inst.call is not None
+        old = self.cx.scope
+        self.cx.scope = Scope({}, self.table.globals)
+        self.cx.calls.call_fb(inst.call, pou, True, program=True)
+        self.cx.scope = old
     # -- paths ----------------------------------------------------------------------------
     def strip_resource(self, parts: list[str]) -> list[str]:
         return parts[1:] if len(parts) > 1 and parts[0] in self.table.resources else parts

@@ -443,15 +443,15 @@ class Parser:
         if self.accept("WITH"):
             task = self.expect("IDENT", "a task name").value
         self.expect(":")
-        prog = self.expect("IDENT", "a program type name").value
-        if self.accept("("):  # connections: ignore values but parse them
-            depth = 1
-            while depth and not self.at("EOF"):
-                t = self.advance()
-                depth += t.kind == "("
-                depth -= t.kind == ")"
+        prog_tok = self.expect("IDENT", "a program type name")
+        call = None
+        if self.at("("):  # connections (ed.3 Figure 21): inputs from, outputs to, the outside
+            loc = self.loc()
+            self.advance()
+            args = self.call_args()
+            call = A.Call(loc, A.Name(self.loc(prog_tok), prog_tok.value, prog_tok.text), args)
         self.expect(";")
-        return A.ProgramInstance(self.loc(head), name, task, prog)
+        return A.ProgramInstance(self.loc(head), name, task, prog_tok.value, call)
 
     # -- declarations -------------------------------------------------------------------------
     def var_section(self) -> list[A.VarDecl]:
