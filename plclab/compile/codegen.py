@@ -1287,13 +1287,16 @@ class Codegen:
             return self.wrap(f"{left} {op} {right}", t)  # S7: the operand type's width
         return f"({left} {op} {right})"
 
+    def dialect_at(self, loc: Location | None):
+        """The dialect of the file ``loc`` is in (ADR 0017)."""
+        if not self.p.dialects:  # every file in the default dialect (the common case)
+            return dialect_profile(None)
+        return dialect_profile(self.p.dialects.get(loc.file) if loc is not None else None)
+
     def operand_width(self, loc: Location | None) -> bool:
         """Whether integer intermediates wrap to their type here (the S7 dialect, ADR 0017)
         instead of staying exact (CODESYS computes them in a register)."""
-        if not self.p.dialects:  # every file in the default dialect (the common case)
-            return dialect_profile(None).operand_width
-        name = self.p.dialects.get(loc.file) if loc is not None else None
-        return dialect_profile(name).operand_width
+        return self.dialect_at(loc).operand_width
 
     def e_Call(self, e: A.Call) -> str:
         info: CallInfo | None = e.target
@@ -1406,6 +1409,8 @@ class Codegen:
             return self.wrap(f"_str_to_int({code})", d)
         if d is T.BOOL:
             return f"({code} != 0)"
+        if (s.kind == "time") != (d.kind == "time") and self.dialect_at(e.loc).time_in_seconds:
+            return self.seconds_conversion(code, s, d)
         if d.kind == "real":
             if s.kind == "real":
                 return f"_f32({code})" if d is T.REAL else code
@@ -1428,6 +1433,20 @@ class Codegen:
                 return code
             return self.wrap(code, d)
         return code
+
+    def seconds_conversion(self, code: str, s: T.Type, d: T.Type) -> str:
+        """TIME <-> number in the MATIEC dialect: the number counts seconds (its
+        ``__time_to_real`` is tv_sec + tv_nsec / 1e9, ``__time_to_int`` tv_sec; ``__int_to_time``
+        and ``__real_to_time`` read seconds). TIME holds ms, LTIME ns."""
+        if s.kind == "time":
+            unit = 1_000 if s is T.TIME else 1_000_000_000
+            if d.kind == "real":
+                return f"_f32({code} / {unit})" if d is T.REAL else f"({code} / {unit})"
+            return self.wrap(f"_idiv({code}, {unit})", d)  # whole seconds, toward zero
+        unit = 1_000 if d is T.TIME else 1_000_000_000
+        if s.kind == "real":
+            return self.wrap(f"_round({code} * {unit})", d)
+        return self.wrap(f"({code} * {unit})", d)
 
     @staticmethod
     def widen(code: str, src: T.Type | None, dst: T.Type | None) -> str:
