@@ -17,8 +17,9 @@ from .lang.dialect import DEFAULT, choose, using
 from .lang.frontends import for_file
 from .lang.frontends.st import parse_library
 from .lang.lexer import cap_per_file
-from .lang.library import SFC_LIBRARY, STDLIB_FILES
+from .lang.library import ANNEX_F, ANNEX_F_BLOCKS, ANNEX_F_SHARED, SFC_LIBRARY, STDLIB_FILES
 from .lang.lower import lower_pending
+from .lang.walk import walk
 
 
 def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
@@ -50,8 +51,24 @@ def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
         diags.extend(d)
     if any(b.kind == "SFC" for f in files for p in f.pous for b in p.pending):
         files[len(STDLIB_FILES):len(STDLIB_FILES)] = parse_library((SFC_LIBRARY,))
+    add_annex_f(files, files[-len(sources):] if sources else [])
     diags.extend(lower_pending(files))
     return files, diags
+
+
+def add_annex_f(files: list[A.SourceFile], own: list[A.SourceFile]) -> None:
+    """Add the Annex F blocks (ADR 0029) when the project's own files declare one of them or
+    one is in the ``matiec`` dialect; there PID and RAMP are the Annex's, else plclab's."""
+    matiec = any(f.dialect == "matiec" for f in own)
+    wanted = ANNEX_F_BLOCKS if matiec else ANNEX_F_BLOCKS - ANNEX_F_SHARED
+    used = {n.name for f in own for n in walk(f) if isinstance(n, A.NamedTypeRef)}
+    if not matiec and not used & wanted:
+        return
+    annex = parse_library((ANNEX_F,))[0]
+    annex.pous = [p for p in annex.pous if p.name in wanted]
+    for f in files[:len(STDLIB_FILES)]:  # the Annex's PID and RAMP replace plclab's
+        f.pous = [p for p in f.pous if p.name not in wanted]
+    files.insert(len(STDLIB_FILES), annex)
 
 
 def check_sources(sources: list[tuple[str, str]], dialect: str | None = None, *,

@@ -41,6 +41,11 @@ def ident(name: str) -> str:
     return up
 
 
+def member_path(owner: str, via: tuple[str, ...], decl: A.VarDecl) -> str:
+    """``owner.fb1.x``: the Python path of ``decl`` reached through the members ``via``."""
+    return owner + "".join(f".{ident(m)}" for m in via) + f".{ident(decl.name)}"
+
+
 @dataclass
 class Compiled:
     source: str
@@ -115,9 +120,10 @@ class Codegen:
         self.tmp += 1
         return f"{stem}{self.tmp}"
 
-    def emit_init(self, lhs: str, d: A.VarDecl) -> None:
-        """``lhs = <initial value of d>``, after the temporaries the value needs."""
-        code = self.init_code(d.init, d.ty)
+    def emit_init(self, lhs: str, d: A.VarDecl, init: A.Expr | None = None) -> None:
+        """``lhs = <initial value of d>`` (or of ``init`` when given), after the temporaries
+        the value needs."""
+        code = self.init_code(init if init is not None else d.init, d.ty)
         self.flush_pre()
         self.emit(f"{lhs} = {code}")
 
@@ -144,7 +150,7 @@ class Codegen:
                            "smaller parts (FUNCTIONs, intermediate variables)", loc) from None
         return Compiled(src, code, self.filename, self.line_where, self.locations, self.p,
                         self.natives, self.tests, self.assert_texts,
-                        [a for d, _ in self.located() for a in [d.address]])
+                        [v.address for v, _ in self.located()])
 
     def generate_source(self) -> None:
         # one class per structure type: TYPEs by name, a STRUCT written in a VAR section under
@@ -177,6 +183,9 @@ class Codegen:
 
     # -- defaults and initial values ----------------------------------------------------------
     def default_code(self, ty: T.Type) -> str:
+        declared = T.declared_init(ty)
+        if declared is not None:  # TYPE LEVEL : (LOW, HIGH) := HIGH
+            return self.init_code(declared, ty)
         t = T.resolve(ty)
         if isinstance(t, T.ArrayType):
             d = self.default_code(t.elem)
@@ -337,7 +346,38 @@ class Codegen:
         self.ind -= 2
         self.emit("")
 
+    def connected_program(self, name: str, pou: A.Pou, info: CallInfo) -> str:
+        """``PROGRAM P1 : Prog(x := %IX1.1, y => %QX0.0)``: a class of the instance whose body
+        takes its inputs, runs the program, then hands its outputs on; its name."""
+        cls = f"C_{ident(name)}"
+        base = f"P_{ident(pou.name)}"
+        self.emit(f"class {cls}({base}):")
+        self.ind += 1
+        self.emit("__slots__ = ()")
+        self.emit("def _body(self):")
+        self.ind += 1
+        vals = [(ident(d.name), self.coerce(self.ex(e), e.ty, d.ty, e)) for d, e in info.inputs]
+        vals += [(ident(d.name), self.ex(e)) for d, e in info.inouts]
+        self.flush_pre()
+        for n, v in vals:
+            self.emit(f"self.{n} = {v}")
+        self.emit(f"{base}._body(self)")
+        for d, e in info.inouts:
+            if not T.resolve(d.ty).is_aggregate:
+                self.assign_to(e, f"self.{ident(d.name)}")
+        for d, target, neg in info.outputs:
+            v = f"self.{ident(d.name)}"
+            self.assign_to(target, self.coerce(f"(not {v})" if neg else v, d.ty, target.ty,
+                                               None))
+        self.ind -= 2
+        self.emit("")
+        return cls
+
     def programs_class(self) -> None:
+        connected = {i.name: i.call.target for c in self.p.symbols.configs for i in c.instances
+                     if i.call is not None and isinstance(i.call.target, CallInfo)}
+        classes = {n: self.connected_program(n, pou, connected[n])
+                   for n, pou, _ in self.p.programs if n in connected}
         self.emit("class _Programs:")
         self.ind += 1
         names = [n for n, _, _ in self.p.programs]
@@ -345,7 +385,11 @@ class Codegen:
         self.emit("def __init__(self):")
         self.ind += 1
         for n, pou, _ in self.p.programs:
-            self.emit(f"self.{ident(n)} = P_{ident(pou.name)}()")
+            self.emit(f"self.{ident(n)} = {classes.get(n, f'P_{ident(pou.name)}')}()")
+        for b in self.p.symbols.config_bindings:  # VAR_CONFIG initial values, after the POUs'
+            if b.init is not None:
+                self.emit_init(member_path(f"self.{ident(b.instance)}", b.via, b.decl), b.decl,
+                               b.init)
         self.emit("pass")
         self.ind -= 2
         self.emit("")
@@ -354,13 +398,13 @@ class Codegen:
         """_sync_in copies frozen inputs (and %M) into located variables; _sync_out the reverse."""
         ins: list[str] = []
         outs: list[str] = []
-        for d, path in self.located():
-            area = d.address[1]
-            rd = self.addr_read(d.address, d.ty)
+        for v, path in self.located():
+            area = v.address[1]
+            rd = self.addr_read(v.address, v.decl.ty)
             if area in ("I", "M"):
                 ins.append(f"{path} = {rd}")
             if area in ("Q", "M"):
-                outs.append(self.addr_write(d.address, path, d.ty))
+                outs.append(self.addr_write(v.address, path, v.decl.ty))
         for name, body in (("_sync_in", ins), ("_sync_out", outs)):
             self.emit(f"def {name}():")
             self.ind += 1
@@ -375,7 +419,7 @@ class Codegen:
         for v in self.p.symbols.located_vars():
             if not v.wildcard:
                 owner = "_G" if v.instance is None else f"_P.{ident(v.instance)}"
-                yield v.decl, f"{owner}.{ident(v.decl.name)}"
+                yield v, member_path(owner, v.via, v.decl)
 
     # -- process image access -----------------------------------------------------------------
     @staticmethod
@@ -582,7 +626,7 @@ class Codegen:
         if "." in inst or "[" in inst:
             fb = "_fb"
         vals = [(ident(d.name), self.coerce(self.ex(e), e.ty, d.ty, e)) for d, e in info.inputs]
-        inouts = [(d, self.ex(e), e) for d, e in info.inouts]
+        inouts = [(d, self.inout_code(d, e), e) for d, e in info.inouts]
         self.flush_pre()
         if fb != inst:
             self.emit(f"{fb} = {inst}")
@@ -592,7 +636,7 @@ class Codegen:
             self.emit(f"{fb}.{ident(d.name)} = {code}")
         self.emit(f"{fb}._body()")
         for d, _code, e in inouts:
-            if not T.resolve(d.ty).is_aggregate:
+            if not T.resolve(d.ty).is_aggregate and not d.constant:
                 self.assign_to(e, f"{fb}.{ident(d.name)}")
         for d, target, neg in info.outputs:
             v = f"{fb}.{ident(d.name)}"
@@ -1243,13 +1287,16 @@ class Codegen:
             return self.wrap(f"{left} {op} {right}", t)  # S7: the operand type's width
         return f"({left} {op} {right})"
 
+    def dialect_at(self, loc: Location | None):
+        """The dialect of the file ``loc`` is in (ADR 0017)."""
+        if not self.p.dialects:  # every file in the default dialect (the common case)
+            return dialect_profile(None)
+        return dialect_profile(self.p.dialects.get(loc.file) if loc is not None else None)
+
     def operand_width(self, loc: Location | None) -> bool:
         """Whether integer intermediates wrap to their type here (the S7 dialect, ADR 0017)
         instead of staying exact (CODESYS computes them in a register)."""
-        if not self.p.dialects:  # every file in the default dialect (the common case)
-            return dialect_profile(None).operand_width
-        name = self.p.dialects.get(loc.file) if loc is not None else None
-        return dialect_profile(name).operand_width
+        return self.dialect_at(loc).operand_width
 
     def e_Call(self, e: A.Call) -> str:
         info: CallInfo | None = e.target
@@ -1296,6 +1343,11 @@ class Codegen:
             return self.user_function(info)
         return "None"
 
+    def inout_code(self, d: A.VarDecl, e: A.Expr) -> str:
+        """The value a VAR_IN_OUT receives: the variable itself, or for VAR_IN_OUT CONSTANT any
+        value of the type, converted as an input would be."""
+        return self.coerce(self.ex(e), e.ty, d.ty, e) if d.constant else self.ex(e)
+
     def user_function(self, info: CallInfo) -> str:
         pou: A.Pou = info.callee
         given = {d.name: x for d, x in info.inputs}
@@ -1313,7 +1365,7 @@ class Codegen:
                     args.append(code)
             elif d.section == "VAR_IN_OUT":
                 x = given_io.get(d.name)
-                args.append(self.ex(x) if x is not None else "None")
+                args.append(self.inout_code(d, x) if x is not None else "None")
         call = f"F_{ident(pou.name)}({', '.join(args)})"
         outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
         if not outs:
@@ -1322,7 +1374,7 @@ class Codegen:
         self.pre.append(f"{tmp} = {call}")
         bound = {d.name: (tgt, neg) for d, tgt, neg in info.outputs}
         for d, x in info.inouts:
-            if not T.resolve(d.ty).is_aggregate:
+            if not T.resolve(d.ty).is_aggregate and not d.constant:
                 bound[d.name] = (x, False)
         for i, d in enumerate(outs, start=1):
             if d.name in bound:
@@ -1357,6 +1409,8 @@ class Codegen:
             return self.wrap(f"_str_to_int({code})", d)
         if d is T.BOOL:
             return f"({code} != 0)"
+        if (s.kind == "time") != (d.kind == "time") and self.dialect_at(e.loc).time_in_seconds:
+            return self.seconds_conversion(code, s, d)
         if d.kind == "real":
             if s.kind == "real":
                 return f"_f32({code})" if d is T.REAL else code
@@ -1379,6 +1433,20 @@ class Codegen:
                 return code
             return self.wrap(code, d)
         return code
+
+    def seconds_conversion(self, code: str, s: T.Type, d: T.Type) -> str:
+        """TIME <-> number in the MATIEC dialect: the number counts seconds (its
+        ``__time_to_real`` is tv_sec + tv_nsec / 1e9, ``__time_to_int`` tv_sec; ``__int_to_time``
+        and ``__real_to_time`` read seconds). TIME holds ms, LTIME ns."""
+        if s.kind == "time":
+            unit = 1_000 if s is T.TIME else 1_000_000_000
+            if d.kind == "real":
+                return f"_f32({code} / {unit})" if d is T.REAL else f"({code} / {unit})"
+            return self.wrap(f"_idiv({code}, {unit})", d)  # whole seconds, toward zero
+        unit = 1_000 if d is T.TIME else 1_000_000_000
+        if s.kind == "real":
+            return self.wrap(f"_round({code} * {unit})", d)
+        return self.wrap(f"({code} * {unit})", d)
 
     @staticmethod
     def widen(code: str, src: T.Type | None, dst: T.Type | None) -> str:

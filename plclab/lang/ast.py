@@ -332,6 +332,37 @@ class ProgramInstance:
     name: str
     task: str | None
     program: str
+    # PROGRAM P1 : Prog(x := %IX1.1, y => g): the connections, as a call of the program
+    call: Call | None = None
+
+
+@dataclass(eq=False)
+class ConfigVar:
+    """One line of VAR_CONFIG (IEC 61131-3 ed.3 6.8.2, Table 62): a variable deep inside a
+    program instance given the address its ``AT %I*`` left open and/or an initial value,
+    ``STATION_1.P1.FB1.C2 AT %QB25 : BYTE := 7;``."""
+
+    loc: Location
+    path: list[str]  # upper-case parts: [resource.]instance.member...
+    spelled: str  # the path as written
+    address: str | None
+    type: TypeRef
+    init: Expr | None = None
+
+
+@dataclass(eq=False)
+class AccessPath:
+    """One line of VAR_ACCESS (IEC 61131-3 ed.3 6.8.2): a name under which a configuration
+    publishes a variable or a direct address to other systems, read-only or read-write,
+    ``ABLE : STATION_1.%IX1.1 : BOOL READ_ONLY;``."""
+
+    loc: Location
+    name: str
+    spelling: str
+    path: list[str]  # upper-case parts; a direct address is its last part
+    spelled: str
+    type: TypeRef
+    read_only: bool = True
 
 
 @dataclass(eq=False)
@@ -341,6 +372,9 @@ class Configuration:
     globals: list[VarDecl]
     tasks: list[TaskDecl]
     instances: list[ProgramInstance]
+    resources: list[str] = field(default_factory=list)  # upper-case resource names
+    config_vars: list[ConfigVar] = field(default_factory=list)
+    access_paths: list[AccessPath] = field(default_factory=list)
 
 
 @dataclass(eq=False)
@@ -358,6 +392,7 @@ class SourceFile:
     pous: list[Pou] = field(default_factory=list)
     globals: list[GlobalVars] = field(default_factory=list)
     configs: list[Configuration] = field(default_factory=list)
+    config_vars: list[ConfigVar] = field(default_factory=list)  # a CODESYS top-level VAR_CONFIG
     tests: list[TestBlock] = field(default_factory=list)
     dialect: str | None = None  # the file's dialect (plclab.lang.dialect); None: the default
 

@@ -35,13 +35,16 @@ class Dialect:
     qualified_enums: bool  # `Color.Red` as well as `Color#Red`
     nested_comments: bool  # `(* (* *) *)` is one comment (ed.3, CODESYS V3)
     operand_width: bool  # integer intermediates wrap to the operand type (S7), not exact
+    # TIME <-> number conversions count seconds (MATIEC: TIME_TO_REAL(T#1500ms) = 1.5), not
+    # milliseconds (CODESYS, TIA Portal: 1500.0)
+    time_in_seconds: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
-    Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False),
+    Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True),
 )}
 DEFAULT = "codesys"
 

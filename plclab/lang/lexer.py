@@ -31,6 +31,25 @@ KEYWORDS = frozenset(
     """.split()
 )
 
+# The tokens after which a TEST block may start: the start of a file and the end of a block.
+_BLOCK_ENDS = frozenset({None, "END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_TYPE",
+                         "END_VAR", "END_CONFIGURATION", "END_TEST", ";"})
+
+
+def _test_as_name(toks: list[Token]) -> list[Token]:
+    """``TEST`` opens a test block only where a block may start (first in the file or after the
+    end of one) and when a title follows; anywhere else it is a name like any other, so that
+    ``test : BOOL`` and ``IF test THEN`` mean what they say (``test`` is a common variable name
+    in real code, and IEC 61131-3 has no TEST keyword)."""
+    for i, t in enumerate(toks):
+        if t.kind != "TEST":
+            continue
+        prev = toks[i - 1].kind if i else None
+        if prev not in _BLOCK_ENDS or toks[i + 1].kind not in ("STRING", "WSTRING", "IDENT"):
+            toks[i] = Token("IDENT", t.value, t.text, t.line, t.col)
+    return toks
+
+
 # Typed-literal prefixes that introduce a time or date literal.
 TIME_PREFIXES = {"T": "TIME", "TIME": "TIME", "LT": "LTIME", "LTIME": "LTIME"}
 DATE_PREFIXES = {"D": "DATE", "DATE": "DATE", "LD": "LDATE", "LDATE": "LDATE"}
@@ -289,7 +308,7 @@ class Lexer:
             else:
                 out.append(Token(s, s, s, line, col))
         out.append(Token("EOF", None, "", line, pos - line_start + 1))
-        return out
+        return _test_as_name(out)
 
     # -- pieces -------------------------------------------------------------------------
     def _skip_comment(self, pos: int, line: int, line_start: int, kind: str) -> tuple[int, int, int]:

@@ -18,6 +18,17 @@ SFC_LIBRARY = "sfclib.st"
 it holds a chart, so that other programs compile no more code than before."""
 
 
+ANNEX_F = "annexf.st"
+"""The analog blocks of IEC 61131-3 ed.2 Annex F (INTEGRAL, DERIVATIVE, HYSTERESIS, PID, RAMP),
+as Beremiz and OpenPLC ship them: added to a project that declares one of them, or that has a
+file in the ``matiec`` dialect (ADR 0029)."""
+
+ANNEX_F_BLOCKS = frozenset({"INTEGRAL", "DERIVATIVE", "HYSTERESIS", "PID", "RAMP"})
+ANNEX_F_SHARED = frozenset({"PID", "RAMP"})
+"""Names plclab's own control library (CODESYS-style blocks) uses too: a project in the
+``matiec`` dialect gets the Annex F blocks under these names, every other project plclab's."""
+
+
 @cache
 def stdlib_text(name: str) -> str:
     """The text of one of :data:`STDLIB_FILES`."""
@@ -29,4 +40,5 @@ def stdlib_filename(name: str) -> str:
     return f"<plclab>/{name}"
 
 
-__all__ = ["STDLIB_FILES", "SFC_LIBRARY", "stdlib_text", "stdlib_filename"]
+__all__ = ["STDLIB_FILES", "SFC_LIBRARY", "ANNEX_F", "ANNEX_F_BLOCKS", "ANNEX_F_SHARED",
+           "stdlib_text", "stdlib_filename"]

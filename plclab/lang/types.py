@@ -118,6 +118,7 @@ class Subrange(Type):
     base: Elementary
     lo: int
     hi: int
+    init: Any = None  # the TYPE's own initial value (an AST expression), if it declares one
     kind = "int"
 
     @property
@@ -139,6 +140,7 @@ class EnumType(Type):
     members: dict[str, int] = field(default_factory=dict)
     base: Elementary = INT
     spellings: dict[str, str] = field(default_factory=dict)
+    init: Any = None  # TYPE LEVEL : (LOW, HIGH) := HIGH: the expression HIGH
     kind = "enum"
 
     def member_name(self, value: int) -> str:
@@ -189,6 +191,18 @@ class FBType(Type):
 class AliasType(Type):
     name: str
     target: Type | None = None
+    init: Any = None  # TYPE Speed : INT := 50: the expression 50
+
+
+def declared_init(t: Type) -> Any:
+    """The initial value a TYPE declaration gives its type (``TYPE LEVEL : (LOW, HIGH) := HIGH``,
+    IEC 61131-3 ed.3 6.4.4.1), from the nearest alias that declares one; None when the IEC
+    default applies."""
+    while True:
+        init = getattr(t, "init", None)
+        if init is not None or not isinstance(t, AliasType) or t.target is None:
+            return init
+        t = t.target
 
 
 @dataclass(eq=False)
@@ -257,7 +271,9 @@ def can_widen(src: Type, dst: Type) -> bool:
     if src is dst:
         return True
     if isinstance(src, Subrange):
-        src = src.base
+        src = src.base  # a subrange value is a value of its base type, and widens like it
+        if src is dst:
+            return True
     if isinstance(dst, Subrange):
         return base_of(src) is dst.base or can_widen(src, dst.base)
     if src is ANY_INT_LIT:

@@ -169,6 +169,15 @@ def duration(ns: int) -> str:
 # -- declarations and statements -------------------------------------------------------------
 
 
+def _path(spelled: str, resources: set[str] | list[str]) -> str:
+    """A configuration path with its resource renamed to the printer's one resource, Cpu
+    (a direct address keeps a resource in front: ``Cpu.%IX1.1``)."""
+    head, _, rest = spelled.partition(".")
+    if rest and head.upper() in {r.upper() for r in resources}:
+        return f"Cpu.{rest}"
+    return f"Cpu.{spelled}" if spelled.startswith("%") else spelled
+
+
 def type_ref(t: A.TypeRef) -> str:
     """A type as written in a declaration."""
     if isinstance(t, A.NamedTypeRef):
@@ -203,6 +212,8 @@ class _Writer:
         blocks += [(g.loc, g) for g in f.globals]
         blocks += [(p.loc, p) for p in f.pous]
         blocks += [(c.loc, c) for c in f.configs]
+        if f.config_vars:
+            blocks.append((f.config_vars[0].loc, f.config_vars))
         blocks += [(t.loc, t) for t in f.tests]
         blocks.sort(key=lambda b: (b[0].line, b[0].col) if b[0] is not None else (0, 0))
         for i, (_, b) in enumerate(blocks):
@@ -218,6 +229,8 @@ class _Writer:
                 self.configuration(b)
             elif isinstance(b, A.TestBlock):
                 self.test(b)
+            elif isinstance(b, list):
+                self.config_vars(b, set())
 
     def type_decl(self, t: A.TypeDecl) -> None:
         name = _spelled(t.spelling, t.name)
@@ -256,11 +269,35 @@ class _Writer:
             self.line(f"TASK {t.name} ({', '.join(f'{k} := {expr(v)}' for k, v in props)});")
         for i in c.instances:
             task = f" WITH {i.task}" if i.task else ""
-            self.line(f"PROGRAM {i.name}{task} : {i.program};")
+            prog = expr(i.call) if i.call is not None else i.program
+            self.line(f"PROGRAM {i.name}{task} : {prog};")
         self.depth -= 1
         self.line("END_RESOURCE")
+        self.config_vars(c.config_vars, set(c.resources))
+        if c.access_paths:
+            self.line("VAR_ACCESS")
+            self.depth += 1
+            for a in c.access_paths:
+                mode = "READ_ONLY" if a.read_only else "READ_WRITE"
+                self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, c.resources)} : "
+                          f"{type_ref(a.type)} {mode};")
+            self.depth -= 1
+            self.line("END_VAR")
         self.depth -= 1
         self.line("END_CONFIGURATION")
+
+    def config_vars(self, lines: list[A.ConfigVar], resources: set[str]) -> None:
+        """VAR_CONFIG, its paths written from the one resource this printer names (Cpu)."""
+        if not lines:
+            return
+        self.line("VAR_CONFIG")
+        self.depth += 1
+        for v in lines:
+            at = f" AT {v.address}" if v.address else ""
+            init = f" := {expr(v.init)}" if v.init is not None else ""
+            self.line(f"{_path(v.spelled, resources)}{at} : {type_ref(v.type)}{init};")
+        self.depth -= 1
+        self.line("END_VAR")
 
     def test(self, t: A.TestBlock) -> None:
         title = t.title.replace("$", "$$").replace("'", "$'")

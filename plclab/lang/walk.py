@@ -90,10 +90,14 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.TypeDecl: lambda n: [n.type] + flat([n.init]),
     A.GlobalVars: lambda n: list(n.decls),
     A.TaskDecl: lambda n: flat([n.interval, n.priority, n.single]),
-    A.ProgramInstance: lambda n: [],
-    A.Configuration: lambda n: [*n.globals, *n.tasks, *n.instances],
+    A.ProgramInstance: lambda n: flat([n.call]),
+    A.ConfigVar: lambda n: [n.type] + flat([n.init]),
+    A.AccessPath: lambda n: [n.type],
+    A.Configuration: lambda n: [*n.globals, *n.tasks, *n.instances, *n.config_vars,
+                                *n.access_paths],
     A.TestBlock: lambda n: [*n.decls, *n.body],
-    A.SourceFile: lambda n: [*n.types, *n.globals, *n.pous, *n.configs, *n.tests],
+    A.SourceFile: lambda n: [*n.types, *n.globals, *n.pous, *n.configs, *n.config_vars,
+                             *n.tests],
 }
 
 

@@ -526,6 +526,19 @@ class Plc:
         """The value as an IEC literal (``T#1s``, ``TRUE``, ``7.8``)."""
         return self.get(path, iec=True)
 
+    def _access_var(self, path: str, access: Any) -> Var:
+        """An access path (VAR_ACCESS) is the variable it names; READ_ONLY refuses writes."""
+        v = self._resolve(access.target)
+        if not access.read_only:
+            return Var(path, v.type, v.get, v.set, v.address)
+
+        def refuse(_value: Any) -> None:
+            raise PlcError("PLC3013", f"{access.spelling} is a READ_ONLY access path of the "
+                           f"configuration; write {access.target} itself, or declare the access "
+                           "path READ_WRITE")
+
+        return Var(path, v.type, v.get, refuse, v.address)
+
     def _resolve(self, path: str) -> Var:
         if path.startswith("%"):
             return self._address_var(path)
@@ -539,6 +552,9 @@ class Plc:
         def program(name: str):
             return lambda: getattr(self.ns["_P"], name)
 
+        access = self.project.symbols.access_paths.get(head_u)
+        if access is not None and len(parts) == 1 and not idx:  # VAR_ACCESS of the configuration
+            return self._access_var(path, access)
         # 1. a program instance name 2. a global 3. a variable of exactly one program
         if head_u in progs and (len(parts) > 1 or idx):
             if idx:

@@ -130,6 +130,13 @@ class Calls(Pass):
                 self.cx.exprs.expr(a.value, None)
                 continue
             if d.section == "VAR_IN_OUT":
+                # VAR_IN_OUT CONSTANT takes any value of the type, a literal too (IEC 61131-3
+                # ed.3 Table 13); the block cannot change it, so nothing is written back
+                if d.constant:
+                    vt = self.cx.exprs.expr(a.value, d.ty)
+                    self.cx.exprs.check_assignable(vt, d.ty, a.value, a.loc)
+                    inouts.append((d, a.value))
+                    continue
                 tt = self.cx.exprs.lvalue(a.value)
                 if not T.same_type(tt, d.ty) and tt is not T.ANY and d.ty is not T.ANY and not (
                     isinstance(T.resolve(tt), T.StringType) and
@@ -286,4 +293,4 @@ class Calls(Pass):
         bs = [T.base_of(t) for t in ts]
         if any(t is T.ANY for t in bs):
             return T.BOOL if spec.typing == "compare" else T.ANY
-        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c))
+        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c, vals))

@@ -3,7 +3,8 @@
 1. :class:`~.symbols.SymbolTable` ``.collect`` -- every TYPE, POU and global by name;
 2. :mod:`.declarations` (with :mod:`.consts`) -- types of TYPEs, globals and POU variables;
 3. :mod:`.stmts` (with :mod:`.exprs` and :mod:`.calls`) -- every POU body;
-4. :mod:`.program` -- recursion, the configuration and its tasks;
+4. :mod:`.program` -- recursion, the configuration and its tasks; :mod:`.configvars` -- its
+   VAR_CONFIG and VAR_ACCESS;
 5. :mod:`.stmts` -- the TEST blocks; :mod:`.program` -- data that contains itself or is too big.
 
 The passes annotate the AST in place, only through the fields :mod:`plclab.lang.ast` declares
@@ -22,6 +23,7 @@ from .. import ast as A
 from .. import types as T
 from ..limits import compiler_guard
 from .calls import Calls
+from .configvars import ConfigVars
 from .consts import Constants
 from .context import CheckContext
 from .declarations import Declarations
@@ -64,6 +66,7 @@ class Checker:
         cx.calls = Calls(cx)
         cx.stmts = Statements(cx)
         cx.program = ProgramChecks(cx)
+        self.config_vars = ConfigVars(cx)
 
     def run(self) -> Project:
         with compiler_guard():  # nesting recurses; the limits are checked (plclab.lang.limits)
@@ -77,6 +80,7 @@ class Checker:
             cx.stmts.check_pou_body(p)
         cx.program.check_recursion()
         programs, tasks = cx.program.configuration()
+        self.config_vars.run(programs)
         tests = [t for f in self.files for t in f.tests]
         for t in tests:
             cx.stmts.check_test(t)

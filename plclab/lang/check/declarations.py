@@ -35,6 +35,9 @@ class Declarations(Pass):
                     consts.enum_index.setdefault(mname, name)
         for name in table.type_decls:
             self.named_type(name, table.type_decls[name].loc)
+        for name, td in table.type_decls.items():
+            if td.init is not None and name in table.types:
+                self.init_value(td.init, table.types[name], td.loc)
         for p in table.pous.values():
             if p.kind != "FUNCTION":
                 table.types.setdefault(p.name, T.FBType(p.name, p))
@@ -65,6 +68,12 @@ class Declarations(Pass):
                 self.cx.consts.leave()
             if isinstance(ty, T.Elementary | T.StringType | T.ArrayType | T.Subrange | T.FBType):
                 ty = T.AliasType(name, ty) if not isinstance(ty, T.Subrange) else ty
+            if td.init is not None and ty is not T.ANY:
+                fresh = isinstance(ty, T.AliasType) or isinstance(
+                    td.type, A.EnumTypeRef | A.SubrangeTypeRef)
+                if not fresh:  # a new name for a type declared elsewhere keeps that one's default
+                    ty = T.AliasType(name, ty)
+                ty.init = td.init  # type: ignore[union-attr]
             self.table.types.setdefault(name, ty)
             return self.table.types[name]
         if name in self.table.pous and self.table.pous[name].kind != "FUNCTION":
@@ -249,7 +258,7 @@ class Declarations(Pass):
             if d.address and p.kind != "PROGRAM" and not d.address.endswith("*"):
                 self.err("PLC0120", f"{d.name}: located variables (AT {d.address}) belong in a "
                          "PROGRAM or VAR_GLOBAL, not in a function or function block", d.loc)
-            if d.constant and d.init is None:
+            if d.constant and d.init is None and d.section not in ("VAR_EXTERNAL", "VAR_IN_OUT"):
                 self.err("PLC0109", f"constant {d.name} needs a value: {d.name} : "
                          f"{d.ty} := ...;", d.loc)
         self.check_scope(p)

@@ -16,6 +16,15 @@ from .symbols import EnumSym, ProgSym, VarSym
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
 
 
+def as_bool_literal(e: A.Expr) -> bool:
+    """Turn a plain ``0`` or ``1`` into the BOOL literal it is beside a BOOL operand (IEC 61131-3
+    ed.2 2.2.1, ed.3 Table 5): ``b AND 1``, ``OR(0, b)``. False, and nothing changed, otherwise."""
+    if isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None and e.value in (0, 1):
+        e.kind, e.value, e.ty = "BOOL", bool(e.value), T.BOOL
+        return True
+    return False
+
+
 class Expressions(Pass, NodeVisitor):
     """Types every expression (``Expr.ty``) and resolves names (``Name.sym``)."""
 
@@ -88,13 +97,18 @@ class Expressions(Pass, NodeVisitor):
         root = e
         while isinstance(root, A.Member | A.Index):
             root = root.obj
+        if isinstance(root, A.Name) and root is not e and isinstance(root.sym, VarSym) and (
+                root.sym.decl.constant or root.sym.read_only):  # LIMITS[1] := ..., P.x := ...
+            self.err("PLC0105", f"{root.sym.decl.spelling or root.name} is a constant and "
+                     "cannot be changed", e.loc)
         if isinstance(e, A.Name):
             sym = e.sym
             if isinstance(sym, VarSym):
                 d = sym.decl
-                if d.constant:
+                if d.constant or sym.read_only:
                     self.err("PLC0105", f"{d.spelling or d.name} is a constant and cannot be "
-                             "changed", e.loc)
+                             "changed" + (" (it is declared VAR_EXTERNAL CONSTANT here)"
+                                          if sym.read_only and not d.constant else ""), e.loc)
                 elif d.address and d.address.startswith("%I"):
                     self.err("PLC0105", f"{d.spelling or d.name} is a physical input ({d.address}); "
                              "a program can read an input but not write it", e.loc)
@@ -240,9 +254,15 @@ class Expressions(Pass, NodeVisitor):
                      f"(inst : {e.name};) and use the instance", e.loc)
             return T.ANY
         cands = list(self.cx.scope) + list(self.table.globals) + list(self.table.enum_members)
-        self.err("PLC0100", f"{e.text or e.name} is not declared" + close_hint(e.name, cands) +
-                 ("" if close_hint(e.name, cands) else "; declare it in a VAR section"),
-                 e.loc)
+        rexp = T.resolve(expected) if expected is not None else None
+        if isinstance(rexp, T.EnumType):  # l : LEVEL := PURPLE
+            values = [rexp.spellings.get(k, k) for k in rexp.members]
+            self.err("PLC0100", f"{e.text or e.name} is not a value of {rexp.name}; its values "
+                     f"are {', '.join(values)}" + close_hint(e.name, list(rexp.members)), e.loc)
+        else:
+            self.err("PLC0100", f"{e.text or e.name} is not declared" + close_hint(e.name, cands)
+                     + ("" if close_hint(e.name, cands) else "; declare it in a VAR section"),
+                     e.loc)
         # declare it to avoid repeated errors
         d = A.VarDecl(e.loc, e.name, A.NamedTypeRef(e.loc, "ANY"))
         d.ty = T.ANY
@@ -423,6 +443,10 @@ class Expressions(Pass, NodeVisitor):
         if a is T.ANY or b is T.ANY:
             return T.BOOL if op in ("=", "<>", "<", "<=", ">", ">=") else T.ANY
         if op in ("AND", "OR", "XOR"):
+            if a is T.BOOL and b is not T.BOOL and as_bool_literal(e.right):
+                b = T.BOOL
+            elif b is T.BOOL and a is not T.BOOL and as_bool_literal(e.left):
+                a = T.BOOL
             if a is T.BOOL and b is T.BOOL:
                 return T.BOOL
             if a.kind in ("bits", "int") and b.kind in ("bits", "int"):

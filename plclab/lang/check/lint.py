@@ -64,6 +64,9 @@ def lint(files: list[A.SourceFile], io_table: Iterable[IoRow] | None = None
         _int_division(p, warn)
     located = [d for f in files for d in _decls(f) if d.address]
     direct = any(isinstance(n, A.DirectAddr) for p in pous for s in p.body for n in walk(s))
+    # a configuration may wire the program instead: VAR_CONFIG addresses or its connections
+    direct = direct or any(f.config_vars or any(c.config_vars or any(
+        i.call is not None for i in c.instances) for c in f.configs) for f in files)
     if programs and not located and not direct:
         p = programs[0]
         warn("PLC0214", f"PROGRAM {p.spelling or p.name} has no located variables: it reads "

@@ -210,8 +210,8 @@ class Statements(Pass, NodeVisitor):
     def label_value(self, e: A.Expr) -> Any:
         if isinstance(e, A.Literal) and e.kind == "ENUM":
             return e.enum_value
-        if isinstance(e, A.Name) and isinstance(e.sym, EnumSym):
-            return e.sym.value
+        if isinstance(e, A.Name | A.Member) and isinstance(e.sym, EnumSym):
+            return e.sym.value  # Red, or Color.Red as CODESYS qualifies it
         return self.cx.consts.const_value(e)
 
     def for_stmt(self, s: A.For) -> None:

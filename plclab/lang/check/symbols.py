@@ -42,6 +42,7 @@ class VarSym:
     decl: A.VarDecl
     storage: str  # "self" (member of the POU instance), "local", "global"
     owner: A.Pou | None = None
+    read_only: bool = False  # VAR_EXTERNAL CONSTANT: a global this POU may read, not write
 
     @property
     def ty(self) -> T.Type:
@@ -74,6 +75,7 @@ class LocatedVar:
     decl: A.VarDecl
     pou: A.Pou | None = None  # the program, None for a global
     instance: str | None = None  # the program instance's name, None for a global
+    via: tuple[str, ...] = ()  # the block instances between the program and the variable
 
     @property
     def wildcard(self) -> bool:
@@ -127,6 +129,30 @@ def instance_label(instance: str, pou: A.Pou) -> str:
 
 
 @dataclass(eq=False)
+class ConfigBinding:
+    """A VAR_CONFIG line the checker resolved: which variable of which program instance it
+    addresses, the address it completes and the initial value it gives."""
+
+    path: str  # as a user writes it, e.g. "P1.fb1.sensor"
+    instance: str  # the program instance
+    via: tuple[str, ...]  # the member names between the instance and the variable
+    decl: A.VarDecl
+    address: str | None
+    init: A.Expr | None
+
+
+@dataclass(eq=False)
+class AccessBinding:
+    """A VAR_ACCESS name the checker resolved: the path (or direct address) it stands for."""
+
+    name: str
+    spelling: str
+    target: str  # a variable path ("P1.x", "g.member") or a direct address ("%IX1.1")
+    type: T.Type
+    read_only: bool
+
+
+@dataclass(eq=False)
 class SymbolTable:
     """Every declaration of a project (see the module text)."""
 
@@ -137,6 +163,10 @@ class SymbolTable:
     configs: list[A.Configuration] = field(default_factory=list)
     types: dict[str, T.Type] = field(default_factory=dict)  # resolved by the checker
     enum_members: dict[str, list[EnumSym]] = field(default_factory=dict)  # by the checker
+    config_vars: list[A.ConfigVar] = field(default_factory=list)  # VAR_CONFIG lines, all files
+    resources: set[str] = field(default_factory=set)  # the configurations' resource names
+    config_bindings: list[ConfigBinding] = field(default_factory=list)  # by the checker
+    access_paths: dict[str, AccessBinding] = field(default_factory=dict)  # by the checker
     _scopes: dict[int, Scope] = field(default_factory=dict)
     _programs: list[tuple[str, A.Pou, str | None]] | None = None
 
@@ -166,6 +196,9 @@ class SymbolTable:
                     continue
                 table._declare("POU", p.name, p.loc, table.pous, p, say)
         table.configs = [c for f in files for c in f.configs]
+        table.config_vars = [v for c in table.configs for v in c.config_vars] + [
+            v for f in files for v in f.config_vars]
+        table.resources = {r for c in table.configs for r in c.resources}
         table.global_decls = [d for f in files for g in f.globals for d in g.decls]
         table.global_decls += [d for c in table.configs for d in c.globals]
         for d in table.global_decls:
@@ -225,7 +258,8 @@ class SymbolTable:
         for d in [d for b in reversed(self.bases(p)) for d in b.decls] + p.decls:
             if d.section == "VAR_EXTERNAL":
                 g = self.globals.get(d.name)
-                names[d.name] = VarSym(g if g is not None else d, "global", p)
+                names[d.name] = VarSym(g if g is not None else d, "global", p,
+                                       read_only=d.constant)
                 continue
             st = "local" if (storage_local or d.section == "VAR_TEMP") else "self"
             names[d.name] = VarSym(d, st, p)
@@ -283,9 +317,17 @@ class SymbolTable:
         variables (its VAR_EXTERNALs are the globals already listed), wildcards included."""
         out = [LocatedVar(d.spelling or d.name, d.address.upper(), d)
                for d in self.globals.values() if d.address]
+        configured = {(b.instance, b.via, b.decl.name): b for b in self.config_bindings
+                      if b.address}
         for inst, pou, _ in self.programs():
             label = instance_label(inst, pou)
-            out += [LocatedVar(f"{label}.{d.spelling or d.name}", d.address.upper(), d, pou, inst)
-                    for d in self.members(pou).values()
-                    if d.address and d.section != "VAR_EXTERNAL"]
+            for d in self.members(pou).values():
+                if d.address and d.section != "VAR_EXTERNAL":
+                    b = configured.pop((inst, (), d.name), None)
+                    address = b.address if b is not None else d.address.upper()
+                    out.append(LocatedVar(f"{label}.{d.spelling or d.name}", address, d, pou,
+                                          inst))
+        programs = {inst: pou for inst, pou, _ in self.programs()}
+        out += [LocatedVar(b.path, b.address, b.decl, programs.get(b.instance), b.instance,
+                           b.via) for b in configured.values() if b.address]
         return out

@@ -14,20 +14,22 @@ from typing import Any
 from .. import ast as A
 from .. import types as T
 from ..builtins import Builtin
+from .exprs import as_bool_literal
 
 __all__ = ["TYPING_RULES", "Typing"]
 
 
 @dataclass(eq=False)
 class Typing:
-    """One call being typed: the pass (to report), the function, the argument types ``ts`` and
-    their base types ``bs``."""
+    """One call being typed: the pass (to report), the function, the argument types ``ts``,
+    their base types ``bs`` and the argument expressions ``vals``."""
 
     cx: Any  # the calls pass
     spec: Builtin
     ts: list[T.Type]
     bs: list[T.Type]
     call: A.Call
+    vals: list[A.Expr]
 
     def need(self, ok: bool, what: str) -> None:
         if not ok:
@@ -100,6 +102,9 @@ def _multiplex(t: Typing) -> T.Type:
 
 
 def _bitwise(t: Typing) -> T.Type:  # AND, OR, XOR, NOT: all BOOL, or bit strings/integers
+    if T.BOOL in t.bs and len(t.bs) > 1:  # AND(b, 1): a plain 0 or 1 beside a BOOL is a BOOL
+        t.bs = [T.BOOL if b is not T.BOOL and as_bool_literal(v) else b
+                for b, v in zip(t.bs, t.vals, strict=True)]
     if all(b is T.BOOL for b in t.bs):
         return T.BOOL
     if not t.kinds("bits", "int"):

@@ -48,7 +48,7 @@ _VAR_SECTIONS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "
 _STMT_END = {"END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNTIL",
              "END_REPEAT", "END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_TEST", "EOF"}
 _POU_START = {"PROGRAM", "FUNCTION", "FUNCTION_BLOCK", "TYPE", "VAR_GLOBAL", "CONFIGURATION",
-              "TEST"}
+              "TEST", "VAR_CONFIG"}
 # tokens where a declaration cannot continue: a new section, a new POU, the end of a body
 _DECL_STOP = set(_VAR_SECTIONS) | _POU_START | _STMT_END | {"END_TYPE", "END_STRUCT",
                                                              "END_CONFIGURATION", "END_RESOURCE"}
@@ -212,6 +212,8 @@ class Parser:
                     out.globals.append(A.GlobalVars(loc, self.var_section()))
                 elif k == "CONFIGURATION":
                     out.configs.append(self.configuration())
+                elif k == "VAR_CONFIG":  # CODESYS: a global variable list of its own
+                    out.config_vars.extend(self.config_section())
                 elif k == "TEST":
                     out.tests.append(self.test_block())
                 else:
@@ -320,8 +322,12 @@ class Parser:
         while not self.at("END_CONFIGURATION", "EOF"):
             if self.at("VAR_GLOBAL"):
                 cfg.globals.extend(self.var_section())
+            elif self.at("VAR_CONFIG"):
+                cfg.config_vars.extend(self.config_section())
+            elif self.at("VAR_ACCESS"):
+                cfg.access_paths.extend(self.access_section())
             elif self.accept("RESOURCE"):
-                self.expect("IDENT", "a resource name")
+                cfg.resources.append(self.expect("IDENT", "a resource name").value)
                 if self.accept("ON"):
                     self.expect("IDENT", "a processor type")
                 while not self.at("END_RESOURCE", "EOF"):
@@ -340,9 +346,71 @@ class Parser:
             elif self.at("PROGRAM"):
                 cfg.instances.append(self.program_instance())
             else:
-                self.fail_expected("RESOURCE, TASK, PROGRAM, VAR_GLOBAL or END_CONFIGURATION")
+                self.fail_expected("RESOURCE, TASK, PROGRAM, VAR_GLOBAL, VAR_CONFIG, VAR_ACCESS "
+                                   "or END_CONFIGURATION")
         self.expect("END_CONFIGURATION")
         return cfg
+
+    def instance_path(self, what: str) -> tuple[list[Token], Token | None]:
+        """``STATION_1.P1.FB1.C2`` (names) or ``STATION_1.%IX1.1`` (names, then an address)."""
+        parts = [self.expect("IDENT", what)]
+        while self.accept("."):
+            if self.at("ADDR"):
+                return parts, self.advance()
+            parts.append(self.expect("IDENT", "a name after '.'"))
+        return parts, None
+
+    def config_section(self) -> list[A.ConfigVar]:
+        """``VAR_CONFIG path [AT %addr] : type [:= value]; ... END_VAR``."""
+        self.advance()
+        out: list[A.ConfigVar] = []
+        while not self.at("END_VAR", "EOF") and self.tok.kind not in _DECL_STOP:
+            start = self.i
+            try:
+                parts, _ = self.instance_path("an instance path such as Main.fb1.x")
+                address = None
+                if self.accept("AT"):
+                    address = self.address(self.expect("ADDR", "a direct address such as "
+                                                       "%IX0.0"))
+                self.expect(":", "':' and the variable's type")
+                tref = self.type_ref()
+                init = self.initializer() if self.accept(":=") else None
+                if not self.accept(";"):
+                    self.fail_expected("';' after the VAR_CONFIG line")
+                out.append(A.ConfigVar(self.loc(parts[0]), [p.value for p in parts],
+                                       ".".join(p.text for p in parts), address, tref, init))
+            except ParseAbort:
+                self.sync({"END_VAR"} | _DECL_STOP)
+                self.ensure_progress(start)
+        self.expect("END_VAR")
+        return out
+
+    def access_section(self) -> list[A.AccessPath]:
+        """``VAR_ACCESS name : path : type [READ_ONLY | READ_WRITE]; ... END_VAR``."""
+        self.advance()
+        out: list[A.AccessPath] = []
+        while not self.at("END_VAR", "EOF") and self.tok.kind not in _DECL_STOP:
+            start = self.i
+            try:
+                name = self.expect("IDENT", "the access path's name")
+                self.expect(":", "':' and the path it names")
+                parts, addr = self.instance_path("a variable path such as P1.x")
+                path = [p.value for p in parts] + ([canonical(addr.value)] if addr else [])
+                spelled = ".".join([p.text for p in parts] + ([addr.text] if addr else []))
+                self.expect(":", "':' and the type")
+                tref = self.type_ref()
+                read_only = True
+                if self.at("IDENT") and self.tok.value in ("READ_ONLY", "READ_WRITE"):
+                    read_only = self.advance().value == "READ_ONLY"
+                if not self.accept(";"):
+                    self.fail_expected("';' after the VAR_ACCESS line")
+                out.append(A.AccessPath(self.loc(name), name.value, name.text, path, spelled,
+                                        tref, read_only))
+            except ParseAbort:
+                self.sync({"END_VAR"} | _DECL_STOP)
+                self.ensure_progress(start)
+        self.expect("END_VAR")
+        return out
 
     def task_decl(self) -> A.TaskDecl:
         head = self.advance()
@@ -375,15 +443,15 @@ class Parser:
         if self.accept("WITH"):
             task = self.expect("IDENT", "a task name").value
         self.expect(":")
-        prog = self.expect("IDENT", "a program type name").value
-        if self.accept("("):  # connections: ignore values but parse them
-            depth = 1
-            while depth and not self.at("EOF"):
-                t = self.advance()
-                depth += t.kind == "("
-                depth -= t.kind == ")"
+        prog_tok = self.expect("IDENT", "a program type name")
+        call = None
+        if self.at("("):  # connections (ed.3 Figure 21): inputs from, outputs to, the outside
+            loc = self.loc()
+            self.advance()
+            args = self.call_args()
+            call = A.Call(loc, A.Name(self.loc(prog_tok), prog_tok.value, prog_tok.text), args)
         self.expect(";")
-        return A.ProgramInstance(self.loc(head), name, task, prog)
+        return A.ProgramInstance(self.loc(head), name, task, prog_tok.value, call)
 
     # -- declarations -------------------------------------------------------------------------
     def var_section(self) -> list[A.VarDecl]:
@@ -839,10 +907,11 @@ class Parser:
             nk = toks[j + 1].kind
             if nk == ":" or nk == ",":
                 return True
-            if nk == ".." :
+            if nk == "..":
                 return True
+            # Color.Red: a CODESYS-qualified enumeration value (no statement starts `a.b :`)
             if nk == "." and toks[j + 2].kind == "IDENT" and toks[j + 3].kind in (":", ",", ".."):
-                return False
+                return True
         return False
 
     def for_stmt(self) -> A.For:

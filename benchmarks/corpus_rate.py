@@ -1,0 +1,123 @@
+"""Acceptance rate of plclab on a corpus of real-world files (issue 23's measure).
+
+Run ``python benchmarks/corpus_rate.py DIR [DIR ...]``: every ``.st`` and ``.xml`` file under
+each DIR is checked on its own, in the dialect its ``{dialect}`` pragma names, else the one a
+``DIALECT`` file in its folder (or a parent, up to DIR) names, else the default. A file that
+checks without errors and holds a program is then loaded and scanned 100 times (10 ms apart).
+The table gives, per DIR: files, accepted, accepted and ran 100 scans without a fault, the
+rate, and the most frequent first error codes with one example each, which is what to work on
+next. ``--list`` also prints each file's outcome.
+
+The corpus itself is not in the repository unless its licence allows it (MIT, BSD, Apache,
+LGPL with attribution; see ``tests/corpus/`` where such files are kept with their source).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections import Counter
+from dataclasses import dataclass
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+import plclab  # noqa: E402
+from plclab.errors import PlcError  # noqa: E402
+from plclab.project import check_sources  # noqa: E402
+
+SCANS = 100
+
+
+@dataclass
+class Outcome:
+    path: Path
+    status: str  # "ran", "accepted" (no program to run), "rejected", "fault", "unreadable"
+    code: str = ""
+    message: str = ""
+
+
+def dialect_for(path: Path, root: Path) -> str | None:
+    for folder in [path.parent, *path.parent.parents]:
+        marker = folder / "DIALECT"
+        if marker.is_file():
+            return marker.read_text().strip() or None
+        if folder == root:
+            break
+    return None
+
+
+def read_text(path: Path) -> str | None:
+    raw = path.read_bytes()
+    for encoding in ("utf-8-sig", "latin-1"):
+        try:
+            return raw.decode(encoding)
+        except UnicodeDecodeError:
+            continue
+    return None
+
+
+def judge(path: Path, root: Path) -> Outcome:
+    text = read_text(path)
+    if text is None:
+        return Outcome(path, "unreadable")
+    dialect = dialect_for(path, root)
+    try:
+        project, diags = check_sources([(text, path.name)], dialect)
+    except PlcError as exc:  # a file the front ends refuse as a whole
+        return Outcome(path, "rejected", exc.code, str(exc).splitlines()[0])
+    errors = [d for d in diags if d.severity == "error"]
+    if errors or project is None:
+        first = errors[0] if errors else None
+        return Outcome(path, "rejected", first.code if first else "?",
+                       first.message if first else "no project")
+    if not project.programs:
+        return Outcome(path, "accepted")
+    try:
+        plc = plclab.loads(text, path.name, dialect=dialect)
+        plc.scan(SCANS)
+    except PlcError as exc:
+        return Outcome(path, "fault", exc.code, str(exc).splitlines()[0])
+    return Outcome(path, "ran")
+
+
+def measure(root: Path) -> list[Outcome]:
+    files = sorted(p for p in root.rglob("*") if p.suffix.lower() in (".st", ".xml"))
+    return [judge(p, root) for p in files]
+
+
+def report(root: Path, outcomes: list[Outcome], listing: bool) -> None:
+    n = len(outcomes)
+    by = Counter(o.status for o in outcomes)
+    ok = by["ran"] + by["accepted"]
+    print(f"{root}: {n} files, {ok} accepted ({by['ran']} ran {SCANS} scans), "
+          f"{by['rejected']} rejected, {by['fault']} faulted, {by['unreadable']} unreadable; "
+          f"acceptance {ok / n:.0%}" if n else f"{root}: no files")
+    codes = Counter(o.code for o in outcomes if o.status in ("rejected", "fault"))
+    for code, count in codes.most_common(8):
+        example = next(o for o in outcomes if o.code == code)
+        print(f"  {count:4d} x {code}  e.g. {example.path.relative_to(root)}: "
+              f"{example.message[:100]}")
+    if listing:
+        for o in outcomes:
+            print(f"  {o.status:9s} {o.code:8s} {o.path.relative_to(root)}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dirs", nargs="+", type=Path)
+    ap.add_argument("--list", action="store_true", help="print each file's outcome")
+    args = ap.parse_args(argv)
+    total = accepted = 0
+    for d in args.dirs:
+        outcomes = measure(d)
+        report(d, outcomes, args.list)
+        total += len(outcomes)
+        accepted += sum(o.status in ("ran", "accepted") for o in outcomes)
+    if total:
+        print(f"acceptance rate: {accepted / total:.2f} ({accepted}/{total})")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
