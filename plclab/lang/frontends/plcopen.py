@@ -686,6 +686,7 @@ class _Importer:
             if v.get("negated") in ("true", "1"):
                 e.neg_out.add(pin)
         e.out_pin = next((p for p in out_pins if p != "ENO"), "OUT")
+        e.outs = out_pins
 
     def pin_name(self, v: ET.Element, el: ET.Element, seen: set[str]) -> str:
         """A block pin's formal parameter, upper case (pin names are case-insensitive)."""

@@ -47,6 +47,7 @@ class Elem:
     neg_out: set[str] = field(default_factory=set)  # XML: negated output pins of a box
     edge_in: dict[str, str] = field(default_factory=dict)  # XML: input pin -> "P" rising / "N"
     inout_pins: set[str] = field(default_factory=set)  # XML: VAR_IN_OUT pins of a box
+    outs: list[str] = field(default_factory=list)  # XML: the output pins of a box, in order
     label: str = ""  # XML: the label of a jump or label element
     explicit_order: bool = False  # XML: executionOrderId given (else the topological rule)
 
