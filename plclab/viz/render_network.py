@@ -72,6 +72,7 @@ class _Layout:
                     self.consumers.setdefault(i, []).append(e)
         self.col: dict[int, int] = {}
         self.row: dict[int, int] = {}
+        self.pin_off: dict[int, dict[str, int]] = {}
         self.power: dict[int, bool | None] = {}
 
     # -- structure ----------------------------------------------------------------------------
@@ -97,7 +98,9 @@ class _Layout:
             return [""]
         outs = list(getattr(e, "outs", []) or [])
         if not outs:
-            outs = [self.power_pins(e)[1]] if "" in e.inputs else [e.out_pin or "OUT"]
+            known = e.kind == "fb" and self.power_pins(e) != ("EN", "ENO")
+            outs = [self.power_pins(e)[1]] if "" in e.inputs or known else \
+                [e.out_pin or "OUT"]
         return outs
 
     def power_pins(self, e) -> tuple[str, str]:
@@ -105,10 +108,6 @@ class _Layout:
 
         b = BLOCKS.get(e.type_name)
         return b.power if b is not None and b.power else ("EN", "ENO")
-
-    def height(self, e) -> int:
-        return max(len(self.in_pins(e)), len(self.out_pins(e))) if e.kind in ("fb", "func") \
-            else 1
 
     def columns(self) -> int:
         order = _topological(list(self.elems.values()), self)
@@ -124,13 +123,13 @@ class _Layout:
 
     def rows(self) -> int:
         """Rows from the sinks back, as a tree: each element belongs to its first consumer;
-        a box's k-th input starts no higher than the box's k-th pin row, each input below the
-        rows of the one before; the networks (sinks in order) stacked. Iterative."""
+        each input pin of a box stands on the row of what feeds it (the box grows), so wires
+        run straight; the networks (sinks in order) stacked. Iterative."""
         order = _topological([e for e in self.elems.values() if e.kind != "left"], self)
         sinks = sorted((e for e in order if not self.consumers.get(e.id)),
                        key=lambda e: e.order)
         parent: dict[int, int] = {}
-        kids: dict[int, list[tuple[int, int]]] = {}  # id -> (pin row, child id)
+        kids: dict[int, list[tuple[str, int]]] = {}  # id -> (input pin, child id)
         seen: set[int] = set()
         stack = [e.id for e in reversed(sinks)]
         while stack:
@@ -138,36 +137,57 @@ class _Layout:
             if i in seen:
                 continue
             seen.add(i)
-            e = self.elems[i]
-            pins = self.in_pins(e)
             mine = []
-            for pin, j, _ in self.sources(e):
+            for pin, j, _ in self.sources(self.elems[i]):
                 if j in seen or j in parent:
                     continue
                 parent[j] = i
-                k = pins.index(pin) if pin in pins else 0
-                mine.append((k if e.kind in ("fb", "func") else 0, j))
+                mine.append((pin, j))
             kids[i] = mine
             stack.extend(j for _, j in reversed(mine))
         size: dict[int, int] = {}
+        places: dict[int, list[tuple[int, int]]] = {}
         for e in order:  # sources first: children are sized before their parent
-            off = 0
-            for k, j in kids.get(e.id, []):
-                off = max(off, k) + size.get(j, 1)
-            size[e.id] = max(self.height(e), off)
-        free = 0
+            self.pin_off[e.id], places[e.id], size[e.id] = self.offsets(e, kids.get(e.id, []),
+                                                                        size)
+        free, gap = 0, True
         for root in sinks:
-            todo = [(root.id, free)]
+            members, todo = [], [(root.id, 0)]
             while todo:
                 i, r = todo.pop()
-                self.row[i] = r
-                off = 0
-                for k, j in kids.get(i, []):
-                    off = max(off, k)
-                    todo.append((j, r + off))
-                    off += size.get(j, 1)
-            free += size.get(root.id, 1)
+                members.append((i, r))
+                todo.extend((j, r + off) for off, j in places.get(i, []))
+            boxes = any(self.elems[i].kind in ("fb", "func") for i, _ in members)
+            if boxes and not gap:
+                free += 1  # room for the box titles above
+            for i, r in members:
+                self.row[i] = free + r
+            free += size.get(root.id, 1) + (1 if boxes else 0)
+            gap = boxes
         return free
+
+    def offsets(self, e, kids: list[tuple[str, int]], size: dict[int, int]):
+        """(input pin -> row offset, (row offset, child) placements, rows taken) of ``e``."""
+        pins = self.in_pins(e)
+        by_pin: dict[str, list[int]] = {}
+        for pin, j in kids:
+            by_pin.setdefault(_pin_of(pin, pins), []).append(j)
+        pin_off: dict[str, int] = {}
+        places: list[tuple[int, int]] = []
+        nxt = 0
+        for pin in pins:
+            pin_off[pin] = cur = nxt
+            for j in by_pin.get(pin, []):
+                places.append((cur, j))
+                cur += size.get(j, 1)
+            nxt = max(nxt + 1, cur)
+        outs = len(self.out_pins(e)) if e.kind in ("fb", "func") else 1
+        return pin_off, places, max(nxt, outs)
+
+    def box_rows(self, e) -> int:
+        """How many rows the box of ``e`` spans (its last input or output pin + 1)."""
+        offs = self.pin_off.get(e.id, {})
+        return max(max(offs.values(), default=0) + 1, len(self.out_pins(e)))
 
     # -- values -------------------------------------------------------------------------------
     def value_of(self, text: str) -> Any:
@@ -221,6 +241,11 @@ class _Layout:
         return out
 
 
+def _pin_of(pin: str, pins: list[str]) -> str:
+    """The drawn pin an input arrives at: a text box's power flow ("") at its first pin."""
+    return pin if pin in pins else pins[0] if pin == "" else pins[-1]
+
+
 def _topological(elems: list, lay: _Layout) -> list:
     from ..lang.lower.network import execution_order
 
@@ -258,9 +283,9 @@ def render_elems(elems: list, title: str = "", values: dict[str, Any] | None = N
         r = lay.row[e.id]
         xl, xr = x_left(e), x_left(e) + BOXW
         pins = lay.in_pins(e)
+        offs = lay.pin_off.get(e.id, {})
         for pin, refs in e.inputs.items():
-            k = pins.index(pin) if pin in pins else 0
-            ty = y_row(r + k)
+            ty = y_row(r + offs.get(_pin_of(pin, pins), 0))
             for n, (i, sp) in enumerate(refs):
                 if i < 0 or lay.elems[i].kind == "left":
                     parts.append(_ln(x0 - 12, ty, xl, ty, ON_WIRE if values else WIRE))
@@ -318,17 +343,22 @@ def _draw(e, lay: _Layout, xl: float, xr: float, y: float) -> str:
         from ..lang.unparse import expr
 
         ins, outs = lay.in_pins(e), lay.out_pins(e)
-        h = lay.height(e) * ROWH - 8
-        top = y - ROWH / 2 + 4
+        offs = lay.pin_off.get(e.id, {})
+        h = (lay.box_rows(e) - 1) * ROWH + 26
+        top = y - 13
         out = [f"<rect x='{xl:.1f}' y='{top:.1f}' width='{BOXW}' height='{h:.1f}' rx='3' {BOX}/>",
                _txt(mid, top - 4, e.type_name, "middle", "font-weight='bold'")]
         if e.instance is not None:
             out.append(_txt(mid, top - 16, expr(e.instance), "middle", "fill='#0b3d91'"))
         for n, p in enumerate(ins):
-            out.append(_txt(xl + 4, y + n * ROWH + 4, ("o " if p in e.neg_in else "") + p))
+            py = y + offs.get(p, n) * ROWH
+            out.append(_txt(xl + 4, py + 4, p))
+            if p in e.neg_in:  # the IEC negation circle on the pin
+                out.append(f"<circle cx='{xl - 4:.1f}' cy='{py:.1f}' r='4' fill='white' "
+                           "stroke='#1f4e8c' stroke-width='1.4'/>")
             for a in e.args:
                 if a.name == p and a.value is not None:
-                    out.append(_txt(xl - 4, y + n * ROWH - 4, expr(a.value), "end",
+                    out.append(_txt(xl - 4, py - 4, expr(a.value), "end",
                                     "font-size='10' fill='#0b3d91'"))
         for n, p in enumerate(outs):
             shown_v = ""

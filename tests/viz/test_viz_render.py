@@ -41,6 +41,17 @@ def test_text_ladder_box_has_pins_on_both_sides():
     assert "<rect" in svg
 
 
+def test_the_rung_enters_a_text_box_at_its_first_pin():
+    [(_, elems)] = network_pous(*source("bottle.ld"))
+    lay = _Layout(elems, None)
+    lay.columns()
+    lay.rows()
+    box = next(e for e in elems if e.kind == "fb")
+    feeder = next(i for i, _ in box.inputs[""] if i >= 0)
+    assert lay.in_pins(box)[:2] == ["IN", "PT"]
+    assert lay.row[feeder] == lay.row[box.id] + lay.pin_off[box.id]["IN"]
+
+
 def test_coils_share_the_last_column_so_the_right_rail_is_straight():
     for name in ("bottle.ld", "bottle.xml"):
         [(_, elems)] = network_pous(*source(name))
