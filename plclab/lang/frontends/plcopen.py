@@ -702,13 +702,15 @@ class _Importer:
 
     def acyclic(self, elems: list[Elem]) -> bool:
         """True when no element feeds itself (an iterative depth-first search: a rung of
-        thousands of contacts in series must not exhaust Python's stack)."""
+        thousands of contacts in series must not exhaust Python's stack). A path through an
+        in-out variable is no loop: the variable holds the value (Beremiz counters are drawn
+        so: ``Cnt`` -> ADD -> SEL -> ``Cnt``)."""
         state: dict[int, int] = {}
         for root in elems:
             if root.id in state:
                 continue
             state[root.id] = 1
-            stack = [(root.id, _feeds(root))]
+            stack = [(root.id, _feeds(root, elems))]
             while stack:
                 eid, it = stack[-1]
                 nxt = next(it, None)
@@ -721,7 +723,7 @@ class _Importer:
                     return False
                 if s is None:
                     state[nxt] = 1
-                    stack.append((nxt, _feeds(elems[nxt])))
+                    stack.append((nxt, _feeds(elems[nxt], elems)))
         return True
 
     # -- configurations -------------------------------------------------------------------------
@@ -814,9 +816,11 @@ def _box_depth(elems: list[Elem]) -> int:
     return max(depth.values(), default=0)
 
 
-def _feeds(e: Elem):
-    """The ids of the elements wired into ``e``."""
-    return (i for refs in e.inputs.values() for i, _ in refs if i >= 0)
+def _feeds(e: Elem, elems: list[Elem] | None = None):
+    """The ids of the elements wired into ``e``. With ``elems``: not those that are in-out
+    variables (reading one reads the variable: a loop through one is not a feedback loop)."""
+    return (i for refs in e.inputs.values() for i, _ in refs
+            if i >= 0 and (elems is None or elems[i].kind != "inoutvar"))
 
 
 def _num(s: str | None) -> float:

@@ -427,10 +427,23 @@ def execution_order(elems: list[Elem]) -> list[Elem]:
     heapq.heapify(ready)
     out: list[Elem] = []
     by_id = {e.id: e for e in elems}
-    while ready:
+    cut = False
+    while ready or not cut:
+        if not ready:  # a loop: a variable read inside it gives its value, not a wire order
+            cut = True
+            done = {e.id for e in out}
+            for i, rs in readers.items():
+                if by_id[i].kind == "inoutvar" and i not in done:
+                    for r in rs:
+                        waiting[r.id] -= 1
+                        if waiting[r.id] == 0:
+                            heapq.heappush(ready, (r.order, r.id))
+            continue
         _, i = heapq.heappop(ready)
         out.append(by_id[i])
         for r in readers.get(i, []):
+            if cut and by_id[i].kind == "inoutvar":
+                continue  # its readers were released when the loop was cut
             waiting[r.id] -= 1
             if waiting[r.id] == 0:
                 heapq.heappush(ready, (r.order, r.id))

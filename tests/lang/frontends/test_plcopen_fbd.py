@@ -171,3 +171,24 @@ def test_beremiz_runtime_blocks_are_skipped_with_a_warning():
     assert not [d for d in ds if d.severity == "error"]
     plc = load(body, variables)
     assert run(plc, [dict(b=True)], ("y", "s")) == [(True, "")]
+
+
+def test_a_loop_through_an_in_out_variable_reads_the_variable():
+    """A counter drawn the Beremiz way: cnt -> ADD(1, cnt) -> SEL(G := reset, IN0 := sum,
+    IN1 := 0) -> inOutVariable cnt -> outVariable out. The ADD reads the variable's value."""
+    body = (invar(1, "reset", y=0)
+            + invar(6, "1", x=0, y=40)
+            + block(4, "ADD", {"IN1": (6, None), "IN2": (3, None)}, ["OUT"], x=100, y=40)
+            + invar(5, "0", x=100, y=120)
+            + block(7, "SEL", {"G": (1, None), "IN0": (4, "OUT"), "IN1": (5, None)}, ["OUT"],
+                    x=200, y=20)
+            + outvar(3, "cnt", 7, "OUT", tag="inOutVariable", x=300, y=40)
+            + outvar(2, "out", 3, x=400, y=40))
+    variables = var("reset") + var("cnt", "INT") + var("out", "INT")
+    plc = load(body, variables)
+    got = []
+    for r in (False, False, False, True, False):
+        plc["P.reset"] = r
+        plc.scan()
+        got.append((plc["P.cnt"], plc["P.out"]))
+    assert got == [(1, 1), (2, 2), (3, 3), (0, 0), (1, 1)]
