@@ -21,10 +21,12 @@ True
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 from xml.sax.saxutils import escape
 
 from ..errors import PlcError
+from ..lang import ast as A
 from .ladder_svg import BOX, FONT, PAD, RAIL, WIRE, Svg
 
 COLW = 150  # width of a column
@@ -62,8 +64,10 @@ def _var_text(e) -> str:
 class _Layout:
     """Columns, rows and pins of the elements of one POU's network."""
 
-    def __init__(self, elems: list, values: dict[str, Any] | None) -> None:
+    def __init__(self, elems: list, values: dict[str, Any] | None,
+                 pous: dict[str, Any] | None = None) -> None:
         self.elems = {e.id: e for e in elems}
+        self.pous = pous or {}  # the POUs of the drawn file, by name
         self.values = {k.upper(): v for k, v in (values or {}).items()}
         self.consumers: dict[int, list] = {}
         for e in elems:
@@ -104,10 +108,23 @@ class _Layout:
         return outs
 
     def power_pins(self, e) -> tuple[str, str]:
+        """(input, output) pins that carry a ladder box's power flow: the block spec's, else
+        the first BOOL input and output of the block's declaration (the file's or plclab's
+        library), else EN/ENO."""
         from ..lang.builtins import BLOCKS
 
         b = BLOCKS.get(e.type_name)
-        return b.power if b is not None and b.power else ("EN", "ENO")
+        if b is not None and b.power:
+            return b.power
+        pou = self.pous.get(e.type_name) or _library_pous().get(e.type_name)
+        if pou is not None:
+            def first(section: str) -> str | None:
+                return next((d.spelling or d.name for d in pou.decls if d.section == section and
+                             isinstance(d.type, A.NamedTypeRef) and d.type.name == "BOOL"), None)
+            i, o = first("VAR_INPUT"), first("VAR_OUTPUT")
+            if i and o:
+                return i, o
+        return ("EN", "ENO")
 
     def columns(self) -> int:
         order = _topological(list(self.elems.values()), self)
@@ -125,7 +142,7 @@ class _Layout:
         """Rows from the sinks back, as a tree: each element belongs to its first consumer;
         each input pin of a box stands on the row of what feeds it (the box grows), so wires
         run straight; the networks (sinks in order) stacked. Iterative."""
-        order = _topological([e for e in self.elems.values() if e.kind != "left"], self)
+        order = [e for e in _topological(list(self.elems.values()), self) if e.kind != "left"]
         sinks = sorted((e for e in order if not self.consumers.get(e.id)),
                        key=lambda e: e.order)
         parent: dict[int, int] = {}
@@ -241,6 +258,14 @@ class _Layout:
         return out
 
 
+@functools.lru_cache(maxsize=1)
+def _library_pous() -> dict[str, Any]:
+    """plclab's library blocks written in ST (BLINKER, ...), by name."""
+    from ..lang.frontends.st import parse_library
+
+    return {p.name: p for f in parse_library() for p in f.pous}
+
+
 def _pin_of(pin: str, pins: list[str]) -> str:
     """The drawn pin an input arrives at: a text box's power flow ("") at its first pin."""
     return pin if pin in pins else pins[0] if pin == "" else pins[-1]
@@ -253,9 +278,10 @@ def _topological(elems: list, lay: _Layout) -> list:
 
 
 def render_elems(elems: list, title: str = "", values: dict[str, Any] | None = None,
-                 ladder: bool = True) -> Svg:
-    """Draw one POU's network elements; ``ladder``: with power rails."""
-    lay = _Layout(elems, values)
+                 ladder: bool = True, pous: dict[str, Any] | None = None) -> Svg:
+    """Draw one POU's network elements; ``ladder``: with power rails; ``pous``: the file's POUs
+    by name (the pins of its function blocks)."""
+    lay = _Layout(elems, values, pous)
     ncols = lay.columns()
     nrows = lay.rows()
     x0 = PAD + (30 if ladder else 0)
@@ -380,14 +406,17 @@ def _draw(e, lay: _Layout, xl: float, xr: float, y: float) -> str:
     return ""
 
 
-def network_pous(text: str, file: str) -> list[tuple[Any, list]]:
-    """(POU, its network elements) for each LD/FBD POU of a source (parsed, not lowered)."""
+def _parse(text: str, file: str):
     from ..lang.frontends.registry import for_file
 
     src, diags = for_file(file).parse(text, file)
     errors = [d for d in diags if d.severity == "error"]
     if errors:
         raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
+    return src
+
+
+def _networks(src) -> list[tuple[Any, list]]:
     out = []
     for p in src.pous:
         nets = [b for b in p.pending if b.kind == "NETWORK"]
@@ -396,15 +425,20 @@ def network_pous(text: str, file: str) -> list[tuple[Any, list]]:
     return out
 
 
+def network_pous(text: str, file: str) -> list[tuple[Any, list]]:
+    """(POU, its network elements) for each LD/FBD POU of a source (parsed, not lowered)."""
+    return _networks(_parse(text, file))
+
+
 def render_source(text: str, file: str, pou: str | None = None,
                   values: dict[str, Any] | None = None) -> Svg:
     """The network of POU ``pou`` (default: the first LD/FBD POU) of a source as SVG."""
-    pous = network_pous(text, file)
-    chosen = [(p, els) for p, els in pous if pou is None or p.name == pou.upper()]
+    src = _parse(text, file)
+    chosen = [(p, els) for p, els in _networks(src) if pou is None or p.name == pou.upper()]
     if not chosen:
         raise PlcError("PLC4040", f"{file} has no LD or FBD body" + (
             f" named {pou}" if pou else "") + "; plclab render draws LD and FBD networks, SFC "
             "charts and ST/IL listings: name a POU with --pou")
     p, els = chosen[0]
     return render_elems(els, f"{p.kind} {p.spelling or p.name} ({p.language})", values,
-                        ladder=p.language != "FBD")
+                        ladder=p.language != "FBD", pous={q.name: q for q in src.pous})

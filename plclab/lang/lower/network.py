@@ -433,7 +433,7 @@ def execution_order(elems: list[Elem]) -> list[Elem]:
             cut = True
             done = {e.id for e in out}
             for i, rs in readers.items():
-                if by_id[i].kind == "inoutvar" and i not in done:
+                if i in by_id and by_id[i].kind == "inoutvar" and i not in done:
                     for r in rs:
                         waiting[r.id] -= 1
                         if waiting[r.id] == 0:

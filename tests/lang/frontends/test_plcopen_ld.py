@@ -252,3 +252,23 @@ def test_a_project_as_beremiz_saves_it_runs_with_its_task_and_globals():
         plc.scan()
         got.append((plc["instance0.count"], plc["instance0.full"]))
     assert got == [(1, False), (2, False), (3, True), (4, True)]
+
+
+def test_a_contact_drives_a_block_input_without_a_coil():
+    """LD mixed with FBD as Beremiz draws a counter: a contact on reset feeds G of SEL; the
+    sum loops through the in-out variable cnt; no coil, no right rail."""
+    body = (rail() + contact(9, "reset", 1)
+            + invar(6, "1", y=40)
+            + block(4, "ADD", {"IN1": (6, None), "IN2": (3, None)}, ["OUT"], x=100, y=40)
+            + invar(5, "17", y=120)
+            + block(7, "SEL", {"G": (9, None), "IN0": (4, "OUT"), "IN1": (5, None)}, ["OUT"],
+                    x=200, y=20)
+            + outvar(3, "cnt", 7, "OUT", tag="inOutVariable", x=300, y=40))
+    variables = var("reset") + var("cnt", "INT")
+    plc = load(body, variables)
+    got = []
+    for r in (False, False, True, False):
+        plc["P.reset"] = r
+        plc.scan()
+        got.append(plc["P.cnt"])
+    assert got == [1, 2, 17, 18]
