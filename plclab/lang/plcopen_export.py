@@ -5,7 +5,9 @@ What is written (ADR 0022):
 * data types (``dataTypes``), POU interfaces with every variable section, initial values and
   addresses, configurations with their tasks, program instances and global variables;
 * **ST** bodies as ST text; **IL** bodies as their IL text (copied from the source file);
-  **LD** (text ladder) and other lowered bodies as the ST they lower to;
+  **LD** and **FBD** networks (text ladder or PLCopen) as PLCopen networks: rails, contacts
+  and coils of every kind, boxes with named pins (a text box's rung at its first BOOL input),
+  parameters as in-variables; any other body as the ST it lowers to;
 * with ``fbd=True``, every body made only of assignments and function block calls as an
   **FBD** network: one network a statement, operators as standard blocks (``AND``, ``ADD``,
   ``GT``...), ``NOT`` of a variable as a negated pin, set/reset assignments as ``MOVE`` with
@@ -204,8 +206,12 @@ class _Exporter:
         iface = _sub(pel, "interface")
         if p.return_type is not None:
             self.type_ref(_sub(iface, "returnType"), p.return_type)
+        il = self.il_text(p, file) if p.language == "IL" else None
+        net = self.network(p, file) if p.language in ("LD", "FBD") else None
         groups: dict[tuple[str, bool, bool], list[A.VarDecl]] = {}
         for d in p.decls:
+            if net is not None and d.name.startswith(HIDDEN_PREFIX):
+                continue  # the lowering's own variables: the network is written, not its ST
             groups.setdefault((d.section, d.constant, d.retain), []).append(d)
         for (section, constant, retain), decls in groups.items():
             attrs = {}
@@ -217,13 +223,32 @@ class _Exporter:
             for d in decls:
                 self.variable(sec, d)
         body = _sub(pel, "body")
-        il = self.il_text(p, file) if p.language == "IL" else None
         if il is not None:
             _text_body(_sub(body, "IL"), il)
+        elif net is not None:
+            _NetworkWriter(_sub(body, p.language), net[0], net[1]).write()
         elif self.fbd and fbd_exportable(p.body, fb_types := _fb_types(p)):
             _FbdWriter(_sub(body, "FBD"), fb_types).statements(p.body)
         else:
             _text_body(_sub(body, "ST"), _hide(unparse(p.body) if p.body else ""))
+
+    def network(self, p: A.Pou, file: str) -> tuple[list, dict[str, A.Pou]] | None:
+        """The network elements of ``p`` as its front end read them (before lowering) and the
+        POUs of its file, when the source is known and every element can be written."""
+        from .frontends.registry import for_file
+
+        text = self.sources.get(file)
+        if text is None:
+            return None
+        src, diags = for_file(file).parse(text, file)
+        if any(d.severity == "error" for d in diags):
+            return None
+        for q in src.pous:
+            if q.name == p.name:
+                elems = [e for b in q.pending if b.kind == "NETWORK" for e in b.payload]
+                if elems and all(e.kind in _WRITABLE for e in elems):
+                    return elems, {x.name: x for x in src.pous}
+        return None
 
     def il_text(self, p: A.Pou, file: str) -> str | None:
         """The IL lines of ``p`` as written: after its last END_VAR, before its END_ line."""
@@ -247,6 +272,224 @@ def _xml_il_text(text: str, file: str, name: str) -> str | None:
             il = pou.find(f"{{{NS}}}body/{{{NS}}}IL")
             return "".join(il.itertext()) if il is not None else None
     return None
+
+
+_WRITABLE = {"left", "contact", "coil", "fb", "func", "cmp", "invar", "outvar", "inoutvar",
+             "conn", "jump", "label", "return"}
+
+
+class _NetworkWriter:
+    """An LD or FBD network (text ladder or PLCopen) written back as PLCopen elements: power
+    rails, contacts and coils with their kinds, boxes with named pins (a text box's rung
+    enters its first BOOL input), parameters as in-variables, results as out-variables."""
+
+    def __init__(self, holder: ET.Element, elems: list, pous: dict[str, A.Pou]) -> None:
+        self.holder = holder
+        self.elems = {e.id: e for e in elems}
+        self.pous = pous
+        self.next_id = max((e.id for e in elems), default=0) + 2
+        self.power_out: dict[int, str] = {}  # box -> the pin its power flow continues from
+        self.rail = self.fresh()  # the one left power rail
+
+    def lid(self, i: int) -> str:
+        return str(i + 1)
+
+    def fresh(self) -> str:
+        self.next_id += 1
+        return str(self.next_id)
+
+    def pos(self, e) -> tuple[int, int]:
+        g = e.geom
+        if isinstance(g, tuple) and len(g) == 3:  # text: (line, first col, last col)
+            return g[1] * 10, g[0] * 40
+        if isinstance(g, tuple) and len(g) >= 2:
+            return int(g[0]), int(g[1])
+        return 0, 0
+
+    def place(self, el: ET.Element, x: int, y: int) -> None:
+        _sub(el, "position", x=str(x), y=str(y))
+
+    def refs(self, refs: list) -> list[tuple[str, str | None]]:
+        """(localId, pin) of each source, through junctions (``conn``) to what feeds them."""
+        out: list[tuple[str, str | None]] = []
+        stack = list(reversed(refs))
+        seen: set[int] = set()
+        while stack:
+            i, pin = stack.pop()
+            if i < 0 or self.elems[i].kind == "left":
+                out.append((self.rail, None))
+                continue
+            e = self.elems[i]
+            if e.kind == "conn":
+                if i not in seen:
+                    seen.add(i)
+                    stack.extend(reversed(e.inputs.get("", [])))
+                continue
+            if e.kind in ("fb", "func", "cmp"):
+                pin = pin or self.power_out.get(i) or "OUT"
+            else:
+                pin = None
+            out.append((self.lid(i), pin))
+        return out
+
+    def connect(self, parent: ET.Element, refs: list) -> ET.Element:
+        cpi = _sub(parent, "connectionPointIn")
+        for ref, pin in self.refs(refs):
+            _connect(cpi, ref, pin)
+        return cpi
+
+    def box_pins(self, e) -> tuple[str, str]:
+        """(power input, power output) of a text ladder box."""
+        from .builtins import BLOCKS
+
+        if e.kind != "fb":
+            return "EN", "ENO"
+        b = BLOCKS.get(e.type_name)
+        if b is not None and b.power:
+            return b.power
+        pou = self.pous.get(e.type_name)
+        if pou is None:
+            from .frontends.st import parse_library
+
+            pou = next((q for f in parse_library() for q in f.pous if q.name == e.type_name),
+                       None)
+        bools = [(d.section, d.spelling or d.name) for d in (pou.decls if pou else [])
+                 if isinstance(d.type, A.NamedTypeRef) and d.type.name == "BOOL"]
+        ins = [n for s, n in bools if s == "VAR_INPUT"]
+        outs = [n for s, n in bools if s == "VAR_OUTPUT"]
+        return (ins[0].upper(), outs[0].upper()) if ins and outs else ("EN", "ENO")
+
+    def write(self) -> None:
+        for e in self.elems.values():
+            if e.kind in ("fb", "func", "cmp"):
+                self.power_out[e.id] = self.box_pins(e)[1] if "" in e.inputs else ""
+        coils = []
+        if self.holder.tag.endswith("LD"):
+            el = _sub(self.holder, "leftPowerRail", localId=self.rail)
+            self.place(el, 0, 0)
+            _sub(el, "connectionPointOut", formalParameter="")
+        for e in sorted(self.elems.values(), key=lambda e: e.order):
+            x, y = self.pos(e)
+            k = e.kind
+            if k == "left":
+                continue
+            elif k in ("contact", "coil"):
+                attrs = {"localId": self.lid(e.id)}
+                if e.mode == "/":
+                    attrs["negated"] = "true"
+                elif e.mode in ("P", "N"):
+                    attrs["edge"] = "rising" if e.mode == "P" else "falling"
+                elif e.mode in ("S", "R"):
+                    attrs["storage"] = "set" if e.mode == "S" else "reset"
+                el = _sub(self.holder, k, **attrs)
+                self.place(el, x, y)
+                self.connect(el, e.inputs.get("", []))
+                _sub(el, "connectionPointOut")
+                _sub(el, "variable").text = _hide(st_expr(e.var))
+                if k == "coil":
+                    coils.append(e)
+            elif k in ("invar", "outvar", "inoutvar"):
+                tag = {"invar": "inVariable", "outvar": "outVariable"}.get(k, "inOutVariable")
+                el = _sub(self.holder, tag, localId=self.lid(e.id))
+                self.place(el, x, y)
+                if k != "invar":
+                    self.connect(el, e.inputs.get("", []))
+                if k != "outvar":
+                    _sub(el, "connectionPointOut")
+                _sub(el, "expression").text = _hide(st_expr(e.var))
+            elif k in ("jump", "label", "return"):
+                el = _sub(self.holder, k, localId=self.lid(e.id),
+                          **({"label": e.label} if k != "return" else {}))
+                self.place(el, x, y)
+                if k != "label":
+                    self.connect(el, e.inputs.get("", []))
+            elif k in ("fb", "func", "cmp"):
+                self.box(e, x, y)
+        if coils:
+            right = _sub(self.holder, "rightPowerRail", localId=self.fresh())
+            self.place(right, 800, 0)
+            for c in coils:
+                _connect(_sub(right, "connectionPointIn"), self.lid(c.id), None)
+
+    def box(self, e, x: int, y: int) -> None:
+        """A function block, function or comparison box with its pins."""
+        power_in, power_out = self.box_pins(e)
+        inputs: list[tuple[str, list | str]] = []  # pin -> refs, or a localId of a new variable
+        if "" in e.inputs:
+            inputs.append((power_in, e.inputs[""]))
+        for pin, refs in e.inputs.items():
+            if pin:
+                inputs.append((pin, refs))
+        outputs: list[tuple[str, A.Expr]] = []
+        if e.kind == "fb":
+            for a in e.args:
+                if a.output and a.value is not None:
+                    outputs.append(((a.name or "").upper(), a.value))
+                elif not a.output and a.value is not None:
+                    inputs.append(((a.name or "").upper(), self.variable(a.value, x - 60, y)))
+        else:
+            names = call_pins(A.Call(e.loc, A.Name(e.loc, "GT" if e.kind == "cmp" else
+                                                   e.type_name), e.args)) or \
+                [f"IN{i + 1}" for i in range(len(e.args))]
+            for pin, a in zip(names, e.args, strict=False):
+                inputs.append((pin, self.variable(a.value, x - 60, y)))
+        attrs = {"localId": self.lid(e.id), "typeName": e.type_name}
+        if e.instance is not None:
+            attrs["instanceName"] = _hide(st_expr(e.instance))
+        if e.kind == "cmp":  # power AND (a <op> b): the comparison, then an AND
+            attrs["localId"] = self.fresh()
+        el = _sub(self.holder, "block", **attrs)
+        self.place(el, x, y)
+        iv = _sub(el, "inputVariables")
+        for pin, src in inputs:
+            if e.kind == "cmp" and pin == "EN":
+                continue
+            v = _sub(iv, "variable", formalParameter=pin, **(
+                {"negated": "true"} if pin in e.neg_in else {}), **(
+                {"edge": "rising" if e.edge_in[pin] == "P" else "falling"}
+                if pin in e.edge_in else {}))
+            if isinstance(src, str):
+                _connect(_sub(v, "connectionPointIn"), src, None)
+            else:
+                self.connect(v, src)
+        _sub(el, "inOutVariables")
+        ov = _sub(el, "outputVariables")
+        outs = list(e.outs) or ([power_out] if "" in e.inputs and e.kind == "fb" else []) + \
+            ([] if e.kind == "fb" else ["ENO", "OUT"] if e.kind == "func" else ["OUT"])
+        for pin, _ in outputs:
+            if pin not in outs:
+                outs.append(pin)
+        for pin in outs:
+            _sub(_sub(ov, "variable", formalParameter=pin, **(
+                {"negated": "true"} if pin in e.neg_out else {})), "connectionPointOut")
+        for pin, target in outputs:
+            self.out_variable(target, el.get("localId") or "", pin, x + 120, y)
+        for t in e.targets:
+            self.out_variable(t, el.get("localId") or "", "OUT", x + 120, y)
+        if e.kind == "cmp":
+            self.power_out[e.id] = "OUT"
+            and_el = _sub(self.holder, "block", localId=self.lid(e.id), typeName="AND")
+            self.place(and_el, x + 60, y)
+            ai = _sub(and_el, "inputVariables")
+            self.connect(_sub(ai, "variable", formalParameter="IN1"), e.inputs.get("", []))
+            _connect(_sub(_sub(ai, "variable", formalParameter="IN2"), "connectionPointIn"),
+                     el.get("localId") or "", "OUT")
+            _sub(and_el, "inOutVariables")
+            _sub(_sub(_sub(and_el, "outputVariables"), "variable", formalParameter="OUT"),
+                 "connectionPointOut")
+
+    def variable(self, value: A.Expr, x: int, y: int) -> str:
+        el = _sub(self.holder, "inVariable", localId=self.fresh())
+        self.place(el, x, y)
+        _sub(el, "connectionPointOut")
+        _sub(el, "expression").text = _hide(st_expr(value))
+        return el.get("localId") or ""
+
+    def out_variable(self, target: A.Expr, ref: str, pin: str, x: int, y: int) -> None:
+        el = _sub(self.holder, "outVariable", localId=self.fresh())
+        self.place(el, x, y)
+        _connect(_sub(el, "connectionPointIn"), ref, pin)
+        _sub(el, "expression").text = _hide(st_expr(target))
 
 
 def _hide(text: str) -> str:

@@ -74,6 +74,25 @@ def test_st_body_with_if_else_stays_st_even_when_fbd_is_asked():
     assert "<ST>" in xml and "<FBD" not in xml
 
 
+@pytest.mark.parametrize("name", ["examples/bottle.ld", "labs/ventilation-fans/solution/"
+                                  "ventilation.ld", "examples/motor.xml"])
+def test_ladder_is_exported_as_a_ladder(name):
+    root = ET.fromstring(exported(ROOT / name, fbd=False))
+    ld = root.find(f".//{{{NS}}}body/{{{NS}}}LD")
+    assert ld is not None
+    kinds = {_tag(el) for el in ld}
+    assert {"leftPowerRail", "contact", "coil", "rightPowerRail"} <= kinds
+    for block in ld.iter(f"{{{NS}}}block"):
+        pins = [v.get("formalParameter") for v in block.iter(f"{{{NS}}}variable")]
+        assert all(pins), block.get("typeName")  # every pin named (a text box's too)
+    ids = [el.get("localId") for el in ld]
+    assert len(ids) == len(set(ids))
+
+
+def _tag(el) -> str:
+    return el.tag.rsplit("}", 1)[-1]
+
+
 def test_generated_names_become_legal_identifiers():
     files, _ = parse_sources([((ROOT / "examples/motor.ld").read_text(encoding="utf-8"),
                                "motor.ld")])
