@@ -19,7 +19,7 @@ SFC bodies are not exported here (the SFC front end owns them): :class:`PlcError
 >>> files, _ = parse_sources([("PROGRAM P VAR a, b : BOOL; END_VAR b := NOT a; END_PROGRAM",
 ...                            "p.st")])
 >>> xml = export_plcopen(files[-1:], fbd=True)
->>> '<block localId="2" typeName="NOT"' in xml and '<expression>b</expression>' in xml
+>>> 'typeName="NOT"' in xml and '<expression>b</expression>' in xml and '<FBD>' in xml
 True
 """
 

@@ -320,8 +320,21 @@ def render_elems(elems: list, title: str = "", values: dict[str, Any] | None = N
                 live = lay.flows(lay.elems[i]) is True
                 style = ON_WIRE if live else WIRE
                 mid = xl - 10 - 4 * n
-                parts.append(_ln(sx, sy, mid, sy, style))
-                parts.append(_ln(mid, sy, mid, ty, style))
+                if sx > mid:  # a wire back to the left (a loop through a variable): go below
+                    lo_c, hi_c = lay.col[e.id], lay.col.get(i, lay.col[e.id])
+                    top_r = min(lay.row.get(i, r), r)
+                    between = [x for x in lay.elems.values() if x.id in lay.row and
+                               lo_c <= lay.col.get(x.id, -1) <= hi_c and lay.row[x.id] >= top_r
+                               and lay.row[x.id] <= r + lay.box_rows(e)]
+                    low = y_row(max(lay.row[x.id] + lay.box_rows(x) - 1 for x in between)) + \
+                        ROWH / 2
+                    parts.append(_ln(sx, sy, sx + 10, sy, style))
+                    parts.append(_ln(sx + 10, sy, sx + 10, low, style))
+                    parts.append(_ln(sx + 10, low, mid, low, style))
+                    parts.append(_ln(mid, low, mid, ty, style))
+                else:
+                    parts.append(_ln(sx, sy, mid, sy, style))
+                    parts.append(_ln(mid, sy, mid, ty, style))
                 parts.append(_ln(mid, ty, xl, ty, style))
         parts.append(_draw(e, lay, xl, xr, y_row(r)))
         if e.kind in ("coil",) and ladder:
