@@ -120,7 +120,7 @@ def render(ns: argparse.Namespace) -> int:
             raise PlcError("PLC4044", "a PNG picture needs a file: add -o picture.png")
         try:
             import cairosvg
-        except ImportError:
+        except (ImportError, OSError):  # OSError: cairosvg installed, the cairo library not
             raise PlcError("PLC4044", "PNG output needs the cairosvg package (pip install "
                            "cairosvg); or write SVG with --svg") from None
         _write(cairosvg.svg2png(bytestring=svg.encode("utf-8")), ns.output)
