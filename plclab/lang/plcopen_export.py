@@ -265,12 +265,17 @@ class _Exporter:
 
 def _xml_il_text(text: str, file: str, name: str) -> str | None:
     """The IL text of POU ``name`` in a PLCopen XML source."""
+    return xml_body_text(text, file, name, "IL")
+
+
+def xml_body_text(text: str, file: str, name: str, lang: str) -> str | None:
+    """The text of the ``lang`` (ST or IL) body of POU ``name`` in a PLCopen XML source."""
     from .frontends.plcopen import parse_xml_safely
 
     for pou in parse_xml_safely(text, file).iter(f"{{{NS}}}pou"):
-        if (pou.get("name") or "").upper() == name:
-            il = pou.find(f"{{{NS}}}body/{{{NS}}}IL")
-            return "".join(il.itertext()) if il is not None else None
+        if (pou.get("name") or "").upper() == name.upper():
+            body = pou.find(f"{{{NS}}}body/{{{NS}}}{lang}")
+            return "".join(body.itertext()) if body is not None else None
     return None
 
 
@@ -772,4 +777,4 @@ def _depth(e: A.Expr) -> int:
     return 1
 
 
-__all__ = ["export_plcopen", "fbd_exportable", "visible", "NS"]
+__all__ = ["export_plcopen", "fbd_exportable", "visible", "xml_body_text", "NS"]

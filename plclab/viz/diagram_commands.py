@@ -96,10 +96,14 @@ def _render(text: str, name: str, pou: str | None, values) -> str:
         return render_sfc.render_sfc_svg(p, values=values)
     from .render_listing import render_listing
 
-    last = p.end_loc.line if p.end_loc is not None and not name.endswith(".xml") else None
-    first = p.loc.line if not name.endswith(".xml") else 1
-    return render_listing(text, f"{name}: {p.kind} {p.spelling or p.name} ({p.language})",
-                          values, first, last)
+    title = f"{name}: {p.kind} {p.spelling or p.name} ({p.language})"
+    if name.lower().endswith(".xml"):  # the body's text, not the XML around it
+        from ..lang.plcopen_export import xml_body_text
+
+        body = xml_body_text(text, name, p.name, p.language if p.language == "IL" else "ST")
+        return render_listing((body or "").strip("\n"), title, values)
+    last = p.end_loc.line if p.end_loc is not None else None
+    return render_listing(text, title, values, p.loc.line, last)
 
 
 @command("render")

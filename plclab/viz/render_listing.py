@@ -88,7 +88,7 @@ def render_listing(text: str, file: str = "", values: dict[str, Any] | None = No
     """Lines ``first``..``last`` of a source as a highlighted SVG listing."""
     lines = text.replace("\t", "    ").split("\n")[first - 1:last]
     vals = {k.upper(): v for k, v in (values or {}).items()}
-    width = max((len(ln) for ln in lines), default=10) * CHAR_W + 60 + PAD * 2
+    width = max([len(ln) for ln in lines] + [len(file) - 5], default=10) * CHAR_W + 60 + PAD * 2
     rows = []
     split = _split_comments(lines)
     for n, ln in enumerate(lines, first):

@@ -93,6 +93,12 @@ def test_render_command_writes_svg_png_and_stdout(tmp_path, capsys):
     assert "PLC4044" in capsys.readouterr().err
 
 
+def test_an_st_body_of_an_xml_project_is_listed_without_the_xml(capsys):
+    assert main(["render", str(EX / "project.xml"), "--pou", "Clamp"]) == 0
+    svg = capsys.readouterr().out
+    assert "Clamp (ST)" in svg and "&lt;pou" not in svg and "pouType" not in svg
+
+
 def test_render_command_writes_png(tmp_path):
     try:
         import cairosvg  # noqa: F401
