@@ -192,3 +192,20 @@ def test_a_loop_through_an_in_out_variable_reads_the_variable():
         plc.scan()
         got.append((plc["P.cnt"], plc["P.out"]))
     assert got == [(1, 1), (2, 2), (3, 3), (0, 0), (1, 1)]
+
+
+def test_function_block_with_en_runs_only_when_enabled_and_eno_follows_en():
+    body = (invar(1, "a") + invar(2, "b", y=40) + invar(5, "100", y=80)
+            + block(3, "CTU", {"EN": (1, None), "CU": (2, None), "PV": (5, None)},
+                    ["ENO", "Q", "CV"], instance="c1")
+            + outvar(4, "y", 3, "ENO") + outvar(6, "n", 3, "CV", y=40))
+    variables = BOOLS + var("n", "INT") + var("c1", '<derived name="CTU"/>')
+    plc = load(body, variables)
+    got = []
+    for a, b in [(True, True), (True, False), (False, True), (False, False), (True, True)]:
+        plc["P.a"], plc["P.b"] = a, b
+        plc.scan()
+        got.append((plc["P.y"], plc["P.n"]))
+    # disabled, the counter does not see the rising edge of scan 3; enabled again, it sees
+    # b rise against the value of its last run
+    assert got == [(True, 1), (True, 1), (False, 1), (False, 1), (True, 2)]
