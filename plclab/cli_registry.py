@@ -64,6 +64,11 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                          "plclab.modbus.commands"),
     "plant-serve": CommandInfo("run a plant in real time as a Modbus TCP server (remote I/O)",
                                "plclab.modbus.commands"),
+    "render": CommandInfo("draw a program: LD/FBD networks, SFC charts, ST/IL listings as SVG or "
+                          "PNG, with values from a trace (--at TRACE --time T)",
+                          "plclab.viz.diagram_commands"),
+    "export": CommandInfo("write programs as PLCopen XML for OpenPLC Editor and Beremiz "
+                          "(--fbd: networks where the body allows)", "plclab.viz.diagram_commands"),
     "course": CommandInfo("the course: build (run examples, draw figures) [--out DIR], list, "
                           "check", "plclab.course.commands"),
     "quiz": CommandInfo("take a chapter's quiz in the terminal (plclab quiz 10); --check "

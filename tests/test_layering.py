@@ -45,6 +45,7 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     # the command line: every `commands` module is a CLI front end of its package.
     [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
               "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",
+              "plclab.viz.diagram_commands",
               "plclab.course.commands"))],
 ]
 

@@ -205,13 +205,14 @@ def test_sfc_body_is_unsupported_with_name():
 
 def test_unsupported_graphic_element_names_its_local_id():
     body = ('<LD><leftPowerRail localId="1"><position x="0" y="0"/><connectionPointOut/>'
-            '</leftPowerRail>\n<jump localId="17" label="L1"><position x="10" y="10"/>'
-            '<connectionPointIn><connection refLocalId="1"/></connectionPointIn></jump></LD>')
+            '</leftPowerRail>\n<actionBlock localId="17"><position x="10" y="10"/>'
+            '<connectionPointIn><connection refLocalId="1"/></connectionPointIn></actionBlock>'
+            '</LD>')
     text = project(program(body, BOOLS))
     errs = errors(text)
     assert errs[0].code == "PLC0181"
-    assert "<jump> (localId 17)" in errs[0].message
-    line = next(i for i, t in enumerate(text.split("\n"), 1) if "<jump" in t)
+    assert "<actionBlock> (localId 17 at x=10 y=10)" in errs[0].message
+    line = next(i for i, t in enumerate(text.split("\n"), 1) if "<actionBlock" in t)
     assert errs[0].location.line == line
 
 

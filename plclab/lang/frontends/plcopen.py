@@ -9,13 +9,17 @@ What is read:
   ``constant``/``retain``, addresses, initial values) and a body in
   **ST** or **IL** (text, parsed by the ST and IL front ends, errors located in the XML file),
   **LD** (``leftPowerRail``, ``rightPowerRail``, ``contact``, ``coil``, ``block``,
-  ``inVariable``, ``outVariable``, ``connector``/``continuation``, joined by
-  ``connection refLocalId``) or **FBD** (the same boxes and variables);
+  ``inVariable``, ``outVariable``, ``inOutVariable``, ``connector``/``continuation``,
+  ``jump``, ``label``, ``return``, joined by ``connection refLocalId``) or **FBD** (the same
+  without rails, contacts and coils); block pins may be ``negated`` or edge-triggered, pin
+  names are read in any case; ``comment`` and ``addData`` are skipped;
 * ``instances/configurations``: global variables, resources, tasks and program instances.
 
-Anything else (SFC bodies, jumps and labels in graphics, actions, pointers...) is reported as
-``PLC0181`` naming the element and its ``localId``. Locations are ``file.xml:line:col`` of the
-XML element (or of the line inside an ST/IL body).
+Beremiz runtime blocks (``LOGGER``, ``python_eval``...) are left out with the warning
+``PLC0250``. Anything else (SFC bodies, actions, action blocks...) is reported as ``PLC0181``
+naming the element, its ``localId`` and position. Locations are ``file.xml:line:col`` of the
+XML element (or of the line inside an ST/IL body). The execution order of a network is
+:func:`plclab.lang.lower.network.execution_order` (ADR 0022).
 
 >>> f, diags = parse_plcopen_collect('''<project xmlns="http://www.plcopen.org/xml/tc6_0201">
 ... <types><pous><pou name="P" pouType="program"><interface><localVars>
@@ -52,6 +56,8 @@ _SECTIONS = {"inputVars": "VAR_INPUT", "outputVars": "VAR_OUTPUT", "inOutVars": 
              "globalVars": "VAR_GLOBAL"}
 _POU_KINDS = {"program": "PROGRAM", "functionBlock": "FUNCTION_BLOCK", "function": "FUNCTION"}
 _IGNORED = {"documentation", "addData", "comment"}
+# Beremiz runtime blocks (its py_ext and logging plugins): no plclab equivalent, skipped (PLC0250)
+BEREMIZ_ONLY = {"LOGGER", "PYTHON_EVAL", "PYTHON_POLL", "PYTHON_GEAR"}
 MAX_BOX_CHAIN = 100  # function boxes feeding each other directly in one LD/FBD network
 
 
@@ -169,8 +175,12 @@ class _Importer:
         return name  # type: ignore[return-value]
 
     def describe(self, el: ET.Element) -> str:
+        """``<block> (localId 4 at x=90 y=30)``: how a message names a graphical element."""
         lid = el.get("localId")
-        return f"<{_local(el.tag)}>" + (f" (localId {lid})" if lid is not None else "")
+        pos = self.kid(el, "position")
+        where = f" at x={pos.get('x')} y={pos.get('y')}" if pos is not None and \
+            pos.get("x") is not None else ""
+        return f"<{_local(el.tag)}>" + (f" (localId {lid}{where})" if lid is not None else "")
 
     def text_parser(self, text: str | None, el: ET.Element):
         """An ST parser over ``text`` placed where it stands in the XML file; ``None``: the text
@@ -361,11 +371,22 @@ class _Importer:
             constant = sec.get("constant") in ("true", "1")
             retain = sec.get("retain") in ("true", "1") or sec.get("persistent") in ("true", "1")
             for v in self.kids(sec, "variable"):
+                if self.beremiz_instance(v):
+                    continue
                 try:
                     out.append(self.variable(v, _SECTIONS[tag], constant, retain))
                 except _Bad:
                     pass
         return out
+
+    def beremiz_instance(self, v: ET.Element) -> bool:
+        """A variable whose type is a Beremiz runtime block: warned about and left out."""
+        t = self.kid(v, "type")
+        d = self.kid(t, "derived") if t is not None else None
+        if d is None or (d.get("name") or "").upper() not in BEREMIZ_ONLY:
+            return False
+        self.warn_beremiz(d.get("name") or "", v)
+        return True
 
     # -- POUs -------------------------------------------------------------------------------
     def pou(self, pel: ET.Element) -> None:
@@ -455,6 +476,7 @@ class _Importer:
         connectors: dict[str, Elem] = {}
         continuations: list[tuple[Elem, str, ET.Element]] = []
         rights: list[ET.Element] = []
+        skipped: set[str] = set()  # localIds of Beremiz-only blocks and what they feed
         ok = True
 
         def new(kind: str, el: ET.Element) -> Elem:
@@ -463,7 +485,9 @@ class _Importer:
             y = _num(pos.get("y")) if pos is not None else 0.0
             e = Elem(len(elems), kind, self.loc(el), text=self.describe(el), geom=(x, y))
             eo = el.get("executionOrderId")
-            e.order = (int(eo) if eo and eo.isdigit() and int(eo) > 0 else 0, y, x)
+            given = int(eo) if eo and eo.isdigit() and int(eo) > 0 else 0
+            e.explicit_order = given > 0
+            e.order = (given, y, 0 if kind == "label" else 1, x)
             elems.append(e)
             lid = el.get("localId")
             if lid is not None:
@@ -502,15 +526,28 @@ class _Importer:
                              f"{']' if k == 'contact' else ')'} {v.text.strip() if v is not None else ''}"
                     pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
                 elif k == "block":
+                    if (el.get("typeName") or "").upper() in BEREMIZ_ONLY:
+                        skipped.add(el.get("localId") or "")
+                        self.warn_beremiz(el.get("typeName") or "", el)
+                        continue
                     self.block(el, new, pending)
-                elif k in ("inVariable", "outVariable"):
-                    e = new("invar" if k == "inVariable" else "outvar", el)
+                elif k in ("inVariable", "outVariable", "inOutVariable"):
+                    e = new({"inVariable": "invar", "outVariable": "outvar"}.get(k, "inoutvar"),
+                            el)
                     x = self.kid(el, "expression")
                     e.var = self.expr(x.text if x is not None else None,
                                       x if x is not None else el, "expression")
-                    if el.get("negated") in ("true", "1"):
-                        e.var = A.Unary(e.loc, "NOT", e.var)
-                    if k == "outVariable":
+                    self.variable_pins(el, e, k)
+                    if k != "inVariable":
+                        pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
+                elif k in ("jump", "label", "return"):
+                    if tag not in ("FBD", "LD"):
+                        self.fail("PLC0181", f"{self.describe(el)} belongs in an LD or FBD body",
+                                  el)
+                    e = new(k, el)
+                    if k != "return":
+                        e.label = self.ident(el.get("label"), el, f"{k} label").upper()
+                    if k != "label":
                         pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
                 elif k == "connector":
                     e = new("conn", el)
@@ -532,8 +569,11 @@ class _Importer:
                 ok = False
             else:
                 e.inputs[""] = [(c.id, "")]
+        dead = self.dead_elements(pending, skipped, by_id)
         for e, pin, refs in pending:
             out = []
+            if e.id in dead:
+                continue
             for rid, fp, cel in refs:
                 src = by_id.get(rid)
                 if src is None:
@@ -542,11 +582,18 @@ class _Importer:
                     ok = False
                     continue
                 out.append((src.id, "" if src.kind in ("left", "contact", "coil", "invar",
-                                                       "conn") else fp))
+                                                       "inoutvar", "conn") else fp.upper()))
             e.inputs.setdefault(pin, []).extend(out)
+        if dead:
+            keep = [e for e in elems if e.id not in dead]
+            renum = {e.id: k for k, e in enumerate(keep)}
+            for e in keep:
+                e.id = renum[e.id]
+                e.inputs = {p: [(renum[i], o) for i, o in refs] for p, refs in e.inputs.items()}
+            elems = keep
         for el in rights:
             for rid, _, cel in self.refs_all(el):
-                if rid not in by_id:
+                if rid not in by_id and rid not in skipped:
                     self.err("PLC0182", f"the right power rail is connected to localId {rid}, "
                              "which does not exist", cel)
                     ok = False
@@ -561,6 +608,46 @@ class _Importer:
             ok = False
         return elems if ok else None
 
+    def dead_elements(self, pending, skipped: set[str], by_id: dict[str, Elem]) -> set[int]:
+        """The elements wired (directly or through others) to a skipped Beremiz-only block:
+        they are left out too; their localIds join ``skipped``."""
+        lid_of = {e.id: lid for lid, e in by_id.items()}
+        dead: set[int] = set()
+        changed = bool(skipped)
+        while changed:
+            changed = False
+            for e, _, refs in pending:
+                if e.id not in dead and any(rid in skipped for rid, _, _ in refs):
+                    dead.add(e.id)
+                    skipped.add(lid_of.get(e.id, ""))
+                    changed = True
+        return dead
+
+    def warn_beremiz(self, type_name: str, el: ET.Element) -> None:
+        """A Beremiz runtime block (LOGGER, python_eval...): skipped with a warning."""
+        self.diags.append(Diagnostic(
+            "PLC0250", f"{type_name} in {self.describe(el)} is a Beremiz runtime block, not "
+            "available in plclab; it is left out (with whatever it alone feeds) and the rest of "
+            "the project runs", self.loc(el), "warning"))
+
+    def variable_pins(self, el: ET.Element, e: Elem, k: str) -> None:
+        """``negated`` on an in/out variable: the value read is inverted (inVariable), the
+        value written is inverted (outVariable); ``edge`` on them is not IEC and is refused."""
+        neg_in = el.get("negatedIn", el.get("negated")) in ("true", "1")
+        neg_out = el.get("negatedOut", el.get("negated") if k != "inOutVariable" else None) \
+            in ("true", "1")
+        if k == "inVariable" and neg_out:
+            e.var = A.Unary(e.loc, "NOT", e.var)
+        elif k != "inVariable" and neg_in:
+            e.neg_in.add("")
+        if k == "inOutVariable" and neg_out:
+            e.neg_out.add("")
+        for attr in ("edge", "edgeIn", "edgeOut"):
+            if el.get(attr, "none") not in ("none", ""):
+                self.fail("PLC0183", f"{self.describe(el)}: {attr}={el.get(attr)!r} on a "
+                          "variable is not part of IEC FBD; put the edge on a block input or "
+                          "use R_TRIG/F_TRIG", el)
+
     def refs_all(self, el: ET.Element):
         out = []
         for cpi in self.kids(el, "connectionPointIn"):
@@ -572,42 +659,58 @@ class _Importer:
         inst = el.get("instanceName")
         e = new("fb" if inst else "func", el)
         e.type_name = tname
-        e.text = f"[{tname}{' ' + inst if inst else ''}]"
+        e.text = f"[{tname}{' ' + inst if inst else ''}] " + self.describe(el)
         if inst:
             e.instance = self.expr(inst, el, "instance name")
-        ins = self.kid(el, "inputVariables")
-        for v in self.kids(ins, "variable") if ins is not None else []:
-            pin = (v.get("formalParameter") or "").upper()
-            if v.get("edge", "none") != "none":
-                self.fail("PLC0181", f"{self.describe(el)}: edge detection on input {pin} is not "
-                          "supported; use an R_TRIG block", v)
-            refs = self.refs(self.kid(v, "connectionPointIn"))
-            if v.get("negated") in ("true", "1"):
-                self.fail("PLC0181", f"{self.describe(el)}: negated input {pin} is not supported;"
-                          " add a NOT block", v)
-            pending.append((e, pin, refs))
+        seen: set[str] = set()
+        for group in ("inputVariables", "inOutVariables"):
+            holder = self.kid(el, group)
+            for v in self.kids(holder, "variable") if holder is not None else []:
+                pin = self.pin_name(v, el, seen)
+                if group == "inOutVariables":
+                    e.inout_pins.add(pin)
+                edge = v.get("edge", "none")
+                if edge in ("rising", "falling"):
+                    e.edge_in[pin] = "P" if edge == "rising" else "N"
+                elif edge not in ("none", ""):
+                    self.fail("PLC0183", f"{self.describe(el)}: input {pin} has edge={edge!r}; "
+                              "use rising, falling or none", v)
+                if v.get("negated") in ("true", "1"):
+                    e.neg_in.add(pin)
+                pending.append((e, pin, self.refs(self.kid(v, "connectionPointIn"))))
         outs = self.kid(el, "outputVariables")
-        out_pins = [(v.get("formalParameter") or "").upper()
-                    for v in self.kids(outs, "variable")] if outs is not None else []
+        out_pins = []
         for v in self.kids(outs, "variable") if outs is not None else []:
+            pin = self.pin_name(v, el, set())
+            out_pins.append(pin)
             if v.get("negated") in ("true", "1"):
-                self.fail("PLC0181", f"{self.describe(el)}: negated output "
-                          f"{v.get('formalParameter')} is not supported; add a NOT block", v)
+                e.neg_out.add(pin)
         e.out_pin = next((p for p in out_pins if p != "ENO"), "OUT")
-        iov = self.kid(el, "inOutVariables")
-        if iov is not None and self.kids(iov, "variable"):
-            self.fail("PLC0181", f"{self.describe(el)}: in-out parameters of graphical blocks are "
-                      "not supported", iov)
+        e.outs = out_pins
+
+    def pin_name(self, v: ET.Element, el: ET.Element, seen: set[str]) -> str:
+        """A block pin's formal parameter, upper case (pin names are case-insensitive)."""
+        pin = (v.get("formalParameter") or "").upper()
+        if not pin or identifier_problem(pin):
+            self.fail("PLC0183", f"{self.describe(el)}: a pin has formalParameter "
+                      f"{v.get('formalParameter')!r}; every pin needs the name of a parameter "
+                      "of the block", v)
+        if pin in seen:
+            self.fail("PLC0183", f"{self.describe(el)}: the pin {pin} appears twice", v)
+        seen.add(pin)
+        return pin
 
     def acyclic(self, elems: list[Elem]) -> bool:
         """True when no element feeds itself (an iterative depth-first search: a rung of
-        thousands of contacts in series must not exhaust Python's stack)."""
+        thousands of contacts in series must not exhaust Python's stack). A path through an
+        in-out variable is no loop: the variable holds the value (Beremiz counters are drawn
+        so: ``Cnt`` -> ADD -> SEL -> ``Cnt``)."""
         state: dict[int, int] = {}
         for root in elems:
             if root.id in state:
                 continue
             state[root.id] = 1
-            stack = [(root.id, _feeds(root))]
+            stack = [(root.id, _feeds(root, elems))]
             while stack:
                 eid, it = stack[-1]
                 nxt = next(it, None)
@@ -620,7 +723,7 @@ class _Importer:
                     return False
                 if s is None:
                     state[nxt] = 1
-                    stack.append((nxt, _feeds(elems[nxt])))
+                    stack.append((nxt, _feeds(elems[nxt], elems)))
         return True
 
     # -- configurations -------------------------------------------------------------------------
@@ -713,9 +816,11 @@ def _box_depth(elems: list[Elem]) -> int:
     return max(depth.values(), default=0)
 
 
-def _feeds(e: Elem):
-    """The ids of the elements wired into ``e``."""
-    return (i for refs in e.inputs.values() for i, _ in refs if i >= 0)
+def _feeds(e: Elem, elems: list[Elem] | None = None):
+    """The ids of the elements wired into ``e``. With ``elems``: not those that are in-out
+    variables (reading one reads the variable: a loop through one is not a feedback loop)."""
+    return (i for refs in e.inputs.values() for i, _ in refs
+            if i >= 0 and (elems is None or elems[i].kind != "inoutvar"))
 
 
 def _num(s: str | None) -> float:

@@ -43,7 +43,13 @@ class Elem:
     rung: int = 0
     text: str = ""  # as written, for messages and drawings
     geom: Any = None  # text: (line, col0, col1); XML: (x, y, w, h)
-
+    neg_in: set[str] = field(default_factory=set)  # XML: negated input pins of a box
+    neg_out: set[str] = field(default_factory=set)  # XML: negated output pins of a box
+    edge_in: dict[str, str] = field(default_factory=dict)  # XML: input pin -> "P" rising / "N"
+    inout_pins: set[str] = field(default_factory=set)  # XML: VAR_IN_OUT pins of a box
+    outs: list[str] = field(default_factory=list)  # XML: the output pins of a box, in order
+    label: str = ""  # XML: the label of a jump or label element
+    explicit_order: bool = False  # XML: executionOrderId given (else the topological rule)
 
 
 def _true(loc: Location) -> A.Literal:
@@ -84,7 +90,7 @@ class _NetLowering:
     def __init__(self, pou: A.Pou, elems: list[Elem], types: LoweringTypes) -> None:
         self.pou = pou
         self.elems = {e.id: e for e in elems}
-        self.order = sorted(elems, key=lambda e: e.order)
+        self.order = execution_order(elems)
         self.types = types
         self.diags: list[Diagnostic] = []
         self.out: list[A.Stmt] = []
@@ -94,6 +100,7 @@ class _NetLowering:
         self.n = 0
         self.conds: dict[int, A.Expr] = {}
         self.pins: dict[int, tuple[str, str]] = {}
+        self.edges: dict[tuple[int, str], A.Expr] = {}  # (box, input pin) -> its edge pulse
         self.nesting = 0
         for e in elems:
             for refs in e.inputs.values():
@@ -169,10 +176,21 @@ class _NetLowering:
             a, b = (copy.deepcopy(x.value) for x in e.args)
             return _and(e.loc, self.value(e.inputs.get("", []), e.loc),
                         A.Binary(e.loc, COMPARE[e.type_name], a, b))
-        if k == "invar":
+        if k in ("invar", "inoutvar"):
             return copy.deepcopy(e.var)
         if k == "conn":
             return self.value(e.inputs.get("", []), e.loc)
+        if k in ("fb", "func") and pin in e.inout_pins:
+            return self.value(e.inputs.get(pin, []), e.loc)  # the variable wired to the pin
+        if k in ("fb", "func") and pin in e.neg_out:
+            return A.Unary(e.loc, "NOT", self.box_out(e, pin, loc))
+        if k in ("fb", "func"):
+            return self.box_out(e, pin, loc)
+        return A.Literal(loc, False, "BOOL", None, "FALSE")
+
+    def box_out(self, e: Elem, pin: str, loc: Location) -> A.Expr:
+        """The value of output ``pin`` of a function block or function box."""
+        k = e.kind
         if k == "fb":
             if pin in ("", "ENO") and e.id in self.pins:
                 pin = self.pins[e.id][1] if pin == "" else pin
@@ -184,6 +202,33 @@ class _NetLowering:
                 return self.value(e.inputs.get("EN", e.inputs.get("", [])), e.loc)
             return self.func_call(e)
         return A.Literal(loc, False, "BOOL", None, "FALSE")
+
+    def pin_value(self, e: Elem, pin: str, refs: list[Ref]) -> A.Expr:
+        """What an input pin of a box receives: the wired value, negated or edge-detected when
+        the pin says so (XML ``negated`` / ``edge``)."""
+        if (e.id, pin) in self.edges:
+            return copy.deepcopy(self.edges[(e.id, pin)])
+        v = self.value(refs, e.loc)
+        return A.Unary(e.loc, "NOT", v) if pin in e.neg_in else v
+
+    def edge_pulses(self, e: Elem) -> None:
+        """Edge-triggered input pins: a pulse computed once per scan, before the box runs."""
+        for pin, mode in sorted(e.edge_in.items()):
+            v = self.value(e.inputs.get(pin, []), e.loc)
+            if pin in e.neg_in:
+                v = A.Unary(e.loc, "NOT", v)
+            self.edges[(e.id, pin)] = self.edge(e, v, mode, f"input {pin} of {e.text}")
+
+    def edge(self, e: Elem, v: A.Expr, mode: str, what: str) -> A.Name:
+        """Statements computing a one-scan pulse on the rising (P) or falling (N) edge of ``v``;
+        returns the hidden variable holding the pulse."""
+        mem = self.hidden("M", e.loc, "VAR", f"edge memory of {what}")
+        pulse = self.hidden("E", e.loc, "VAR_TEMP", f"edge of {what}")
+        now = copy.deepcopy(v) if mode == "P" else A.Unary(e.loc, "NOT", copy.deepcopy(v))
+        was = copy.deepcopy(mem) if mode == "P" else A.Unary(e.loc, "NOT", copy.deepcopy(mem))
+        self.out.append(A.Assign(e.loc, pulse, _and(e.loc, now, A.Unary(e.loc, "NOT", was))))
+        self.out.append(A.Assign(e.loc, copy.deepcopy(mem), copy.deepcopy(v)))
+        return copy.deepcopy(pulse)
 
     def contact_cond(self, e: Elem) -> A.Expr:
         if e.id in self.conds:
@@ -198,7 +243,7 @@ class _NetLowering:
         for pin, refs in e.inputs.items():
             if pin in ("", "EN") or not refs:
                 continue
-            args.append(A.Arg(e.loc, pin, self.value(refs, e.loc)))
+            args.append(A.Arg(e.loc, pin, self.pin_value(e, pin, refs)))
         if e.type_name in ("AND", "OR", "XOR", "NOT") and not e.targets:
             # the FBD boolean boxes are operators, not functions
             vals = [a.value for a in args if a.value is not None]
@@ -223,6 +268,8 @@ class _NetLowering:
     def visit(self, e: Elem) -> None:
         k = e.kind
         ref = (e.id, "")
+        if e.edge_in:
+            self.edge_pulses(e)
         if k == "contact" and e.mode in ("P", "N") and e.var is not None:
             mem = self.hidden("M", e.loc, "VAR", f"edge memory of {e.text}")
             pulse = self.hidden("E", e.loc, "VAR_TEMP", f"edge of {e.text}")
@@ -240,8 +287,17 @@ class _NetLowering:
             self.fb(e)
         elif k == "func":
             self.func(e)
-        elif k == "outvar":
+        elif k in ("outvar", "inoutvar"):
             self.outvar(e)
+        elif k == "label":
+            self.out.append(A.Label(e.loc, e.label))
+        elif k == "jump":
+            cond = self.value(e.inputs.get("", []), e.loc)
+            self.out.append(A.Jump(e.loc, e.label, None if _is_true(cond) else cond))
+        elif k == "return":
+            cond = self.value(e.inputs.get("", []), e.loc)
+            ret: A.Stmt = A.Return(e.loc)
+            self.out.append(ret if _is_true(cond) else A.If(e.loc, [(cond, [ret])]))
 
     def coil(self, e: Elem) -> None:
         pf = self.value(e.inputs.get("", []), e.loc)
@@ -297,7 +353,7 @@ class _NetLowering:
         for pin, refs in e.inputs.items():
             if pin in ("", "EN") or not refs:
                 continue
-            args.append(A.Arg(e.loc, pin, self.value(refs, e.loc)))
+            args.append(A.Arg(e.loc, pin, self.pin_value(e, pin, refs)))
         args.extend(copy.deepcopy(a) for a in e.args)
         call: A.Stmt = A.CallStmt(e.loc, A.Call(e.loc, copy.deepcopy(e.instance), args))
         if en is not None:
@@ -345,6 +401,62 @@ class _NetLowering:
                 cond = self.value(src.inputs["EN"], e.loc)
                 stmt = A.If(e.loc, [(cond, [stmt])])
         self.out.append(stmt)
+
+
+def execution_order(elems: list[Elem]) -> list[Elem]:
+    """The order in which a network's elements run.
+
+    When every element that does something (a block, an output or in-out variable, a coil, a
+    jump, a label, a return) carries an ``executionOrderId`` (``explicit_order``), that order
+    is followed as written. Otherwise the IEC 61131-3 rule applies (part 3, "evaluation of
+    networks"): no element runs before the elements wired into its inputs, and among the
+    elements that are ready the one first in ``order`` (top to bottom, left to right) runs
+    next. Elements caught in a feedback loop keep their written order at the end.
+    """
+    acting = [e for e in elems if e.kind in _ACTING]
+    if acting and all(e.explicit_order for e in acting):
+        return sorted(elems, key=lambda e: e.order)
+    import heapq
+
+    waiting = {e.id: len({i for i in _sources(e)}) for e in elems}
+    readers: dict[int, list[Elem]] = {}
+    for e in elems:
+        for i in {i for i in _sources(e)}:
+            readers.setdefault(i, []).append(e)
+    ready = [(e.order, e.id) for e in elems if waiting[e.id] == 0]
+    heapq.heapify(ready)
+    out: list[Elem] = []
+    by_id = {e.id: e for e in elems}
+    cut = False
+    while ready or not cut:
+        if not ready:  # a loop: a variable read inside it gives its value, not a wire order
+            cut = True
+            done = {e.id for e in out}
+            for i, rs in readers.items():
+                if i in by_id and by_id[i].kind == "inoutvar" and i not in done:
+                    for r in rs:
+                        waiting[r.id] -= 1
+                        if waiting[r.id] == 0:
+                            heapq.heappush(ready, (r.order, r.id))
+            continue
+        _, i = heapq.heappop(ready)
+        out.append(by_id[i])
+        for r in readers.get(i, []):
+            if cut and by_id[i].kind == "inoutvar":
+                continue  # its readers were released when the loop was cut
+            waiting[r.id] -= 1
+            if waiting[r.id] == 0:
+                heapq.heappush(ready, (r.order, r.id))
+    done = {e.id for e in out}
+    out.extend(sorted((e for e in elems if e.id not in done), key=lambda e: e.order))
+    return out
+
+
+_ACTING = {"fb", "func", "outvar", "inoutvar", "coil", "jump", "label", "return"}
+
+
+def _sources(e: Elem):
+    return (i for refs in e.inputs.values() for i, _ in refs if i >= 0)
 
 
 def lower_network(pou: A.Pou, elems: list[Elem], types: LoweringTypes) -> list[Diagnostic]:
