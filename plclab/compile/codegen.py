@@ -26,6 +26,7 @@ from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.dialect import profile as dialect_profile
 from ..lang.limits import compiler_guard
 from ..lang.walk import UnhandledNode
+from . import oop_emit
 from .builtins_emit import EMITTERS, Emission, const_int
 from .real32 import f32 as _f32
 
@@ -161,8 +162,9 @@ class Codegen:
                     self.function(pou)
             elif pou.native:
                 self.natives[f"P_{ident(pou.name)}"] = pou.native
-            else:
+            elif pou.kind != "INTERFACE":  # an interface has no code (ADR 0021)
                 self.block_class(pou)
+        oop_emit.inherit_methods(self)
         self.globals_class()
         self.programs_class()
         self.sync_functions()
@@ -256,7 +258,9 @@ class Codegen:
         return code
 
     def member_decls(self, pou: A.Pou) -> list[A.VarDecl]:
-        return [d for d in pou.decls if d.section not in ("VAR_TEMP", "VAR_EXTERNAL")]
+        """The instance variables of ``pou``, inherited ones (EXTENDS) first."""
+        return [d for d in self.p.symbols.members(pou).values()
+                if d.section not in ("VAR_TEMP", "VAR_EXTERNAL")]
 
     def block_class(self, pou: A.Pou) -> None:
         cls = f"P_{ident(pou.name)}"
@@ -288,7 +292,9 @@ class Codegen:
                 self.emit_init(f"v_{ident(d.name)}", d)
         self.function_body(pou.body, [d.name for d in pou.decls if d.section == "VAR_TEMP"], True)
         self.emit("return")
-        self.ind -= 2
+        self.ind -= 1
+        oop_emit.emit_methods(self, pou)
+        self.ind -= 1
         self.emit("")
         self.pou = None
 
@@ -572,6 +578,10 @@ class Codegen:
     def fb_call(self, c: A.Call, info: CallInfo) -> None:
         if info.kind == "program":
             inst = f"_P.{ident(c.func.name)}"  # type: ignore[union-attr]
+        elif oop_emit.is_super(c.func):  # SUPER^(): the base block's body on this instance
+            self.flush_pre()
+            self.emit(f"P_{ident(info.callee.name)}._body(self)")
+            return
         else:
             inst = self.ex(c.func)
         fb = inst
@@ -769,7 +779,7 @@ class Codegen:
         if self.helper is not None:
             self.helper_return(RETURN)
             return
-        if self.pou is not None and self.pou.kind == "FUNCTION":
+        if self.pou is not None and self.pou.kind in ("FUNCTION", "METHOD"):
             self.emit(self.function_return(self.pou))
         else:
             self.emit("return")
@@ -1126,6 +1136,8 @@ class Codegen:
                 return f"_G.{ident(sym.decl.name)}"
             if sym.storage == "self":
                 return f"self.{ident(sym.decl.name)}"
+            if sym.storage in ("this", "super"):  # THIS^, SUPER^ (ADR 0021)
+                return "self"
             return f"v_{ident(sym.decl.name)}"
         if isinstance(sym, EnumSym):
             return repr(sym.value)
@@ -1294,6 +1306,8 @@ class Codegen:
             return self.builtin(info.callee.name, [x for _, x in info.inputs], e)
         if info.kind == "function":
             return self.user_function(info)
+        if info.kind == "method":
+            return oop_emit.method_call(self, e, info)
         return "None"
 
     def user_function(self, info: CallInfo) -> str:

@@ -286,6 +286,15 @@ class Pou:
     # text ladder only: the drawn networks (plclab.lang.frontends.ld.Network), for drawings
     networks: list[Any] = field(default_factory=list, compare=False, repr=False)
 
+    # object-oriented extensions (plclab.lang.frontends.oop, ADR 0021): a FUNCTION_BLOCK's
+    # base (one) or an INTERFACE's bases (several), the interfaces it implements, its METHODs
+    # (Pou of kind METHOD), and ABSTRACT FINAL PUBLIC PRIVATE PROTECTED INTERNAL as written
+    extends: list[str] = field(default_factory=list)
+    implements: list[str] = field(default_factory=list)
+    methods: list[Pou] = field(default_factory=list)
+    modifiers: list[str] = field(default_factory=list)
+    owner: Pou | None = field(default=None, compare=False, repr=False)  # a METHOD's block
+
     # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
     return_decl: VarDecl | None = annotation()
 
@@ -360,6 +369,12 @@ class SourceFile:
     configs: list[Configuration] = field(default_factory=list)
     tests: list[TestBlock] = field(default_factory=list)
     dialect: str | None = None  # the file's dialect (plclab.lang.dialect); None: the default
+
+
+def method_inst_name(method: str, var: str) -> str:
+    """The hidden instance variable of a METHOD's ``VAR_INST`` variable (ADR 0021; ``__``
+    cannot be written in an ST name, so it cannot clash with a user variable)."""
+    return f"{method}__{var}"
 
 
 def child_bodies(s: Stmt) -> list[list[Stmt]]:

@@ -71,6 +71,15 @@ def _oob(i: int, lo: int, hi: int, where: int):
     raise Fault("PLC2002", f"array index {i} is outside the bounds {lo}..{hi}", where)
 
 
+def _iref(obj, method: str, where: int):
+    """The instance an interface variable refers to, for a call of ``method`` (ADR 0021)."""
+    if obj is None:
+        raise Fault("PLC9110", f"call of {method} through an interface variable that refers to "
+                    "no instance; assign an instance first (itf := inst;) or test it with "
+                    "itf <> 0 before the call", where)
+    return obj
+
+
 def _wd(where: int):
     raise Fault("PLC2003", "watchdog: the scan did not finish within its budget; this loop "
                 "runs too long or never ends (inputs do not change during a scan, so waiting "

@@ -64,6 +64,10 @@ class Calls(Pass):
                          close_hint(fname, cands), c.loc)
                 self._args_only(c)
                 return T.ANY
+        if isinstance(f, A.Member):  # inst.M(...): a METHOD (ADR 0021)
+            mt = self.cx.oop.method_call(c, statement)
+            if mt is not None:
+                return mt
         ft = T.resolve(self.cx.exprs.expr(f, None))
         if isinstance(ft, T.FBType):
             if ft.pou.kind == "FUNCTION_BLOCK":

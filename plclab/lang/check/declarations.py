@@ -37,7 +37,7 @@ class Declarations(Pass):
             self.named_type(name, table.type_decls[name].loc)
         for p in table.pous.values():
             if p.kind != "FUNCTION":
-                table.types.setdefault(p.name, T.FBType(p.name, p))
+                table.types.setdefault(p.name, T.block_type(p.name, p))
         for d in table.global_decls:
             self.decl_type(d)
             table.declare_global(d, self.cx.report)
@@ -68,7 +68,7 @@ class Declarations(Pass):
             self.table.types.setdefault(name, ty)
             return self.table.types[name]
         if name in self.table.pous and self.table.pous[name].kind != "FUNCTION":
-            t2 = self.table.types.setdefault(name, T.FBType(name, self.table.pous[name]))
+            t2 = self.table.types.setdefault(name, T.block_type(name, self.table.pous[name]))
             return t2
         cands = list(T.ELEMENTARY) + list(self.table.type_decls) + [
             k for k, v in self.table.pous.items() if v.kind != "FUNCTION"] + ["STRING", "WSTRING"]

@@ -23,6 +23,9 @@ class Expressions(Pass, NodeVisitor):
         if src is T.ANY or dst is T.ANY:
             return
         rs, rd = T.resolve(src), T.resolve(dst)
+        if isinstance(rd, T.InterfaceType):  # an instance or interface reference (ADR 0021)
+            self.cx.oop.interface_assign(rs, rd, loc)
+            return
         if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
                 and e.value in (0, 1):
             e.ty = T.BOOL  # 0 and 1 are BOOL literals (IEC 61131-3 ed.2 2.2.1, ed.3 Table 5)
@@ -300,7 +303,9 @@ class Expressions(Pass, NodeVisitor):
                          f"member {f}" + close_hint(f, names), e.loc)
                 return T.ANY
             e.sym = d
-            if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test:
+            inside = isinstance(e.obj, A.Name) and isinstance(e.obj.sym, VarSym) and \
+                e.obj.sym.storage in ("this", "super")  # THIS^.x, SUPER^.x (ADR 0021)
+            if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test and not inside:
                 if d.section in ("VAR", "VAR_TEMP"):
                     self.err("PLC0121", f"{f} is internal to {pou.name}; only its inputs and "
                              "outputs are visible outside", e.loc)

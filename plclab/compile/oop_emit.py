@@ -1,0 +1,126 @@
+"""Code generation for the object-oriented extensions (ADR 0021).
+
+A METHOD of block ``B`` is a Python method ``M_NAME(self, inputs..., in_outs...)`` of the
+block's class ``P_B``; it returns like a FUNCTION (the result, then the outputs). A derived
+block's class gets its base's variables (the symbol table's ``members``) and, after every
+class is defined, each inherited method it does not override (``P_D.M_X = P_B.M_X``): a call
+``obj.M_X(...)`` then dispatches on the instance's class, which is what a call through an
+interface or ``THIS^`` needs. ``SUPER^.M()`` is the static call ``P_BASE.M_M(self, ...)``.
+An interface variable holds the instance itself (a Python reference) or None; a call through
+None is the runtime fault PLC9110 (:func:`plclab.runtime.rt._iref`).
+
+Only upper-cased ST identifiers reach the generated code (``M_`` + the method's name).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ..lang import ast as A
+from ..lang import types as T
+from ..lang.check import CallInfo, VarSym
+
+if TYPE_CHECKING:
+    from .codegen import Codegen
+
+
+def method_name(m: A.Pou) -> str:
+    from .codegen import ident
+    return f"M_{ident(m.name)}"
+
+
+def emit_methods(cg: Codegen, pou: A.Pou) -> None:
+    """The methods of ``pou`` inside its class (the generator is at class level)."""
+    from .codegen import ident
+    outer = cg.pou
+    for m in pou.methods:
+        cg.pou = m
+        params = [d for d in m.decls if d.section in ("VAR_INPUT", "VAR_IN_OUT")]
+        cg.where_now = cg.where(m.loc)
+        cg.emit(f"def {method_name(m)}(self" + "".join(f", v_{ident(d.name)}" for d in params)
+                + "):")
+        cg.ind += 1
+        rd = m.return_decl
+        if rd is not None and rd.ty is not T.VOID:
+            cg.emit(f"v_{ident(m.name)} = {cg.default_code(rd.ty)}")
+        for d in m.decls:
+            if d.section in ("VAR", "VAR_TEMP", "VAR_OUTPUT"):
+                cg.where_now = cg.where(d.loc)
+                cg.emit_init(f"v_{ident(d.name)}", d)
+        cg.function_body(m.body, [m.name] + [d.name for d in m.decls
+                                            if d.section not in ("VAR_EXTERNAL", "VAR_INST")],
+                         True)
+        cg.emit(cg.function_return(m))
+        cg.ind -= 1
+    cg.pou = outer
+
+
+def inherit_methods(cg: Codegen) -> None:
+    """After every class: each block gets the methods of its bases it does not override,
+    bases first (so a chain A <- B <- C copies A's method into B before C)."""
+    from .codegen import ident
+    table = cg.p.symbols
+    blocks = [p for p in cg.p.pous.values() if p.kind == "FUNCTION_BLOCK" and not p.native]
+    for p in sorted(blocks, key=lambda b: len(table.bases(b))):
+        bases = table.bases(p)
+        if not bases:
+            continue
+        own = {m.name for m in p.methods}
+        base = bases[0]
+        for name in sorted({m.name for b in bases for m in b.methods} - own):
+            cg.emit(f"P_{ident(p.name)}.M_{ident(name)} = P_{ident(base.name)}.M_{ident(name)}")
+
+
+def is_super(e: A.Expr) -> bool:
+    return isinstance(e, A.Name) and isinstance(e.sym, VarSym) and e.sym.storage == "super"
+
+
+def method_call(cg: Codegen, e: A.Call, info: CallInfo) -> str:
+    """``obj.M(args)`` as a Python expression (the outputs are stored by ``cg.pre`` lines)."""
+    from .codegen import ident
+    m: A.Pou = info.callee
+    f = e.func
+    assert isinstance(f, A.Member)
+    obj_t = T.resolve(f.obj.ty)
+    given = {d.name: x for d, x in info.inputs}
+    given_io = {d.name: x for d, x in info.inouts}
+    args = []
+    for d in m.decls:
+        if d.section == "VAR_INPUT":
+            x = given.get(d.name)
+            if x is None:
+                args.append(cg.init_code(d.init, d.ty))
+            else:
+                code = cg.coerce(cg.ex(x), x.ty, d.ty, x)
+                if T.resolve(d.ty).is_aggregate:
+                    code = cg.copy_code(code, d.ty)
+                args.append(code)
+        elif d.section == "VAR_IN_OUT":
+            x = given_io.get(d.name)
+            args.append(cg.ex(x) if x is not None else "None")
+    if is_super(f.obj):
+        base = obj_t.pou  # SUPER^'s type is the base block
+        call = f"P_{ident(base.name)}.{method_name(m)}(self{''.join(', ' + a for a in args)})"
+    else:
+        obj = cg.ex(f.obj)
+        if isinstance(obj_t, T.InterfaceType):
+            obj = f"_iref({obj}, {repr(m.name)}, {cg.where_now})"
+        call = f"{obj}.{method_name(m)}({', '.join(args)})"
+    outs = [d for d in m.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
+    if not outs:
+        return call
+    tmp = cg.new_tmp("_m")
+    cg.pre.append(f"{tmp} = {call}")
+    bound = {d.name: (tgt, neg) for d, tgt, neg in info.outputs}
+    for d, x in info.inouts:
+        if not T.resolve(d.ty).is_aggregate:
+            bound[d.name] = (x, False)
+    for i, d in enumerate(outs, start=1):
+        if d.name in bound:
+            tgt, neg = bound[d.name]
+            v = f"{tmp}[{i}]"
+            if neg:
+                v = f"(not {v})"
+            lv = cg.ex(tgt)
+            cg.pre.append(f"{lv} = {cg.coerce(v, d.ty, tgt.ty, None)}")
+    return f"{tmp}[0]"

@@ -1,0 +1,251 @@
+"""Pass: the object-oriented extensions (ADR 0021) -- EXTENDS and IMPLEMENTS, METHOD
+declarations and bodies, method calls (``inst.M(...)``, ``THIS^.M()``, ``SUPER^.M()``, a call
+through an interface) and assignments to interface variables.
+
+Codes PLC0220-PLC0249. Inherited variables reach the other passes through the symbol table's
+``bases()`` hook (:meth:`~.symbols.SymbolTable.bases`); this pass adds what only objects have.
+"""
+
+from __future__ import annotations
+
+from .. import ast as A
+from .. import types as T
+from ..walk import walk
+from .calls import CallInfo
+from .context import Pass, close_hint
+
+_PARAMS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
+
+
+def _label(p: A.Pou) -> str:
+    return p.spelling or p.name
+
+
+def signature(m: A.Pou) -> list[tuple[str, str, str]]:
+    """(section, name, type) of a method's parameters and its result, for override checks."""
+    rt = m.return_decl.ty if m.return_decl is not None else None
+    out = [(d.section, d.name, str(T.resolve(d.ty))) for d in m.decls if d.section in _PARAMS]
+    return out + [("RETURN", "", str(T.resolve(rt)) if rt is not None else "VOID")]
+
+
+class ObjectChecks(Pass):
+    """Declarations (after :mod:`.declarations`), method bodies (after the POU bodies), and
+    the two hooks the other passes call: :meth:`method_call` and :meth:`interface_assign`."""
+
+    # -- questions ----------------------------------------------------------------------------
+    def interfaces_of(self, p: A.Pou) -> list[A.Pou]:
+        """Every INTERFACE ``p`` (a block or an interface) is, through IMPLEMENTS, EXTENDS of
+        interfaces and its base blocks; ``p`` itself first when it is an interface."""
+        out: list[A.Pou] = []
+        todo = [p] if p.kind == "INTERFACE" else []
+        for b in [p, *self.table.bases(p)] if p.kind == "FUNCTION_BLOCK" else []:
+            todo += [i for n in b.implements if (i := self.table.pous.get(n)) is not None]
+        while todo:
+            i = todo.pop(0)
+            if i.kind != "INTERFACE" or i in out:
+                continue
+            out.append(i)
+            todo += [b for n in i.extends if (b := self.table.pous.get(n)) is not None]
+        return out
+
+    def methods(self, p: A.Pou) -> dict[str, A.Pou]:
+        """The methods callable on ``p`` by name: its own, then inherited (a block's bases, an
+        interface's bases); the nearest definition wins."""
+        out: dict[str, A.Pou] = {}
+        chain = [p, *self.table.bases(p)] if p.kind == "FUNCTION_BLOCK" else self.interfaces_of(p)
+        for q in chain:
+            for m in q.methods:
+                out.setdefault(m.name, m)
+        return out
+
+    def _block_of(self, p: A.Pou | None) -> A.Pou | None:
+        return p.owner if p is not None and p.kind == "METHOD" else p
+
+    # -- declarations -------------------------------------------------------------------------
+    def declarations(self) -> None:
+        for p in list(self.table.pous.values()):
+            if p.kind in ("FUNCTION_BLOCK", "INTERFACE"):
+                self.check_header(p)
+                for m in p.methods:
+                    self.method_decls(m)
+        for p in list(self.table.pous.values()):
+            if p.kind == "FUNCTION_BLOCK":
+                self.check_overrides(p)
+                self.check_implements(p)
+        for p in self.table.pous.values():
+            for d in p.decls:
+                self.check_not_abstract(d)
+        for d in self.table.globals.values():
+            self.check_not_abstract(d)
+
+    def check_header(self, p: A.Pou) -> None:
+        want = "FUNCTION_BLOCK" if p.kind == "FUNCTION_BLOCK" else "INTERFACE"
+        if p.kind == "FUNCTION_BLOCK" and len(p.extends) > 1:
+            self.err("PLC0220", f"{_label(p)} EXTENDS {len(p.extends)} blocks; a FUNCTION_BLOCK "
+                     "has one base (implement several INTERFACEs instead)", p.loc)
+        for n in p.extends:
+            b = self.table.pous.get(n)
+            if b is None or b.kind != want:
+                cands = [k for k, v in self.table.pous.items() if v.kind == want]
+                self.err("PLC0220", f"{_label(p)} EXTENDS {n}, which is not a {want}" +
+                         close_hint(n, cands), p.loc)
+            elif "FINAL" in b.modifiers:
+                self.err("PLC0224", f"{_label(b)} is FINAL: no block may extend it; remove FINAL "
+                         f"from {_label(b)} or do not extend it", p.loc)
+        if p.kind == "FUNCTION_BLOCK" and p.extends and p.extends[0] in self.table.pous:
+            chain = self.table.bases(p)
+            last = chain[-1] if chain else p
+            if last.extends and self.table.pous.get(last.extends[0]) in (p, *chain):
+                self.err("PLC0232", f"{_label(p)} inherits from itself (EXTENDS goes round in a "
+                         "circle); remove one EXTENDS", p.loc)
+        for n in p.implements:
+            i = self.table.pous.get(n)
+            if i is None or i.kind != "INTERFACE":
+                cands = [k for k, v in self.table.pous.items() if v.kind == "INTERFACE"]
+                self.err("PLC0220", f"{_label(p)} IMPLEMENTS {n}, which is not an INTERFACE" +
+                         close_hint(n, cands), p.loc)
+        seen: set[str] = set()
+        for m in p.methods:
+            if m.name in seen:
+                self.err("PLC0235", f"{_label(p)} declares METHOD {_label(m)} twice; rename or "
+                         "remove one", m.loc)
+            seen.add(m.name)
+            if m.name in self.table.members(p):
+                self.err("PLC0235", f"METHOD {_label(m)} has the name of a variable of "
+                         f"{_label(p)}; rename one of them", m.loc)
+
+    def method_decls(self, m: A.Pou) -> None:
+        """Type a method's declarations and its result (the declarations pass sees POUs only)."""
+        self.cx.decls.check_pou_decls(m)
+        self.table.scope(m)  # creates the result variable
+        rd = m.return_decl
+        if rd is not None and rd.ty is None:
+            rd.ty = self.cx.decls.type_ref(rd.type)
+
+    def check_overrides(self, p: A.Pou) -> None:
+        bases = self.table.bases(p)
+        inherited: dict[str, A.Pou] = {}
+        for b in bases:
+            for m in b.methods:
+                inherited.setdefault(m.name, m)
+        for m in p.methods:
+            base = inherited.get(m.name)
+            if base is None:
+                continue
+            if "FINAL" in base.modifiers:
+                self.err("PLC0224", f"METHOD {_label(m)} overrides a FINAL method of "
+                         f"{_label(base.owner)}; rename it or remove FINAL there", m.loc)
+            elif signature(m) != signature(base):
+                self.err("PLC0228", f"METHOD {_label(m)} overrides the one of "
+                         f"{_label(base.owner)} with other parameters or another result; "
+                         "declare the same inputs, outputs and result type", m.loc)
+
+    def check_implements(self, p: A.Pou) -> None:
+        have = self.methods(p)
+        abstract = "ABSTRACT" in p.modifiers
+        for i in self.interfaces_of(p):
+            for im in i.methods:
+                m = have.get(im.name)
+                if m is None:
+                    if not abstract:
+                        self.err("PLC0221", f"{_label(p)} implements {_label(i)} but has no "
+                                 f"METHOD {_label(im)}; add it (with the same parameters)",
+                                 p.loc)
+                elif signature(m) != signature(im):
+                    self.err("PLC0228", f"METHOD {_label(m)} of {_label(p)} does not match "
+                             f"{_label(i)}.{_label(im)}: declare the same inputs, outputs and "
+                             "result type", m.loc)
+
+    def check_not_abstract(self, d: A.VarDecl) -> None:
+        t = T.resolve(d.ty) if d.ty is not None else None
+        while isinstance(t, T.ArrayType):
+            t = T.resolve(t.elem)
+        if isinstance(t, T.FBType) and "ABSTRACT" in t.pou.modifiers:
+            self.err("PLC0225", f"{_label(t.pou)} is ABSTRACT: declare an instance of a block "
+                     f"that EXTENDS it, or an interface variable", d.loc)
+
+    # -- bodies -------------------------------------------------------------------------------
+    def bodies(self) -> None:
+        for p in list(self.table.pous.values()):
+            if p.kind != "FUNCTION_BLOCK":
+                continue
+            for q in [p, *p.methods]:
+                self.check_super(p, q)
+            for m in p.methods:
+                self.cx.stmts.check_pou_body(m)
+
+    def check_super(self, fb: A.Pou, q: A.Pou) -> None:
+        if self.table.bases(fb):
+            return
+        for s in q.body:
+            for x in walk(s):
+                if isinstance(x, A.Name) and x.name == "SUPER" and x.text.endswith("^"):
+                    self.err("PLC0227", f"SUPER^ needs a base block, and {_label(fb)} EXTENDS "
+                             "none; add EXTENDS Base or call THIS^ instead", x.loc)
+                    return
+
+    # -- hooks for the other passes -----------------------------------------------------------
+    def method_call(self, c: A.Call, statement: bool) -> T.Type | None:
+        """The type of ``obj.M(...)`` when ``M`` is a method of ``obj``'s block or interface;
+        None when the call is something else (the caller goes on)."""
+        f = c.func
+        assert isinstance(f, A.Member)
+        obj = f.obj
+        if isinstance(obj, A.Name) and self.cx.exprs.lookup(obj.name) is None:
+            p = self.table.pous.get(obj.name)
+            if p is not None and p.kind in ("FUNCTION_BLOCK", "INTERFACE") and \
+                    f.field_name in self.methods(p):
+                self.err("PLC0229", f"{obj.text or obj.name} is a type, not an instance: call "
+                         f"the method on a variable of that type (e.g. myVar.{f.text or f.field_name}"
+                         "())", c.loc)
+                self.cx.calls._args_only(c)
+                return T.ANY
+        n = len(self.cx.diags)
+        ot = T.resolve(self.cx.exprs.expr(obj, None))
+        pou = ot.pou if isinstance(ot, T.FBType | T.InterfaceType) else None
+        if pou is None or pou.kind not in ("FUNCTION_BLOCK", "INTERFACE"):
+            del self.cx.diags[n:]  # the caller types the expression again and reports
+            return None
+        m = self.methods(pou).get(f.field_name)
+        if m is None:
+            if f.field_name in self.table.members(pou):
+                del self.cx.diags[n:]
+                return None
+            self.err("PLC0222", f"{_label(pou)} has no METHOD {f.text or f.field_name}" +
+                     close_hint(f.field_name, [*self.methods(pou), *self.table.members(pou)]),
+                     f.loc)
+            self.cx.calls._args_only(c)
+            return T.ANY
+        self.check_access(m, f)
+        params = [d for d in m.decls if d.section != "VAR_INST"]
+        ins, outs, inouts = self.cx.calls._bind(c, params, f"method {_label(m)}")
+        c.target = CallInfo("method", m, ins, outs, inouts)
+        f.sym = m
+        f.ty = T.VOID
+        rd = m.return_decl
+        return rd.ty if rd is not None and rd.ty is not None else T.VOID
+
+    def check_access(self, m: A.Pou, f: A.Member) -> None:
+        mods = set(m.modifiers)
+        if not mods & {"PRIVATE", "PROTECTED"} or self.cx.in_test:
+            return
+        caller = self._block_of(self.cx.pou)
+        owner = m.owner
+        ok = caller is owner if "PRIVATE" in mods else (
+            caller is not None and owner is not None and
+            (caller is owner or owner in self.table.bases(caller)))
+        if not ok:
+            which = "PRIVATE" if "PRIVATE" in mods else "PROTECTED"
+            where = "its own block" if which == "PRIVATE" else "its block and blocks that extend it"
+            self.err("PLC0223", f"METHOD {_label(m)} of {_label(owner)} is {which}: only {where} "
+                     "may call it; call a PUBLIC method instead", f.loc)
+
+    def interface_assign(self, rs: T.Type, rd: T.InterfaceType, loc) -> None:
+        """Check storing a value of type ``rs`` in an interface variable of type ``rd``."""
+        if isinstance(rs, T.FBType | T.InterfaceType) and rs.pou is not None and \
+                rd.pou in self.interfaces_of(rs.pou):
+            return
+        what = f"{rs}" if not isinstance(rs, T.FBType) else f"an instance of {rs.name}"
+        self.err("PLC0226", f"cannot assign {what} to the interface {rd.name}: only an instance "
+                 f"of a block that IMPLEMENTS {rd.name} (or an interface that EXTENDS it) fits; "
+                 f"add IMPLEMENTS {rd.name} to the block", loc)
