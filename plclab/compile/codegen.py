@@ -270,6 +270,7 @@ class Codegen:
         self.emit(f"class {cls}:")
         self.ind += 1
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
+        self.emit(oop_emit.interfaces_line(self, pou))
         self.emit("def __init__(self):")
         self.ind += 1
         for d in members:
@@ -1308,6 +1309,8 @@ class Codegen:
             return self.user_function(info)
         if info.kind == "method":
             return oop_emit.method_call(self, e, info)
+        if info.kind == "reference":
+            return oop_emit.reference_operator(self, e, info)
         return "None"
 
     def user_function(self, info: CallInfo) -> str:

@@ -71,6 +71,27 @@ def inherit_methods(cg: Codegen) -> None:
             cg.emit(f"P_{ident(p.name)}.M_{ident(name)} = P_{ident(base.name)}.M_{ident(name)}")
 
 
+def interfaces_line(cg: Codegen, pou: A.Pou) -> str:
+    """The class attribute naming every interface the block implements (for
+    ``__QUERYINTERFACE``)."""
+    from .codegen import ident
+    names = sorted(ident(i.name) for i in cg.p.symbols.interfaces(pou))
+    return f"_ITF = frozenset({names!r})"
+
+
+def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:
+    """``__ISVALIDREF(x)`` and ``__QUERYINTERFACE(x, y)``."""
+    from .codegen import ident
+    if info.callee == "__ISVALIDREF":
+        return f"({cg.ex(info.inputs[0][1])} is not None)"
+    src, dst = info.inputs[0][1], info.inputs[1][1]
+    want = ident(T.resolve(dst.ty).name)
+    tmp = cg.new_tmp("_q")
+    cg.pre.append(f"{tmp} = _qi({cg.ex(src)}, {want!r})")
+    cg.pre.append(f"{cg.ex(dst)} = {tmp}")
+    return f"({tmp} is not None)"
+
+
 def is_super(e: A.Expr) -> bool:
     return isinstance(e, A.Name) and isinstance(e.sym, VarSym) and e.sym.storage == "super"
 
@@ -104,7 +125,7 @@ def method_call(cg: Codegen, e: A.Call, info: CallInfo) -> str:
     else:
         obj = cg.ex(f.obj)
         if isinstance(obj_t, T.InterfaceType):
-            obj = f"_iref({obj}, {repr(m.name)}, {cg.where_now})"
+            obj = f"_iref({obj}, {repr(ident(m.name))}, {cg.where_now})"
         call = f"{obj}.{method_name(m)}({', '.join(args)})"
     outs = [d for d in m.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
     if not outs:

@@ -76,8 +76,13 @@ def _iref(obj, method: str, where: int):
     if obj is None:
         raise Fault("PLC9110", f"call of {method} through an interface variable that refers to "
                     "no instance; assign an instance first (itf := inst;) or test it with "
-                    "itf <> 0 before the call", where)
+                    "__ISVALIDREF(itf) before the call", where)
     return obj
+
+
+def _qi(obj, interface: str):
+    """``obj`` if its block implements ``interface`` (``__QUERYINTERFACE``), else None."""
+    return obj if obj is not None and interface in getattr(obj, "_ITF", ()) else None
 
 
 def _wd(where: int):

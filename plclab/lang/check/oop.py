@@ -34,19 +34,7 @@ class ObjectChecks(Pass):
 
     # -- questions ----------------------------------------------------------------------------
     def interfaces_of(self, p: A.Pou) -> list[A.Pou]:
-        """Every INTERFACE ``p`` (a block or an interface) is, through IMPLEMENTS, EXTENDS of
-        interfaces and its base blocks; ``p`` itself first when it is an interface."""
-        out: list[A.Pou] = []
-        todo = [p] if p.kind == "INTERFACE" else []
-        for b in [p, *self.table.bases(p)] if p.kind == "FUNCTION_BLOCK" else []:
-            todo += [i for n in b.implements if (i := self.table.pous.get(n)) is not None]
-        while todo:
-            i = todo.pop(0)
-            if i.kind != "INTERFACE" or i in out:
-                continue
-            out.append(i)
-            todo += [b for n in i.extends if (b := self.table.pous.get(n)) is not None]
-        return out
+        return self.table.interfaces(p)
 
     def methods(self, p: A.Pou) -> dict[str, A.Pou]:
         """The methods callable on ``p`` by name: its own, then inherited (a block's bases, an
@@ -239,6 +227,28 @@ class ObjectChecks(Pass):
             where = "its own block" if which == "PRIVATE" else "its block and blocks that extend it"
             self.err("PLC0223", f"METHOD {_label(m)} of {_label(owner)} is {which}: only {where} "
                      "may call it; call a PUBLIC method instead", f.loc)
+
+    def reference_operator(self, c: A.Call, name: str) -> T.Type:
+        """``__ISVALIDREF(itf)`` (TRUE when ``itf`` refers to an instance) and
+        ``__QUERYINTERFACE(itf, other)`` (``other`` := the same instance when its block also
+        implements ``other``'s interface; TRUE when it did), as CODESYS has them."""
+        args = [a for a in c.args if a.value is not None]
+        want = {"__ISVALIDREF": 1, "__QUERYINTERFACE": 2}.get(name)
+        if want is None or len(args) != want or any(a.name or a.output for a in args):
+            self.err("PLC0236", f"{name} is not a function here; CODESYS has __ISVALIDREF(itf) "
+                     "and __QUERYINTERFACE(itf, itfOther) with positional arguments", c.loc)
+            self.cx.calls._args_only(c)
+            return T.ANY
+        types = []
+        for i, a in enumerate(args):
+            t = T.resolve(self.cx.exprs.lvalue(a.value) if i == 1 else
+                          self.cx.exprs.expr(a.value, None))
+            types.append(t)
+            if not isinstance(t, T.InterfaceType) and t is not T.ANY:
+                self.err("PLC0236", f"{name} takes interface variables, not {t}; declare "
+                         "the variable with an INTERFACE type", a.loc)
+        c.target = CallInfo("reference", name, [(i, a.value) for i, a in enumerate(args)])
+        return T.BOOL
 
     def interface_assign(self, rs: T.Type, rd: T.InterfaceType, loc) -> None:
         """Check storing a value of type ``rs`` in an interface variable of type ``rd``."""

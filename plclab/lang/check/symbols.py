@@ -206,6 +206,21 @@ class SymbolTable:
             p = b
         return out
 
+    def interfaces(self, p: A.Pou) -> list[A.Pou]:
+        """Every INTERFACE ``p`` (a block or an interface) is, through IMPLEMENTS, EXTENDS of
+        interfaces and its base blocks; ``p`` itself first when it is an interface."""
+        out: list[A.Pou] = []
+        todo = [p] if p.kind == "INTERFACE" else []
+        for b in [p, *self.bases(p)] if p.kind == "FUNCTION_BLOCK" else []:
+            todo += [i for n in b.implements if (i := self.pous.get(n)) is not None]
+        while todo:
+            i = todo.pop(0)
+            if i.kind != "INTERFACE" or i in out:
+                continue
+            out.append(i)
+            todo += [b for n in i.extends if (b := self.pous.get(n)) is not None]
+        return out
+
     def members(self, owner: A.Pou | T.Type) -> dict[str, A.VarDecl]:
         """The declared members of a POU, a block or structure type, by name: inherited ones
         first (:meth:`bases`), then its own, in declaration order; the first of a name wins."""
