@@ -1,0 +1,232 @@
+"""Object-oriented extensions (issue 14, ADR 0021): methods, EXTENDS, THIS^/SUPER^, interfaces,
+their checks (PLC0220-PLC0236) and the runtime fault of a call through no instance (PLC9110).
+The article's examples run as TEST blocks under examples/oop/."""
+
+from pathlib import Path
+
+import pytest
+
+import plclab
+from plclab.project import check_sources
+from plclab.testing import run_test_files, run_test_sources
+
+EXAMPLES = sorted((Path(__file__).parents[2] / "examples" / "oop").glob("*.st"))
+
+BASE = """
+INTERFACE Drive
+METHOD Home : BOOL
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK Motor IMPLEMENTS Drive
+VAR n : INT; END_VAR
+METHOD Home : BOOL
+n := n + 1;
+Home := TRUE;
+END_METHOD
+METHOD PRIVATE Secret : INT
+Secret := n;
+END_METHOD
+METHOD PROTECTED Inner : INT
+Inner := n * 2;
+END_METHOD
+METHOD FINAL Fixed : INT
+Fixed := 1;
+END_METHOD
+END_FUNCTION_BLOCK
+"""
+
+
+def codes(src: str) -> list[str]:
+    return [d.code for d in check_sources([(src, "o.st")])[1] if d.severity == "error"]
+
+
+def errors(src: str) -> list[str]:
+    return [str(d) for d in check_sources([(src, "o.st")])[1] if d.severity == "error"]
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.name for p in EXAMPLES])
+def test_article_examples_pass_their_tests(path):
+    results = run_test_files([str(path)])
+    assert len(results) >= 3
+    assert [str(r) for r in results if not r.passed] == []
+
+
+def test_article_examples_compile_without_warnings():
+    for path in EXAMPLES:
+        diags = check_sources([(path.read_text(), str(path))])[1]
+        assert [str(d) for d in diags] == [], path.name
+
+
+def test_base_compiles_cleanly():
+    assert errors(BASE) == []
+
+
+@pytest.mark.parametrize("header,word", [("EXTENTS Motor", "EXTENDS"),
+                                         ("IMPLEMETS Drive", "IMPLEMENTS")])
+def test_the_articles_typos_get_did_you_mean(header, word):
+    diags = check_sources([(BASE + f"FUNCTION_BLOCK X {header}\nEND_FUNCTION_BLOCK", "o.st")])[1]
+    msgs = [d.message for d in diags if d.code == "PLC0011"]
+    assert msgs and f"did you mean {word}?" in msgs[0]
+    # read as the right word: nothing else is reported
+    assert [d.code for d in diags if d.severity == "error"] == ["PLC0011"]
+
+
+def test_colon_instead_of_assignment_in_a_method():
+    src = BASE.replace("Home := TRUE;", "Home: TRUE;")
+    assert "PLC0231" in codes(src)
+    assert "write Home := ...;" in " ".join(errors(src))
+
+
+def test_method_called_on_the_interface_type():
+    src = BASE + """FUNCTION_BLOCK InitMove VAR_INPUT D : Drive; END_VAR
+    IF Drive.Home() THEN ; END_IF END_FUNCTION_BLOCK"""
+    assert codes(src) == ["PLC0229"]
+
+
+@pytest.mark.parametrize("src,code", [
+    ("FUNCTION_BLOCK X EXTENDS Nothing END_FUNCTION_BLOCK", "PLC0220"),
+    ("FUNCTION_BLOCK X IMPLEMENTS Motor END_FUNCTION_BLOCK", "PLC0220"),
+    ("FUNCTION_BLOCK X IMPLEMENTS Drive END_FUNCTION_BLOCK", "PLC0221"),
+    ("PROGRAM P VAR m : Motor; END_VAR m.Hme(); END_PROGRAM", "PLC0222"),
+    ("PROGRAM P VAR m : Motor; x : INT; END_VAR x := m.Secret(); END_PROGRAM", "PLC0223"),
+    ("PROGRAM P VAR m : Motor; x : INT; END_VAR x := m.Inner(); END_PROGRAM", "PLC0223"),
+    ("FUNCTION_BLOCK X EXTENDS Motor METHOD Fixed : INT Fixed := 2; END_METHOD "
+     "END_FUNCTION_BLOCK", "PLC0224"),
+    ("FUNCTION_BLOCK FINAL Y END_FUNCTION_BLOCK FUNCTION_BLOCK X EXTENDS Y END_FUNCTION_BLOCK",
+     "PLC0224"),
+    ("FUNCTION_BLOCK ABSTRACT A END_FUNCTION_BLOCK PROGRAM P VAR a : A; END_VAR END_PROGRAM",
+     "PLC0225"),
+    ("FUNCTION_BLOCK Z END_FUNCTION_BLOCK PROGRAM P VAR d : Drive; z : Z; END_VAR d := z; "
+     "END_PROGRAM", "PLC0226"),
+    ("FUNCTION_BLOCK X METHOD M SUPER^.M(); END_METHOD END_FUNCTION_BLOCK", "PLC0227"),
+    ("FUNCTION_BLOCK X EXTENDS Motor METHOD Home : INT Home := 1; END_METHOD "
+     "END_FUNCTION_BLOCK", "PLC0228"),
+    ("FUNCTION_BLOCK X IMPLEMENTS Drive METHOD Home : BOOL VAR_INPUT a : INT; END_VAR "
+     "Home := a > 0; END_METHOD END_FUNCTION_BLOCK", "PLC0228"),
+    ("FUNCTION_BLOCK X EXTENDS Y END_FUNCTION_BLOCK FUNCTION_BLOCK Y EXTENDS X "
+     "END_FUNCTION_BLOCK", "PLC0232"),
+    ("INTERFACE I METHOD M : INT M := 1; END_METHOD END_INTERFACE", "PLC0234"),
+    ("FUNCTION_BLOCK X METHOD M END_METHOD METHOD M END_METHOD END_FUNCTION_BLOCK", "PLC0235"),
+    ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := __ISVALIDREF(m); END_PROGRAM", "PLC0236"),
+    ("FUNCTION_BLOCK X PROPERTY P : INT END_PROPERTY END_FUNCTION_BLOCK", "PLC0233"),
+])
+def test_each_check_has_its_code(src, code):
+    found = codes(BASE + src)
+    assert code in found, errors(BASE + src)
+
+
+def test_private_and_protected_are_callable_inside():
+    src = BASE + """FUNCTION_BLOCK X EXTENDS Motor
+    METHOD Twice : INT Twice := THIS^.Inner() + SUPER^.Inner(); END_METHOD
+    END_FUNCTION_BLOCK"""
+    assert errors(src) == []
+    assert "PLC0223" in codes(BASE + """FUNCTION_BLOCK X EXTENDS Motor
+    METHOD Peek : INT Peek := THIS^.Secret(); END_METHOD END_FUNCTION_BLOCK""")
+
+
+def test_call_through_an_unassigned_interface_is_a_located_fault():
+    src = BASE + """PROGRAM P VAR d : Drive; ok : BOOL; END_VAR
+ok := d.Home();
+END_PROGRAM"""
+    plc = plclab.loads(src, "o.st")
+    with pytest.raises(plclab.PlcRuntimeFault) as err:
+        plc.scan()
+    assert err.value.code == "PLC9110"
+    assert err.value.location.line == BASE.count("\n") + 2
+    assert "HOME" in err.value.message and "__ISVALIDREF" in err.value.message
+
+
+def test_queryinterface_finds_the_other_interface():
+    src = BASE + """INTERFACE Named METHOD Name : INT END_METHOD END_INTERFACE
+FUNCTION_BLOCK Both EXTENDS Motor IMPLEMENTS Named
+METHOD Name : INT Name := 7; END_METHOD END_FUNCTION_BLOCK
+TEST 'q'
+VAR d : Drive; n : Named; b : Both; m : Motor; END_VAR
+d := b;
+ASSERT_TRUE(__QUERYINTERFACE(d, n));
+ASSERT_EQ(n.Name(), 7);
+d := m;
+ASSERT_FALSE(__QUERYINTERFACE(d, n));
+ASSERT_FALSE(__ISVALIDREF(n));
+END_TEST"""
+    assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
+
+
+def test_interfaces_extend_interfaces_and_dispatch_on_the_instance():
+    src = """INTERFACE A METHOD F : INT END_METHOD END_INTERFACE
+INTERFACE B EXTENDS A METHOD G : INT END_METHOD END_INTERFACE
+FUNCTION_BLOCK Base IMPLEMENTS B
+METHOD F : INT F := 1; END_METHOD
+METHOD G : INT G := THIS^.F() * 10; END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Derived EXTENDS Base
+METHOD F : INT F := SUPER^.F() + 1; END_METHOD
+END_FUNCTION_BLOCK
+TEST 'dispatch'
+VAR a : A; b : B; x : Base; y : Derived; END_VAR
+b := y;
+a := b;
+ASSERT_EQ(a.F(), 2);
+ASSERT_EQ(b.G(), 20);  (* THIS^.F() in Base's G calls Derived's F *)
+ASSERT_EQ(x.G(), 10);
+a := x;
+ASSERT_EQ(a.F(), 1);
+END_TEST"""
+    assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
+
+
+def test_method_outputs_in_outs_and_var_inst():
+    src = """FUNCTION_BLOCK Acc
+VAR_OUTPUT total : INT; END_VAR
+METHOD Add : BOOL
+VAR_INPUT v : INT; END_VAR
+VAR_OUTPUT doubled : INT; END_VAR
+VAR_IN_OUT log : INT; END_VAR
+VAR_INST calls : INT; END_VAR
+VAR tmp : INT; END_VAR
+tmp := v * 2;
+doubled := tmp;
+calls := calls + 1;
+log := calls;
+total := total + v;
+Add := total > 10;
+END_METHOD
+END_FUNCTION_BLOCK
+TEST 'm'
+VAR a : Acc; d, lg : INT; big : BOOL; END_VAR
+big := a.Add(4, doubled => d, log := lg);
+ASSERT_FALSE(big);
+ASSERT_EQ(d, 8);
+ASSERT_EQ(lg, 1);
+big := a.Add(v := 7, log := lg, doubled => d);
+ASSERT_TRUE(big);
+ASSERT_EQ(lg, 2);  (* VAR_INST keeps its value between calls *)
+ASSERT_EQ(a.total, 11);
+END_TEST"""
+    assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
+
+
+def test_inherited_variables_appear_under_the_instance_path():
+    plc = plclab.load([str(p) for p in EXAMPLES if p.name == "pump.st"][0])
+    plc.scan()
+    assert plc.var("Main.Pump2.Enabled").get() is True
+    assert plc.var("Main.Pump2.MonitoredState").get() == 0
+    plc.var("Main.Pump2.Fault").set(True)
+
+
+def test_names_reach_python_only_as_identifiers():
+    """A method called like a Python word (self, import, __init__ is not lexed) becomes an
+    upper-case M_ name; calling it runs the ST method, not Python's."""
+    src = """FUNCTION_BLOCK Obj
+METHOD self : INT self := 1; END_METHOD
+METHOD import : INT import := 2; END_METHOD
+METHOD _copy : INT _copy := 3; END_METHOD
+END_FUNCTION_BLOCK
+TEST 'n'
+VAR o : Obj; END_VAR
+ASSERT_EQ(o.self() + o.import() + o._copy(), 6);
+END_TEST"""
+    plc = plclab.loads(src, "o.st")
+    for name in ("M_SELF", "M_IMPORT", "M__COPY"):
+        assert f"def {name}(self)" in plc.compiled.source
+    assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
