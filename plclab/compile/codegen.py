@@ -534,6 +534,11 @@ class Codegen:
         self.assign_to(s.target, val)
 
     def assign_to(self, target: A.Expr, val: str) -> None:
+        if isinstance(target, A.Member) and isinstance(target.sym, A.Pou):  # a PROPERTY's SET
+            code = oop_emit.property_call(self, target, val)
+            self.flush_pre()
+            self.emit(code)
+            return
         if isinstance(target, A.Member) and target.field_name.startswith("%"):
             bit = int(target.field_name[1:])
             obj = self.ex(target.obj)
@@ -1152,6 +1157,8 @@ class Codegen:
     def e_Member(self, e: A.Member) -> str:
         if isinstance(e.sym, EnumSym):  # Color.Red (CODESYS)
             return repr(e.sym.value)
+        if isinstance(e.sym, A.Pou):  # a PROPERTY's GET (ADR 0021)
+            return oop_emit.property_call(self, e, None)
         obj = self.ex(e.obj)
         if e.field_name.startswith("%"):
             return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"

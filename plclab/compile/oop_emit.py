@@ -92,6 +92,19 @@ def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:
     return f"({tmp} is not None)"
 
 
+def property_call(cg: Codegen, e: A.Member, value: str | None) -> str:
+    """``obj.P`` read (``value`` None: the GET accessor) or written (the SET accessor)."""
+    m: A.Pou = e.sym
+    obj = "self" if is_super(e.obj) else cg.ex(e.obj)
+    if is_super(e.obj):
+        from .codegen import ident
+        base = T.resolve(e.obj.ty).pou
+        return f"P_{ident(base.name)}.{method_name(m)}(self{'' if value is None else ', ' + value})"
+    if isinstance(T.resolve(e.obj.ty), T.InterfaceType):
+        obj = f"_iref({obj}, {m.name[:-5]!r}, {cg.where_now})"
+    return f"{obj}.{method_name(m)}({'' if value is None else value})"
+
+
 def is_super(e: A.Expr) -> bool:
     return isinstance(e, A.Name) and isinstance(e.sym, VarSym) and e.sym.storage == "super"
 

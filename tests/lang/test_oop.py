@@ -108,7 +108,12 @@ def test_method_called_on_the_interface_type():
     ("INTERFACE I METHOD M : INT M := 1; END_METHOD END_INTERFACE", "PLC0234"),
     ("FUNCTION_BLOCK X METHOD M END_METHOD METHOD M END_METHOD END_FUNCTION_BLOCK", "PLC0235"),
     ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := __ISVALIDREF(m); END_PROGRAM", "PLC0236"),
-    ("FUNCTION_BLOCK X PROPERTY P : INT END_PROPERTY END_FUNCTION_BLOCK", "PLC0233"),
+    ("FUNCTION_BLOCK X VAR v : INT; END_VAR PROPERTY P : INT GET P := v; END_GET END_PROPERTY "
+     "END_FUNCTION_BLOCK PROGRAM Q VAR x : X; END_VAR x.P := 1; END_PROGRAM", "PLC0233"),
+    ("FUNCTION_BLOCK X VAR v : INT; END_VAR PROPERTY P : INT SET v := P; END_SET END_PROPERTY "
+     "END_FUNCTION_BLOCK PROGRAM Q VAR x : X; i : INT; END_VAR i := x.P; END_PROGRAM", "PLC0233"),
+    ("FUNCTION_BLOCK X VAR p : INT; END_VAR PROPERTY P : INT GET P := 1; END_GET END_PROPERTY "
+     "END_FUNCTION_BLOCK", "PLC0235"),
 ])
 def test_each_check_has_its_code(src, code):
     found = codes(BASE + src)
@@ -229,4 +234,36 @@ END_TEST"""
     plc = plclab.loads(src, "o.st")
     for name in ("M_SELF", "M_IMPORT", "M__COPY"):
         assert f"def {name}(self)" in plc.compiled.source
+    assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
+
+
+def test_properties_get_and_set_directly_and_through_an_interface():
+    src = """INTERFACE Axis
+PROPERTY Position : DINT
+END_PROPERTY
+END_INTERFACE
+FUNCTION_BLOCK Servo IMPLEMENTS Axis
+VAR pos : DINT; count : INT; END_VAR
+PROPERTY Position : DINT
+GET
+Position := pos;
+END_GET
+SET
+pos := LIMIT(0, Position, 1000);
+count := count + 1;
+END_SET
+END_PROPERTY
+PROPERTY Writes : INT
+GET Writes := count; END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK
+TEST 'props'
+VAR s : Servo; a : Axis; END_VAR
+s.Position := 5000;
+ASSERT_EQ(s.Position, 1000);
+a := s;
+a.Position := 20;
+ASSERT_EQ(a.Position + 1, 21);
+ASSERT_EQ(s.Writes, 2);
+END_TEST"""
     assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []

@@ -293,6 +293,10 @@ class Expressions(Pass, NodeVisitor):
                          close_hint(f, ot.fields), e.loc)
                 return T.ANY
             return d.ty
+        if isinstance(ot, T.FBType | T.InterfaceType):  # a PROPERTY (ADR 0021)
+            pt = self.cx.oop.property_access(e, ot.pou, write)
+            if pt is not None:
+                return pt
         if isinstance(ot, T.FBType):
             pou = ot.pou
             members = self.table.members(pou)

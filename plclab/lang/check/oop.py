@@ -98,9 +98,9 @@ class ObjectChecks(Pass):
                 self.err("PLC0235", f"{_label(p)} declares METHOD {_label(m)} twice; rename or "
                          "remove one", m.loc)
             seen.add(m.name)
-            if m.name in self.table.members(p):
-                self.err("PLC0235", f"METHOD {_label(m)} has the name of a variable of "
-                         f"{_label(p)}; rename one of them", m.loc)
+            if m.name.removesuffix("__GET").removesuffix("__SET") in self.table.members(p):
+                self.err("PLC0235", f"{_label(m)} has the name of a variable of {_label(p)} "
+                         "(names do not depend on case); rename one of them", m.loc)
 
     def method_decls(self, m: A.Pou) -> None:
         """Type a method's declarations and its result (the declarations pass sees POUs only)."""
@@ -227,6 +227,29 @@ class ObjectChecks(Pass):
             where = "its own block" if which == "PRIVATE" else "its block and blocks that extend it"
             self.err("PLC0223", f"METHOD {_label(m)} of {_label(owner)} is {which}: only {where} "
                      "may call it; call a PUBLIC method instead", f.loc)
+
+    def property_access(self, e: A.Member, pou: A.Pou, write: bool) -> T.Type | None:
+        """The type of ``obj.P`` when ``P`` is a PROPERTY of ``pou`` (``e.sym`` := the accessor
+        the access calls); None when ``P`` is something else."""
+        if e.field_name in self.table.members(pou):
+            return None
+        have = self.methods(pou)
+        get, put = have.get(e.field_name + "__GET"), have.get(e.field_name + "__SET")
+        if get is None and put is None:
+            return None
+        acc = put if write else get
+        if acc is None:
+            self.err("PLC0233", f"PROPERTY {e.text or e.field_name} of {_label(pou)} has no "
+                     f"{'SET' if write else 'GET'}: it can only be "
+                     f"{'read' if write else 'written'}; add {'SET' if write else 'GET'} ... "
+                     f"END_{'SET' if write else 'GET'} to the property", e.loc)
+            return T.ANY
+        self.check_access(acc, e)
+        e.sym = acc
+        if write:
+            return acc.decls[0].ty
+        rd = acc.return_decl
+        return rd.ty if rd is not None and rd.ty is not None else T.ANY
 
     def reference_operator(self, c: A.Call, name: str) -> T.Type:
         """``__ISVALIDREF(itf)`` (TRUE when ``itf`` refers to an instance) and

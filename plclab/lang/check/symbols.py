@@ -291,6 +291,8 @@ class SymbolTable:
                 rd.ty = T.VOID
             m.return_decl = rd
         names[m.name] = VarSym(m.return_decl, "local", m)
+        if m.name.endswith("__GET"):  # a PROPERTY's GET: its result has the property's name
+            names[m.name[:-5]] = names[m.name]
         return Scope(names, self.globals)
 
     def _this_super(self, names: dict[str, Any], fb: A.Pou) -> None:

@@ -28,7 +28,7 @@ from ..parsing import ParseAbort
 MODIFIERS = ("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")
 HEADER_WORDS = ("EXTENDS", "IMPLEMENTS")
 # words after which a statement list of a method or an FB body ends
-BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY"}
+BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY", "END_GET", "END_SET"}
 MEMBER_STARTS = {"METHOD", "PROPERTY"}
 _SECTIONS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_TEMP")
 
@@ -81,22 +81,22 @@ def header(p, pou_kind: str) -> tuple[list[str], list[str]]:
 
 
 def members(p, owner: A.Pou, end_kw: str) -> None:
-    """The METHODs at the current position of a FUNCTION_BLOCK (or INTERFACE), into
-    ``owner.methods``. ``PROPERTY`` is recognised and refused with a clear message."""
+    """The METHODs and PROPERTYs at the current position of a FUNCTION_BLOCK (or INTERFACE),
+    into ``owner.methods`` (a property is its accessor methods ``NAME__GET``, ``NAME__SET``)."""
     while word(p, *MEMBER_STARTS) and p.peek().kind in ("IDENT",):
         start = p.i
         try:
             if word(p, "PROPERTY"):
-                p.error("PLC0233", "PROPERTY is not supported yet; write a METHOD GetX : TYPE "
-                        "(and SetX) instead")
-                raise ParseAbort
-            m = method(p, owner.kind == "INTERFACE")
-            m.owner = owner
-            owner.methods.append(m)
-            owner.decls.extend(  # VAR_INST: instance data of the block, under a hidden name
-                A.VarDecl(d.loc, A.method_inst_name(m.name, d.name), d.type, d.init,
-                          section="VAR", spelling=f"{m.spelling}__{d.spelling}")
-                for d in m.decls if d.section == "VAR_INST")
+                new = prop(p, owner.kind == "INTERFACE")
+            else:
+                new = [method(p, owner.kind == "INTERFACE")]
+            for m in new:
+                m.owner = owner
+                owner.methods.append(m)
+                owner.decls.extend(  # VAR_INST: instance data of the block, hidden name
+                    A.VarDecl(d.loc, A.method_inst_name(m.name, d.name), d.type, d.init,
+                              section="VAR", spelling=f"{m.spelling}__{d.spelling}")
+                    for d in m.decls if d.section == "VAR_INST")
         except ParseAbort:
             while not p.at("EOF", end_kw) and not word(p, "END_METHOD", "END_PROPERTY"):
                 p.advance()
@@ -134,6 +134,54 @@ def method(p, in_interface: bool) -> A.Pou:
     p.accept(";")
     return A.Pou(p.loc(head), "METHOD", name.value, decls, body, ret, name.text,
                  end_loc=end_loc, modifiers=mods)
+
+
+def prop(p, in_interface: bool) -> list[A.Pou]:
+    """``PROPERTY [mods] Name : TYPE  GET ... END_GET  SET ... END_SET  END_PROPERTY`` -> the
+    accessor methods ``NAME__GET`` (its result is called Name) and ``NAME__SET`` (its input
+    Name is the value assigned). In an interface, a property without accessors has both."""
+    head = p.advance()
+    mods = modifiers(p)
+    name = p.expect("IDENT", "a property name")
+    p.expect(":", "':' and the property's type")
+    tref = p.type_ref()
+    p.accept(";")
+    out: list[A.Pou] = []
+    while word(p, "GET", "SET"):
+        acc = p.advance()
+        decls: list[A.VarDecl] = []
+        while p.tok.kind in ("VAR", "VAR_TEMP"):
+            decls.extend(p.var_section())
+        body = p.stmt_list(set())
+        end = f"END_{acc.value}"
+        if not word(p, end):
+            p.fail_expected(f"{end} to close {acc.value} of PROPERTY {name.text}")
+        p.advance()
+        p.accept(";")
+        if in_interface and body:
+            p.error("PLC0234", "a property of an interface has no body; implement it in the "
+                    "FUNCTION_BLOCKs", acc)
+            body = []
+        out.append(_accessor(p, head, name, acc.value, tref, decls, body, mods))
+    if in_interface and not out:
+        out = [_accessor(p, head, name, a, tref, [], [], mods) for a in ("GET", "SET")]
+    if not word(p, "END_PROPERTY"):
+        p.fail_expected(f"GET, SET or END_PROPERTY to close PROPERTY {name.text}")
+    p.advance()
+    p.accept(";")
+    return out
+
+
+def _accessor(p, head, name, acc: str, tref: A.TypeRef, decls: list[A.VarDecl],
+              body: list[A.Stmt], mods: list[str]) -> A.Pou:
+    loc = p.loc(head)
+    if acc == "SET":
+        value = A.VarDecl(loc, name.value, tref, section="VAR_INPUT", spelling=name.text)
+        value.used = True
+        return A.Pou(loc, "METHOD", f"{name.value}__SET", [value, *decls], body, None,
+                     f"{name.text}.SET", modifiers=mods)
+    return A.Pou(loc, "METHOD", f"{name.value}__GET", decls, body, tref, f"{name.text}.GET",
+                 modifiers=mods)
 
 
 def interface(p) -> A.Pou:
