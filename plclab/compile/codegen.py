@@ -276,6 +276,7 @@ class Codegen:
         for d in members:
             self.where_now = self.where(d.loc)
             self.emit_init(f"self.{ident(d.name)}", d)
+        oop_emit.init_calls(self, pou)
         self.emit("pass")
         self.ind -= 1
         self.emit("def _copy(self):")

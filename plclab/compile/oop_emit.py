@@ -55,6 +55,16 @@ def emit_methods(cg: Codegen, pou: A.Pou) -> None:
     cg.pou = outer
 
 
+def init_calls(cg: Codegen, pou: A.Pou) -> None:
+    """In ``__init__``: the FB_init of the block's bases, then its own (CODESYS order), with
+    bInitRetains TRUE except in a warm restart (``_INIT_RETAINS``) and bInCopyCode FALSE."""
+    from .codegen import ident
+    chain = [*reversed(cg.p.symbols.bases(pou)), pou]
+    for b in chain:
+        if any(m.name == "FB_INIT" for m in b.methods):
+            cg.emit(f"P_{ident(b.name)}.M_FB_INIT(self, _INIT_RETAINS, False)")
+
+
 def inherit_methods(cg: Codegen) -> None:
     """After every class: each block gets the methods of its bases it does not override,
     bases first (so a chain A <- B <- C copies A's method into B before C)."""

@@ -85,6 +85,29 @@ def _qi(obj, interface: str):
     return obj if obj is not None and interface in getattr(obj, "_ITF", ()) else None
 
 
+_INIT_RETAINS = True  # FB_init's bInitRetains: the runtime sets FALSE for a warm restart
+
+
+def fb_exit_all(roots) -> None:
+    """FB_exit(bInCopyCode := FALSE) of every instance under ``roots`` (the program and global
+    instances), each before the instances it contains (ADR 0021)."""
+    seen: set[int] = set()
+    stack = list(reversed(list(roots)))
+    while stack:
+        obj = stack.pop()
+        if id(obj) in seen or obj is None or isinstance(obj, bool | int | float | str | bytes):
+            continue
+        seen.add(id(obj))
+        if isinstance(obj, list):
+            stack.extend(reversed(obj))
+            continue
+        exit_ = getattr(obj, "M_FB_EXIT", None)
+        if exit_ is not None:
+            exit_(False)
+        slots = getattr(type(obj), "__slots__", ())
+        stack.extend(reversed([getattr(obj, n, None) for n in slots]))
+
+
 def _wd(where: int):
     raise Fault("PLC2003", "watchdog: the scan did not finish within its budget; this loop "
                 "runs too long or never ends (inputs do not change during a scan, so waiting "

@@ -267,3 +267,56 @@ ASSERT_EQ(a.Position + 1, 21);
 ASSERT_EQ(s.Writes, 2);
 END_TEST"""
     assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
+
+
+FB_INIT_SRC = """FUNCTION_BLOCK Base
+VAR_OUTPUT log : INT; retains : BOOL; exits : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; END_VAR
+log := log * 10 + 1;
+retains := bInitRetains;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Derived EXTENDS Base
+VAR_EXTERNAL exited : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; END_VAR
+log := log * 10 + 2;
+END_METHOD
+METHOD FB_exit : BOOL
+VAR_INPUT bInCopyCode : BOOL; END_VAR
+exited := exited + 1;
+END_METHOD
+END_FUNCTION_BLOCK
+VAR_GLOBAL exited : INT; END_VAR
+PROGRAM Main
+VAR d : Derived; started : INT; END_VAR
+started := d.log;
+END_PROGRAM
+"""
+
+
+def test_fb_init_runs_at_creation_base_first_and_fb_exit_at_restart():
+    plc = plclab.loads(FB_INIT_SRC, "i.st")
+    plc.scan()
+    assert plc.var("Main.started").get() == 12  # Base's FB_init, then Derived's
+    assert plc.var("Main.d.retains").get() is True
+    assert plc.var("exited").get() == 0
+    plc.warm_restart()  # FB_exit of the old instance (into the old globals), then FB_init
+    assert plc.var("Main.d.retains").get() is False
+    assert plc.var("Main.d.log").get() == 12
+    plc.cold_restart()
+    assert plc.var("Main.d.retains").get() is True
+
+
+def test_fb_exit_is_called_on_the_old_instances():
+    plc = plclab.loads(FB_INIT_SRC, "i.st")
+    old_globals = plc.ns["_G"]
+    plc.cold_restart()
+    assert old_globals.EXITED == 1
+
+
+def test_fb_init_with_other_inputs_is_plc0237():
+    src = """FUNCTION_BLOCK X METHOD FB_init : BOOL VAR_INPUT n : INT; END_VAR END_METHOD
+END_FUNCTION_BLOCK"""
+    assert codes(src) == ["PLC0237"]

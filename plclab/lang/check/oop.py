@@ -15,6 +15,9 @@ from .calls import CallInfo
 from .context import Pass, close_hint
 
 _PARAMS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
+# the methods the runtime calls itself (CODESYS), with their BOOL inputs
+_BUILT_IN_METHODS = {"FB_INIT": ("BINITRETAINS", "BINCOPYCODE"), "FB_EXIT": ("BINCOPYCODE",),
+                     "FB_REINIT": ()}
 
 
 def _label(p: A.Pou) -> str:
@@ -109,6 +112,14 @@ class ObjectChecks(Pass):
         rd = m.return_decl
         if rd is not None and rd.ty is None:
             rd.ty = self.cx.decls.type_ref(rd.type)
+        want = _BUILT_IN_METHODS.get(m.name)
+        if want is not None and m.owner is not None and m.owner.kind == "FUNCTION_BLOCK":
+            got = [(d.section, d.name, str(T.resolve(d.ty))) for d in m.decls
+                   if d.section in _PARAMS]
+            if got != [("VAR_INPUT", n, "BOOL") for n in want]:
+                ins = ", ".join(f"{n} : BOOL" for n in want) or "none"
+                self.err("PLC0237", f"{m.name} is called by the runtime with fixed inputs "
+                         f"({ins}); declare exactly those, no outputs or in-outs", m.loc)
 
     def check_overrides(self, p: A.Pou) -> None:
         bases = self.table.bases(p)
