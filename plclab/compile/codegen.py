@@ -540,6 +540,11 @@ class Codegen:
             self.flush_pre()
             self.emit(code)
             return
+        if isinstance(target, A.Member) and target.field_name == "^":  # r^ := v (ADR 0021)
+            code = oop_emit.deref(self, target)
+            self.flush_pre()
+            self.emit(f"{code}.set({val})")
+            return
         if isinstance(target, A.Member) and target.field_name.startswith("%"):
             bit = int(target.field_name[1:])
             obj = self.ex(target.obj)
@@ -1160,6 +1165,8 @@ class Codegen:
             return repr(e.sym.value)
         if isinstance(e.sym, A.Pou):  # a PROPERTY's GET (ADR 0021)
             return oop_emit.property_call(self, e, None)
+        if e.field_name == "^":  # r^ (ADR 0021)
+            return f"{oop_emit.deref(self, e)}.get()"
         obj = self.ex(e.obj)
         if e.field_name.startswith("%"):
             return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"

@@ -14,24 +14,31 @@ Only upper-cased ST identifiers reach the generated code (``M_`` + the method's 
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import re
+from typing import Any
 
 from ..lang import ast as A
 from ..lang import types as T
 from ..lang.check import CallInfo, VarSym
 
-if TYPE_CHECKING:
-    from .codegen import Codegen
+Codegen = Any  # plclab.compile.codegen.Codegen, which imports this module
+_IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
+
+
+def ident(name: str) -> str:
+    """The Python spelling of an ST name (as :func:`plclab.compile.codegen.ident`)."""
+    up = name.upper()
+    if not _IDENT.match(up):
+        raise ValueError(f"not an identifier: {name!r}")
+    return up
 
 
 def method_name(m: A.Pou) -> str:
-    from .codegen import ident
     return f"M_{ident(m.name)}"
 
 
 def emit_methods(cg: Codegen, pou: A.Pou) -> None:
     """The methods of ``pou`` inside its class (the generator is at class level)."""
-    from .codegen import ident
     outer = cg.pou
     for m in pou.methods:
         cg.pou = m
@@ -58,7 +65,6 @@ def emit_methods(cg: Codegen, pou: A.Pou) -> None:
 def init_calls(cg: Codegen, pou: A.Pou) -> None:
     """In ``__init__``: the FB_init of the block's bases, then its own (CODESYS order), with
     bInitRetains TRUE except in a warm restart (``_INIT_RETAINS``) and bInCopyCode FALSE."""
-    from .codegen import ident
     chain = [*reversed(cg.p.symbols.bases(pou)), pou]
     for b in chain:
         if any(m.name == "FB_INIT" for m in b.methods):
@@ -68,7 +74,6 @@ def init_calls(cg: Codegen, pou: A.Pou) -> None:
 def inherit_methods(cg: Codegen) -> None:
     """After every class: each block gets the methods of its bases it does not override,
     bases first (so a chain A <- B <- C copies A's method into B before C)."""
-    from .codegen import ident
     table = cg.p.symbols
     blocks = [p for p in cg.p.pous.values() if p.kind == "FUNCTION_BLOCK" and not p.native]
     for p in sorted(blocks, key=lambda b: len(table.bases(b))):
@@ -84,14 +89,14 @@ def inherit_methods(cg: Codegen) -> None:
 def interfaces_line(cg: Codegen, pou: A.Pou) -> str:
     """The class attribute naming every interface the block implements (for
     ``__QUERYINTERFACE``)."""
-    from .codegen import ident
     names = sorted(ident(i.name) for i in cg.p.symbols.interfaces(pou))
     return f"_ITF = frozenset({names!r})"
 
 
 def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:
-    """``__ISVALIDREF(x)`` and ``__QUERYINTERFACE(x, y)``."""
-    from .codegen import ident
+    """``REF(x)``, ``ADR(x)``, ``__ISVALIDREF(x)`` and ``__QUERYINTERFACE(x, y)``."""
+    if info.callee in ("REF", "ADR"):
+        return ref_code(cg, info.inputs[0][1])
     if info.callee == "__ISVALIDREF":
         return f"({cg.ex(info.inputs[0][1])} is not None)"
     src, dst = info.inputs[0][1], info.inputs[1][1]
@@ -107,12 +112,30 @@ def property_call(cg: Codegen, e: A.Member, value: str | None) -> str:
     m: A.Pou = e.sym
     obj = "self" if is_super(e.obj) else cg.ex(e.obj)
     if is_super(e.obj):
-        from .codegen import ident
         base = T.resolve(e.obj.ty).pou
         return f"P_{ident(base.name)}.{method_name(m)}(self{'' if value is None else ', ' + value})"
     if isinstance(T.resolve(e.obj.ty), T.InterfaceType):
         obj = f"_iref({obj}, {m.name[:-5]!r}, {cg.where_now})"
     return f"{obj}.{method_name(m)}({'' if value is None else value})"
+
+
+def ref_code(cg: Codegen, x: A.Expr) -> str:
+    """A reference to the variable ``x``: the object that holds it and its key (an attribute
+    name or a list index); the checker let only instance, program and global data through."""
+    code = cg.ex(x)
+    if code.endswith("]"):  # obj[flat index]: split at the bracket that matches the last one
+        depth = 0
+        for i in range(len(code) - 1, -1, -1):
+            depth += {"]": 1, "[": -1}.get(code[i], 0)
+            if depth == 0:
+                return f"_RefItem({code[:i]}, {code[i + 1:-1]})"
+    obj, _, attr = code.rpartition(".")
+    return f"_RefAttr({obj}, {attr!r})"
+
+
+def deref(cg: Codegen, e: A.Member) -> str:
+    """The reference ``e.obj`` checked for NULL (PLC9111)."""
+    return f"_deref({cg.ex(e.obj)}, {cg.where_now})"
 
 
 def is_super(e: A.Expr) -> bool:
@@ -121,7 +144,6 @@ def is_super(e: A.Expr) -> bool:
 
 def method_call(cg: Codegen, e: A.Call, info: CallInfo) -> str:
     """``obj.M(args)`` as a Python expression (the outputs are stored by ``cg.pre`` lines)."""
-    from .codegen import ident
     m: A.Pou = info.callee
     f = e.func
     assert isinstance(f, A.Member)

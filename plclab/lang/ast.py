@@ -62,6 +62,14 @@ class EnumTypeRef(TypeRef):
 
 
 @dataclass(eq=False)
+class RefTypeRef(TypeRef):
+    """``REF_TO T`` (IEC ed.3), ``POINTER TO T`` or ``REFERENCE TO T`` (CODESYS); ADR 0021."""
+
+    kind: str  # REF_TO POINTER REFERENCE
+    target: TypeRef
+
+
+@dataclass(eq=False)
 class StructTypeRef(TypeRef):
     fields: list[VarDecl]
 
@@ -103,7 +111,9 @@ class Member(Expr):
     obj: Expr
     field_name: str
     text: str = ""  # the member name as written
-    sym: Any = annotation()  # check.exprs: the member's VarDecl (block instances)
+    # check.exprs: the member's VarDecl (block instances); check.oop: a PROPERTY's accessor
+    # (a METHOD Pou). A field_name "^" is a dereference (r^), one "%3" a bit access (x.3).
+    sym: Any = annotation()
 
 
 @dataclass(eq=False)
@@ -428,6 +438,8 @@ def expr_text(e: Expr | None) -> str:
         return e.text or repr(e.value)
     if isinstance(e, Name):
         return e.text or e.name
+    if isinstance(e, Member) and e.field_name == "^":
+        return f"{expr_text(e.obj)}^"
     if isinstance(e, Member):
         f = e.text or e.field_name
         return f"{expr_text(e.obj)}.{f[1:] if f.startswith('%') else f}"

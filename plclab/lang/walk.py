@@ -54,6 +54,7 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.SubrangeTypeRef: lambda n: [n.base, n.lo, n.hi],
     A.EnumTypeRef: lambda n: flat([v for _, v, _ in n.members] + [n.base]),
     A.StructTypeRef: lambda n: list(n.fields),
+    A.RefTypeRef: lambda n: [n.target],
     # expressions
     A.Literal: lambda n: [],
     A.Name: lambda n: [],

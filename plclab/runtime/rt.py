@@ -108,6 +108,48 @@ def fb_exit_all(roots) -> None:
         stack.extend(reversed([getattr(obj, n, None) for n in slots]))
 
 
+class _RefAttr:
+    """A reference (REF_TO, POINTER TO) to the attribute ``key`` of ``obj`` (ADR 0021)."""
+
+    __slots__ = ("obj", "key")
+
+    def __init__(self, obj, key) -> None:
+        self.obj, self.key = obj, key
+
+    def get(self):
+        return getattr(self.obj, self.key)
+
+    def set(self, v) -> None:
+        setattr(self.obj, self.key, v)
+
+    def __eq__(self, other) -> bool:
+        return type(other) is type(self) and other.obj is self.obj and other.key == self.key
+
+    def __hash__(self) -> int:
+        return hash((id(self.obj), self.key))
+
+
+class _RefItem(_RefAttr):
+    """A reference to the element ``key`` of the list ``obj`` (an ARRAY element)."""
+
+    __slots__ = ()
+
+    def get(self):
+        return self.obj[self.key]
+
+    def set(self, v) -> None:
+        self.obj[self.key] = v
+
+
+def _deref(ref, where: int):
+    """``ref`` for r^, or the fault PLC9111 when it is NULL."""
+    if ref is None:
+        raise Fault("PLC9111", "dereference of a NULL reference (r^ where r refers to no "
+                    "variable); assign r := REF(x) first, or test __ISVALIDREF(r) or "
+                    "r <> NULL before", where)
+    return ref
+
+
 def _wd(where: int):
     raise Fault("PLC2003", "watchdog: the scan did not finish within its budget; this loop "
                 "runs too long or never ends (inputs do not change during a scan, so waiting "

@@ -320,3 +320,72 @@ def test_fb_init_with_other_inputs_is_plc0237():
     src = """FUNCTION_BLOCK X METHOD FB_init : BOOL VAR_INPUT n : INT; END_VAR END_METHOD
 END_FUNCTION_BLOCK"""
     assert codes(src) == ["PLC0237"]
+
+
+REF_SRC = """TYPE Point : STRUCT x, y : INT; END_STRUCT END_TYPE
+FUNCTION_BLOCK Holder
+VAR_INPUT a0, a1 : INT; END_VAR
+VAR_OUTPUT a : INT; arr : ARRAY[1..3] OF INT; p : Point; END_VAR
+a := a0; arr[2] := a1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Swapper
+VAR_INPUT r1, r2 : REF_TO INT; END_VAR
+VAR t : INT; END_VAR
+t := r1^;
+r1^ := r2^;
+r2^ := t;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR h : Holder; s : Swapper; r : REF_TO INT; pp : POINTER TO Point; n : INT; ok : BOOL;
+    q : REF_TO Point; nothing : REF_TO INT; END_VAR
+h(a0 := 5, a1 := 7);
+s(r1 := REF(h.a), r2 := REF(h.arr[2]));
+r := REF(n);
+r^ := 42;
+pp := ADR(h.p);
+pp^.x := 3;
+q := REF(h.p);
+ok := (q = REF(h.p)) AND r <> NULL AND __ISVALIDREF(pp) AND NOT __ISVALIDREF(nothing);
+END_PROGRAM
+"""
+
+
+def test_references_read_and_write_the_variable_they_point_to():
+    src = REF_SRC + """TEST 'refs'
+VAR m : Main; END_VAR
+m();
+ASSERT_EQ(m.h.a, 7);
+ASSERT_EQ(m.h.arr[2], 5);
+ASSERT_EQ(m.n, 42);
+ASSERT_EQ(m.h.p.x, 3);
+ASSERT_TRUE(m.ok);
+END_TEST"""
+    assert [str(r) for r in run_test_sources([(src, "r.st")]) if not r.passed] == []
+
+
+def test_dereferencing_null_is_a_located_fault():
+    src = REF_SRC.replace("r^ := 42;", "r^ := 42;\nnothing^ := 1;")
+    plc = plclab.loads(src, "r.st")
+    with pytest.raises(plclab.PlcRuntimeFault) as err:
+        plc.scan()
+    assert err.value.code == "PLC9111"
+    assert err.value.location.line == src.splitlines().index("nothing^ := 1;") + 1
+
+
+@pytest.mark.parametrize("body,code", [
+    ("n := r + 1;", "PLC0238"),
+    ("n := n^;", "PLC0238"),
+    ("r := REF(h.a.3);", "PLC0240"),
+    ("r := REF(5);", "PLC0240"),
+    ("q := REF(n);", "PLC0241"),
+    ("r := n;", "PLC0241"),
+])
+def test_reference_checks(body, code):
+    src = REF_SRC.replace("r^ := 42;", body)
+    assert code in codes(src), errors(src)
+
+
+def test_reference_to_a_function_local_and_reference_to_type():
+    assert "PLC0240" in codes("""FUNCTION F : INT VAR x : INT; r : REF_TO INT; END_VAR
+r := REF(x); F := r^; END_FUNCTION""")
+    assert "PLC0239" in codes("PROGRAM P VAR r : REFERENCE TO INT; END_VAR END_PROGRAM")

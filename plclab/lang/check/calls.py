@@ -40,7 +40,8 @@ class Calls(Pass):
             local = self.cx.exprs.lookup(fname)
             if isinstance(local, VarSym) and local.decl.section == "RETURN":
                 local = None  # F(...) inside F is a (recursive) call, not the result variable
-            if local is None and fname.startswith("__"):  # __ISVALIDREF ... (ADR 0021)
+            if local is None and (fname.startswith("__") or fname in ("REF", "ADR")):
+                # __ISVALIDREF, __QUERYINTERFACE, REF(), ADR() (ADR 0021)
                 return self.cx.oop.reference_operator(c, fname)
             if local is None:
                 pou = self.table.pous.get(fname)

@@ -78,6 +78,8 @@ class Declarations(Pass):
     def type_ref(self, r: A.TypeRef, name: str | None = None) -> T.Type:
         if isinstance(r, A.NamedTypeRef):
             return self.named_type(r.name, r.loc)
+        if isinstance(r, A.RefTypeRef):  # REF_TO, POINTER TO (ADR 0021)
+            return self.cx.oop.ref_type(r)
         if isinstance(r, A.StringTypeRef):
             n = 80
             if r.length is not None:

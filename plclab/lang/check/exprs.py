@@ -26,6 +26,9 @@ class Expressions(Pass, NodeVisitor):
         if isinstance(rd, T.InterfaceType):  # an instance or interface reference (ADR 0021)
             self.cx.oop.interface_assign(rs, rd, loc)
             return
+        if isinstance(rd, T.RefType) or isinstance(rs, T.RefType):  # REF_TO (ADR 0021)
+            self.cx.oop.ref_assign(rs, rd, loc)
+            return
         if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
                 and e.value in (0, 1):
             e.ty = T.BOOL  # 0 and 1 are BOOL literals (IEC 61131-3 ed.2 2.2.1, ed.3 Table 5)
@@ -242,6 +245,8 @@ class Expressions(Pass, NodeVisitor):
             self.err("PLC0100", f"{e.name} is a function block type; declare an instance "
                      f"(inst : {e.name};) and use the instance", e.loc)
             return T.ANY
+        if e.name == "NULL":  # the reference to nothing (IEC ed.3, ADR 0021)
+            return T.RefType(T.ANY)
         cands = list(self.cx.scope) + list(self.table.globals) + list(self.table.enum_members)
         self.err("PLC0100", f"{e.text or e.name} is not declared" + close_hint(e.name, cands) +
                  ("" if close_hint(e.name, cands) else "; declare it in a VAR section"),
@@ -269,6 +274,8 @@ class Expressions(Pass, NodeVisitor):
         return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
 
     def member(self, e: A.Member, write: bool) -> T.Type:
+        if e.field_name == "^":  # r^ (ADR 0021)
+            return self.cx.oop.deref(e)
         qualified = self.qualified_enum(e, write)
         if qualified is not None:
             return qualified
@@ -429,6 +436,9 @@ class Expressions(Pass, NodeVisitor):
                     isinstance(e.left.sym, EnumSym):
                 lt = self.expr(e.left, rt)
         a, b = T.base_of(lt), T.base_of(rt)
+        if isinstance(a, T.RefType | T.InterfaceType) or isinstance(b, T.RefType |
+                                                                     T.InterfaceType):
+            return self.cx.oop.ref_compare(e, a, b)
         if a is T.ANY or b is T.ANY:
             return T.BOOL if op in ("=", "<>", "<", "<=", ">", ">=") else T.ANY
         if op in ("AND", "OR", "XOR"):

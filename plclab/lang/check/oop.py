@@ -10,9 +10,11 @@ from __future__ import annotations
 
 from .. import ast as A
 from .. import types as T
+from ..ast import expr_text
 from ..walk import walk
 from .calls import CallInfo
 from .context import Pass, close_hint
+from .symbols import VarSym
 
 _PARAMS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 # the methods the runtime calls itself (CODESYS), with their BOOL inputs
@@ -263,26 +265,89 @@ class ObjectChecks(Pass):
         return rd.ty if rd is not None and rd.ty is not None else T.ANY
 
     def reference_operator(self, c: A.Call, name: str) -> T.Type:
-        """``__ISVALIDREF(itf)`` (TRUE when ``itf`` refers to an instance) and
-        ``__QUERYINTERFACE(itf, other)`` (``other`` := the same instance when its block also
-        implements ``other``'s interface; TRUE when it did), as CODESYS has them."""
+        """``REF(x)`` / ``ADR(x)`` (a reference to the variable x), ``__ISVALIDREF(r)`` (TRUE
+        when the interface or reference r refers to something) and ``__QUERYINTERFACE(itf,
+        other)`` (``other`` := the same instance when its block also implements ``other``'s
+        interface; TRUE when it did), as IEC ed.3 and CODESYS have them."""
         args = [a for a in c.args if a.value is not None]
-        want = {"__ISVALIDREF": 1, "__QUERYINTERFACE": 2}.get(name)
+        want = {"__ISVALIDREF": 1, "__QUERYINTERFACE": 2, "REF": 1, "ADR": 1}.get(name)
         if want is None or len(args) != want or any(a.name or a.output for a in args):
-            self.err("PLC0236", f"{name} is not a function here; CODESYS has __ISVALIDREF(itf) "
-                     "and __QUERYINTERFACE(itf, itfOther) with positional arguments", c.loc)
+            self.err("PLC0236", f"{name} is not a function here; write REF(x), ADR(x), "
+                     "__ISVALIDREF(r) or __QUERYINTERFACE(itf, itfOther) with positional "
+                     "arguments", c.loc)
             self.cx.calls._args_only(c)
             return T.ANY
+        if name in ("REF", "ADR"):
+            return self.ref_of(c, name, args[0].value)
         types = []
         for i, a in enumerate(args):
             t = T.resolve(self.cx.exprs.lvalue(a.value) if i == 1 else
                           self.cx.exprs.expr(a.value, None))
             types.append(t)
-            if not isinstance(t, T.InterfaceType) and t is not T.ANY:
-                self.err("PLC0236", f"{name} takes interface variables, not {t}; declare "
-                         "the variable with an INTERFACE type", a.loc)
+            ok = isinstance(t, T.InterfaceType) or (name == "__ISVALIDREF" and
+                                                    isinstance(t, T.RefType))
+            if not ok and t is not T.ANY:
+                self.err("PLC0236", f"{name} takes interface variables"
+                         f"{' or references' if name == '__ISVALIDREF' else ''}, not {t}; "
+                         "declare the variable with an INTERFACE type", a.loc)
         c.target = CallInfo("reference", name, [(i, a.value) for i, a in enumerate(args)])
         return T.BOOL
+
+    # -- references: REF_TO, POINTER TO, REF(), ADR(), ^, NULL --------------------------------
+    def ref_type(self, r: A.RefTypeRef) -> T.Type:
+        if r.kind == "REFERENCE":
+            self.err("PLC0239", "REFERENCE TO is not supported; declare REF_TO T, assign "
+                     "r := REF(x); and write r^ where the variable is meant", r.loc)
+            return T.ANY
+        return T.RefType(self.cx.decls.type_ref(r.target), pointer=r.kind == "POINTER")
+
+    def ref_of(self, c: A.Call, name: str, x: A.Expr) -> T.Type:
+        t = self.cx.exprs.expr(x, None)
+        x.is_target = True  # a variable, never a temporary
+        root = x
+        while isinstance(root, A.Member | A.Index):
+            if isinstance(root, A.Member) and root.field_name.startswith("%"):
+                self.err("PLC0240", f"{name} cannot point at a single bit; point at the whole "
+                         "variable", x.loc)
+                return T.ANY
+            root = root.obj
+        if isinstance(root, A.Name) and isinstance(root.sym, VarSym) and root is x and (
+                root.sym.storage == "local" or root.sym.decl.section in ("VAR_TEMP", "RETURN")):
+            self.err("PLC0240", f"{name}({expr_text(x)}): the variable lives only during one "
+                     "call (a local of a FUNCTION, METHOD or TEST, or a VAR_TEMP); point at a "
+                     "variable of a block, a program or a global", x.loc)
+            return T.ANY
+        if not isinstance(root, A.Name):
+            self.err("PLC0240", f"{name} needs a variable, e.g. {name}(x) or {name}(arr[i])",
+                     x.loc)
+            return T.ANY
+        c.target = CallInfo("reference", name, [(0, x)])
+        return T.RefType(t, pointer=name == "ADR")
+
+    def deref(self, e: A.Member) -> T.Type:
+        t = T.resolve(self.cx.exprs.expr(e.obj, None))
+        if isinstance(t, T.RefType) and t.target is not T.ANY:
+            return t.target
+        if t is not T.ANY:
+            self.err("PLC0238", f"'^' follows a reference (REF_TO or POINTER TO), and "
+                     f"{expr_text(e.obj)} is {t}", e.loc)
+        return T.ANY
+
+    def ref_compare(self, e: A.Binary, a: T.Type, b: T.Type) -> T.Type:
+        if e.op in ("=", "<>"):
+            return T.BOOL
+        self.err("PLC0238", f"'{e.op}' on a reference: plclab has no pointer arithmetic (a "
+                 "variable has no numeric address here); compare references with = or <>, "
+                 "index an ARRAY instead of moving a pointer", e.loc)
+        return T.ANY
+
+    def ref_assign(self, rs: T.Type, rd: T.Type, loc) -> None:
+        if isinstance(rs, T.RefType) and isinstance(rd, T.RefType) and (
+                rs.target is T.ANY or T.same_type(rs.target, rd.target) or
+                T.resolve(rs.target) is T.resolve(rd.target)):
+            return
+        self.err("PLC0241", f"cannot assign {rs} to {rd}: a reference takes REF(x) of a "
+                 "variable of its target type, another such reference, or NULL", loc)
 
     def interface_assign(self, rs: T.Type, rd: T.InterfaceType, loc) -> None:
         """Check storing a value of type ``rs`` in an interface variable of type ``rd``."""

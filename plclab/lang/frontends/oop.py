@@ -206,6 +206,19 @@ def interface(p) -> A.Pou:
     return pou
 
 
+def ref_type(p) -> A.RefTypeRef | None:
+    """``REF_TO T``, ``POINTER TO T``, ``REFERENCE TO T`` at the parser's position, or None."""
+    t = p.tok
+    if word(p, "REF_TO"):
+        p.advance()
+        return A.RefTypeRef(p.loc(t), "REF_TO", p.type_ref())
+    if word(p, "POINTER", "REFERENCE") and p.peek().kind == "TO":
+        p.advance()
+        p.advance()
+        return A.RefTypeRef(p.loc(t), t.value, p.type_ref())
+    return None
+
+
 def this_or_super(p) -> A.Name | None:
     """``THIS^`` or ``SUPER^`` (the instance itself, its base part) as a name the checker
     knows (:mod:`plclab.lang.check.oop`); None when the current token starts neither."""

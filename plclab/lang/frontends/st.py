@@ -563,6 +563,9 @@ class Parser:
     def _type_ref(self, allow_decl: bool = True) -> A.TypeRef:
         t = self.tok
         loc = self.loc()
+        ref = oop.ref_type(self)  # REF_TO T, POINTER TO T, REFERENCE TO T (ADR 0021)
+        if ref is not None:
+            return ref
         if t.kind in ("STRING", "WSTRING"):
             self.advance()
             length = None
@@ -1014,6 +1017,8 @@ class Parser:
             elif self.at("("):
                 p = self.advance()
                 e = A.Call(e.loc if e.loc else self.loc(p), e, self.call_args())
+            elif self.at("^"):  # r^: the variable a reference points to (ADR 0021)
+                e = A.Member(self.loc(self.advance()), e, "^", "^")
             else:
                 return e
 
