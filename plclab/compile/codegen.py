@@ -270,7 +270,7 @@ class Codegen:
         self.emit(f"class {cls}:")
         self.ind += 1
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
-        self.emit(oop_emit.interfaces_line(self, pou))
+        oop_emit.interfaces_line(self, pou)
         self.emit("def __init__(self):")
         self.ind += 1
         for d in members:

@@ -86,11 +86,12 @@ def inherit_methods(cg: Codegen) -> None:
             cg.emit(f"P_{ident(p.name)}.M_{ident(name)} = P_{ident(base.name)}.M_{ident(name)}")
 
 
-def interfaces_line(cg: Codegen, pou: A.Pou) -> str:
+def interfaces_line(cg: Codegen, pou: A.Pou) -> None:
     """The class attribute naming every interface the block implements (for
-    ``__QUERYINTERFACE``)."""
+    ``__QUERYINTERFACE``); none for a block without interfaces."""
     names = sorted(ident(i.name) for i in cg.p.symbols.interfaces(pou))
-    return f"_ITF = frozenset({names!r})"
+    if names:
+        cg.emit(f"_ITF = {tuple(names)!r}")
 
 
 def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:
@@ -101,7 +102,7 @@ def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:
         return f"({cg.ex(info.inputs[0][1])} is not None)"
     src, dst = info.inputs[0][1], info.inputs[1][1]
     want = ident(T.resolve(dst.ty).name)
-    tmp = cg.new_tmp("_q")
+    tmp = cg.new_tmp("_t")
     cg.pre.append(f"{tmp} = _qi({cg.ex(src)}, {want!r})")
     cg.pre.append(f"{cg.ex(dst)} = {tmp}")
     return f"({tmp} is not None)"
@@ -175,7 +176,7 @@ def method_call(cg: Codegen, e: A.Call, info: CallInfo) -> str:
     outs = [d for d in m.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
     if not outs:
         return call
-    tmp = cg.new_tmp("_m")
+    tmp = cg.new_tmp("_f")
     cg.pre.append(f"{tmp} = {call}")
     bound = {d.name: (tgt, neg) for d, tgt, neg in info.outputs}
     for d, x in info.inouts:

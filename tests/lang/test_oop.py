@@ -389,3 +389,32 @@ def test_reference_to_a_function_local_and_reference_to_type():
     assert "PLC0240" in codes("""FUNCTION F : INT VAR x : INT; r : REF_TO INT; END_VAR
 r := REF(x); F := r^; END_FUNCTION""")
     assert "PLC0239" in codes("PROGRAM P VAR r : REFERENCE TO INT; END_VAR END_PROGRAM")
+
+
+def test_a_method_called_from_il_with_cal_and_calc():
+    src = """FUNCTION_BLOCK Pump
+VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
+METHOD Start : BOOL
+VAR_INPUT rpm : INT; END_VAR
+Enabled := TRUE;
+speed := rpm;
+Start := TRUE;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR p : Pump; go : BOOL; isOn : BOOL; END_VAR
+    LD go
+    CALC p.Start(rpm := 1500)
+    LD p.Enabled
+    ST isOn
+END_PROGRAM
+TEST 'il'
+VAR m : Main; END_VAR
+m();
+ASSERT_FALSE(m.isOn);
+m.go := TRUE;
+m();
+ASSERT_TRUE(m.isOn);
+ASSERT_EQ(m.p.speed, 1500);
+END_TEST"""
+    assert [str(r) for r in run_test_sources([(src, "il.st")]) if not r.passed] == []
