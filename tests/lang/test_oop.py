@@ -108,6 +108,7 @@ def test_method_called_on_the_interface_type():
     ("INTERFACE I METHOD M : INT M := 1; END_METHOD END_INTERFACE", "PLC0234"),
     ("FUNCTION_BLOCK X METHOD M END_METHOD METHOD M END_METHOD END_FUNCTION_BLOCK", "PLC0235"),
     ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := __ISVALIDREF(m); END_PROGRAM", "PLC0236"),
+    ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := NOT m.Home; END_PROGRAM", "PLC0242"),
     ("FUNCTION_BLOCK X VAR v : INT; END_VAR PROPERTY P : INT GET P := v; END_GET END_PROPERTY "
      "END_FUNCTION_BLOCK PROGRAM Q VAR x : X; END_VAR x.P := 1; END_PROGRAM", "PLC0233"),
     ("FUNCTION_BLOCK X VAR v : INT; END_VAR PROPERTY P : INT SET v := P; END_SET END_PROPERTY "
@@ -418,3 +419,50 @@ ASSERT_TRUE(m.isOn);
 ASSERT_EQ(m.p.speed, 1500);
 END_TEST"""
     assert [str(r) for r in run_test_sources([(src, "il.st")]) if not r.passed] == []
+
+
+def test_the_articles_listings_as_printed_get_one_message_per_typo():
+    """003_9d92dccf8dc4ed13.txt lines 103-225, typos kept: EXTENTS (line 189) and the method
+    called without () (line 219); each is reported once, with what to write."""
+    src = """TYPE Direction: (Forward, Backward);
+END_TYPE
+FUNCTION_BLOCK Pump
+VAR
+Enabled: BOOL;
+Direction: Direction;
+END_VAR
+METHOD GetState : BOOL
+GetState := Enabled;
+END_METHOD
+METHOD Start: BOOL (* comment *)
+VAR_INPUT
+WantedDirection: Direction;
+END_VAR
+Enabled := TRUE;
+Direction := WantedDirection;
+END_METHOD
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK MonitoredPump EXTENTS Pump
+VAR
+MonitoredState: (OK, Error);
+END_VAR
+METHOD HasError : BOOL;
+HasError := MonitoredState <> OK;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR
+Pump1: Pump;
+Pump2: MonitoredPump;
+END_VAR
+Pump1.Start(Forward);
+IF NOT Pump2.HasError THEN
+Pump1.Start(Backward);
+END_IF
+END_PROGRAM
+"""
+    diags = [d for d in check_sources([(src, "a.st")])[1] if d.severity == "error"]
+    assert [(d.code, d.location.line) for d in diags] == [("PLC0011", 19), ("PLC0242", 33)]
+    assert "EXTENDS" in diags[0].message and "Pump2.HasError()" in diags[1].message
+    fixed = src.replace("EXTENTS", "EXTENDS").replace("Pump2.HasError THEN", "Pump2.HasError() THEN")
+    assert errors(fixed) == []

@@ -308,6 +308,8 @@ class Expressions(Pass, NodeVisitor):
             pou = ot.pou
             members = self.table.members(pou)
             d = members.get(f)
+            if d is None and self.cx.oop.method_without_call(e, pou):
+                return T.ANY
             if d is None:
                 names = list(members)
                 self.err("PLC0116", f"{pou.kind.replace('_', ' ').lower()} {pou.name} has no "

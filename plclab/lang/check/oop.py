@@ -264,6 +264,16 @@ class ObjectChecks(Pass):
         rd = acc.return_decl
         return rd.ty if rd is not None and rd.ty is not None else T.ANY
 
+    def method_without_call(self, e: A.Member, pou: A.Pou) -> bool:
+        """``inst.M`` where ``M`` is a METHOD: reported (PLC0242) with the call to write; the
+        article writes ``IF NOT Pump2.HasError THEN`` (003_9d92dccf8dc4ed13.txt line 219)."""
+        m = self.methods(pou).get(e.field_name)
+        if m is None:
+            return False
+        self.err("PLC0242", f"{e.text or e.field_name} is a METHOD of {_label(pou)}: call it "
+                 f"with parentheses, {expr_text(e)}()", e.loc)
+        return True
+
     def reference_operator(self, c: A.Call, name: str) -> T.Type:
         """``REF(x)`` / ``ADR(x)`` (a reference to the variable x), ``__ISVALIDREF(r)`` (TRUE
         when the interface or reference r refers to something) and ``__QUERYINTERFACE(itf,
