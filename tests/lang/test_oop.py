@@ -466,3 +466,23 @@ END_PROGRAM
     assert "EXTENDS" in diags[0].message and "Pump2.HasError()" in diags[1].message
     fixed = src.replace("EXTENTS", "EXTENDS").replace("Pump2.HasError THEN", "Pump2.HasError() THEN")
     assert errors(fixed) == []
+
+
+def test_emit_st_prints_objects_back_as_st_that_runs_the_same():
+    from plclab.lang.frontends.st import parse_st
+    from plclab.lang.unparse import unparse
+    srcs = [(p.read_text(), p.name) for p in EXAMPLES] + [(REF_SRC + """TEST 'r'
+VAR m : Main; END_VAR
+m();
+ASSERT_EQ(m.n, 42);
+END_TEST""", "r.st"), ("""INTERFACE Axis PROPERTY Pos : INT END_PROPERTY END_INTERFACE
+FUNCTION_BLOCK Servo IMPLEMENTS Axis VAR p : INT; END_VAR
+PROPERTY PUBLIC Pos : INT GET VAR t : INT; END_VAR t := p; Pos := t; END_GET
+SET p := Pos * 2; END_SET END_PROPERTY END_FUNCTION_BLOCK
+TEST 'p' VAR s : Servo; a : Axis; END_VAR a := s; a.Pos := 4; ASSERT_EQ(s.Pos, 8); END_TEST""",
+                         "p.st")]
+    for text, name in srcs:
+        again = unparse(parse_st(text, name))
+        assert "EXTENDS" in again or "REF_TO" in again or "INTERFACE" in again
+        results = run_test_sources([(again, name)])
+        assert results and [str(r) for r in results if not r.passed] == [], again
