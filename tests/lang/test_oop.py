@@ -486,3 +486,29 @@ TEST 'p' VAR s : Servo; a : Axis; END_VAR a := s; a.Pos := 4; ASSERT_EQ(s.Pos, 8
         assert "EXTENDS" in again or "REF_TO" in again or "INTERFACE" in again
         results = run_test_sources([(again, name)])
         assert results and [str(r) for r in results if not r.passed] == [], again
+
+
+def test_a_method_called_from_a_ladder_box():
+    src = """FUNCTION_BLOCK Pump
+VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
+METHOD Start : BOOL
+VAR_INPUT rpm : INT; END_VAR
+Enabled := TRUE;
+speed := rpm;
+Start := TRUE;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR go : BOOL; p : Pump; started : BOOL; lamp : BOOL; END_VAR
+|   go                                      lamp   |
+|---[ ]----[p.Start 1500 -> started]--------( )----|
+END_PROGRAM
+TEST 'ld method box'
+Main(); ASSERT_FALSE(Main.lamp); ASSERT_FALSE(Main.p.Enabled);
+Main.go := TRUE; Main(); ASSERT_TRUE(Main.lamp); ASSERT_TRUE(Main.started);
+ASSERT_EQ(Main.p.speed, 1500);
+END_TEST
+"""
+    assert [str(r) for r in run_test_sources([(src, "m.ld")]) if not r.passed] == []
+    bad = src.replace("p.Start 1500", "p.Strat 1500")
+    assert "PLC0222" in [d.code for d in check_sources([(bad, "m.ld")])[1]]
