@@ -623,6 +623,12 @@ def format_value(v, kind: str) -> str:
         return fmt_real(v, False)
     if isinstance(v, str):
         return "'" + v.replace("$", "$$").replace("'", "$'").replace("\n", "$N") + "'"
+    if kind in ("interface", "ref"):  # ADR 0021: what it refers to, not a Python repr
+        if v is None:
+            return "NULL"
+        if isinstance(v, _RefAttr):
+            return f"REF(.{v.key})" if isinstance(v.key, str) else f"REF([{v.key}])"
+        return f"REF({type(v).__name__[2:]} instance)"
     return str(v)
 
 

@@ -512,3 +512,13 @@ END_TEST
     assert [str(r) for r in run_test_sources([(src, "m.ld")]) if not r.passed] == []
     bad = src.replace("p.Start 1500", "p.Strat 1500")
     assert "PLC0222" in [d.code for d in check_sources([(bad, "m.ld")])[1]]
+
+
+def test_watch_shows_what_an_interface_or_reference_refers_to():
+    plc = plclab.loads("""INTERFACE I METHOD M END_METHOD END_INTERFACE
+FUNCTION_BLOCK B IMPLEMENTS I METHOD M END_METHOD END_FUNCTION_BLOCK
+PROGRAM Main VAR b : B; i, j : I; n : INT; r, q : REF_TO INT; END_VAR
+i := b; r := REF(n); END_PROGRAM""", "w.st")
+    plc.scan()
+    assert [plc.format(f"Main.{v}") for v in "ijrq"] == [
+        "REF(B instance)", "NULL", "REF(.N)", "NULL"]
