@@ -144,6 +144,11 @@ class ObjectChecks(Pass):
     def check_implements(self, p: A.Pou) -> None:
         have = self.methods(p)
         abstract = "ABSTRACT" in p.modifiers
+        for m in have.values():
+            if "ABSTRACT" in m.modifiers and not abstract:
+                self.err("PLC0221", f"{_label(p)} is not ABSTRACT but its METHOD {_label(m)} "
+                         f"(from {_label(m.owner)}) is: implement it in {_label(p)} or declare "
+                         f"FUNCTION_BLOCK ABSTRACT {_label(p)}", p.loc)
         for i in self.interfaces_of(p):
             for im in i.methods:
                 m = have.get(im.name)

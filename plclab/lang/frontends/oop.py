@@ -219,6 +219,16 @@ def ref_type(p) -> A.RefTypeRef | None:
     return None
 
 
+def refuse_class(p) -> None:
+    """ed.3 ``CLASS ... END_CLASS``: not supported (PLC0243); skipped to its end."""
+    p.error("PLC0243", "CLASS (IEC 61131-3 ed.3) is not supported; write FUNCTION_BLOCK "
+            "Name ... END_FUNCTION_BLOCK with the same METHODs (in CODESYS a FUNCTION_BLOCK is "
+            "the class), and leave its body empty")
+    while not p.at("EOF") and not word(p, "END_CLASS"):
+        p.advance()
+    p.advance()
+
+
 def this_or_super(p) -> A.Name | None:
     """``THIS^`` or ``SUPER^`` (the instance itself, its base part) as a name the checker
     knows (:mod:`plclab.lang.check.oop`); None when the current token starts neither."""

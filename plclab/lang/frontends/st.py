@@ -216,6 +216,8 @@ class Parser:
                     out.tests.append(self.test_block())
                 elif oop.word(self, "INTERFACE"):  # object-oriented extensions (ADR 0021)
                     out.pous.append(oop.interface(self))
+                elif oop.word(self, "CLASS") and self.peek().kind == "IDENT":
+                    oop.refuse_class(self)
                 else:
                     t = self.tok
                     close = (suggest(t.value, _POU_START, n=1, cutoff=0.7)
