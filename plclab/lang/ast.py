@@ -381,10 +381,11 @@ class SourceFile:
     dialect: str | None = None  # the file's dialect (plclab.lang.dialect); None: the default
 
 
-def method_inst_name(method: str, var: str) -> str:
+def method_inst_name(block: str, method: str, var: str) -> str:
     """The hidden instance variable of a METHOD's ``VAR_INST`` variable (ADR 0021; ``__``
-    cannot be written in an ST name, so it cannot clash with a user variable)."""
-    return f"{method}__{var}"
+    cannot be written in an ST name, so it cannot clash with a user variable; the block's name
+    keeps an override's variable apart from its base's)."""
+    return f"{block}__{method}__{var}"
 
 
 def child_bodies(s: Stmt) -> list[list[Stmt]]:

@@ -248,7 +248,7 @@ class _Writer:
         head = "".join(f" {w} {', '.join(ns)}" for w, ns in (("EXTENDS", p.extends),
                                                               ("IMPLEMENTS", p.implements)) if ns)
         self.line(f"{p.kind} {mods}{_spelled(p.spelling, p.name)}{ret}{head}")
-        inst = {A.method_inst_name(m.name, d.name) for m in p.methods for d in m.decls
+        inst = {A.method_inst_name(p.name, m.name, d.name) for m in p.methods for d in m.decls
                 if d.section == "VAR_INST"}
         self.decls([d for d in p.decls if d.name not in inst])
         self.members(p)

@@ -107,6 +107,7 @@ def test_method_called_on_the_interface_type():
      "END_FUNCTION_BLOCK", "PLC0232"),
     ("INTERFACE I METHOD M : INT M := 1; END_METHOD END_INTERFACE", "PLC0234"),
     ("FUNCTION_BLOCK X METHOD M END_METHOD METHOD M END_METHOD END_FUNCTION_BLOCK", "PLC0235"),
+    ("FUNCTION_BLOCK X EXTENDS Motor VAR n : DINT; END_VAR END_FUNCTION_BLOCK", "PLC0235"),
     ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := __ISVALIDREF(m); END_PROGRAM", "PLC0236"),
     ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := NOT m.Home; END_PROGRAM", "PLC0242"),
     ("CLASS C VAR n : INT; END_VAR METHOD Up n := n + 1; END_METHOD END_CLASS", "PLC0243"),
@@ -525,3 +526,35 @@ i := b; r := REF(n); END_PROGRAM""", "w.st")
     plc.scan()
     assert [plc.format(f"Main.{v}") for v in "ijrq"] == [
         "REF(B instance)", "NULL", "REF(.N)", "NULL"]
+
+
+def test_a_method_that_calls_itself_forever_is_a_fault_not_a_crash():
+    plc = plclab.loads("""FUNCTION_BLOCK B
+METHOD Loop : INT Loop := THIS^.Loop() + 1; END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main VAR b : B; n : INT; END_VAR n := b.Loop(); END_PROGRAM""", "r.st")
+    with pytest.raises(plclab.PlcRuntimeFault) as err:
+        plc.scan()
+    assert err.value.code == "PLC2007"
+
+
+def test_an_il_body_in_a_method_is_reported_not_crashed():
+    diags = check_sources([("""FUNCTION_BLOCK B VAR x : BOOL; END_VAR
+METHOD M
+    LD x
+    ST x
+END_METHOD
+END_FUNCTION_BLOCK""", "i.st")])[1]
+    assert diags and all(d.code != "PLC9999" for d in diags)
+
+
+def test_an_override_may_have_its_own_var_inst():
+    src = """FUNCTION_BLOCK A METHOD Count : INT VAR_INST n : INT; END_VAR n := n + 1; Count := n;
+END_METHOD END_FUNCTION_BLOCK
+FUNCTION_BLOCK B EXTENDS A METHOD Count : INT VAR_INST n : INT; END_VAR n := n + 10;
+Count := n + SUPER^.Count(); END_METHOD END_FUNCTION_BLOCK
+TEST 'v' VAR b : B; END_VAR
+ASSERT_EQ(b.Count(), 11);  (* B's n is 10, A's own n is 1 *)
+ASSERT_EQ(b.Count(), 22);  (* 20 + 2 *)
+END_TEST"""
+    assert [str(r) for r in run_test_sources([(src, "v.st")]) if not r.passed] == []

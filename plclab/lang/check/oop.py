@@ -97,6 +97,12 @@ class ObjectChecks(Pass):
                 cands = [k for k, v in self.table.pous.items() if v.kind == "INTERFACE"]
                 self.err("PLC0220", f"{_label(p)} IMPLEMENTS {n}, which is not an INTERFACE" +
                          close_hint(n, cands), p.loc)
+        inherited = {n for b in self.table.bases(p) for n in (d.name for d in b.decls)}
+        for d in p.decls:
+            if d.name in inherited:
+                self.err("PLC0235", f"{d.spelling or d.name} is declared again in {_label(p)}, "
+                         "which inherits it already; remove this declaration or rename it",
+                         d.loc)
         seen: set[str] = set()
         for m in p.methods:
             if m.name in seen:

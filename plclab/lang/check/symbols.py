@@ -279,7 +279,7 @@ class SymbolTable:
         owned = self.members(owner)
         for d in m.decls:
             if d.section == "VAR_INST":
-                inst = owned.get(A.method_inst_name(m.name, d.name))
+                inst = owned.get(A.method_inst_name(owner.name, m.name, d.name))
                 names[d.name] = VarSym(inst if inst is not None else d, "self", owner)
             else:
                 names[d.name] = VarSym(d, "local", m)

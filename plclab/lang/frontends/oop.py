@@ -94,8 +94,8 @@ def members(p, owner: A.Pou, end_kw: str) -> None:
                 m.owner = owner
                 owner.methods.append(m)
                 owner.decls.extend(  # VAR_INST: instance data of the block, hidden name
-                    A.VarDecl(d.loc, A.method_inst_name(m.name, d.name), d.type, d.init,
-                              section="VAR", spelling=f"{m.spelling}__{d.spelling}")
+                    A.VarDecl(d.loc, A.method_inst_name(owner.name, m.name, d.name), d.type, d.init,
+                              section="VAR", spelling=f"{owner.spelling}__{m.spelling}__{d.spelling}")
                     for d in m.decls if d.section == "VAR_INST")
         except ParseAbort:
             while not p.at("EOF", end_kw) and not word(p, "END_METHOD", "END_PROPERTY"):
