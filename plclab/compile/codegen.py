@@ -26,6 +26,7 @@ from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.dialect import profile as dialect_profile
 from ..lang.limits import compiler_guard
 from ..lang.walk import UnhandledNode
+from . import oop_emit
 from .builtins_emit import EMITTERS, Emission, const_int
 from .real32 import f32 as _f32
 
@@ -167,8 +168,9 @@ class Codegen:
                     self.function(pou)
             elif pou.native:
                 self.natives[f"P_{ident(pou.name)}"] = pou.native
-            else:
+            elif pou.kind != "INTERFACE":  # an interface has no code (ADR 0021)
                 self.block_class(pou)
+        oop_emit.inherit_methods(self)
         self.globals_class()
         self.programs_class()
         self.sync_functions()
@@ -265,7 +267,9 @@ class Codegen:
         return code
 
     def member_decls(self, pou: A.Pou) -> list[A.VarDecl]:
-        return [d for d in pou.decls if d.section not in ("VAR_TEMP", "VAR_EXTERNAL")]
+        """The instance variables of ``pou``, inherited ones (EXTENDS) first."""
+        return [d for d in self.p.symbols.members(pou).values()
+                if d.section not in ("VAR_TEMP", "VAR_EXTERNAL")]
 
     def block_class(self, pou: A.Pou) -> None:
         cls = f"P_{ident(pou.name)}"
@@ -275,11 +279,13 @@ class Codegen:
         self.emit(f"class {cls}:")
         self.ind += 1
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
+        oop_emit.interfaces_line(self, pou)
         self.emit("def __init__(self):")
         self.ind += 1
         for d in members:
             self.where_now = self.where(d.loc)
             self.emit_init(f"self.{ident(d.name)}", d)
+        oop_emit.init_calls(self, pou)
         self.emit("pass")
         self.ind -= 1
         self.emit("def _copy(self):")
@@ -297,7 +303,9 @@ class Codegen:
                 self.emit_init(f"v_{ident(d.name)}", d)
         self.function_body(pou.body, [d.name for d in pou.decls if d.section == "VAR_TEMP"], True)
         self.emit("return")
-        self.ind -= 2
+        self.ind -= 1
+        oop_emit.emit_methods(self, pou)
+        self.ind -= 1
         self.emit("")
         self.pou = None
 
@@ -571,6 +579,16 @@ class Codegen:
         self.assign_to(s.target, val)
 
     def assign_to(self, target: A.Expr, val: str) -> None:
+        if isinstance(target, A.Member) and isinstance(target.sym, A.Pou):  # a PROPERTY's SET
+            code = oop_emit.property_call(self, target, val)
+            self.flush_pre()
+            self.emit(code)
+            return
+        if isinstance(target, A.Member) and target.field_name == "^":  # r^ := v (ADR 0021)
+            code = oop_emit.deref(self, target)
+            self.flush_pre()
+            self.emit(f"{code}.set({val})")
+            return
         if isinstance(target, A.Member) and target.field_name.startswith("%"):
             bit = int(target.field_name[1:])
             obj = self.ex(target.obj)
@@ -616,6 +634,10 @@ class Codegen:
     def fb_call(self, c: A.Call, info: CallInfo) -> None:
         if info.kind == "program":
             inst = f"_P.{ident(c.func.name)}"  # type: ignore[union-attr]
+        elif oop_emit.is_super(c.func):  # SUPER^(): the base block's body on this instance
+            self.flush_pre()
+            self.emit(f"P_{ident(info.callee.name)}._body(self)")
+            return
         else:
             inst = self.ex(c.func)
         fb = inst
@@ -813,7 +835,7 @@ class Codegen:
         if self.helper is not None:
             self.helper_return(RETURN)
             return
-        if self.pou is not None and self.pou.kind == "FUNCTION":
+        if self.pou is not None and self.pou.kind in ("FUNCTION", "METHOD"):
             self.emit(self.function_return(self.pou))
         else:
             self.emit("return")
@@ -1170,6 +1192,8 @@ class Codegen:
                 return f"_G.{ident(sym.decl.name)}"
             if sym.storage == "self":
                 return f"self.{ident(sym.decl.name)}"
+            if sym.storage in ("this", "super"):  # THIS^, SUPER^ (ADR 0021)
+                return "self"
             return f"v_{ident(sym.decl.name)}"
         if isinstance(sym, EnumSym):
             return repr(sym.value)
@@ -1183,6 +1207,10 @@ class Codegen:
     def e_Member(self, e: A.Member) -> str:
         if isinstance(e.sym, EnumSym):  # Color.Red (CODESYS)
             return repr(e.sym.value)
+        if isinstance(e.sym, A.Pou):  # a PROPERTY's GET (ADR 0021)
+            return oop_emit.property_call(self, e, None)
+        if e.field_name == "^":  # r^ (ADR 0021)
+            return f"{oop_emit.deref(self, e)}.get()"
         obj = self.ex(e.obj)
         if e.field_name.startswith("%"):
             return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"
@@ -1341,6 +1369,10 @@ class Codegen:
             return self.builtin(info.callee.name, [x for _, x in info.inputs], e)
         if info.kind == "function":
             return self.user_function(info)
+        if info.kind == "method":
+            return oop_emit.method_call(self, e, info)
+        if info.kind == "reference":
+            return oop_emit.reference_operator(self, e, info)
         return "None"
 
     def inout_code(self, d: A.VarDecl, e: A.Expr) -> str:

@@ -62,6 +62,14 @@ class EnumTypeRef(TypeRef):
 
 
 @dataclass(eq=False)
+class RefTypeRef(TypeRef):
+    """``REF_TO T`` (IEC ed.3), ``POINTER TO T`` or ``REFERENCE TO T`` (CODESYS); ADR 0021."""
+
+    kind: str  # REF_TO POINTER REFERENCE
+    target: TypeRef
+
+
+@dataclass(eq=False)
 class StructTypeRef(TypeRef):
     fields: list[VarDecl]
 
@@ -103,7 +111,9 @@ class Member(Expr):
     obj: Expr
     field_name: str
     text: str = ""  # the member name as written
-    sym: Any = annotation()  # check.exprs: the member's VarDecl (block instances)
+    # check.exprs: the member's VarDecl (block instances); check.oop: a PROPERTY's accessor
+    # (a METHOD Pou). A field_name "^" is a dereference (r^), one "%3" a bit access (x.3).
+    sym: Any = annotation()
 
 
 @dataclass(eq=False)
@@ -286,6 +296,15 @@ class Pou:
     # text ladder only: the drawn networks (plclab.lang.frontends.ld.Network), for drawings
     networks: list[Any] = field(default_factory=list, compare=False, repr=False)
 
+    # object-oriented extensions (plclab.lang.frontends.oop, ADR 0021): a FUNCTION_BLOCK's
+    # base (one) or an INTERFACE's bases (several), the interfaces it implements, its METHODs
+    # (Pou of kind METHOD), and ABSTRACT FINAL PUBLIC PRIVATE PROTECTED INTERNAL as written
+    extends: list[str] = field(default_factory=list)
+    implements: list[str] = field(default_factory=list)
+    methods: list[Pou] = field(default_factory=list)
+    modifiers: list[str] = field(default_factory=list)
+    owner: Pou | None = field(default=None, compare=False, repr=False)  # a METHOD's block
+
     # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
     return_decl: VarDecl | None = annotation()
 
@@ -397,6 +416,13 @@ class SourceFile:
     dialect: str | None = None  # the file's dialect (plclab.lang.dialect); None: the default
 
 
+def method_inst_name(block: str, method: str, var: str) -> str:
+    """The hidden instance variable of a METHOD's ``VAR_INST`` variable (ADR 0021; ``__``
+    cannot be written in an ST name, so it cannot clash with a user variable; the block's name
+    keeps an override's variable apart from its base's)."""
+    return f"{block}__{method}__{var}"
+
+
 def child_bodies(s: Stmt) -> list[list[Stmt]]:
     """The statement lists directly inside ``s`` (IF branches and ELSE, CASE branches and
     ELSE, loop bodies); empty for a simple statement."""
@@ -448,6 +474,8 @@ def expr_text(e: Expr | None) -> str:
         return e.text or repr(e.value)
     if isinstance(e, Name):
         return e.text or e.name
+    if isinstance(e, Member) and e.field_name == "^":
+        return f"{expr_text(e.obj)}^"
     if isinstance(e, Member):
         f = e.text or e.field_name
         return f"{expr_text(e.obj)}.{f[1:] if f.startswith('%') else f}"

@@ -17,6 +17,8 @@ from ..durations import parse_duration
 from ..errors import Diagnostic, Location
 from .dialect import current as current_dialect
 
+# CODESYS operators on interface references (ADR 0021): the only names with '__' a user writes
+CODESYS_OPERATORS = frozenset({"__ISVALIDREF", "__QUERYINTERFACE"})
 KEYWORDS = frozenset(
     """
     PROGRAM END_PROGRAM FUNCTION END_FUNCTION FUNCTION_BLOCK END_FUNCTION_BLOCK
@@ -291,7 +293,7 @@ class Lexer:
             pos = m.end()
             if kind == "ident":
                 up = s.upper()
-                if "__" in s or s == "_":
+                if ("__" in s or s == "_") and up not in CODESYS_OPERATORS:
                     self.error("PLC0006", identifier_problem(s) or "bad identifier", line, col)
                 out.append(Token(up if up in KEYWORDS else "IDENT", up, s, line, col))
             elif kind == "int":

@@ -188,6 +188,37 @@ class FBType(Type):
 
 
 @dataclass(eq=False)
+class InterfaceType(Type):
+    """A reference to an instance whose block implements the INTERFACE ``pou`` (ADR 0021): a
+    value (copied as a reference, never the instance), unassigned (None) by default."""
+
+    name: str
+    pou: Any = None  # ast.Pou of kind INTERFACE
+    kind = "interface"
+
+
+@dataclass(eq=False)
+class RefType(Type):
+    """``REF_TO target`` / ``POINTER TO target`` (ADR 0021): a reference to a variable, NULL
+    (None) by default; ``target`` ANY for NULL itself."""
+
+    target: Type
+    pointer: bool = False
+    kind = "ref"
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        if self.target is ANY:
+            return "NULL"
+        return f"{'POINTER TO' if self.pointer else 'REF_TO'} {self.target}"
+
+
+def block_type(name: str, pou: Any) -> Type:
+    """The type a FUNCTION_BLOCK, PROGRAM or INTERFACE name stands for."""
+    return InterfaceType(name, pou) if pou.kind == "INTERFACE" else FBType(name, pou)
+
+
+@dataclass(eq=False)
 class AliasType(Type):
     name: str
     target: Type | None = None
@@ -392,4 +423,6 @@ def default_value(t: Type) -> Any:
         return t.lo if t.lo > 0 else (0 if t.lo <= 0 <= t.hi else t.hi)
     if isinstance(t, EnumType):
         return next(iter(t.members.values()), 0)
+    if isinstance(t, InterfaceType | RefType):
+        return None
     return 0

@@ -64,9 +64,13 @@ def expr(e: A.Expr | None) -> str:
     if isinstance(e, A.Literal):
         return literal(e)
     if isinstance(e, A.Name):
+        if e.name in ("THIS", "SUPER") and e.text.endswith("^"):  # ADR 0021
+            return e.text
         return _spelled(e.text, e.name)
     if isinstance(e, A.DirectAddr):
         return e.address
+    if isinstance(e, A.Member) and e.field_name == "^":  # r^ (ADR 0021)
+        return f"{_operand(e.obj, _TOP)}^"
     if isinstance(e, A.Member):
         field = _spelled(e.text, e.field_name)
         return f"{_operand(e.obj, _TOP)}.{field[1:] if field.startswith('%') else field}"
@@ -190,6 +194,8 @@ def type_ref(t: A.TypeRef) -> str:
         return f"ARRAY[{dims}] OF {type_ref(t.elem)}"
     if isinstance(t, A.SubrangeTypeRef):
         return f"{type_ref(t.base)}({expr(t.lo)}..{expr(t.hi)})"
+    if isinstance(t, A.RefTypeRef):
+        return ("REF_TO " if t.kind == "REF_TO" else f"{t.kind} TO ") + type_ref(t.target)
     if isinstance(t, A.EnumTypeRef):
         members = ", ".join(t.spellings.get(n, n) + (f" := {expr(v)}" if v is not None else "")
                             for n, v, _ in t.members)
@@ -251,10 +257,45 @@ class _Writer:
         if p.native:
             self.line(f"{{native '{p.native}'}}")
         ret = f" : {type_ref(p.return_type)}" if p.return_type is not None else ""
-        self.line(f"{p.kind} {_spelled(p.spelling, p.name)}{ret}")
-        self.decls(p.decls)
+        mods = "".join(f"{m} " for m in p.modifiers)
+        head = "".join(f" {w} {', '.join(ns)}" for w, ns in (("EXTENDS", p.extends),
+                                                              ("IMPLEMENTS", p.implements)) if ns)
+        self.line(f"{p.kind} {mods}{_spelled(p.spelling, p.name)}{ret}{head}")
+        inst = {A.method_inst_name(p.name, m.name, d.name) for m in p.methods for d in m.decls
+                if d.section == "VAR_INST"}
+        self.decls([d for d in p.decls if d.name not in inst])
+        self.members(p)
         self.stmts(p.body)
         self.line(f"END_{p.kind}")
+
+    def members(self, p: A.Pou) -> None:
+        """The METHODs and PROPERTYs of a block or interface (ADR 0021)."""
+        done: set[str] = set()
+        for m in p.methods:
+            prop, _, acc = m.name.rpartition("__")
+            if not prop or acc not in ("GET", "SET"):
+                ret = f" : {type_ref(m.return_type)}" if m.return_type is not None else ""
+                mods = "".join(f" {x}" for x in m.modifiers)
+                self.line(f"METHOD{mods} {_spelled(m.spelling, m.name)}{ret}")
+                self.decls(m.decls)
+                self.stmts(m.body)
+                self.line("END_METHOD")
+                continue
+            if prop in done:
+                continue
+            done.add(prop)
+            accs = [a for a in p.methods if a.name in (f"{prop}__GET", f"{prop}__SET")]
+            get = next((a for a in accs if a.name.endswith("GET")), None)
+            tref = get.return_type if get is not None else accs[0].decls[0].type
+            mods = "".join(f" {x}" for x in m.modifiers)
+            self.line(f"PROPERTY{mods} {m.spelling.rpartition('.')[0] or prop} : {type_ref(tref)}")
+            for a in accs:
+                word = a.name[-3:]
+                self.line(word)
+                self.decls(a.decls[1:] if word == "SET" else a.decls)
+                self.stmts(a.body)
+                self.line(f"END_{word}")
+            self.line("END_PROPERTY")
 
     def configuration(self, c: A.Configuration) -> None:
         self.line(f"CONFIGURATION {c.name}")

@@ -54,6 +54,7 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.SubrangeTypeRef: lambda n: [n.base, n.lo, n.hi],
     A.EnumTypeRef: lambda n: flat([v for _, v, _ in n.members] + [n.base]),
     A.StructTypeRef: lambda n: list(n.fields),
+    A.RefTypeRef: lambda n: [n.target],
     # expressions
     A.Literal: lambda n: [],
     A.Name: lambda n: [],
@@ -83,7 +84,7 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.Jump: lambda n: flat([n.cond]),
     # declarations
     A.VarDecl: lambda n: [n.type] + flat([n.init]),
-    A.Pou: lambda n: flat([*n.decls, n.return_type]) + n.body,
+    A.Pou: lambda n: flat([*n.decls, n.return_type]) + n.body + list(n.methods),
     # a body the lowering has not translated yet: front-end data (IL instructions, network
     # elements), not AST nodes; the lowering empties Pou.pending before any pass walks a tree
     A.PendingBody: lambda n: [],

@@ -30,7 +30,7 @@ from ..lang.check.symbols import instance_label
 from ..lang.limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
 from ..names import split_outside_brackets
 from . import natives
-from .rt import HELPERS, AssertFailure, Budget, Fault, format_value
+from .rt import HELPERS, AssertFailure, Budget, Fault, fb_exit_all, format_value
 
 _PATH_RE = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
 
@@ -250,7 +250,8 @@ class Plc:
         self.image_out = bytearray(self.image_size)
         self.memory = bytearray(self.image_size)
         ns.update(_CTX=self.ctx, _B=self.budget, _I=self.image_in, _Q=self.image_out,
-                  _M=self.memory, __name__="plclab_program")
+                  _M=self.memory, __name__="plclab_program",
+                  _INIT_RETAINS=not getattr(self, "_warm", False))  # FB_init (ADR 0021)
         exec(self.compiled.code, ns)
         ns["_G"] = ns["_Globals"]()
         ns["_P"] = ns["_Programs"]()
@@ -258,6 +259,9 @@ class Plc:
 
     def cold_restart(self) -> None:
         """All variables back to their initial values, clock to zero (a cold restart)."""
+        old = getattr(self, "ns", None)
+        if old is not None and "_P" in old:  # the old instances go: FB_exit (ADR 0021)
+            self._guard(lambda: fb_exit_all([old["_G"], old["_P"]]))
         self.ns = self._guard(self._new_namespace)
         self._bind()
         self.state = "RUN"
@@ -270,7 +274,11 @@ class Plc:
             keep[path] = var.get()
         now_ns = self.ctx.now_ns
         mem = bytes(self.memory)
-        self.cold_restart()
+        self._warm = True  # FB_init sees bInitRetains = FALSE
+        try:
+            self.cold_restart()
+        finally:
+            self._warm = False
         self.ctx.now_ns = now_ns
         self.ctx.now = now_ns // 1_000_000
         self.memory[:] = mem

@@ -71,6 +71,85 @@ def _oob(i: int, lo: int, hi: int, where: int):
     raise Fault("PLC2002", f"array index {i} is outside the bounds {lo}..{hi}", where)
 
 
+def _iref(obj, method: str, where: int):
+    """The instance an interface variable refers to, for a call of ``method`` (ADR 0021)."""
+    if obj is None:
+        raise Fault("PLC9110", f"call of {method} through an interface variable that refers to "
+                    "no instance; assign an instance first (itf := inst;) or test it with "
+                    "__ISVALIDREF(itf) before the call", where)
+    return obj
+
+
+def _qi(obj, interface: str):
+    """``obj`` if its block implements ``interface`` (``__QUERYINTERFACE``), else None."""
+    return obj if obj is not None and interface in getattr(obj, "_ITF", ()) else None
+
+
+_INIT_RETAINS = True  # FB_init's bInitRetains: the runtime sets FALSE for a warm restart
+
+
+def fb_exit_all(roots) -> None:
+    """FB_exit(bInCopyCode := FALSE) of every instance under ``roots`` (the program and global
+    instances), each before the instances it contains (ADR 0021)."""
+    seen: set[int] = set()
+    stack = list(reversed(list(roots)))
+    while stack:
+        obj = stack.pop()
+        if id(obj) in seen or obj is None or isinstance(obj, bool | int | float | str | bytes):
+            continue
+        seen.add(id(obj))
+        if isinstance(obj, list):
+            stack.extend(reversed(obj))
+            continue
+        exit_ = getattr(obj, "M_FB_EXIT", None)
+        if exit_ is not None:
+            exit_(False)
+        slots = getattr(type(obj), "__slots__", ())
+        stack.extend(reversed([getattr(obj, n, None) for n in slots]))
+
+
+class _RefAttr:
+    """A reference (REF_TO, POINTER TO) to the attribute ``key`` of ``obj`` (ADR 0021)."""
+
+    __slots__ = ("obj", "key")
+
+    def __init__(self, obj, key) -> None:
+        self.obj, self.key = obj, key
+
+    def get(self):
+        return getattr(self.obj, self.key)
+
+    def set(self, v) -> None:
+        setattr(self.obj, self.key, v)
+
+    def __eq__(self, other) -> bool:
+        return type(other) is type(self) and other.obj is self.obj and other.key == self.key
+
+    def __hash__(self) -> int:
+        return hash((id(self.obj), self.key))
+
+
+class _RefItem(_RefAttr):
+    """A reference to the element ``key`` of the list ``obj`` (an ARRAY element)."""
+
+    __slots__ = ()
+
+    def get(self):
+        return self.obj[self.key]
+
+    def set(self, v) -> None:
+        self.obj[self.key] = v
+
+
+def _deref(ref, where: int):
+    """``ref`` for r^, or the fault PLC9111 when it is NULL."""
+    if ref is None:
+        raise Fault("PLC9111", "dereference of a NULL reference (r^ where r refers to no "
+                    "variable); assign r := REF(x) first, or test __ISVALIDREF(r) or "
+                    "r <> NULL before", where)
+    return ref
+
+
 def _wd(where: int):
     raise Fault("PLC2003", "watchdog: the scan did not finish within its budget; this loop "
                 "runs too long or never ends (inputs do not change during a scan, so waiting "
@@ -544,6 +623,12 @@ def format_value(v, kind: str) -> str:
         return fmt_real(v, False)
     if isinstance(v, str):
         return "'" + v.replace("$", "$$").replace("'", "$'").replace("\n", "$N") + "'"
+    if kind in ("interface", "ref"):  # ADR 0021: what it refers to, not a Python repr
+        if v is None:
+            return "NULL"
+        if isinstance(v, _RefAttr):
+            return f"REF(.{v.key})" if isinstance(v.key, str) else f"REF([{v.key}])"
+        return f"REF({type(v).__name__[2:]} instance)"
     return str(v)
 
 

@@ -24,15 +24,17 @@ import tokenize
 
 from plclab.runtime.rt import HELPERS
 
-MANGLED = re.compile(r"^(?:[FPSE]|v)_[A-Z0-9_]+$")
+MANGLED = re.compile(r"^(?:[FPSEM]|v)_[A-Z0-9_]+$")  # M_: methods (ADR 0021)
 UPPER = re.compile(r"^[A-Z0-9_]+$")
 TEMPS = re.compile(r"^_(?:r|c|f|t|test_)\d+$")
 RUNTIME_NAMES = {"_B", "_CTX", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc", "n", "self",
                  "__slots__", "_Globals", "_Programs", "_sync_in", "_sync_out", "__init__",
-                 "_body", "_copy", "_math"}
+                 "_body", "_copy", "_math",
+                 "_ITF", "_INIT_RETAINS"}  # ADR 0021: a block's interfaces, FB_init's flag
 BUILTINS = {"abs", "float", "int", "len", "list", "max", "min", "range", "bool", "str", "round"}
 METHODS = {"__new__", "_body", "_copy", "advance_ns", "from_bytes", "to_bytes", "left", "start",
-           "step", "now", "now_ns", "first_scan", "scan_count", "limit"}
+           "step", "now", "now_ns", "first_scan", "scan_count", "limit",
+           "get", "set"}  # get/set: a reference's target (ADR 0021)
 FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "compile",
                    "globals", "locals", "vars", "breakpoint", "input", "delattr"}
 

@@ -40,6 +40,9 @@ class Calls(Pass):
             local = self.cx.exprs.lookup(fname)
             if isinstance(local, VarSym) and local.decl.section == "RETURN":
                 local = None  # F(...) inside F is a (recursive) call, not the result variable
+            if local is None and (fname.startswith("__") or fname in ("REF", "ADR")):
+                # __ISVALIDREF, __QUERYINTERFACE, REF(), ADR() (ADR 0021)
+                return self.cx.oop.reference_operator(c, fname)
             if local is None:
                 pou = self.table.pous.get(fname)
                 if pou is not None and pou.kind == "FUNCTION":
@@ -64,6 +67,10 @@ class Calls(Pass):
                          close_hint(fname, cands), c.loc)
                 self._args_only(c)
                 return T.ANY
+        if isinstance(f, A.Member):  # inst.M(...): a METHOD (ADR 0021)
+            mt = self.cx.oop.method_call(c, statement)
+            if mt is not None:
+                return mt
         ft = T.resolve(self.cx.exprs.expr(f, None))
         if isinstance(ft, T.FBType):
             if ft.pou.kind == "FUNCTION_BLOCK":

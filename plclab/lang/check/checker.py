@@ -28,6 +28,7 @@ from .consts import Constants
 from .context import CheckContext
 from .declarations import Declarations
 from .exprs import Expressions
+from .oop import ObjectChecks
 from .program import ProgramChecks
 from .stmts import Statements
 from .symbols import SymbolTable
@@ -66,6 +67,7 @@ class Checker:
         cx.calls = Calls(cx)
         cx.stmts = Statements(cx)
         cx.program = ProgramChecks(cx)
+        cx.oop = ObjectChecks(cx)
         self.config_vars = ConfigVars(cx)
 
     def run(self) -> Project:
@@ -76,6 +78,8 @@ class Checker:
         cx = self.cx
         table = cx.table = SymbolTable.collect(self.files, cx.report, with_globals=False)
         cx.decls.run()
+        cx.oop.declarations()
+        cx.oop.bodies()  # methods first: they use their block's variables (PLC0200)
         for p in table.pous.values():
             cx.stmts.check_pou_body(p)
         cx.program.check_recursion()

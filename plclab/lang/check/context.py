@@ -22,6 +22,7 @@ if TYPE_CHECKING:  # the passes, created by checker.Checker
     from .consts import Constants
     from .declarations import Declarations
     from .exprs import Expressions
+    from .oop import ObjectChecks
     from .program import ProgramChecks
     from .stmts import Statements
 
@@ -49,6 +50,7 @@ class CheckContext:
     calls: Calls = field(init=False)
     stmts: Statements = field(init=False)
     program: ProgramChecks = field(init=False)
+    oop: ObjectChecks = field(init=False)
 
     def dialect(self, loc: Location | None) -> Dialect:
         """The dialect of the file ``loc`` is in (ADR 0017)."""

@@ -40,7 +40,7 @@ class Declarations(Pass):
                 self.init_value(td.init, table.types[name], td.loc)
         for p in table.pous.values():
             if p.kind != "FUNCTION":
-                table.types.setdefault(p.name, T.FBType(p.name, p))
+                table.types.setdefault(p.name, T.block_type(p.name, p))
         for d in table.global_decls:
             self.decl_type(d)
             table.declare_global(d, self.cx.report)
@@ -77,7 +77,7 @@ class Declarations(Pass):
             self.table.types.setdefault(name, ty)
             return self.table.types[name]
         if name in self.table.pous and self.table.pous[name].kind != "FUNCTION":
-            t2 = self.table.types.setdefault(name, T.FBType(name, self.table.pous[name]))
+            t2 = self.table.types.setdefault(name, T.block_type(name, self.table.pous[name]))
             return t2
         cands = list(T.ELEMENTARY) + list(self.table.type_decls) + [
             k for k, v in self.table.pous.items() if v.kind != "FUNCTION"] + ["STRING", "WSTRING"]
@@ -87,6 +87,8 @@ class Declarations(Pass):
     def type_ref(self, r: A.TypeRef, name: str | None = None) -> T.Type:
         if isinstance(r, A.NamedTypeRef):
             return self.named_type(r.name, r.loc)
+        if isinstance(r, A.RefTypeRef):  # REF_TO, POINTER TO (ADR 0021)
+            return self.cx.oop.ref_type(r)
         if isinstance(r, A.StringTypeRef):
             n = 80
             if r.length is not None:

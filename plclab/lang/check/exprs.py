@@ -32,6 +32,12 @@ class Expressions(Pass, NodeVisitor):
         if src is T.ANY or dst is T.ANY:
             return
         rs, rd = T.resolve(src), T.resolve(dst)
+        if isinstance(rd, T.InterfaceType):  # an instance or interface reference (ADR 0021)
+            self.cx.oop.interface_assign(rs, rd, loc)
+            return
+        if isinstance(rd, T.RefType) or isinstance(rs, T.RefType):  # REF_TO (ADR 0021)
+            self.cx.oop.ref_assign(rs, rd, loc)
+            return
         if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
                 and e.value in (0, 1):
             e.ty = T.BOOL  # 0 and 1 are BOOL literals (IEC 61131-3 ed.2 2.2.1, ed.3 Table 5)
@@ -253,6 +259,8 @@ class Expressions(Pass, NodeVisitor):
             self.err("PLC0100", f"{e.name} is a function block type; declare an instance "
                      f"(inst : {e.name};) and use the instance", e.loc)
             return T.ANY
+        if e.name == "NULL":  # the reference to nothing (IEC ed.3, ADR 0021)
+            return T.RefType(T.ANY)
         cands = list(self.cx.scope) + list(self.table.globals) + list(self.table.enum_members)
         rexp = T.resolve(expected) if expected is not None else None
         if isinstance(rexp, T.EnumType):  # l : LEVEL := PURPLE
@@ -286,6 +294,8 @@ class Expressions(Pass, NodeVisitor):
         return {"X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[size]
 
     def member(self, e: A.Member, write: bool) -> T.Type:
+        if e.field_name == "^":  # r^ (ADR 0021)
+            return self.cx.oop.deref(e)
         qualified = self.qualified_enum(e, write)
         if qualified is not None:
             return qualified
@@ -310,17 +320,25 @@ class Expressions(Pass, NodeVisitor):
                          close_hint(f, ot.fields), e.loc)
                 return T.ANY
             return d.ty
+        if isinstance(ot, T.FBType | T.InterfaceType):  # a PROPERTY (ADR 0021)
+            pt = self.cx.oop.property_access(e, ot.pou, write)
+            if pt is not None:
+                return pt
         if isinstance(ot, T.FBType):
             pou = ot.pou
             members = self.table.members(pou)
             d = members.get(f)
+            if d is None and self.cx.oop.method_without_call(e, pou):
+                return T.ANY
             if d is None:
                 names = list(members)
                 self.err("PLC0116", f"{pou.kind.replace('_', ' ').lower()} {pou.name} has no "
                          f"member {f}" + close_hint(f, names), e.loc)
                 return T.ANY
             e.sym = d
-            if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test:
+            inside = isinstance(e.obj, A.Name) and isinstance(e.obj.sym, VarSym) and \
+                e.obj.sym.storage in ("this", "super")  # THIS^.x, SUPER^.x (ADR 0021)
+            if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test and not inside:
                 if d.section in ("VAR", "VAR_TEMP"):
                     self.err("PLC0121", f"{f} is internal to {pou.name}; only its inputs and "
                              "outputs are visible outside", e.loc)
@@ -440,6 +458,9 @@ class Expressions(Pass, NodeVisitor):
                     isinstance(e.left.sym, EnumSym):
                 lt = self.expr(e.left, rt)
         a, b = T.base_of(lt), T.base_of(rt)
+        if isinstance(a, T.RefType | T.InterfaceType) or isinstance(b, T.RefType |
+                                                                     T.InterfaceType):
+            return self.cx.oop.ref_compare(e, a, b)
         if a is T.ANY or b is T.ANY:
             return T.BOOL if op in ("=", "<>", "<", "<=", ">", ">=") else T.ANY
         if op in ("AND", "OR", "XOR"):

@@ -227,8 +227,32 @@ class SymbolTable:
         return self.pous.get(name)
 
     def bases(self, pou: A.Pou) -> list[A.Pou]:
-        """The blocks ``pou`` inherits from, nearest first (the hook for EXTENDS: none today)."""
-        return []
+        """The blocks ``pou`` inherits from (FUNCTION_BLOCK ... EXTENDS, ADR 0021), nearest
+        first; an unknown base or a cycle ends the chain (:mod:`.oop` reports them)."""
+        out: list[A.Pou] = []
+        p = pou
+        while p.kind == "FUNCTION_BLOCK" and p.extends:
+            b = self.pous.get(p.extends[0])
+            if b is None or b.kind != "FUNCTION_BLOCK" or b is pou or b in out:
+                break
+            out.append(b)
+            p = b
+        return out
+
+    def interfaces(self, p: A.Pou) -> list[A.Pou]:
+        """Every INTERFACE ``p`` (a block or an interface) is, through IMPLEMENTS, EXTENDS of
+        interfaces and its base blocks; ``p`` itself first when it is an interface."""
+        out: list[A.Pou] = []
+        todo = [p] if p.kind == "INTERFACE" else []
+        for b in [p, *self.bases(p)] if p.kind == "FUNCTION_BLOCK" else []:
+            todo += [i for n in b.implements if (i := self.pous.get(n)) is not None]
+        while todo:
+            i = todo.pop(0)
+            if i.kind != "INTERFACE" or i in out:
+                continue
+            out.append(i)
+            todo += [b for n in i.extends if (b := self.pous.get(n)) is not None]
+        return out
 
     def members(self, owner: A.Pou | T.Type) -> dict[str, A.VarDecl]:
         """The declared members of a POU, a block or structure type, by name: inherited ones
@@ -253,6 +277,8 @@ class SymbolTable:
         return sc
 
     def _build_scope(self, p: A.Pou) -> Scope:
+        if p.kind == "METHOD" and p.owner is not None:
+            return self._method_scope(p, p.owner)
         names: dict[str, Any] = {}
         storage_local = p.kind == "FUNCTION"
         for d in [d for b in reversed(self.bases(p)) for d in b.decls] + p.decls:
@@ -272,7 +298,49 @@ class SymbolTable:
                     rd.ty = T.VOID
                 p.return_decl = rd
             names[p.name] = VarSym(p.return_decl, "local", p)
+        if p.kind == "FUNCTION_BLOCK":
+            self._this_super(names, p)
         return Scope(names, self.globals)
+
+    # -- object-oriented extensions (ADR 0021) ------------------------------------------------
+    def _method_scope(self, m: A.Pou, owner: A.Pou) -> Scope:
+        """A METHOD sees its block's variables (inherited ones included) as instance data,
+        its VAR_INST as hidden instance variables ``METHOD__NAME`` of the block, its own
+        parameters and locals, its result, ``THIS^`` and ``SUPER^``."""
+        names: dict[str, Any] = dict(self.scope(owner).names)
+        names = {k: v for k, v in names.items()
+                 if not (isinstance(v, VarSym) and v.storage == "local")}
+        owned = self.members(owner)
+        for d in m.decls:
+            if d.section == "VAR_INST":
+                inst = owned.get(A.method_inst_name(owner.name, m.name, d.name))
+                names[d.name] = VarSym(inst if inst is not None else d, "self", owner)
+            else:
+                names[d.name] = VarSym(d, "local", m)
+        if m.return_decl is None:
+            rd = A.VarDecl(m.loc, m.name, m.return_type or A.NamedTypeRef(m.loc, "VOID"),
+                           section="RETURN", spelling=m.spelling)
+            rd.used = True
+            if m.return_type is None:
+                rd.ty = T.VOID
+            m.return_decl = rd
+        names[m.name] = VarSym(m.return_decl, "local", m)
+        if m.name.endswith("__GET"):  # a PROPERTY's GET: its result has the property's name
+            names[m.name[:-5]] = names[m.name]
+        return Scope(names, self.globals)
+
+    def _this_super(self, names: dict[str, Any], fb: A.Pou) -> None:
+        """``THIS`` (the instance, as its own block type) and ``SUPER`` (as its base type; ANY
+        without a base, which :mod:`.oop` reports)."""
+        for name, storage, of in (("THIS", "this", fb), ("SUPER", "super",
+                                                          (self.bases(fb) or [None])[0])):
+            if name in names:  # a variable of that name hides it
+                continue
+            d = A.VarDecl(fb.loc, name, A.NamedTypeRef(fb.loc, of.name if of else "ANY"),
+                          section="VAR", spelling=name)
+            d.used = True
+            d.ty = self.types.setdefault(of.name, T.FBType(of.name, of)) if of else T.ANY
+            names[name] = VarSym(d, storage, fb)
 
     def set_programs(self, programs: list[tuple[str, A.Pou, str | None]]) -> None:
         """The program instances, as the checker validated them against the configuration."""

@@ -413,6 +413,14 @@ class _TextLadder:
                 e = self.new_elem("cmp", r, c0, c1, text)
                 e.type_name, e.args = tname, [A.Arg(a.loc, None, a), A.Arg(b.loc, None, b)]
                 return e
+            method = None
+            if arrow is not None and len(toks) > 2 and toks[1].kind == ".":
+                # [inst.Method args -> result]: a METHOD called like a function (ADR 0021)
+                q = sub(toks[:arrow])
+                method = q.postfix(q.primary())
+                toks = [toks[0]] + toks[q.i:]
+                arrow = next(k for k, t in enumerate(toks) if t.kind == "-" and
+                             toks[k + 1].kind == ">")
             if arrow is not None:
                 q = sub(toks[1:arrow])
                 args = []
@@ -428,6 +436,8 @@ class _TextLadder:
                     q.fail_expected("the end of the box after the result variable")
                 e = self.new_elem("func", r, c0, c1, text)
                 e.type_name, e.args, e.targets = tname, args, targets
+                if method is not None:
+                    e.type_name, e.instance = "", method
                 return e
             q = sub(toks[1:])
             if q.at("EOF"):

@@ -29,13 +29,13 @@ from ..library import STDLIB_FILES, stdlib_filename, stdlib_text
 from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
 from ..lower import has_pending, lower_pending
 from ..parsing import ParseAbort
+from . import oop
 from .il_lines import is_il_body, parse_il_body
 from .sfc_text import is_sfc_body, parse_sfc_body
 
 # words worth suggesting in "did you mean": keywords plus those of later language extensions
 SUGGEST = KEYWORDS | {"EXTENDS", "IMPLEMENTS", "METHOD", "END_METHOD", "INTERFACE",
                       "END_INTERFACE", "PROPERTY", "END_PROPERTY", "THIS", "SUPER"}
-_OOP_WORDS = {"EXTENDS", "IMPLEMENTS"}
 
 _END_OF = {
     "IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE",
@@ -216,6 +216,10 @@ class Parser:
                     out.config_vars.extend(self.config_section())
                 elif k == "TEST":
                     out.tests.append(self.test_block())
+                elif oop.word(self, "INTERFACE"):  # object-oriented extensions (ADR 0021)
+                    out.pous.append(oop.interface(self))
+                elif oop.word(self, "CLASS") and self.peek().kind == "IDENT":
+                    oop.refuse_class(self)
                 else:
                     t = self.tok
                     close = (suggest(t.value, _POU_START, n=1, cutoff=0.7)
@@ -249,24 +253,14 @@ class Parser:
     def pou(self) -> A.Pou:
         head = self.advance()
         kind = head.kind
+        mods = oop.modifiers(self) if kind == "FUNCTION_BLOCK" else []
         name_tok = self.expect("IDENT", f"a name for the {kind}")
         ret = None
         if kind == "FUNCTION":
             if self.accept(":"):
                 ret = self.type_ref()
         end_kw = _END_OF[kind]
-        if kind == "FUNCTION_BLOCK" and self.at("IDENT"):
-            t = self.tok
-            close = suggest(t.value, _OOP_WORDS, n=1, cutoff=0.7)
-            if t.value in _OOP_WORDS:
-                self.error("PLC0010", f"{t.text} (object-oriented extension) is not supported "
-                           "yet; write a plain FUNCTION_BLOCK")
-            elif close:
-                self.error("PLC0011", f"'{t.text}' is not a keyword; did you mean {close[0]}?")
-            if t.value in _OOP_WORDS or close:
-                self.advance()
-                while self.at("IDENT") or self.at(","):
-                    self.advance()
+        extends, implements = oop.header(self, kind) if kind == "FUNCTION_BLOCK" else ([], [])
         decls: list[A.VarDecl] = []
         while self.tok.kind in _VAR_SECTIONS:
             start = self.i
@@ -276,13 +270,19 @@ class Parser:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
                 self.ensure_progress(start)
+        pou = A.Pou(self.loc(head), kind, name_tok.value, decls, [], ret, name_tok.text,
+                    native=self._native_for(head.line), extends=extends,
+                    implements=implements, modifiers=mods)
+        if kind == "FUNCTION_BLOCK":  # METHODs before the body (ADR 0021)
+            oop.members(self, pou, end_kw)
         body, language, pending = self.pou_body(end_kw)
+        if kind == "FUNCTION_BLOCK":  # ... or after it
+            oop.members(self, pou, end_kw)
         edges, self.edge_inputs = self.edge_inputs, []
         end_loc = self.loc()
         if not self.accept(end_kw):
             self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
-        pou = A.Pou(self.loc(head), kind, name_tok.value, decls, body, ret, name_tok.text,
-                    language=language, native=self._native_for(head.line), end_loc=end_loc)
+        pou.body, pou.language, pou.end_loc = body, language, end_loc
         if pending is not None:  # IL: lowered once every file is parsed (types are known)
             pou.pending.append(pending)
         if edges:  # R_EDGE / F_EDGE inputs, lowered after the body they qualify
@@ -633,6 +633,9 @@ class Parser:
     def _type_ref(self, allow_decl: bool = True) -> A.TypeRef:
         t = self.tok
         loc = self.loc()
+        ref = oop.ref_type(self)  # REF_TO T, POINTER TO T, REFERENCE TO T (ADR 0021)
+        if ref is not None:
+            return ref
         if t.kind in ("STRING", "WSTRING"):
             self.advance()
             length = None
@@ -713,7 +716,7 @@ class Parser:
             out: list[A.Stmt] = []
             stop = stops | _STMT_END
             while self.tok.kind not in stop:
-                if self.tok.kind in _POU_START and self.tok.kind != "TYPE":
+                if self.tok.kind in _POU_START and self.tok.kind != "TYPE" or oop.ends_body(self):
                     break
                 self._guarded_statement(out, stop)
             return out
@@ -786,6 +789,10 @@ class Parser:
                 raise ParseAbort
             if self.at("=="):
                 self.error("PLC0012", "'==' is not an ST operator; assign with ':='")
+                raise ParseAbort
+            if self.at(":") and isinstance(target, A.Name):  # HasError: State <> OK;
+                self.error("PLC0231", f"':' declares, it does not assign; write "
+                           f"{t.text} := ...; (with ':=')")
                 raise ParseAbort
             if t.kind == "IDENT" and isinstance(target, A.Name):
                 close = suggest(t.value, SUGGEST, n=1, cutoff=0.75)
@@ -1025,6 +1032,9 @@ class Parser:
             self.advance()
             return A.DirectAddr(loc, self.address(t) if not t.value.endswith("*") else t.value)
         if k == "IDENT":
+            this = oop.this_or_super(self)  # THIS^ / SUPER^ (ADR 0021)
+            if this is not None:
+                return this
             self.advance()
             return A.Name(loc, t.value, t.text)
         if k == "(":
@@ -1078,6 +1088,8 @@ class Parser:
             elif self.at("("):
                 p = self.advance()
                 e = A.Call(e.loc if e.loc else self.loc(p), e, self.call_args())
+            elif self.at("^"):  # r^: the variable a reference points to (ADR 0021)
+                e = A.Member(self.loc(self.advance()), e, "^", "^")
             else:
                 return e
 

@@ -253,6 +253,8 @@ class _NetLowering:
             for v in vals[1:]:
                 out = A.Binary(e.loc, e.type_name, out, v)
             return out
+        if e.instance is not None and not e.type_name:  # a METHOD box (ADR 0021)
+            return A.Call(e.loc, copy.deepcopy(e.instance), args)
         return A.Call(e.loc, A.Name(e.loc, e.type_name), args)
 
     def materialize(self, ref: Ref, value: A.Expr, loc: Location) -> A.Expr:
@@ -365,7 +367,7 @@ class _NetLowering:
         en = e.inputs.get("EN", e.inputs.get("", []) if e.targets else None)
         if not e.targets:
             return  # an XML function: its value is used by whatever it feeds
-        if not self.types.is_function(e.type_name):
+        if e.type_name and not self.types.is_function(e.type_name):
             self.err("PLC0165", f"{e.type_name} in {e.text} is not a function; use MOVE, ADD, "
                      "SUB, MUL, DIV, a conversion such as INT_TO_REAL, or your own FUNCTION",
                      e.loc)
