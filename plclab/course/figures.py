@@ -98,7 +98,9 @@ def _program_figure(source: Path, spec: dict[str, Any], path: Path) -> str:
         if plc.format(s).upper().startswith(("T#", "TIME#")):  # TIME is whole ms in the PLC
             vals, kind, unit = [v / 1000 for v in vals], "real", "s"
         series.append(Series(s, times, vals, kind, unit))
-    timing_diagram(series, path, title=spec.get("title", ""), width=float(spec.get("width", 8)))
+    # the whole run, not only up to the last change (digital rows are reduced to their changes)
+    timing_diagram(series, path, t0=0.0, t1=times[-1] if times else None,
+                   title=spec.get("title", ""), width=float(spec.get("width", 8)))
     return f"{len(signals)} signals over {len(times)} scans"
 
 
