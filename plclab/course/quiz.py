@@ -7,6 +7,8 @@ Four kinds of item (the keys of each are in ``course/README.md``):
   plus ``show``) that plclab evaluates, so the key is recomputed, never trusted.
 * ``output``  - "what does this program output": ``program`` is run (``set`` inputs, ``scans``
   scans or ``run`` virtual time) and the value of ``show`` is the answer.
+  ``filename`` (``quiz.st`` by default; ``answer.st`` for ``write``) chooses the language of
+  ``program``, ``solution`` and the student's answer: ``quiz.ld``, ``quiz.il``, ``answer.ld``.
 * ``write``   - "write a program": the answer is a program, graded by a mini-scenario of
   ``step`` tables (``set``, ``scans`` or ``run``, ``expect``); the key is a ``solution`` that
   must pass it and ``wrong`` programs that must fail it.
@@ -93,7 +95,7 @@ def _drive(plc: Any, step: dict[str, Any]) -> None:
 
 
 def _ran(data: dict[str, Any]) -> Any:
-    plc = _plc(data["program"], cycle=data.get("cycle", "10ms"))
+    plc = _plc(data["program"], data.get("filename", "quiz.st"), cycle=data.get("cycle", "10ms"))
     _drive(plc, data)
     return plc
 
