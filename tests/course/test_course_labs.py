@@ -49,3 +49,16 @@ def test_a_bad_level_or_chapter_list_is_a_lab_error(tmp_path, bad):
     with pytest.raises(PlcError) as e:
         load_lab(dst)
     assert e.value.code == "PLC5004" and key in str(e.value)
+
+
+def test_every_lab_readme_links_its_chapters_not_source_lines():
+    import re
+
+    slugs = {c.number: c.slug for c in chapters()}
+    for path in list_labs():
+        lab = load_lab(path)
+        readme = (path / "README.md").read_text(encoding="utf-8")
+        for n in lab.chapters:
+            assert f"../../course/{slugs[n]}/chapter.md" in readme, f"{lab.id}: chapter {n}"
+        student_part = readme.split("*For instructors:")[0]
+        assert not re.search(r"\blines? \d{3,}", student_part), f"{lab.id} cites source lines"
