@@ -14,7 +14,9 @@ in step with ``lab.toml``), the program cell starts with the lab's starter file.
 4. a short run of one scenario with the lab's wiring (``plclab.sim.run``) and its timing
    diagram;
 5. the lab's visible checks (``plclab.grade.check``): the feedback and the score;
-6. questions to think about.
+6. questions to think about;
+7. the quiz of the course chapter that teaches the lab (``plclab.course.quiz.quiz_cell``: the
+   answers are a dict in the cell, so the notebook runs headless too).
 
 The notebooks are committed as generated, without outputs. Nothing here runs a simulation.
 """
@@ -269,11 +271,34 @@ elif trace is not None:
 '''
 
 
+QUIZ_CHAPTER = {"motor-start-stop": 3, "tank-two-position": 2, "relay-thermostat": 12,
+                "bottle-reject": 6, "heater-pid": 12, "ventilation-fans": 10,
+                "pump-station": 10, "press-safety": 17}
+"""The chapter whose quiz ends a lab's notebook (default: the last chapter its lab.toml names)."""
+
+QUIZ = """\
+from plclab.course.quiz import quiz_cell
+
+answers = {{}}   # your answers by question number, e.g. {{1: "2", 3: "16"}}; then run the cell
+quiz_cell({chapter}, answers)
+"""
+
+
+def quiz_chapter(lab_id: str) -> int | None:
+    if lab_id in QUIZ_CHAPTER:
+        return QUIZ_CHAPTER[lab_id]
+    data = tomllib.loads((LABS / lab_id / "lab.toml").read_text(encoding="utf-8"))
+    return (data.get("chapters") or [None])[-1]
+
+
 def build_notebook(lab_id: str) -> nbformat.NotebookNode:
     """The notebook of one lab."""
     lab_dir = LABS / lab_id
     cfg = lab_config(lab_id)
-    title, intro, sec = readme_sections((lab_dir / "README.md").read_text(encoding="utf-8"))
+    readme = (lab_dir / "README.md").read_text(encoding="utf-8")
+    # the README's links to the course are relative to labs/ID/; a notebook sits in notebooks/
+    readme = readme.replace("](../../course/", "](../course/")
+    title, intro, sec = readme_sections(readme)
     cells = []
     head = [f"# {title}", "", f"*Lab `{lab_id}` — a plclab notebook.* Write your program in the "
             "cell marked **Your program**, run the notebook from the top (Run All), read the "
@@ -323,6 +348,12 @@ def build_notebook(lab_id: str) -> nbformat.NotebookNode:
         cells.append(new_markdown_cell("## What is graded\n\n" + sec["Grading"]))
     qs = "\n".join(f"{i}. {q}" for i, q in enumerate(cfg["questions"], 1))
     cells.append(new_markdown_cell("## Questions\n\n" + qs))
+    chapter = quiz_chapter(lab_id)
+    if chapter is not None:
+        cells.append(new_markdown_cell(
+            f"## Quiz\n\nThe quiz of chapter {chapter} of the course "
+            f"(`plclab quiz {chapter}` in a terminal). Each answer gets its feedback."))
+        cells.append(new_code_cell(QUIZ.format(chapter=chapter)))
     nb = new_notebook(cells=cells)
     nb.metadata["kernelspec"] = {"display_name": "Python 3", "language": "python",
                                  "name": "python3"}

@@ -27,12 +27,13 @@ class BlockOutcome:
 
 def _produced_codes(text: str, filename: str, scans: int) -> tuple[tuple[str, ...], str]:
     """(codes produced, summary): compile errors, else failed TESTs' or a scan's fault code,
-    else the warnings. An empty tuple means the program is clean."""
+    else the warnings (the beginner lint included). An empty tuple means the program is clean."""
     from ..project import check_sources, compile_sources
     from ..runtime.plc import Plc
     from ..testing import run_compiled_tests
 
-    project, diags = check_sources([(text, filename)])
+    # with the beginner lint (PLC0210..), so that a chapter can show a lint warning as a mistake
+    project, diags = check_sources([(text, filename)], lint=True)
     errors = [d for d in diags if d.severity == "error"]
     if project is None:
         return tuple(d.code for d in errors), str(errors[0])

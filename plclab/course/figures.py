@@ -13,6 +13,8 @@ Each ``[[figure]]`` of a chapter's ``figures.toml`` names a ``file`` (``.svg`` o
   ``signals``, optional ``scenario`` (a list of actions as in a lab scenario) and
   ``plant_params``.
 * ``ladder``     - a ``.ld`` example rendered as a ladder diagram (SVG only).
+* ``model``      - closed-loop step responses of controllers on a linear plant model, computed
+  with python-control (:mod:`plclab.course.models`).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from typing import Any
 
 from .model import Chapter, course_error
 
-KINDS = ("block", "scan_cycle", "program", "plant", "ladder")
+KINDS = ("block", "scan_cycle", "program", "plant", "ladder", "model")
 
 
 def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, str]:
@@ -47,6 +49,10 @@ def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, s
         _, reaction = scan_cycle_diagram(path, cycle_ms=float(spec.get("cycle_ms", 10.0)),
                                          input_at_ms=float(spec.get("input_at_ms", 13.0)))
         return path, f"reaction {reaction:.1f} ms"
+    if kind == "model":
+        from .models import model_figure
+
+        return path, model_figure(spec, path)
     source = chapter.folder / "examples" / spec.get("program", spec.get("source", ""))
     if not source.is_file():
         raise course_error(f"{where}: no example {source.name} in examples/")
@@ -98,7 +104,9 @@ def _program_figure(source: Path, spec: dict[str, Any], path: Path) -> str:
         if plc.format(s).upper().startswith(("T#", "TIME#")):  # TIME is whole ms in the PLC
             vals, kind, unit = [v / 1000 for v in vals], "real", "s"
         series.append(Series(s, times, vals, kind, unit))
-    timing_diagram(series, path, title=spec.get("title", ""), width=float(spec.get("width", 8)))
+    # the whole run, not only up to the last change (digital rows are reduced to their changes)
+    timing_diagram(series, path, t0=0.0, t1=times[-1] if times else None,
+                   title=spec.get("title", ""), width=float(spec.get("width", 8)))
     return f"{len(signals)} signals over {len(times)} scans"
 
 

@@ -34,8 +34,11 @@ _LAB_REF = re.compile(r"\]\(\.\./\.\./labs/([\w-]+)/?[^)]*\)")
 
 
 def default_course_dir() -> Path:
-    """The ``course/`` folder of this checkout (beside the ``plclab`` package)."""
-    return Path(__file__).resolve().parent.parent.parent / "course"
+    """The ``course/`` folder: the student copy in an installed wheel (``plclab/courseware``),
+    else the one of this checkout (beside the ``plclab`` package); ADR 0019."""
+    from ..grade.courseware import courseware_root
+
+    return courseware_root() / "course"
 
 
 def course_error(message: str) -> PlcError:

@@ -7,11 +7,14 @@ Four kinds of item (the keys of each are in ``course/README.md``):
   plus ``show``) that plclab evaluates, so the key is recomputed, never trusted.
 * ``output``  - "what does this program output": ``program`` is run (``set`` inputs, ``scans``
   scans or ``run`` virtual time) and the value of ``show`` is the answer.
+  ``filename`` (``quiz.st`` by default; ``answer.st`` for ``write``) chooses the language of
+  ``program``, ``solution`` and the student's answer: ``quiz.ld``, ``quiz.il``, ``answer.ld``.
 * ``write``   - "write a program": the answer is a program, graded by a mini-scenario of
   ``step`` tables (``set``, ``scans`` or ``run``, ``expect``); the key is a ``solution`` that
   must pass it and ``wrong`` programs that must fail it.
 
-``check_quiz`` validates every key; ``ask`` runs a quiz in the terminal (or a notebook cell).
+``check_quiz`` validates every key; ``ask`` runs a quiz in the terminal, ``quiz_cell`` in a
+notebook cell (answers given as a dict, so the notebook also runs headless).
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import PlcError
-from .model import Chapter, course_error
+from .model import Chapter, course_error, find_chapter
 
 KINDS = ("choice", "numeric", "output", "write")
 _ITEM_KEYS = {
@@ -93,7 +96,7 @@ def _drive(plc: Any, step: dict[str, Any]) -> None:
 
 
 def _ran(data: dict[str, Any]) -> Any:
-    plc = _plc(data["program"], cycle=data.get("cycle", "10ms"))
+    plc = _plc(data["program"], data.get("filename", "quiz.st"), cycle=data.get("cycle", "10ms"))
     _drive(plc, data)
     return plc
 
@@ -257,6 +260,19 @@ def check_quiz(chapter: Chapter) -> tuple[int, list[str]]:
 
 # -------------------------------------------------------------------------------- the terminal
 
+def _show(n: int, it: Item, print_fn: Callable[[str], None]) -> None:
+    print_fn(f"{n}. {it.question}")
+    if it.kind == "choice":
+        for k, c in enumerate(it.data["choices"], 1):
+            print_fn(f"   {k}) {c}")
+    elif it.kind == "output":
+        print_fn(_indent(it.data["program"]))
+    elif it.kind == "write":
+        if "starter" in it.data:
+            print_fn("   Starter:\n" + _indent(it.data["starter"]))
+        print_fn("   Answer with the path of your program file (or the program itself).")
+
+
 def ask(chapter: Chapter, input_fn: Callable[[str], str] = input,
         print_fn: Callable[[str], None] = print) -> tuple[int, int]:
     """Ask every item of a chapter's quiz; print feedback; return (right, total)."""
@@ -264,16 +280,7 @@ def ask(chapter: Chapter, input_fn: Callable[[str], str] = input,
     right = 0
     print_fn(f"Quiz: {chapter.title} ({len(its)} questions; an empty answer skips)\n")
     for n, it in enumerate(its, 1):
-        print_fn(f"{n}. {it.question}")
-        if it.kind == "choice":
-            for k, c in enumerate(it.data["choices"], 1):
-                print_fn(f"   {k}) {c}")
-        elif it.kind == "output":
-            print_fn(_indent(it.data["program"]))
-        elif it.kind == "write":
-            if "starter" in it.data:
-                print_fn("   Starter:\n" + _indent(it.data["starter"]))
-            print_fn("   Answer with the path of your program file.")
+        _show(n, it, print_fn)
         try:
             answer = input_fn("   your answer: ")
         except EOFError:
@@ -287,6 +294,40 @@ def ask(chapter: Chapter, input_fn: Callable[[str], str] = input,
         right += v.right
         print_fn(f"   {v.feedback}\n")
     print_fn(f"score: {right}/{len(its)}")
+    return right, len(its)
+
+
+def quiz_cell(chapter: Chapter | int | str, answers: dict[Any, Any] | None = None,
+              course_dir: str | None = None,
+              print_fn: Callable[[str], None] = print) -> tuple[int, int]:
+    """The quiz of a notebook cell: never reads stdin, so the notebook also runs headless.
+    ``answers`` maps a question's number (or its id) to the answer; the questions are printed,
+    each answered one with its feedback. Returns (right, total).
+
+    >>> from plclab.course.model import find_chapter
+    >>> right, total = quiz_cell(find_chapter(2), {1: "2"}, print_fn=lambda s: None)
+    >>> right, total >= 1
+    (1, True)
+    """
+    ch = chapter if isinstance(chapter, Chapter) else find_chapter(chapter, course_dir)
+    its = items(ch)
+    answers = answers or {}
+    right = answered = 0
+    print_fn(f"Quiz: chapter {ch.number}, {ch.title} ({len(its)} questions). Put your answers "
+             "in `answers` ({1: \"2\", ...}) and run the cell again.\n")
+    for n, it in enumerate(its, 1):
+        _show(n, it, print_fn)
+        a = answers.get(n, answers.get(it.id))
+        if a is None or not str(a).strip():
+            print_fn("   (not answered yet)\n")
+            continue
+        text = _read_program(str(a)) if it.kind == "write" else str(a)
+        v = grade(it, text)
+        right += v.right
+        answered += 1
+        print_fn(f"   your answer: {str(a).strip()[:60]}\n   {v.feedback}\n")
+    # not "score: n/m", which is the lab's score in the same notebook
+    print_fn(f"quiz: {right} right of {len(its)} ({answered} answered)")
     return right, len(its)
 
 

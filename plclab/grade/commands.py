@@ -165,22 +165,29 @@ def cmd_lab(ns: argparse.Namespace) -> int:
 
 
 def lab_list(ns: argparse.Namespace) -> int:
-    from .lab import list_labs, load_lab, repo_labs_dir
+    from .lab import LEVELS, list_labs, load_lab, repo_labs_dir
 
     own = repo_labs_dir().resolve()
-    rows = [("lab", "plant", "languages", "points", "title")]
+    head = ("lab", "level", "chapters", "plant", "languages", "points", "title")
+    labs, broken = [], []
     for p in list_labs(ns.labs):
         try:
-            lab = load_lab(p)
+            labs.append((load_lab(p), p))
         except Exception as e:  # noqa: BLE001 - show the broken lab, go on
-            rows.append((p.name, "?", "?", "?", f"(broken: {e})"))
-            continue
+            broken.append((p.name, "?", "", "?", "?", "?", f"(broken: {e})"))
+    # easiest first (labs without a level last), then by points: the path through the course
+    labs.sort(key=lambda lp: (lp[0].level or 99, lp[0].max_score, lp[0].id))
+    rows = [head]
+    for k, (lab, p) in enumerate(labs):
         where = "" if p.parent.resolve() == own else f"  [{p}]"
-        rows.append((lab.id, lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
-                     lab.title + where))
-    widths = [max(len(r[i]) for r in rows) for i in range(4)]
+        start = "  <- start here" if k == 0 and lab.level == 1 else ""
+        rows.append((lab.id, LEVELS.get(lab.level, "-"), ",".join(map(str, lab.chapters)),
+                     lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
+                     lab.title + where + start))
+    rows += broken
+    widths = [max(len(r[i]) for r in rows) for i in range(6)]
     for r in rows:
-        print("  ".join(c.ljust(w) for c, w in zip(r[:4], widths, strict=True)) + "  " + r[4])
+        print("  ".join(c.ljust(w) for c, w in zip(r[:6], widths, strict=True)) + "  " + r[6])
     return 0
 
 

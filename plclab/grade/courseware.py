@@ -1,7 +1,7 @@
-"""The courseware a student gets: labs without their private part, examples, notebooks.
+"""The courseware a student gets: labs without their private part, examples, notebooks, course.
 
-The repository's ``labs/``, ``examples/`` and ``notebooks/`` are the instructor's source. A
-built wheel carries a *student copy* of them in ``plclab/courseware/`` (the build step
+The repository's ``labs/``, ``examples/``, ``notebooks/`` and ``course/`` are the instructor's
+source. A built wheel carries a *student copy* of them in ``plclab/courseware/`` (the build step
 :mod:`plclab.grade.courseware_build` calls :func:`copy_courseware`): every lab without ``solution/`` and ``mistakes/``,
 and its ``lab.toml`` without the hidden scenarios, the criteria only they use and the
 ``[[mistake]]`` tables (:func:`student_lab_toml`). See ``docs/adr/0019-installable-labs.md``.
@@ -23,7 +23,7 @@ PRIVATE_DIRS = ("solution", "mistakes", "private")
 """Sub-folders of a lab that are the instructor's: never shipped, never copied to students."""
 STUDENT_FILES = ("README.md", "lab.toml", "checks.py")
 """Files of a lab folder that ship (with ``starter.*``)."""
-COURSEWARE = ("labs", "examples", "notebooks")
+COURSEWARE = ("labs", "examples", "notebooks", "course")
 """The folders of the courseware root."""
 
 
@@ -140,7 +140,8 @@ def copy_student_lab(src: Path, dest: Path) -> Path:
 
 def copy_courseware(root: Path, dest: Path) -> list[Path]:
     """Write the student copy of the courseware under *root* to *dest*: ``labs/`` (each lab
-    by :func:`copy_student_lab`, the wiring tables as they are), ``examples/``, the notebooks.
+    by :func:`copy_student_lab`, the wiring tables as they are), ``examples/``, ``course/``
+    (as it is: a quiz's keys are its feedback) and the notebooks.
     Returns the files written."""
     if dest.exists():
         shutil.rmtree(dest)
@@ -151,9 +152,10 @@ def copy_courseware(root: Path, dest: Path) -> list[Path]:
         elif sub.is_dir() and sub.name not in PRIVATE_DIRS:  # labs/wiring
             shutil.copytree(sub, dest / "labs" / sub.name,
                             ignore=shutil.ignore_patterns("__pycache__", ".*"))
-    if (root / "examples").is_dir():
-        shutil.copytree(root / "examples", dest / "examples",
-                        ignore=shutil.ignore_patterns("__pycache__", ".*"))
+    for folder in ("examples", "course"):  # the course: chapters, examples, figure specs, quizzes
+        if (root / folder).is_dir():
+            shutil.copytree(root / folder, dest / folder,
+                            ignore=shutil.ignore_patterns("__pycache__", ".*"))
     nb = root / "notebooks"
     for f in sorted(nb.glob("*.ipynb")) if nb.is_dir() else []:
         (dest / "notebooks").mkdir(parents=True, exist_ok=True)

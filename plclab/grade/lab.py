@@ -40,7 +40,9 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion", "mistake")
+            "criterion", "mistake", "level", "chapters")
+LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
+"""``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
@@ -280,6 +282,8 @@ class Lab:
     mistakes: list[MistakeSpec] = field(default_factory=list)
     dialect: str | None = None  # of submissions without a {dialect} pragma (ADR 0017)
     student_watch: list[str] = field(default_factory=list)  # lab check --watch: also drawn
+    level: int = 0  # 1 beginner .. 3 advanced; 0 = not given
+    chapters: list[int] = field(default_factory=list)  # course chapters that teach it
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -574,7 +578,22 @@ class _Builder:
                   langs, tl, mem, watch, dsig, dwin)
         lab.mistakes = self.mistakes(d, criteria)
         lab.dialect = self.dialect(d)
+        lab.level, lab.chapters = self.course_place(d)
         return lab
+
+    def course_place(self, d: Mapping[str, Any]) -> tuple[int, list[int]]:
+        """``level = 1..3`` and ``chapters = [N, ...]``: where the lab sits in the course."""
+        level = d.get("level", 0)
+        if "level" in d and (isinstance(level, bool) or level not in LEVELS):
+            raise self.err("PLC5004", "level must be 1 (beginner), 2 (intermediate) or 3 "
+                           f"(advanced), not {level!r}", key="level")
+        chapters = d.get("chapters", [])
+        if not isinstance(chapters, list) or not all(
+                isinstance(c, int) and not isinstance(c, bool) and 1 <= c <= 99
+                for c in chapters):
+            raise self.err("PLC5004", "chapters must be a list of course chapter numbers, e.g. "
+                           "chapters = [1, 6]", key="chapters")
+        return int(level), sorted(set(chapters))
 
     def mistakes(self, d: Mapping[str, Any], criteria: list[CriterionSpec]
                  ) -> list[MistakeSpec]:

@@ -100,7 +100,7 @@ def test_lab_get_copies_the_student_files_and_keeps_existing_work(tmp_path):
 def _source_tree(dest: Path) -> Path:
     """The files a build reads, copied so that building writes nothing into the repository."""
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info", "build")
-    for d in ("plclab", "plants", "labs", "examples", "notebooks"):
+    for d in ("plclab", "plants", "labs", "examples", "notebooks", "course"):
         shutil.copytree(ROOT / d, dest / d, ignore=ignore)
     for f in ("pyproject.toml", "README.md"):
         shutil.copyfile(ROOT / f, dest / f)
@@ -122,6 +122,7 @@ def test_a_wheel_in_a_fresh_venv_has_the_labs(tmp_path):
     names = zipfile.ZipFile(wheel).namelist()
     assert "plclab/courseware/labs/tank-two-position/lab.toml" in names
     assert "plclab/courseware/examples/tank_level.st" in names
+    assert "plclab/courseware/course/01-what-is-a-plc/quiz.toml" in names  # the course ships
     assert not [n for n in names if any(f"/{d}/" in n for d in PRIVATE_DIRS)]
 
     venv = tmp_path / "venv"
@@ -135,6 +136,8 @@ def test_a_wheel_in_a_fresh_venv_has_the_labs(tmp_path):
     assert str(venv) in where  # the wheel, not a checkout on the path
 
     plclab = str(bindir / "plclab")
+    chapters = _run([plclab, "course", "list"], work, env).stdout
+    assert "What a PLC is" in chapters
     listed = _run([plclab, "lab", "list"], work, env).stdout
     ids = [line.split()[0] for line in listed.splitlines()[1:] if line.strip()]
     assert len(ids) >= 8 and "tank-two-position" in ids
