@@ -615,6 +615,91 @@ def counter(tr: Any, p: dict[str, Any]) -> Verdict:
                    f"({_what(p['event'], p.get('where'))})", b, [name], v)
 
 
+# ---------------------------------------------------------------------------- alarms
+# The alarm log of plclab.scada (``alarm`` events: source = alarm id, data state = I, IO, IA,
+# IAO, IOA; ADR 0025). A lab with ``alarms = "alarms.toml"`` records it in every trace.
+
+_ALARM = Param("alarm", "str", True, help="the alarm id, e.g. \"NO_WATER\"")
+
+
+def _alarm_events(tr: Any, alarm: str, states: tuple[str, ...]) -> list[Any]:
+    evs = tr.events_of("alarm", alarm)
+    if not evs and alarm not in {a.get("id") for a in tr.meta.get("alarms", [])}:
+        known = ", ".join(a.get("id", "") for a in tr.meta.get("alarms", [])) or "none"
+        raise PlcError("PLC6021", f"no alarm {alarm!r} in this run's alarm configuration "
+                       f"(alarms: {known})")
+    return [e for e in evs if e.data.get("state") in states]
+
+
+@check("alarm_within", _ALARM, Param("trigger", "condition", True,
+                                     help="the cause, e.g. \"LEVEL < 0.3\""),
+       Param("time", "time", True, help="the allowed delay, e.g. \"2s\""),
+       Param("need_trigger", "bool", default=True,
+             help="fail when the trigger never happens (default true)"))
+def alarm_within(tr: Any, p: dict[str, Any]) -> Verdict:
+    """Each time ``trigger`` becomes true, the alarm is raised (incoming) within ``time``,
+    or is still pending from before ("alarm raised within 2 s")."""
+    np = _np()
+    a, b = window(tr, p)
+    limit = float(p["time"])
+    names = condition_names(p["trigger"])
+    came = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("I",))]
+    gone = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("IO", "IAO"))]
+    trig = mask(tr, p["trigger"])
+    prev = np.concatenate(([False], trig[:-1]))
+    edges = np.nonzero(trig & ~prev & in_window(tr, a, b))[0]
+    if len(edges) == 0:
+        ok = p.get("need_trigger") is False
+        return Verdict(ok, f"`{p['trigger']}` never happened {_span(a, b)}" +
+                       ("" if ok else ", so the alarm could not be checked"),
+                       None if ok else a, names)
+    worst = 0.0
+    for i in edges:
+        te = float(tr.time[i])
+        if te + limit > tr.t_end + 1e-9:
+            continue
+        active = any(c <= te and not any(c < g <= te for g in gone) for c in came)
+        hits = [c for c in came if te - 1e-9 <= c <= te + limit + 1e-9]
+        if not active and not hits:
+            return Verdict(False, f"`{p['trigger']}` at t = {fmt_t(te)}, but alarm "
+                           f"{p['alarm']} was not raised within {limit:g} s", te + limit, names)
+        worst = max(worst, 0.0 if active else hits[0] - te)
+    return Verdict(True, f"alarm {p['alarm']} came within {worst:.2f} s of `{p['trigger']}` "
+                   f"(allowed {limit:g} s)", None, names, worst)
+
+
+@check("ack_before_restart", _ALARM, Param("restart", "condition", True,
+                                           help="what must wait for the acknowledgement, "
+                                                "e.g. \"HEATER\""),
+       Param("need_alarm", "bool", default=True,
+             help="fail when the alarm never comes (default true)"))
+def ack_before_restart(tr: Any, p: dict[str, Any]) -> Verdict:
+    """After the alarm comes, ``restart`` does not become true again before the operator
+    acknowledges the alarm ("the burner restarts only after the alarm is acknowledged")."""
+    np = _np()
+    a, b = window(tr, p)
+    names = condition_names(p["restart"])
+    came = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("I",)) if a <= e.time <= b]
+    acks = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("IA", "IOA"))]
+    if not came:
+        ok = p.get("need_alarm") is False
+        return Verdict(ok, f"alarm {p['alarm']} never came {_span(a, b)}", None if ok else a,
+                       names)
+    on = mask(tr, p["restart"])
+    prev = np.concatenate(([False], on[:-1]))
+    rises = tr.time[np.nonzero(on & ~prev)[0]]
+    for c in came:
+        ack = next((x for x in acks if x >= c - 1e-9), None)
+        early = [float(r) for r in rises if r > c + 1e-9 and (ack is None or r < ack - 1e-9)]
+        if early:
+            when = "before it was acknowledged" if ack is None else \
+                f"before the acknowledgement at {fmt_t(ack)}"
+            return Verdict(False, f"alarm {p['alarm']} came at {fmt_t(c)} and `{p['restart']}` "
+                           f"restarted at {fmt_t(early[0])}, {when}", early[0], names)
+    return Verdict(True, f"`{p['restart']}` waited for the acknowledgement of alarm "
+                   f"{p['alarm']} ({len(came)} time(s))", None, names, len(came))
+
+
 # ---------------------------------------------------------------------------- running
 
 

@@ -405,6 +405,10 @@ def _simulate(lab: Lab, compiled: Any, sc: ScenarioSpec) -> Any:
     sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
                      watch=lab.all_watch(sc), plant_params={**lab.plant_params,
                                                             **sc.plant_params})
+    if lab.alarms:  # the alarm log goes into the trace (plclab.scada, ADR 0025)
+        from plclab.scada.alarms import AlarmServer
+
+        sim.add_hook(AlarmServer.load(lab.path / lab.alarms))
     return sim.run()
 
 

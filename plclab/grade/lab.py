@@ -40,7 +40,7 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion", "mistake")
+            "criterion", "mistake", "alarms")
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
@@ -280,6 +280,7 @@ class Lab:
     mistakes: list[MistakeSpec] = field(default_factory=list)
     dialect: str | None = None  # of submissions without a {dialect} pragma (ADR 0017)
     student_watch: list[str] = field(default_factory=list)  # lab check --watch: also drawn
+    alarms: str | None = None  # an alarm configuration in the lab folder (plclab.scada)
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -574,7 +575,25 @@ class _Builder:
                   langs, tl, mem, watch, dsig, dwin)
         lab.mistakes = self.mistakes(d, criteria)
         lab.dialect = self.dialect(d)
+        lab.alarms = self.alarms(d)
         return lab
+
+    def alarms(self, d: Mapping[str, Any]) -> str | None:
+        """``alarms = "alarms.toml"``: the lab's alarm configuration, read once to check it."""
+        name = self.string(d, "alarms", "lab.toml")
+        if not name:
+            return None
+        path = self.folder / name
+        if Path(name).name != name or not path.is_file():
+            raise self.err("PLC5001", f"alarms = \"{name}\": no such file in the lab folder",
+                           key="alarms")
+        from plclab.scada.alarms import AlarmServer
+
+        try:
+            AlarmServer.load(path)
+        except PlcError as e:
+            raise self.err("PLC5004", f"alarms = \"{name}\": {e.message}", key="alarms") from None
+        return name
 
     def mistakes(self, d: Mapping[str, Any], criteria: list[CriterionSpec]
                  ) -> list[MistakeSpec]:

@@ -138,6 +138,21 @@ class WatchTable:
         return "\n".join(f"{r.name:<{width}}  {format_value(v, r.format)}"
                          for r, v in zip(self.rows, values, strict=True))
 
+    def report(self, last: int = 10) -> str:
+        """The last ``last`` samples as a table: time, scan, then one column a row."""
+        rows = list(self.samples)[-last:]
+        head = ["t (s)", "scan"] + [r.name for r in self.rows]
+        body = [[f"{s.time:g}", str(s.scan)] + [format_value(v, r.format)
+                                               for r, v in zip(self.rows, s.values, strict=True)]
+                for s in rows]
+        widths = [max(len(x) for x in col) for col in zip(head, *body, strict=True)]
+        lines = [f"watch table {self.name}: {len(self.samples)} sample(s) at {self.trigger}"
+                 f"{' (once)' if self.once else ''}" + (f", the last {len(rows)}:"
+                                                        if len(self.samples) > len(rows) else ":")]
+        for r in [head, *body]:
+            lines.append("  ".join(x.rjust(w) for x, w in zip(r, widths, strict=True)))
+        return "\n".join(lines)
+
     # ----------------------------------------------------------------- files
     @classmethod
     def load(cls, path: str | Path) -> WatchTable:
