@@ -53,6 +53,7 @@ CLASSES = {
     "system": AlarmClass("system", False, "#c8d8ff"),
 }
 KINDS = ("discrete", "HH", "H", "L", "LL")
+DEADBAND_MODES = ("outgoing", "incoming", "both")
 STATE_TEXT = {
     "I": "incoming", "IO": "outgoing, not acknowledged", "IA": "incoming, acknowledged",
     "IAO": "outgoing, acknowledged first", "IOA": "outgoing, subsequently acknowledged",
@@ -74,6 +75,7 @@ class Alarm:
     alarm_class: str = "warning"
     ack_tag: str | None = None  # a BOOL whose rising edge acknowledges (PLC or button)
     ack_bit: str | None = None  # a PLC BOOL the server sets TRUE while acknowledged
+    deadband_mode: str = "outgoing"  # WinCC's Deadband -> Mode: outgoing, incoming or both
 
     def __post_init__(self) -> None:
         where = f"alarm {self.id}"
@@ -88,6 +90,9 @@ class Alarm:
                            "\"H\" (or HH, L, LL) for an analog limit alarm")
         if self.bit is not None and not (isinstance(self.bit, int) and 0 <= self.bit < 32):
             raise PlcError("PLC6020", f"{where}: bit is a bit number 0..31, not {self.bit!r}")
+        if self.deadband_mode not in DEADBAND_MODES:
+            raise PlcError("PLC6020", f"{where}: deadband_mode is one of "
+                           f"{', '.join(DEADBAND_MODES)}, not {self.deadband_mode!r}")
         if self.deadband < 0 or self.delay < 0:
             raise PlcError("PLC6020", f"{where}: deadband and delay are 0 or more")
 
@@ -104,9 +109,12 @@ class Alarm:
             return bool(value)
         assert self.limit is not None
         v = float(value)
+        mode = self.deadband_mode
+        d_in = self.deadband if mode in ("incoming", "both") else 0.0
+        d_out = self.deadband if mode in ("outgoing", "both") else 0.0
         if self.high:
-            return v >= self.limit - self.deadband if active else v > self.limit
-        return v <= self.limit + self.deadband if active else v < self.limit
+            return v >= self.limit - d_out if active else v > self.limit + d_in
+        return v <= self.limit + d_out if active else v < self.limit - d_in
 
 
 @dataclass
@@ -280,8 +288,8 @@ class AlarmServer:
             if not isinstance(c, dict) or not isinstance(c.get("ack"), bool):
                 raise PlcError("PLC6020", f"{source}: [class.{name}] needs ack = true or false")
             classes[name] = AlarmClass(name, c["ack"], str(c.get("color", "#ffffff")))
-        fields = {"id", "text", "tag", "kind", "limit", "bit", "deadband", "delay", "class",
-                  "ack_tag", "ack_bit"}
+        fields = {"id", "text", "tag", "kind", "limit", "bit", "deadband", "deadband_mode",
+                  "delay", "class", "ack_tag", "ack_bit"}
         alarms = []
         for i, row in enumerate(data.get("alarm", []), 1):
             if not isinstance(row, dict) or not {"id", "text", "tag"} <= set(row):
@@ -302,9 +310,9 @@ class AlarmServer:
                 delay = ns / 1e9
             alarms.append(Alarm(str(row["id"]), str(row["text"]), str(row["tag"]),
                                 str(row.get("kind", "discrete")), row.get("limit"),
-                                row.get("bit"), float(row.get("deadband", 0.0)), float(delay),
+                                row.get("bit"), _deadband(row, source), float(delay),
                                 str(row.get("class", "warning")), row.get("ack_tag"),
-                                row.get("ack_bit")))
+                                row.get("ack_bit"), str(row.get("deadband_mode", "outgoing"))))
         if not alarms:
             raise PlcError("PLC6020", f"{source}: no [[alarm]] defined")
         return cls(alarms, classes)
@@ -347,6 +355,25 @@ class AlarmServer:
                             "limit": a.limit, "class": a.alarm_class,
                             "ack": self.classes[a.alarm_class].ack} for a in self.alarms]}
         return events, meta
+
+
+def _deadband(row: dict[str, Any], source: str) -> float:
+    """``deadband = 0.5`` (in the tag's unit) or ``"2%"`` of the limit, as WinCC gives it."""
+    db = row.get("deadband", 0.0)
+    if isinstance(db, str) and db.strip().endswith("%"):
+        try:
+            pct = float(db.strip()[:-1])
+        except ValueError:
+            pct = -1.0
+        lim = row.get("limit")
+        if pct < 0 or not isinstance(lim, int | float):
+            raise PlcError("PLC6020", f"{source}: alarm {row['id']}: deadband {db!r}: give a "
+                           "percentage of a numeric limit (\"2%\") or a value (0.5)")
+        return abs(float(lim)) * pct / 100.0
+    if isinstance(db, bool) or not isinstance(db, int | float):
+        raise PlcError("PLC6020", f"{source}: alarm {row['id']}: deadband is a number (0.5) "
+                       f"or a percentage of the limit (\"2%\"), not {db!r}")
+    return float(db)
 
 
 def alarm_log(trace: Any, alarm_id: str | None = None) -> list[LogEntry]:

@@ -80,6 +80,23 @@ def test_analog_limits_with_deadband(kind, limit, deadband, values, came, went):
     assert [t for t, s in log if s == "IO"] == went
 
 
+@pytest.mark.parametrize("mode, values, came, went", [
+    ("outgoing", [80, 90.5, 88.5, 87.9], [1], [3]),
+    ("incoming", [80, 90.5, 92.1, 89.9], [2], [3]),
+    ("both", [80, 91, 92.1, 88.5, 87.9], [2], [4]),
+])
+def test_deadband_modes(mode, values, came, went):
+    a = Alarm("A", "limit", tag="v", kind="H", limit=90.0, deadband=2.0, deadband_mode=mode)
+    log, _ = run_steps(a, list(enumerate(values)))
+    assert ([t for t, s in log if s == "I"], [t for t, s in log if s == "IO"]) == (came, went)
+
+
+def test_a_deadband_in_percent_of_the_limit():
+    srv = AlarmServer.from_dict({"alarm": [{"id": "T", "text": "hot", "tag": "T", "kind": "H",
+                                            "limit": 80.0, "deadband": "5%"}]})
+    assert srv.alarms[0].deadband == 4.0
+
+
 # the delay: the condition must hold `delay` seconds (evaluated every 0.1 s)
 DELAY_CASES = [
     (2.0, [(0.0, 10.0)], [2.0]),  # holds from 0 s: comes at 2 s
@@ -200,6 +217,8 @@ def _saved(tr, tmp_path):
     ("[class.x]\ncolor='red'\n[[alarm]]\nid='a'\ntext='t'\ntag='x'", "ack = true"),
     ("[[alarm]]\nid='a'\ntext='t'\ntag='x'\ndelay='soon'", "not a duration"),
     ("", "no [[alarm]]"),
+    ("[[alarm]]\nid='a'\ntext='t'\ntag='x'\nkind='H'\nlimit=1\ndeadband='x%'", "percentage"),
+    ("[[alarm]]\nid='a'\ntext='t'\ntag='x'\ndeadband_mode='never'", "deadband_mode"),
 ])
 def test_bad_alarm_files(tmp_path, text, fragment):
     f = tmp_path / "a.toml"
