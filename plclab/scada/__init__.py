@@ -13,16 +13,24 @@ True
 from __future__ import annotations
 
 from .alarms import Alarm, AlarmClass, AlarmServer, LogEntry, alarm_log
+from .archive import ArchiveRow, archive, write_csv, write_parquet
+from .recipes import Element, Recipe
 from .watch import Sample, WatchRow, WatchTable, format_value
 
 __all__ = [
     "Alarm",
     "AlarmClass",
     "AlarmServer",
+    "ArchiveRow",
+    "Element",
     "LogEntry",
+    "Recipe",
     "Sample",
     "WatchRow",
     "WatchTable",
     "alarm_log",
+    "archive",
     "format_value",
+    "write_csv",
+    "write_parquet",
 ]
