@@ -671,13 +671,16 @@ def alarm_within(tr: Any, p: dict[str, Any]) -> Verdict:
 @check("ack_before_restart", _ALARM, Param("restart", "condition", True,
                                            help="what must wait for the acknowledgement, "
                                                 "e.g. \"HEATER\""),
+       Param("time", "time", default=1.0, help="time allowed to switch it off after the alarm "
+                                              "came (default 1 s)"),
        Param("need_alarm", "bool", default=True,
              help="fail when the alarm never comes (default true)"))
 def ack_before_restart(tr: Any, p: dict[str, Any]) -> Verdict:
-    """After the alarm comes, ``restart`` does not become true again before the operator
-    acknowledges the alarm ("the burner restarts only after the alarm is acknowledged")."""
+    """After the alarm comes, ``restart`` is off (from ``time`` later) until the operator
+    acknowledges the alarm ("the burner runs again only after the acknowledgement")."""
     np = _np()
     a, b = window(tr, p)
+    grace = float(p.get("time", 1.0))
     names = condition_names(p["restart"])
     came = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("I",)) if a <= e.time <= b]
     acks = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("IA", "IOA"))]
@@ -686,16 +689,17 @@ def ack_before_restart(tr: Any, p: dict[str, Any]) -> Verdict:
         return Verdict(ok, f"alarm {p['alarm']} never came {_span(a, b)}", None if ok else a,
                        names)
     on = mask(tr, p["restart"])
-    prev = np.concatenate(([False], on[:-1]))
-    rises = tr.time[np.nonzero(on & ~prev)[0]]
+    t = tr.time
     for c in came:
         ack = next((x for x in acks if x >= c - 1e-9), None)
-        early = [float(r) for r in rises if r > c + 1e-9 and (ack is None or r < ack - 1e-9)]
-        if early:
+        end = ack if ack is not None else tr.t_end
+        bad = np.nonzero(on & (t > c + grace + 1e-9) & (t < end - 1e-9))[0]
+        if len(bad):
+            tf = float(t[bad[0]])
             when = "before it was acknowledged" if ack is None else \
                 f"before the acknowledgement at {fmt_t(ack)}"
             return Verdict(False, f"alarm {p['alarm']} came at {fmt_t(c)} and `{p['restart']}` "
-                           f"restarted at {fmt_t(early[0])}, {when}", early[0], names)
+                           f"was on at {fmt_t(tf)}, {when}", tf, names)
     return Verdict(True, f"`{p['restart']}` waited for the acknowledgement of alarm "
                    f"{p['alarm']} ({len(came)} time(s))", None, names, len(came))
 

@@ -408,7 +408,7 @@ def _simulate(lab: Lab, compiled: Any, sc: ScenarioSpec) -> Any:
     if lab.alarms:  # the alarm log goes into the trace (plclab.scada, ADR 0025)
         from plclab.scada.alarms import AlarmServer
 
-        sim.add_hook(AlarmServer.load(lab.path / lab.alarms))
+        sim.add_hook(AlarmServer.from_dict(lab.alarms, f"{lab.id}/alarms"))
     return sim.run()
 
 
