@@ -105,6 +105,18 @@ LABS_CONFIG: dict[str, dict] = {
             "Why are the starts of the pumps spread out by a few seconds?",
         ],
     },
+    "water-boiler": {
+        "scenario": "tap-open",
+        "duration": None,
+        "window": (50.0, 230.0),
+        "questions": [
+            "The trigger bit of NO_WATER is FALSE again at about 130 s, yet the alarm stays on "
+            "the panel until 200 s. In which state is it in between?",
+            "Why is NO_WATER an error (with acknowledgement) and LEVEL_HIGH only a warning?",
+            "The analog alarm TEMP_HIGH has a deadband and a delay. What would the alarm log "
+            "show without them if the temperature hovered at 75 °C with some noise?",
+        ],
+    },
     "heater-pid": {
         "scenario": "warm-up-and-step",
         "duration": None,
