@@ -117,6 +117,16 @@ LABS_CONFIG: dict[str, dict] = {
             "show without them if the temperature hovered at 75 °C with some noise?",
         ],
     },
+    "bottling-recipes": {
+        "scenario": "juice",
+        "duration": None,
+        "window": (10.0, 22.0),
+        "questions": [
+            "Where in the diagram does the bottle settle, and what would happen without it?",
+            "The nectar record fills 0.30 l. At how many % of FILL_LEVEL does the valve close?",
+            "Which values belong in a recipe and which in the program? Think of the settle time.",
+        ],
+    },
     "heater-pid": {
         "scenario": "warm-up-and-step",
         "duration": None,

@@ -615,6 +615,35 @@ def counter(tr: Any, p: dict[str, Any]) -> Verdict:
                    f"({_what(p['event'], p.get('where'))})", b, [name], v)
 
 
+@check("event_data", _EVENT, _WHERE, Param("field", "str", True,
+                                         help="the data field, e.g. \"fill\""),
+       Param("lo", "number", help="smallest allowed value"),
+       Param("hi", "number", help="largest allowed value"),
+       Param("min", "int", default=1, help="at least this many matching events (default 1)"),
+       Param("source", "str"))
+def event_data(tr: Any, p: dict[str, Any]) -> Verdict:
+    """Every event of a kind (matching ``where``) carries a ``field`` between ``lo`` and
+    ``hi``, and there are at least ``min`` of them ("every bottle that left the belt holds
+    0.45 l ± 0.02 l", the recipe's volume)."""
+    a, b = window(tr, p)
+    evs = [e for e in _events(tr, p["event"], p.get("where"), a, b, p.get("source"))
+           if isinstance(e.data.get(p["field"]), int | float)]
+    what = _what(p["event"], p.get("where"))
+    lo = -math.inf if p.get("lo") is None else float(p["lo"])
+    hi = math.inf if p.get("hi") is None else float(p["hi"])
+    for e in evs:
+        v = float(e.data[p["field"]])
+        if not lo <= v <= hi:
+            return Verdict(False, f"{p['field']} = {fmt_v(v)} at {fmt_t(e.time)} ({e.message}); "
+                           f"expected {fmt_v(lo)}..{fmt_v(hi)}", float(e.time), [], v)
+    need = int(p.get("min", 1))
+    if len(evs) < need:
+        return Verdict(False, f"only {len(evs)} {what} with {p['field']} {_span(a, b)} (at least "
+                       f"{need} expected)", b, [], len(evs))
+    return Verdict(True, f"{len(evs)} {what}: {p['field']} within {fmt_v(lo)}..{fmt_v(hi)}",
+                   None, [], len(evs))
+
+
 # ---------------------------------------------------------------------------- alarms
 # The alarm log of plclab.scada (``alarm`` events: source = alarm id, data state = I, IO, IA,
 # IAO, IOA; ADR 0025). A lab with ``alarms = "alarms.toml"`` records it in every trace.

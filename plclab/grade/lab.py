@@ -40,9 +40,9 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion", "mistake", "alarms")
+            "criterion", "mistake", "alarms", "recipes")
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
-                 "action", "actions", "until", "watch")
+                 "action", "actions", "until", "watch", "recipe")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
                   "message", "hint", "hint_fix", "signals", "window", "description", "requires",
                   "critical")
@@ -152,6 +152,7 @@ class ScenarioSpec:
     actions: list[dict[str, Any]] = field(default_factory=list)
     until: str | None = None
     watch: list[str] = field(default_factory=list)
+    recipe: list[tuple[float, str]] = field(default_factory=list)  # (s, record): plclab.scada
 
     def scenario(self, duration: float | None = None) -> Any:
         """The :class:`plclab.sim.Scenario` of this spec."""
@@ -281,6 +282,7 @@ class Lab:
     dialect: str | None = None  # of submissions without a {dialect} pragma (ADR 0017)
     student_watch: list[str] = field(default_factory=list)  # lab check --watch: also drawn
     alarms: dict[str, Any] | None = None  # the lab's alarm configuration (plclab.scada)
+    recipes: dict[str, Any] | None = None  # the lab's recipe and its records (plclab.scada)
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -576,7 +578,55 @@ class _Builder:
         lab.mistakes = self.mistakes(d, criteria)
         lab.dialect = self.dialect(d)
         lab.alarms = self.alarms(d)
+        lab.recipes = self.recipes(d, scenarios)
         return lab
+
+    def recipes(self, d: Mapping[str, Any], scenarios: list[ScenarioSpec]
+                ) -> dict[str, Any] | None:
+        """``recipes = "recipes.toml"``: the recipe the scenarios load (``recipe = "juice"``
+        or ``recipe = [{ at = "30s", record = "nectar" }, ...]``), checked and kept as data."""
+        name = self.string(d, "recipes", "lab.toml")
+        raw = {i: s.get("recipe") for i, s in enumerate(d.get("scenario", []))
+               if isinstance(s, Mapping) and s.get("recipe") is not None}
+        if not name:
+            if raw:
+                raise self.err("PLC5004", "a scenario loads a recipe, but the lab names no "
+                               "recipes file: recipes = \"recipes.toml\"", key="recipes")
+            return None
+        path = self.folder / name
+        if Path(name).name != name or not path.is_file():
+            raise self.err("PLC5001", f"recipes = \"{name}\": no such file in the lab folder",
+                           key="recipes")
+        from plclab.scada.recipes import Recipe
+
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+            recipe = Recipe.from_dict(data, name)
+        except tomllib.TOMLDecodeError as e:
+            raise self.err("PLC5004", f"recipes = \"{name}\": not valid TOML ({e})",
+                           key="recipes") from None
+        except PlcError as e:
+            raise self.err("PLC5004", f"recipes = \"{name}\": {e.message}",
+                           key="recipes") from None
+        by_name = {s.name: s for s in scenarios}
+        for i, r in raw.items():
+            what = f"[[scenario]] #{i + 1}"
+            items = [{"at": 0, "record": r}] if isinstance(r, str) else r
+            if not isinstance(items, list) or not all(isinstance(x, Mapping) for x in items):
+                raise self.err("PLC5004", f"{what}: recipe is a record name (\"juice\") or a "
+                               "list of { at = \"30s\", record = \"nectar\" }", "scenario", i,
+                               "recipe")
+            loads = []
+            for x in items:
+                rec = x.get("record")
+                if rec not in recipe.records:
+                    raise self.err("PLC5004", f"{what}: recipe record {rec!r} is not in {name} "
+                                   f"({', '.join(recipe.records)})", "scenario", i, "recipe")
+                loads.append((self.seconds(x.get("at", 0), "at", what, "scenario", i), rec))
+            spec = by_name.get(str(d["scenario"][i].get("name")))
+            if spec is not None:
+                spec.recipe = sorted(loads)
+        return data
 
     def alarms(self, d: Mapping[str, Any]) -> dict[str, Any] | None:
         """``alarms = "alarms.toml"``: the lab's alarm configuration, read and checked here and

@@ -111,10 +111,19 @@ class Recipe:
         """Write a record (its name or the values) into the PLC: all elements or none."""
         values = self.validate(record, "given") if isinstance(record, dict) else \
             self.validate(self.record(record), record)
+        from plclab.lang import types as T
+
         setters = []
         for e in self.elements:
             try:
-                setters.append((plc.var(e.variable).set, values[e.name], e))
+                var = plc.var(e.variable)
+                v = values[e.name]
+                if T.base_of(var.type).kind in ("int", "bits"):
+                    if not float(v).is_integer():
+                        raise PlcError("PLC6041", f"recipe {self.name}: {e.variable} is "
+                                       f"{var.type}: {e.name} = {v:g} must be a whole number")
+                    v = int(v)
+                setters.append((var.set, v, e))
             except PlcError as err:
                 raise PlcError("PLC6041", f"recipe {self.name}: element {e.name} goes to "
                                f"{e.variable}: {err.message}") from None

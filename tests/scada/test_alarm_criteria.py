@@ -61,3 +61,17 @@ def test_an_alarm_that_never_came_and_an_unknown_alarm():
     with pytest.raises(PlcError) as e:
         run_check("alarm_within", tr, {"alarm": "NO_WTR", "trigger": "LOW", "time": 1})
     assert e.value.code == "PLC6021"
+
+
+@pytest.mark.parametrize("fills, lo, hi, need, passed", [
+    ([0.45, 0.452, 0.449], 0.43, 0.47, 2, True),
+    ([0.45, 0.40], 0.43, 0.47, 1, False),  # one bottle short
+    ([0.45], 0.43, 0.47, 2, False),  # too few bottles
+])
+def test_event_data_checks_every_matching_event(fills, lo, hi, need, passed):
+    events = [Event(float(i), "bottle_binned", "conveyor", f"bottle {i}", {"fill": f})
+              for i, f in enumerate(fills)]
+    tr = Trace(np.arange(5.0), {"X": np.zeros(5)}, meta={"t_end": 5.0}, events=events)
+    v = run_check("event_data", tr, {"event": "bottle_binned", "field": "fill", "lo": lo,
+                                     "hi": hi, "min": need})
+    assert v.passed is passed, v.message
