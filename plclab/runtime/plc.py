@@ -217,6 +217,8 @@ class Plc:
         self.triggers: dict[str, list[Any]] = {t: [] for t in TRIGGERS}
         self.modified: dict[str, dict[str, Any]] = {t: {} for t in TRIGGERS}
         self.outputs_enabled_in_stop = False
+        # the same list and dict objects, for one cheap any() per scan() call
+        self._watch_parts = (*self.triggers.values(), *self.modified.values())
         self.state = "RUN"
         self.fault: PlcRuntimeFault | None = None
         self._natives = {k: natives.resolve(v) for k, v in compiled.natives.items()}
@@ -325,7 +327,7 @@ class Plc:
         if n.__class__ is not int or not 0 <= n <= MAX_SCANS:
             _check_count(n, "scan: n")
         if (self.state != "RUN" or self.forced or self._single is None or n < 1
-                or self._system_bytes or self._watched):
+                or self._system_bytes or any(self._watch_parts)):
             for _ in range(n):
                 self._scan_once()
             return
@@ -772,9 +774,7 @@ class Plc:
 
     @property
     def _watched(self) -> bool:
-        t, m = self.triggers, self.modified
-        return bool(t["scan_start"] or t["scan_end"] or t["stop"] or m["scan_start"]
-                    or m["scan_end"])
+        return any(self._watch_parts)
 
     def _take(self, at: str) -> list[tuple[str, Any]]:
         items = list(self.modified[at].items())
