@@ -226,3 +226,20 @@ def test_bad_alarm_files(tmp_path, text, fragment):
     with pytest.raises(PlcError, match=fragment.replace("[", r"\[")) as e:
         AlarmServer.load(f)
     assert e.value.code == "PLC6020"
+
+
+def test_the_alarm_log_goes_into_the_rerun_events_view_with_markers():
+    from plclab.sim import Simulation
+    from plclab.viz.from_trace import recording
+
+    plc = plclab.loads("""PROGRAM Main
+VAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL; M AT %QX0.0 : BOOL; END_VAR
+M := ((NOT LS1) OR M) AND (NOT LS2);
+END_PROGRAM""")
+    sim = Simulation(plc, "tank", plant_params={"area": 0.2}, seed=1)
+    sim.add_hook(AlarmServer([Alarm("HIGH", "level above 1.2 m", tag="LEVEL", kind="H",
+                                    limit=1.2, deadband=0.05)]))
+    rec = recording(sim.run("90s"))
+    alarms = [e for e in rec.events if e.kind == "alarm"]
+    assert alarms and alarms[0].level == "WARN" and "level above 1.2 m" in alarms[0].message
+    assert any(m.label.startswith("alarm") or "alarm" in m.label for m in rec.markers)
