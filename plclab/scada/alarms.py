@@ -95,6 +95,18 @@ class Alarm:
                            f"{', '.join(DEADBAND_MODES)}, not {self.deadband_mode!r}")
         if self.deadband < 0 or self.delay < 0:
             raise PlcError("PLC6020", f"{where}: deadband and delay are 0 or more")
+        self._limits = self._thresholds()
+
+    def _thresholds(self) -> tuple[float, float, bool] | None:
+        """(comes beyond, goes back beyond, high?) of an analog alarm; None for a discrete one."""
+        if self.kind == "discrete":
+            return None
+        assert self.limit is not None
+        d_in = self.deadband if self.deadband_mode in ("incoming", "both") else 0.0
+        d_out = self.deadband if self.deadband_mode in ("outgoing", "both") else 0.0
+        if self.high:
+            return self.limit + d_in, self.limit - d_out, True
+        return self.limit - d_in, self.limit + d_out, False
 
     @property
     def high(self) -> bool:
@@ -107,14 +119,11 @@ class Alarm:
             if self.bit is not None:
                 return bool(int(value) >> self.bit & 1)
             return bool(value)
-        assert self.limit is not None
+        come, go, high = self._thresholds()  # type: ignore[misc]
         v = float(value)
-        mode = self.deadband_mode
-        d_in = self.deadband if mode in ("incoming", "both") else 0.0
-        d_out = self.deadband if mode in ("outgoing", "both") else 0.0
-        if self.high:
-            return v >= self.limit - d_out if active else v > self.limit + d_in
-        return v <= self.limit + d_out if active else v < self.limit - d_in
+        if high:
+            return v >= go if active else v > come
+        return v <= go if active else v < come
 
 
 @dataclass
@@ -174,20 +183,38 @@ class AlarmServer:
     # ---------------------------------------------------------------- the state machine
     def evaluate(self, t: float, read: Callable[[str], Any]) -> None:
         """Update every alarm at time ``t`` (s) from the tag values ``read`` returns."""
-        self.now = float(t)
-        while self._acks and self._acks[0][0] <= t + 1e-12:
-            _, which, user = self._acks.pop(0)
-            self.acknowledge(which, user=user)
-        for a in self.alarms:
-            st = self.status[a.id]
-            if a.ack_tag is not None:
-                edge = bool(read(a.ack_tag))
+        self._evaluate(float(t), [(a, self.status[a.id], lambda a=a: read(a.tag),
+                                   (lambda a=a: read(a.ack_tag)) if a.ack_tag else None)
+                                  for a in self.alarms])
+
+    def _evaluate(self, t: float, rows: list[tuple[Alarm, _Status, Any, Any]]) -> None:
+        """One evaluation: ``rows`` holds each alarm, its status and its tag readers."""
+        self.now = t
+        if self._acks:
+            while self._acks and self._acks[0][0] <= t + 1e-12:
+                _, which, user = self._acks.pop(0)
+                self.acknowledge(which, user=user)
+        for a, st, get, get_ack in rows:
+            if get_ack is not None:
+                edge = bool(get_ack())
                 if edge and not st.ack_in:
-                    self.acknowledge(a.id, user=a.ack_tag)
+                    self.acknowledge(a.id, user=a.ack_tag or "")
                 st.ack_in = edge
-            value = read(a.tag)
-            active = st.state in ("I", "IA")
-            cond = a.violated(value, active)
+            value = get()
+            state = st.state
+            active = state == "I" or state == "IA"
+            lim = a._limits
+            if lim is not None:
+                come, go, high = lim
+                v = float(value)
+                if high:
+                    cond = v >= go if active else v > come
+                else:
+                    cond = v <= go if active else v < come
+            elif a.bit is None:
+                cond = bool(value)
+            else:
+                cond = a.violated(value, active)
             if active:
                 if not cond:
                     self._leave(a, st, value)
@@ -331,6 +358,8 @@ class AlarmServer:
             except PlcError as e:
                 raise PlcError("PLC6020", f"alarm tag {tag}: neither a signal of "
                                f"'{sim.plant.name}' nor a PLC variable ({e.message})") from None
+        self._rows = [(a, self.status[a.id], self._readers[a.tag],
+                       self._readers[a.ack_tag] if a.ack_tag else None) for a in self.alarms]
         for a in self.alarms:
             if a.ack_bit:
                 try:
@@ -341,8 +370,7 @@ class AlarmServer:
                 self._writers[a.id] = v.set
 
     def after_scan(self, sim: Any, t_ns: int, recorded: bool) -> None:
-        readers = self._readers
-        self.evaluate(t_ns / 1e9, lambda tag: readers[tag]())
+        self._evaluate(t_ns / 1e9, self._rows)
 
     def finish(self, sim: Any) -> tuple[list[Any], dict[str, Any]]:
         from plclab.trace.events import Event
