@@ -166,3 +166,24 @@ def test_the_page_in_headless_chromium(served, tmp_path):
     keep = os.environ.get("PLCLAB_KEEP_SCREENSHOT")
     if keep:  # to look at the picture: PLCLAB_KEEP_SCREENSHOT=/tmp/panel.png
         shutil.copyfile(shot, keep)
+
+
+def test_the_notebook_panel_acts_through_the_same_rights():
+    pytest.importorskip("ipywidgets", reason="the notebook panel needs ipywidgets")
+    from plclab.scada.widgets import notebook_panel
+
+    p = make_panel()
+    nb = notebook_panel(p)
+    nb.run(1.0)
+    assert "FULL" in nb.alarms.value and ">I<" in nb.alarms.value
+    assert nb.ack.disabled  # a viewer
+    nb.records["orange_juice"].click()
+    assert "may not download recipe records" in nb.message.value
+    nb.user.value = "operator"
+    assert not nb.ack.disabled
+    nb.ack.click()
+    assert ">IA<" in nb.alarms.value and "operator" in nb.alarms.value
+    nb.user.value = "engineer"
+    nb.records["orange_nectar"].click()
+    assert p.sim.plc["Mix.Orange"] == 70.0 and nb.message.value == ""
+    assert "t = 1.0 s" in nb.signals.value
