@@ -63,3 +63,18 @@ def test_errors_name_their_code(files, tmp_path, capsys, args, code):
     assert main(argv) != 0
     err = capsys.readouterr().err
     assert code in err and "Traceback" not in err
+
+
+def test_serve_samples_a_watch_table_on_the_live_plc(files, capsys):
+    pytest.importorskip("pymodbus", reason="plclab serve needs pymodbus")
+    prog, table, _ = files
+    import socket
+
+    with socket.socket() as sock:  # a free port
+        sock.bind(("127.0.0.1", 0))
+        port = sock.getsockname()[1]
+    assert main(["serve", str(prog), "--port", str(port), "--duration", "0.3", "--watch",
+                 str(table)]) == 0
+    out = capsys.readouterr().out
+    head = next(line for line in out.splitlines() if line.startswith("watch table watch:"))
+    assert "sample(s) at scan_start" in head
