@@ -107,6 +107,28 @@ LABS_CONFIG: dict[str, dict] = {
             "Why are the starts of the pumps spread out by a few seconds?",
         ],
     },
+    "water-boiler": {
+        "scenario": "tap-open",
+        "duration": None,
+        "window": (50.0, 230.0),
+        "questions": [
+            "The trigger bit of NO_WATER is FALSE again at about 130 s, yet the alarm stays on "
+            "the panel until 200 s. In which state is it in between?",
+            "Why is NO_WATER an error (with acknowledgement) and LEVEL_HIGH only a warning?",
+            "The analog alarm TEMP_HIGH has a deadband and a delay. What would the alarm log "
+            "show without them if the temperature hovered at 75 °C with some noise?",
+        ],
+    },
+    "bottling-recipes": {
+        "scenario": "juice",
+        "duration": None,
+        "window": (10.0, 22.0),
+        "questions": [
+            "Where in the diagram does the bottle settle, and what would happen without it?",
+            "The nectar record fills 0.30 l. At how many % of FILL_LEVEL does the valve close?",
+            "Which values belong in a recipe and which in the program? Think of the settle time.",
+        ],
+    },
     "heater-pid": {
         "scenario": "warm-up-and-step",
         "duration": None,

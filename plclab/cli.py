@@ -98,6 +98,8 @@ def cmd_test(ns: argparse.Namespace) -> int:
      help="set a variable before the first scan (IEC literal, e.g. T#5s, TRUE, 16#FF)")
 @arg("--print", dest="print_", default=None, metavar="NAME,...",
      help="variables to print after the run (default: every program variable)")
+@arg("--watch", default=None, metavar="FILE",
+     help="a watch table (TOML: rows, formats, trigger, modify/force): print its samples")
 @arg("--dialect", default=None, choices=DIALECTS,
      help="dialect of files without a {dialect} pragma (default codesys; ADR 0017)")
 def cmd_run(ns: argparse.Namespace) -> int:
@@ -111,7 +113,17 @@ def cmd_run(ns: argparse.Namespace) -> int:
         plc[name.strip()] = value.strip()
     if ns.cycles < 0:
         raise PlcError("PLC3002", "--cycles must be 0 or more")
+    table = None
+    if ns.watch:
+        from .scada.watch import WatchTable
+
+        table = WatchTable.load(ns.watch)
+        table.attach(plc)
     plc.scan(ns.cycles)
+    if table is not None:
+        print(table.report())
+        if not ns.print_:
+            return 0
     names = split_names(ns.print_) if ns.print_ else plc.variables()
     for n in names:
         n = n.strip()

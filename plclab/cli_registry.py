@@ -60,6 +60,8 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                                 "plclab.grade.commands"),
     "lab": CommandInfo("labs: list, show LAB, get LAB [DIR], check LAB FILE..., new ID",
                        "plclab.grade.commands"),
+    "panel": CommandInfo("an operator panel in the browser: signals, buttons, alarms with "
+                         "acknowledgement, recipes, users (plclab.scada)", "plclab.scada.commands"),
     "serve": CommandInfo("run programs in real time behind a Modbus TCP server",
                          "plclab.modbus.commands"),
     "plant-serve": CommandInfo("run a plant in real time as a Modbus TCP server (remote I/O)",

@@ -38,6 +38,9 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("sim", ("plclab.sim",))],
     # readers of a Trace (viz) and the PLC behind a Modbus server: independent of each other.
     [("viz", ("plclab.viz",)), ("modbus", ("plclab.modbus",))],
+    # SCADA around a run (watch tables, alarms, archives, recipes, the operator panel): reads
+    # the runtime and the Trace and joins a Simulation as a hook, so sim never imports it.
+    [("scada", ("plclab.scada",))],
     # labs and the autograder: run simulations, draw the diagrams of failures.
     [("grade", ("plclab.grade",))],
     # the course: chapters, their examples, figures from real runs and quizzes.
@@ -46,7 +49,7 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
               "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",
               "plclab.viz.diagram_commands",
-              "plclab.course.commands"))],
+              "plclab.course.commands", "plclab.scada.commands"))],
 ]
 
 # Layers that must import nothing outside the standard library and plclab (the PLC runs

@@ -21,7 +21,7 @@ from typing import Any
 
 PRIVATE_DIRS = ("solution", "mistakes", "private")
 """Sub-folders of a lab that are the instructor's: never shipped, never copied to students."""
-STUDENT_FILES = ("README.md", "lab.toml", "checks.py")
+STUDENT_FILES = ("README.md", "lab.toml", "checks.py", "alarms.toml", "recipes.toml")
 """Files of a lab folder that ship (with ``starter.*``)."""
 COURSEWARE = ("labs", "examples", "notebooks", "course")
 """The folders of the courseware root."""

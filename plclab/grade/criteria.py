@@ -615,6 +615,124 @@ def counter(tr: Any, p: dict[str, Any]) -> Verdict:
                    f"({_what(p['event'], p.get('where'))})", b, [name], v)
 
 
+@check("event_data", _EVENT, _WHERE, Param("field", "str", True,
+                                         help="the data field, e.g. \"fill\""),
+       Param("lo", "number", help="smallest allowed value"),
+       Param("hi", "number", help="largest allowed value"),
+       Param("min", "int", default=1, help="at least this many matching events (default 1)"),
+       Param("source", "str"))
+def event_data(tr: Any, p: dict[str, Any]) -> Verdict:
+    """Every event of a kind (matching ``where``) carries a ``field`` between ``lo`` and
+    ``hi``, and there are at least ``min`` of them ("every bottle that left the belt holds
+    0.45 l ± 0.02 l", the recipe's volume)."""
+    a, b = window(tr, p)
+    evs = [e for e in _events(tr, p["event"], p.get("where"), a, b, p.get("source"))
+           if isinstance(e.data.get(p["field"]), int | float)]
+    what = _what(p["event"], p.get("where"))
+    lo = -math.inf if p.get("lo") is None else float(p["lo"])
+    hi = math.inf if p.get("hi") is None else float(p["hi"])
+    for e in evs:
+        v = float(e.data[p["field"]])
+        if not lo <= v <= hi:
+            return Verdict(False, f"{p['field']} = {fmt_v(v)} at {fmt_t(e.time)} ({e.message}); "
+                           f"expected {fmt_v(lo)}..{fmt_v(hi)}", float(e.time), [], v)
+    need = int(p.get("min", 1))
+    if len(evs) < need:
+        return Verdict(False, f"only {len(evs)} {what} with {p['field']} {_span(a, b)} (at least "
+                       f"{need} expected)", b, [], len(evs))
+    return Verdict(True, f"{len(evs)} {what}: {p['field']} within {fmt_v(lo)}..{fmt_v(hi)}",
+                   None, [], len(evs))
+
+
+# ---------------------------------------------------------------------------- alarms
+# The alarm log of plclab.scada (``alarm`` events: source = alarm id, data state = I, IO, IA,
+# IAO, IOA; ADR 0025). A lab with ``alarms = "alarms.toml"`` records it in every trace.
+
+_ALARM = Param("alarm", "str", True, help="the alarm id, e.g. \"NO_WATER\"")
+
+
+def _alarm_events(tr: Any, alarm: str, states: tuple[str, ...]) -> list[Any]:
+    evs = tr.events_of("alarm", alarm)
+    if not evs and alarm not in {a.get("id") for a in tr.meta.get("alarms", [])}:
+        known = ", ".join(a.get("id", "") for a in tr.meta.get("alarms", [])) or "none"
+        raise PlcError("PLC6021", f"no alarm {alarm!r} in this run's alarm configuration "
+                       f"(alarms: {known})")
+    return [e for e in evs if e.data.get("state") in states]
+
+
+@check("alarm_within", _ALARM, Param("trigger", "condition", True,
+                                     help="the cause, e.g. \"LEVEL < 0.3\""),
+       Param("time", "time", True, help="the allowed delay, e.g. \"2s\""),
+       Param("need_trigger", "bool", default=True,
+             help="fail when the trigger never happens (default true)"))
+def alarm_within(tr: Any, p: dict[str, Any]) -> Verdict:
+    """Each time ``trigger`` becomes true, the alarm is raised (incoming) within ``time``,
+    or is still pending from before ("alarm raised within 2 s")."""
+    np = _np()
+    a, b = window(tr, p)
+    limit = float(p["time"])
+    names = condition_names(p["trigger"])
+    came = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("I",))]
+    gone = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("IO", "IAO"))]
+    trig = mask(tr, p["trigger"])
+    prev = np.concatenate(([False], trig[:-1]))
+    edges = np.nonzero(trig & ~prev & in_window(tr, a, b))[0]
+    if len(edges) == 0:
+        ok = p.get("need_trigger") is False
+        return Verdict(ok, f"`{p['trigger']}` never happened {_span(a, b)}" +
+                       ("" if ok else ", so the alarm could not be checked"),
+                       None if ok else a, names)
+    worst = 0.0
+    for i in edges:
+        te = float(tr.time[i])
+        if te + limit > tr.t_end + 1e-9:
+            continue
+        active = any(c <= te and not any(c < g <= te for g in gone) for c in came)
+        hits = [c for c in came if te - 1e-9 <= c <= te + limit + 1e-9]
+        if not active and not hits:
+            return Verdict(False, f"`{p['trigger']}` at t = {fmt_t(te)}, but alarm "
+                           f"{p['alarm']} was not raised within {limit:g} s", te + limit, names)
+        worst = max(worst, 0.0 if active else hits[0] - te)
+    return Verdict(True, f"alarm {p['alarm']} came within {worst:.2f} s of `{p['trigger']}` "
+                   f"(allowed {limit:g} s)", None, names, worst)
+
+
+@check("ack_before_restart", _ALARM, Param("restart", "condition", True,
+                                           help="what must wait for the acknowledgement, "
+                                                "e.g. \"HEATER\""),
+       Param("time", "time", default=1.0, help="time allowed to switch it off after the alarm "
+                                              "came (default 1 s)"),
+       Param("need_alarm", "bool", default=True,
+             help="fail when the alarm never comes (default true)"))
+def ack_before_restart(tr: Any, p: dict[str, Any]) -> Verdict:
+    """After the alarm comes, ``restart`` is off (from ``time`` later) until the operator
+    acknowledges the alarm ("the burner runs again only after the acknowledgement")."""
+    np = _np()
+    a, b = window(tr, p)
+    grace = float(p.get("time", 1.0))
+    names = condition_names(p["restart"])
+    came = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("I",)) if a <= e.time <= b]
+    acks = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("IA", "IOA"))]
+    if not came:
+        ok = p.get("need_alarm") is False
+        return Verdict(ok, f"alarm {p['alarm']} never came {_span(a, b)}", None if ok else a,
+                       names)
+    on = mask(tr, p["restart"])
+    t = tr.time
+    for c in came:
+        ack = next((x for x in acks if x >= c - 1e-9), None)
+        end = ack if ack is not None else tr.t_end
+        bad = np.nonzero(on & (t > c + grace + 1e-9) & (t < end - 1e-9))[0]
+        if len(bad):
+            tf = float(t[bad[0]])
+            when = "before it was acknowledged" if ack is None else \
+                f"before the acknowledgement at {fmt_t(ack)}"
+            return Verdict(False, f"alarm {p['alarm']} came at {fmt_t(c)} and `{p['restart']}` "
+                           f"was on at {fmt_t(tf)}, {when}", tf, names)
+    return Verdict(True, f"`{p['restart']}` waited for the acknowledgement of alarm "
+                   f"{p['alarm']} ({len(came)} time(s))", None, names, len(came))
+
+
 # ---------------------------------------------------------------------------- running
 
 

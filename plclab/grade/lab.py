@@ -40,11 +40,11 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion", "mistake", "level", "chapters")
+            "criterion", "mistake", "level", "chapters", "alarms", "recipes")
 LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
 """``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
-                 "action", "actions", "until", "watch")
+                 "action", "actions", "until", "watch", "recipe")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
                   "message", "hint", "hint_fix", "signals", "window", "description", "requires",
                   "critical")
@@ -154,6 +154,7 @@ class ScenarioSpec:
     actions: list[dict[str, Any]] = field(default_factory=list)
     until: str | None = None
     watch: list[str] = field(default_factory=list)
+    recipe: list[tuple[float, str]] = field(default_factory=list)  # (s, record): plclab.scada
 
     def scenario(self, duration: float | None = None) -> Any:
         """The :class:`plclab.sim.Scenario` of this spec."""
@@ -284,6 +285,8 @@ class Lab:
     student_watch: list[str] = field(default_factory=list)  # lab check --watch: also drawn
     level: int = 0  # 1 beginner .. 3 advanced; 0 = not given
     chapters: list[int] = field(default_factory=list)  # course chapters that teach it
+    alarms: dict[str, Any] | None = None  # the lab's alarm configuration (plclab.scada)
+    recipes: dict[str, Any] | None = None  # the lab's recipe and its records (plclab.scada)
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -579,6 +582,8 @@ class _Builder:
         lab.mistakes = self.mistakes(d, criteria)
         lab.dialect = self.dialect(d)
         lab.level, lab.chapters = self.course_place(d)
+        lab.alarms = self.alarms(d)
+        lab.recipes = self.recipes(d, scenarios)
         return lab
 
     def course_place(self, d: Mapping[str, Any]) -> tuple[int, list[int]]:
@@ -594,6 +599,75 @@ class _Builder:
             raise self.err("PLC5004", "chapters must be a list of course chapter numbers, e.g. "
                            "chapters = [1, 6]", key="chapters")
         return int(level), sorted(set(chapters))
+
+    def recipes(self, d: Mapping[str, Any], scenarios: list[ScenarioSpec]
+                ) -> dict[str, Any] | None:
+        """``recipes = "recipes.toml"``: the recipe the scenarios load (``recipe = "juice"``
+        or ``recipe = [{ at = "30s", record = "nectar" }, ...]``), checked and kept as data."""
+        name = self.string(d, "recipes", "lab.toml")
+        raw = {i: s.get("recipe") for i, s in enumerate(d.get("scenario", []))
+               if isinstance(s, Mapping) and s.get("recipe") is not None}
+        if not name:
+            if raw:
+                raise self.err("PLC5004", "a scenario loads a recipe, but the lab names no "
+                               "recipes file: recipes = \"recipes.toml\"", key="recipes")
+            return None
+        path = self.folder / name
+        if Path(name).name != name or not path.is_file():
+            raise self.err("PLC5001", f"recipes = \"{name}\": no such file in the lab folder",
+                           key="recipes")
+        from plclab.scada.recipes import Recipe
+
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+            recipe = Recipe.from_dict(data, name)
+        except tomllib.TOMLDecodeError as e:
+            raise self.err("PLC5004", f"recipes = \"{name}\": not valid TOML ({e})",
+                           key="recipes") from None
+        except PlcError as e:
+            raise self.err("PLC5004", f"recipes = \"{name}\": {e.message}",
+                           key="recipes") from None
+        by_name = {s.name: s for s in scenarios}
+        for i, r in raw.items():
+            what = f"[[scenario]] #{i + 1}"
+            items = [{"at": 0, "record": r}] if isinstance(r, str) else r
+            if not isinstance(items, list) or not all(isinstance(x, Mapping) for x in items):
+                raise self.err("PLC5004", f"{what}: recipe is a record name (\"juice\") or a "
+                               "list of { at = \"30s\", record = \"nectar\" }", "scenario", i,
+                               "recipe")
+            loads = []
+            for x in items:
+                rec = x.get("record")
+                if rec not in recipe.records:
+                    raise self.err("PLC5004", f"{what}: recipe record {rec!r} is not in {name} "
+                                   f"({', '.join(recipe.records)})", "scenario", i, "recipe")
+                loads.append((self.seconds(x.get("at", 0), "at", what, "scenario", i), rec))
+            spec = by_name.get(str(d["scenario"][i].get("name")))
+            if spec is not None:
+                spec.recipe = sorted(loads)
+        return data
+
+    def alarms(self, d: Mapping[str, Any]) -> dict[str, Any] | None:
+        """``alarms = "alarms.toml"``: the lab's alarm configuration, read and checked here and
+        kept as data (the grader's worker may not see the lab folder)."""
+        name = self.string(d, "alarms", "lab.toml")
+        if not name:
+            return None
+        path = self.folder / name
+        if Path(name).name != name or not path.is_file():
+            raise self.err("PLC5001", f"alarms = \"{name}\": no such file in the lab folder",
+                           key="alarms")
+        from plclab.scada.alarms import AlarmServer
+
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+            AlarmServer.from_dict(data, name)
+        except tomllib.TOMLDecodeError as e:
+            raise self.err("PLC5004", f"alarms = \"{name}\": not valid TOML ({e})",
+                           key="alarms") from None
+        except PlcError as e:
+            raise self.err("PLC5004", f"alarms = \"{name}\": {e.message}", key="alarms") from None
+        return data
 
     def mistakes(self, d: Mapping[str, Any], criteria: list[CriterionSpec]
                  ) -> list[MistakeSpec]:

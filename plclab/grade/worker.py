@@ -33,7 +33,7 @@ from pathlib import Path
 from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
-           "plclab.viz.from_trace", "plclab.viz.timing", "plants")
+           "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.scada")
 
 
 def preload() -> None:

@@ -119,6 +119,8 @@ def _say(text: str) -> None:
      "once (default 16); more are disconnected at once")
 @arg("--idle-timeout", type=float, default=60.0, metavar="S", help="disconnect a client "
      "that sends nothing for S wall seconds (default 60)")
+@arg("--watch", default=None, metavar="FILE", help="a watch table (TOML, plclab.scada): "
+     "sampled at its trigger point while the clients work; its last samples at the end")
 def cmd_serve(ns: argparse.Namespace) -> int:
     from ..project import load
     from ._deps import need_pymodbus
@@ -140,6 +142,12 @@ def cmd_serve(ns: argparse.Namespace) -> int:
                        "this installation does not have yet; leave --wiring out to wire the "
                        "plant in signal order (docs/modbus.md)")
     plc = load(*ns.files, cycle_time=ns.cycle_time)
+    table = None
+    if ns.watch:  # a watch table on the live PLC (plclab.scada, ADR 0025)
+        from plclab.scada.watch import WatchTable
+
+        table = WatchTable.load(ns.watch)
+        table.attach(plc)
     plant = _make_plant(ns.plant, _params(ns.param, "--param"), ns.seed) if ns.plant else None
     server = PlcServer(plc, host=ns.host, port=ns.port, speed=ns.speed,
                        allow_coil_writes=ns.allow_coil_writes,
@@ -171,6 +179,8 @@ def cmd_serve(ns: argparse.Namespace) -> int:
     print(f"stopped: {plc.scan_count} scans, virtual time {plc.time:.3f} s, "
           f"{server.bridge.requests} Modbus requests ({server.bridge.refused} refused)",
           flush=True)
+    if table is not None and table.samples:
+        print(table.report(), flush=True)
     return 0
 
 

@@ -32,6 +32,9 @@ from ..names import split_outside_brackets
 from . import natives
 from .rt import HELPERS, AssertFailure, Budget, Fault, fb_exit_all, format_value
 
+# the trigger points of TIA Portal's watch tables (001 lines 3985-4030, Table 14)
+TRIGGERS = ("scan_start", "scan_end", "stop")
+
 _PATH_RE = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
 
 
@@ -210,6 +213,12 @@ class Plc:
         self.inputs = bytearray(image_size)  # the physical input terminals
         self.outputs = bytearray(image_size)  # the physical output terminals
         self.forced: dict[str, Any] = {}
+        # trigger points of a watch table (ADR 0025): callbacks and one-shot modifications
+        self.triggers: dict[str, list[Any]] = {t: [] for t in TRIGGERS}
+        self.modified: dict[str, dict[str, Any]] = {t: {} for t in TRIGGERS}
+        self.outputs_enabled_in_stop = False
+        # the same list and dict objects, for one cheap any() per scan() call
+        self._watch_parts = (*self.triggers.values(), *self.modified.values())
         self.state = "RUN"
         self.fault: PlcRuntimeFault | None = None
         self._natives = {k: natives.resolve(v) for k, v in compiled.natives.items()}
@@ -326,7 +335,7 @@ class Plc:
         if n.__class__ is not int or not 0 <= n <= MAX_SCANS:
             _check_count(n, "scan: n")
         if (self.state != "RUN" or self.forced or self._single is None or n < 1
-                or self._system_bytes):
+                or self._system_bytes or any(self._watch_parts)):
             for _ in range(n):
                 self._scan_once()
             return
@@ -357,19 +366,24 @@ class Plc:
     def _scan_once(self) -> None:
         ctx = self.ctx
         if self.state != "RUN":
-            self.outputs[:] = bytes(self.image_size)
+            self._stop_scan()
             ctx.now_ns += self._tick_ns
             ctx.now = ctx.now_ns // 1_000_000
             return
+        watched = self._watched
         self.budget.left = self.budget.limit
         self.image_in[:] = self.inputs
         if self._system_bytes:
             self._update_system_memory()
         if self.forced:
             self._apply_forced_inputs()
+        if watched and self.modified["scan_start"]:
+            self._apply_inputs(self._take("scan_start"))
         try:
             if self._sync_in is not None:
                 self._sync_in()
+            if watched:
+                self._fire("scan_start")
             if self._single is not None:
                 for body in self._single:
                     body()
@@ -383,8 +397,12 @@ class Plc:
                 self._sync_out()
         except BaseException as exc:  # noqa: BLE001 - every fault becomes a PlcRuntimeFault
             self._to_stop(exc)
+        if watched and self.modified["scan_end"]:
+            self._apply_outputs(self._take("scan_end"))
         if self.forced:
             self._apply_forced_outputs()
+        if watched:
+            self._fire("scan_end")
         self.outputs[:] = self.image_out
         ctx.first_scan = False
         ctx.scan_count += 1
@@ -437,7 +455,10 @@ class Plc:
 
     def stop(self) -> None:
         """Go to STOP: programs do not run and all outputs are switched off."""
+        was = self.state
         self.state = "STOP"
+        if was == "RUN":
+            self._fire("stop")
 
     def start(self) -> None:
         """Back to RUN after STOP (a fault must be cleared with a restart)."""
@@ -445,6 +466,7 @@ class Plc:
             raise PlcError("PLC3004", "the PLC stopped on a fault; call cold_restart() or "
                            "warm_restart() after fixing the program", self.fault.location)
         self.state = "RUN"
+        self.outputs_enabled_in_stop = False  # going to RUN blocks the option (001 l. 4073)
 
     def _guard(self, fn):
         try:
@@ -467,6 +489,7 @@ class Plc:
         ctx.scan_count += 1
         ctx.now_ns += self._tick_ns
         ctx.now = ctx.now_ns // 1_000_000
+        self._fire("stop")
         raise fault from None
 
     @property
@@ -713,18 +736,30 @@ class Plc:
             self.forced.pop(path.upper(), None)
 
     def _apply_forced_inputs(self) -> None:
-        for key, (v, val) in self.forced.items():
+        self._apply_inputs(self.forced.items())
+
+    def _apply_inputs(self, items: Any) -> None:
+        """Write values into the input image (or the variables) before the program reads them."""
+        for key, (v, val) in items:
             if key.startswith("%I"):
                 self._write_bytes(self.image_in, *self._addr_parts(key), val)
+            elif key.startswith("%M"):
+                self._write_bytes(self.memory, *self._addr_parts(key), val)
             elif v.address and v.address.startswith("%I"):
                 self._write_address(v.address, val, v.type, physical=False)
             elif not key.startswith("%"):
                 v.set(val)
 
     def _apply_forced_outputs(self) -> None:
-        for key, (v, val) in self.forced.items():
+        self._apply_outputs(self.forced.items())
+
+    def _apply_outputs(self, items: Any) -> None:
+        """Write values into the variables and the output image after the program ran."""
+        for key, (v, val) in items:
             if key.startswith("%Q"):
                 self._write_bytes(self.image_out, *self._addr_parts(key), val)
+            elif key.startswith("%M"):
+                self._write_bytes(self.memory, *self._addr_parts(key), val)
             elif not key.startswith("%") and not (v.address and v.address.startswith("%I")):
                 v.set(val)
                 if v.address and v.address.startswith("%Q"):
@@ -736,6 +771,56 @@ class Plc:
         m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", addr.upper())
         assert m
         return m.group(2) or "X", int(m.group(3)), m.group(4)
+
+    # -- trigger points, modify, outputs in STOP (ADR 0025; 001 lines 3890-4080) ----------------
+    def modify(self, path: str, value: Any, at: str = "scan_start") -> None:
+        """Write ``value`` to a variable or address ONCE at a trigger point (``"scan_start"``,
+        after the inputs are read: best for inputs; ``"scan_end"``, before the outputs are
+        written: best for outputs), unlike :meth:`force`, which holds it every scan."""
+        if at not in ("scan_start", "scan_end"):
+            raise PlcError("PLC6001", f"modify at {at!r}: a value is modified at 'scan_start' "
+                           "or 'scan_end'")
+        v = self.var(path)
+        self.modified[at][path.upper()] = (v, convert_in(value, v.type, path))
+
+    def enable_outputs_in_stop(self, enable: bool = True) -> None:
+        """TIA Portal's *Enable peripheral outputs*: in STOP, modified outputs reach the
+        terminals (to test the wiring). Only in STOP, only with nothing forced; RUN clears it."""
+        if enable and self.state == "RUN":
+            raise PlcError("PLC6002", "outputs can be enabled only in STOP; call plc.stop() "
+                           "first")
+        if enable and self.forced:
+            raise PlcError("PLC6002", "outputs cannot be enabled in STOP while values are "
+                           f"forced ({', '.join(self.forced)}); call plc.unforce() first")
+        self.outputs_enabled_in_stop = bool(enable)
+        if enable:
+            self.image_out[:] = bytes(self.image_size)
+
+    @property
+    def _watched(self) -> bool:
+        return any(self._watch_parts)
+
+    def _take(self, at: str) -> list[tuple[str, Any]]:
+        items = list(self.modified[at].items())
+        self.modified[at].clear()
+        return items
+
+    def _fire(self, at: str) -> None:
+        for fn in tuple(self.triggers[at]):
+            fn(self, at)
+
+    def _stop_scan(self) -> None:
+        """A scan in STOP: the program does not run; outputs are off unless enabled, when
+        modified outputs reach the terminals. Watch tables still sample."""
+        if self.outputs_enabled_in_stop:
+            self._apply_outputs(self._take("scan_end") + self._take("scan_start"))
+            self.outputs[:] = self.image_out
+        else:
+            self.outputs[:] = bytes(self.image_size)
+        if self.triggers["scan_start"] or self.triggers["scan_end"]:
+            self.image_in[:] = self.inputs
+            self._fire("scan_start")
+            self._fire("scan_end")
 
     # -- listing ------------------------------------------------------------------------------
     def variables(self) -> list[str]:

@@ -41,6 +41,10 @@ def _param(text: str) -> tuple[str, object]:
 @arg("--dt", default=None, help="plant sub-step (default: min(scan, plant max_dt))")
 @arg("--seed", type=int, default=None, help="random seed (default: the scenario's, else 0)")
 @arg("--watch", default=None, metavar="A,B", help="PLC variables to record")
+@arg("--watch-table", default=None, metavar="FILE",
+     help="a watch table (TOML) sampled at its trigger point into the trace (plclab.scada)")
+@arg("--alarms", default=None, metavar="FILE",
+     help="an alarm configuration (TOML): the alarm log goes into the trace (plclab.scada)")
 @arg("--until", default=None, metavar="EXPR", help="stop when this holds, e.g. 'LEVEL > 1.9'")
 @arg("--param", action="append", default=[], metavar="NAME=VALUE",
      help="plant parameter, e.g. --param area=2.0 (repeatable)")
@@ -82,6 +86,16 @@ def cmd_sim(ns: argparse.Namespace) -> int:
                      plant_params=params)
     for w in sim.warnings:
         print(f"note: {w}", file=sys.stderr)
+    # -- SCADA hooks (plclab.scada, ADR 0025)
+    table = alarms = None
+    if ns.watch_table:
+        from plclab.scada import WatchTable
+
+        table = sim.add_hook(WatchTable.load(ns.watch_table))
+    if ns.alarms:
+        from plclab.scada import AlarmServer
+
+        alarms = sim.add_hook(AlarmServer.load(ns.alarms))
     duration = ns.duration
     if duration is None and sc.duration_ns is None:
         duration = "10min"
@@ -105,6 +119,13 @@ def cmd_sim(ns: argparse.Namespace) -> int:
         print("all events:")
         for e in tr.events:
             print(f"  {e}")
+    if alarms is not None:
+        print(f"alarm log ({len(alarms.log)} entries):")
+        for entry in alarms.log:
+            print(f"  {entry}")
+    if table is not None and table.samples:
+        print(f"watch table {table.name} ({table.trigger}, {len(table.samples)} samples), last:")
+        print("  " + table.show().replace("\n", "\n  "))
     watched = [c for c in tr.names if c in sim.watch or c.startswith("plc:")]
     if watched:
         print("watched (final):")

@@ -221,6 +221,21 @@ class Simulation:
         self._plc_state = plc.state
         self.stop_reason = ""
         self.wall_s = 0.0
+        self.hooks: list[Any] = []
+
+    def add_hook(self, hook: Any) -> Any:
+        """Join an observer to every scan (e.g. :class:`plclab.scada.AlarmServer`, a watch
+        table); returns it. The simulation does not import the observer's package: a hook
+        has ``bind(sim)`` (called here, before the first scan: it may add recorder groups),
+        ``after_scan(sim, t_ns, recorded)`` (after each PLC scan, before the plant moves;
+        ``recorded``: this scan is a trace row) and ``finish(sim) -> (events, meta)`` (its
+        events and a ``meta`` entry of the Trace). See ADR 0025."""
+        if self.k:
+            raise PlcError("PLC6060", "add hooks (alarms, watch tables) before the first scan "
+                           "of the simulation, so that their records cover the whole run")
+        hook.bind(self)
+        self.hooks.append(hook)
+        return hook
 
     # ------------------------------------------------------------------ set-up
     def _build_recorder(self, watch: list[str]) -> None:
@@ -580,6 +595,7 @@ class Simulation:
         ops = self._ops
         next_op = ops[self._op_i][0] if self._op_i < len(ops) else math.inf
         chunk = 8192
+        hooks = self.hooks
         pending = len(self._g_plant.rows)
         k = self.k
         w_start = perf()
@@ -604,6 +620,9 @@ class Simulation:
                 w1 = perf() if measure else 0
                 if plc.state != self._plc_state:
                     self._plc_changed(t_ns)
+                if hooks:
+                    for hk in hooks:
+                        hk.after_scan(self, t_ns, k % dec == 0)
                 outs = read_out()
                 # 4. record
                 if k % dec == 0:
@@ -725,7 +744,13 @@ class Simulation:
                        "direction": c.direction, "column": c.name, "plant_column": c.signal.name,
                        "params": c.row.params, "description": c.row.description})
         edges, initial, bounce = self._edges()
-        events = sorted(self.events + bounce, key=lambda e: e.time)
+        extra: list[Any] = []
+        hook_meta: dict[str, Any] = {}
+        for hk in self.hooks:
+            evs, hm = hk.finish(self)
+            extra += evs
+            hook_meta.update(hm)
+        events = sorted(self.events + bounce + extra, key=lambda e: e.time)
         meta = {
             "plant": self.plant.name, "title": getattr(self.plant, "title", ""),
             "plant_params": {k: v for k, v in self.plant_params.items()
@@ -743,6 +768,7 @@ class Simulation:
             "scenario": self.scenario.source or "", "description": self.scenario.description,
             "edge_initial": initial, "warnings": list(self.warnings),
             "plclab_version": __version__,
+            **hook_meta,
         }
         wall = {"scan_s": np.asarray(rec.wall, dtype=np.float64) / 1e9, "run_s": self.wall_s}
         return Trace(time, cols, kinds, meta, events, wall, edges)

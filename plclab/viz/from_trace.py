@@ -101,7 +101,7 @@ def _plant(trace):
 
 WARN_KINDS = {"overflow", "dry_run", "plc_fault", "io_fault", "fault_injected",
               "bottle_toppled", "chatter", "spill", "crash", "moved_without_two_hands",
-              "curtain_violation"}
+              "curtain_violation", "alarm"}
 """Trace event kinds shown as warnings (plc_fault as an error)."""
 MAX_INFO = 12
 """An informational event kind that happens more often than this is counted, not listed."""

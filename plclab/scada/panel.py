@@ -1,0 +1,276 @@
+"""An operator panel in the browser: the plant's signals and alarms, buttons, acknowledgement.
+
+:class:`Panel` runs a :class:`~plclab.sim.Simulation` paced to the wall clock (``speed`` times
+real time) in a background thread and answers a small JSON API; :func:`serve` puts it behind
+the standard library's HTTP server on the loopback interface, with one HTML page that polls
+``/state`` and posts the operator's actions. The simulation is stepped and acted on under one
+lock, so the browser never sees half a scan.
+
+Users and rights are a teaching example of WinCC's user administration
+(``001_c648febd3bbd6efb.txt``, lines 6300-6420), not security: anybody on this machine can
+pick any user. A **viewer** only watches, an **operator** presses buttons and acknowledges
+alarms, an **engineer** may also download recipe records. A refused action is PlcError
+PLC6050.
+
+API (JSON): ``GET /state``; ``POST /login {user}``, ``/press {signal}``, ``/set {signal,
+value}``, ``/ack {id}`` (no id: every pending alarm), ``/recipe {record}``.
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+import time
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from typing import Any
+
+from plclab.errors import PlcError
+
+USERS: dict[str, frozenset[str]] = {
+    "viewer": frozenset(),
+    "operator": frozenset({"operate", "ack"}),
+    "engineer": frozenset({"operate", "ack", "recipe"}),
+}
+"""The panel's users and their rights (a teaching example, not security)."""
+
+RIGHT_TEXT = {"operate": "press buttons and set values", "ack": "acknowledge alarms",
+              "recipe": "download recipe records"}
+LOG_LINES = 30
+PRESS_S = 0.3  # how long a pressed button stays pressed (virtual time)
+
+
+class Panel:
+    """The state and the actions of an operator panel around a running simulation.
+
+    Parameters
+    ----------
+    sim : plclab.sim.Simulation
+        A fresh simulation (the panel adds ``alarms`` as a hook).
+    alarms : AlarmServer, optional
+    recipe : Recipe, optional
+    speed : float
+        Virtual seconds per wall-clock second.
+    """
+
+    def __init__(self, sim: Any, alarms: Any = None, recipe: Any = None,
+                 speed: float = 1.0) -> None:
+        if not speed > 0:
+            raise PlcError("PLC6050", f"speed={speed!r}: give a positive factor (1 = real time)")
+        self.sim = sim
+        self.alarms = sim.add_hook(alarms) if alarms is not None else None
+        self.recipe = recipe
+        self.active_record = ""
+        self.speed = float(speed)
+        self.user = "viewer"
+        self.lock = threading.Lock()
+        self._releases: list[tuple[float, str, bool]] = []
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self.message = ""
+
+    # ------------------------------------------------------------------ running
+    def start(self) -> None:
+        """Run the simulation in a background thread, paced to the wall clock."""
+        if self._thread is not None:
+            return
+        self._thread = threading.Thread(target=self._run, name="plclab-panel", daemon=True)
+        self._thread.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=5)
+            self._thread = None
+
+    def _run(self) -> None:
+        sim = self.sim
+        wall0 = time.monotonic()
+        t0 = sim.time
+        while not self._stop.is_set():
+            target = t0 + (time.monotonic() - wall0) * self.speed
+            n = int((target - sim.time) / sim.scan)
+            if n > 0:
+                self.advance(min(n, 2000))
+            self._stop.wait(0.02)
+
+    def advance(self, scans: int) -> None:
+        """Step the simulation (under the lock), releasing pressed buttons on time."""
+        with self.lock:
+            for _ in range(scans):
+                due = [r for r in self._releases if r[0] <= self.sim.time + 1e-9]
+                for r in due:
+                    self.sim.plant.write(r[1], r[2])
+                    self._releases.remove(r)
+                self.sim.step(1)
+
+    # ------------------------------------------------------------------ users
+    def login(self, user: str) -> None:
+        if user not in USERS:
+            raise PlcError("PLC6050", f"no user {user!r}; the panel knows "
+                           f"{', '.join(USERS)}")
+        self.user = user
+
+    def _need(self, right: str) -> None:
+        if right not in USERS[self.user]:
+            who = [u for u, r in USERS.items() if right in r]
+            raise PlcError("PLC6050", f"user {self.user} may not {RIGHT_TEXT[right]}; log in as "
+                           f"{' or '.join(who)}")
+
+    # ------------------------------------------------------------------ actions
+    def press(self, signal: str) -> None:
+        """Press a panel push button for a moment (a normally closed one opens)."""
+        self._need("operate")
+        sig = self._panel_signal(signal, "bool")
+        rest = bool(sig.default)
+        with self.lock:
+            self.sim.plant.write(sig.name, not rest)
+            self._releases.append((self.sim.time + PRESS_S, sig.name, rest))
+
+    def set(self, signal: str, value: Any) -> None:
+        """Set a panel input (a switch or a REAL such as a valve opening)."""
+        self._need("operate")
+        sig = self._panel_signal(signal)
+        with self.lock:
+            try:
+                self.sim.plant.write(sig.name, value if sig.type == "bool" else float(value))
+            except (TypeError, ValueError):
+                raise PlcError("PLC6050", f"{sig.name}: {value!r} is not a value for it") from None
+
+    def acknowledge(self, alarm_id: str | None = None) -> bool:
+        self._need("ack")
+        if self.alarms is None:
+            raise PlcError("PLC6050", "this panel has no alarms; start it with --alarms FILE")
+        with self.lock:
+            return self.alarms.acknowledge(alarm_id, t=self.sim.time, user=self.user)
+
+    def load_recipe(self, record: str) -> None:
+        self._need("recipe")
+        if self.recipe is None:
+            raise PlcError("PLC6050", "this panel has no recipe; start it with --recipe FILE")
+        with self.lock:
+            self.recipe.load_into(self.sim.plc, record)
+            self.active_record = record
+
+    def _panel_signal(self, name: str, type_: str | None = None) -> Any:
+        sig = self.sim.plant.signals.get(name)
+        if sig is None or sig.kind != "panel" or (type_ and sig.type != type_):
+            buttons = [n for n, s in self.sim.plant.signals.items() if s.kind == "panel"]
+            raise PlcError("PLC6050", f"{name!r} is not a panel input of "
+                           f"'{self.sim.plant.name}' ({', '.join(buttons) or 'none'})")
+        return sig
+
+    # ------------------------------------------------------------------ state
+    def state(self) -> dict[str, Any]:
+        """What the page shows, as JSON-ready data."""
+        with self.lock:
+            sim = self.sim
+            plant = sim.plant
+            signals = []
+            for name, s in plant.signals.items():
+                v = plant.read(name)
+                signals.append({"name": name, "kind": s.kind, "type": s.type, "unit": s.unit,
+                                "value": bool(v) if s.type == "bool" else round(float(v), 4)})
+            alarms, log = [], []
+            if self.alarms is not None:
+                classes = self.alarms.classes
+                for a, st in self.alarms.pending():
+                    alarms.append({"id": a.id, "text": a.text, "class": a.alarm_class,
+                                   "state": st, "color": classes[a.alarm_class].color,
+                                   "ack": classes[a.alarm_class].ack})
+                for e in self.alarms.log[-LOG_LINES:]:
+                    log.append({"t": round(e.time, 3), "id": e.id, "state": e.state,
+                                "class": e.alarm_class, "text": e.text, "user": e.user})
+            return {
+                "t": round(sim.time, 3), "plant": plant.name,
+                "title": getattr(plant, "title", plant.name), "plc": sim.plc.state,
+                "signals": signals, "alarms": alarms, "log": log,
+                "user": self.user, "users": list(USERS), "rights": sorted(USERS[self.user]),
+                "records": list(self.recipe.records) if self.recipe is not None else [],
+                "record": self.active_record, "message": self.message,
+            }
+
+
+# ---------------------------------------------------------------------- HTTP
+
+
+def page() -> str:
+    """The panel's HTML page."""
+    from .panel_page import PAGE
+
+    return PAGE
+
+
+def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> ThreadingHTTPServer:
+    """An HTTP server for ``panel`` on the loopback interface (``port=0``: any free port)."""
+    if host not in ("127.0.0.1", "localhost", "::1"):
+        raise PlcError("PLC6050", f"the panel serves only this machine (127.0.0.1), not {host}")
+    html = page().encode("utf-8")
+
+    class Handler(BaseHTTPRequestHandler):
+        def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the alarms
+            return
+
+        def _send(self, code: int, body: bytes, kind: str) -> None:
+            self.send_response(code)
+            self.send_header("Content-Type", kind)
+            self.send_header("Content-Length", str(len(body)))
+            self.send_header("Cache-Control", "no-store")
+            self.end_headers()
+            self.wfile.write(body)
+
+        def _json(self, code: int, data: Any) -> None:
+            self._send(code, json.dumps(data).encode("utf-8"), "application/json")
+
+        def do_GET(self) -> None:  # noqa: N802 - the http.server API
+            if self.path in ("/", "/index.html"):
+                self._send(200, html, "text/html; charset=utf-8")
+            elif self.path == "/state":
+                self._json(200, panel.state())
+            else:
+                self._json(404, {"error": f"no page {self.path}"})
+
+        def do_POST(self) -> None:  # noqa: N802
+            try:
+                n = min(int(self.headers.get("Content-Length") or 0), 10_000)
+                data = json.loads(self.rfile.read(n) or b"{}")
+                if not isinstance(data, dict):
+                    raise ValueError
+            except ValueError:
+                self._json(400, {"error": "send a JSON object"})
+                return
+            actions = {
+                "/login": lambda: panel.login(str(data.get("user", ""))),
+                "/press": lambda: panel.press(str(data.get("signal", ""))),
+                "/set": lambda: panel.set(str(data.get("signal", "")), data.get("value")),
+                "/ack": lambda: panel.acknowledge(data.get("id") or None),
+                "/recipe": lambda: panel.load_recipe(str(data.get("record", ""))),
+            }
+            if self.path not in actions:
+                self._json(404, {"error": f"no action {self.path}"})
+                return
+            try:
+                actions[self.path]()
+            except PlcError as e:
+                panel.message = f"{e.code}: {e.message}"
+                self._json(403 if e.code == "PLC6050" else 400,
+                           {"error": e.message, "code": e.code})
+                return
+            panel.message = ""
+            self._json(200, {"ok": True})
+
+    return ThreadingHTTPServer((host, port), Handler)
+
+
+def serve(panel: Panel, port: int = 8765) -> None:
+    """Serve the panel until Ctrl+C."""
+    server = make_server(panel, port)
+    panel.start()
+    print(f"operator panel of '{panel.sim.plant.name}' on http://127.0.0.1:"
+          f"{server.server_address[1]}/  (Ctrl+C stops)")
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.server_close()
+        panel.stop()

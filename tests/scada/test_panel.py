@@ -1,0 +1,189 @@
+"""The operator panel: users and rights, buttons, acknowledgement and recipes through the
+Panel API and over HTTP, and the page itself in headless Chromium (playwright)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import threading
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+import plclab
+from plclab.errors import PlcError
+from plclab.scada import Alarm, AlarmServer, Recipe
+from plclab.scada.panel import Panel, make_server
+from plclab.sim import Simulation
+
+TANK = """PROGRAM Main
+VAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL; M AT %QX0.0 : BOOL; END_VAR
+M := ((NOT LS1) OR M) AND (NOT LS2);
+END_PROGRAM
+PROGRAM Mix
+VAR Orange, Water, Sugar, Flavoring : REAL; END_VAR
+END_PROGRAM"""
+
+
+def make_panel(speed: float = 5.0) -> Panel:
+    plc = plclab.loads(TANK)
+    sim = Simulation(plc, "tank", plant_params={"level0": 0.6}, wall_clock=False)
+    alarms = AlarmServer([Alarm("FULL", "the level is above LS1", tag="LS1",
+                                alarm_class="error"),
+                          Alarm("HIGH", "level above 0.55 m", tag="LEVEL", kind="H",
+                                limit=0.55)])
+    return Panel(sim, alarms, Recipe.juice(), speed=speed)
+
+
+def test_rights_of_viewer_operator_and_engineer():
+    p = make_panel()
+    p.advance(3)
+    assert [(a["id"], a["state"]) for a in p.state()["alarms"]] == [("FULL", "I"),
+                                                                     ("HIGH", "I")]
+    with pytest.raises(PlcError, match="user viewer may not acknowledge alarms; log in as "
+                                       "operator or engineer") as e:
+        p.acknowledge("FULL")
+    assert e.value.code == "PLC6050"
+    p.login("operator")
+    assert p.acknowledge() is True  # every pending alarm: only FULL needs it
+    assert p.state()["log"][-1]["state"] == "IA" and p.state()["log"][-1]["user"] == "operator"
+    with pytest.raises(PlcError, match="may not download recipe records; log in as engineer"):
+        p.load_recipe("orange_juice")
+    p.login("engineer")
+    p.load_recipe("orange_juice")
+    assert p.sim.plc["Mix.Orange"] == 95.0 and p.state()["record"] == "orange_juice"
+    with pytest.raises(PlcError, match="no user"):
+        p.login("root")
+
+
+def test_panel_inputs_only():
+    p = make_panel()
+    p.login("operator")
+    p.set("VALVE", 30)
+    assert p.sim.plant.read("VALVE") == 30.0
+    with pytest.raises(PlcError, match="not a panel input"):
+        p.press("PUMP")
+    with pytest.raises(PlcError, match="not a panel input"):
+        p.press("VALVE")  # a REAL: set it
+
+
+def test_a_pressed_button_is_released_after_a_moment():
+    plc = plclab.loads("""PROGRAM Main VAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL;
+        M AT %QX0.0 : BOOL; END_VAR M := (START OR M) AND STOP; END_PROGRAM""")
+    p = Panel(Simulation(plc, "conveyor", wall_clock=False))
+    p.login("operator")
+    p.press("START")
+    assert p.sim.plant.read("START") is True
+    p.advance(10)
+    assert plc["M"] is True
+    p.advance(40)
+    assert p.sim.plant.read("START") is False and plc["M"] is True
+    p.press("STOP")  # normally closed: pressing opens it
+    assert p.sim.plant.read("STOP") is False
+    p.advance(40)
+    assert plc["M"] is False and p.sim.plant.read("STOP") is True
+
+
+@pytest.fixture
+def served():
+    panel = make_panel(speed=5.0)
+    server = make_server(panel, port=0)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    panel.start()
+    yield panel, f"http://127.0.0.1:{server.server_address[1]}"
+    panel.stop()
+    server.shutdown()
+    server.server_close()
+
+
+def _post(url: str, body: dict) -> tuple[int, dict]:
+    req = urllib.request.Request(url, json.dumps(body).encode(), {"Content-Type":
+                                                                 "application/json"})
+    try:
+        with urllib.request.urlopen(req, timeout=5) as r:
+            return r.status, json.loads(r.read())
+    except urllib.error.HTTPError as e:
+        return e.code, json.loads(e.read())
+
+
+def test_the_json_api(served):
+    panel, url = served
+    with urllib.request.urlopen(url + "/state", timeout=5) as r:
+        st = json.loads(r.read())
+    assert st["plant"] == "tank" and st["user"] == "viewer"
+    assert _post(url + "/ack", {})[0] == 403
+    assert _post(url + "/login", {"user": "operator"}) == (200, {"ok": True})
+    assert _post(url + "/ack", {"id": "FULL"}) == (200, {"ok": True})
+    code, body = _post(url + "/recipe", {"record": "orange_juice"})
+    assert code == 403 and body["code"] == "PLC6050"
+    assert _post(url + "/nope", {})[0] == 404
+    with pytest.raises(PlcError, match="only this machine"):
+        make_server(panel, host="0.0.0.0")
+
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+
+
+def test_the_page_in_headless_chromium(served, tmp_path):
+    sync_api = pytest.importorskip("playwright.sync_api",
+                                   reason="the browser test needs playwright (pip install "
+                                          "playwright)")
+    if not Path(CHROMIUM).exists():
+        pytest.skip("no chromium at /usr/bin/chromium (apt-get install chromium)")
+    panel, url = served
+    with sync_api.sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, headless=True,
+                                     args=["--no-sandbox"])
+        page = browser.new_page(viewport={"width": 1200, "height": 800})
+        page.goto(url)
+        page.wait_for_selector("#alarm-FULL")
+        assert page.inner_text("#title").startswith("Hydro-accumulator tank")
+        assert page.is_disabled("#ack-FULL")  # a viewer may not acknowledge
+        page.select_option("#user", "operator")
+        page.wait_for_function("!document.querySelector('#ack-FULL').disabled")
+        page.click("#ack-FULL")
+        page.wait_for_function(
+            "document.querySelector('#alarm-FULL td:nth-child(2)').textContent === 'IA'")
+        page.click("#recipe-orange_juice")
+        page.wait_for_function("document.querySelector('#message').textContent.includes("
+                               "'may not download recipe records')")
+        page.select_option("#user", "engineer")
+        page.wait_for_function("document.querySelector('#user').value === 'engineer'")
+        page.click("#recipe-orange_nectar")
+        page.wait_for_selector("text=load orange_nectar (active)")
+        assert panel.sim.plc["Mix.Orange"] == 70.0
+        log = page.inner_text("#log-body")
+        assert "operator" in log and "IA" in log
+        shot = tmp_path / "panel.png"
+        page.screenshot(path=str(shot), full_page=True)
+        browser.close()
+    assert shot.stat().st_size > 10_000
+    import os
+
+    keep = os.environ.get("PLCLAB_KEEP_SCREENSHOT")
+    if keep:  # to look at the picture: PLCLAB_KEEP_SCREENSHOT=/tmp/panel.png
+        shutil.copyfile(shot, keep)
+
+
+def test_the_notebook_panel_acts_through_the_same_rights():
+    pytest.importorskip("ipywidgets", reason="the notebook panel needs ipywidgets")
+    from plclab.scada.widgets import notebook_panel
+
+    p = make_panel()
+    nb = notebook_panel(p)
+    nb.run(1.0)
+    assert "FULL" in nb.alarms.value and ">I<" in nb.alarms.value
+    assert nb.ack.disabled  # a viewer
+    nb.records["orange_juice"].click()
+    assert "may not download recipe records" in nb.message.value
+    nb.user.value = "operator"
+    assert not nb.ack.disabled
+    nb.ack.click()
+    assert ">IA<" in nb.alarms.value and "operator" in nb.alarms.value
+    nb.user.value = "engineer"
+    nb.records["orange_nectar"].click()
+    assert p.sim.plc["Mix.Orange"] == 70.0 and nb.message.value == ""
+    assert "t = 1.0 s" in nb.signals.value
