@@ -51,16 +51,17 @@ END_PROGRAM
 """
 
 
-def make_plant(name: str) -> Any:
-    """A fresh ``tank`` or ``motor`` plant with the playground's parameters."""
+def make_plant(name: str, params: dict[str, Any] | None = None) -> Any:
+    """A fresh ``tank`` or ``motor`` plant with ``params`` (default: the playground's)."""
+    kw = PLANT_PARAMS.get(name, {}) if params is None else params
     if name == "tank":
         from plants.tank import Tank
 
-        return Tank(**PLANT_PARAMS["tank"])
+        return Tank(**kw)
     if name == "motor":
         from plants.motor import Motor
 
-        return Motor(**PLANT_PARAMS["motor"])
+        return Motor(**kw)
     raise PlcError("PLC3044", f"the playground has no plant {name!r}; choose tank or motor")
 
 
