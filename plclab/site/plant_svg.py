@@ -30,7 +30,7 @@ def plant_svg(plant: Any, width: int = 480) -> str:
     from plclab.viz.plant_view import picture
 
     pic = picture(_Still(plant), plant)
-    if pic is None:
+    if pic is None or len(pic.static) + len(pic.frame(0)) < 2:  # no geometry to draw
         return _panel(plant, width)
     x0, y0, x1, y1 = pic.bounds
     scale = width / max(x1 - x0, 1e-9)
@@ -91,6 +91,6 @@ def _panel(plant: Any, width: int) -> str:
                    f'text-anchor="end" font-family="sans-serif">{escape(n)} &#8592;</text>')
     for i, n in enumerate(right):
         out.append(f'<text x="{width * 0.67:.0f}" y="{36 + 22 * i}" fill="#fd8" font-size="12" '
-                   f'font-family="sans-serif">&#8594; {escape(n)}</text>')
+                   f'font-family="sans-serif">&#8592; {escape(n)}</text>')
     out.append("</svg>")
     return "\n".join(out)

@@ -118,19 +118,25 @@ class Session:
                             getattr(self.plc, "diagnostics", None) or []]
         self.rows: list[tuple[str, str, str]] = []
         for address, signal, direction in WIRING[plant]:
-            for path in (address, signal):
-                try:
-                    self.plc[path]
-                except (PlcError, KeyError):
-                    continue
-                self.mapped[signal] = path
-                self.rows.append((path, signal, direction))
-                break
-        if not any(d == "out" for _, _, d in self.rows):
+            path = address  # the process image always exists; a variable AT it reads it
+            try:
+                if self.plc.var(signal).address is None:
+                    path = signal  # an unlocated variable called like the signal
+            except PlcError:
+                pass
+            self.mapped[signal] = path
+            self.rows.append((path, signal, direction))
+        used = self._outputs_used(text)
+        if not used:
             outs = ", ".join(f"{s} ({a})" for a, s, d in WIRING[plant] if d == "out")
             self.diagnostics.append(diagnostic_dict(Diagnostic(
                 "PLC3044", f"no variable drives the {plant}'s outputs: declare {outs} "
                 "(by name or AT its address)", None, "warning")))
+
+    def _outputs_used(self, text: str) -> bool:
+        """Does the program write one of the plant's outputs (by its address or its name)?"""
+        upper = text.upper()
+        return any(d == "out" and (p.upper() in upper) for p, _, d in self.rows)
 
     @property
     def ok(self) -> bool:
