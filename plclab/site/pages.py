@@ -48,7 +48,12 @@ def _with_try_links(text: str, depth: int) -> str:
         j = i + 1
         while j < len(lines) and not lines[j].startswith(fence):
             j += 1
-        out.extend(lines[i:j + 1])
+        out.append(fence + lang)  # mkdocs reads no attributes after the language
+        out.extend(lines[i + 1:j + 1])
+        error = re.search(r"\berror=(PLC\d{4})", m.group(3))
+        if error:
+            out += ["", f"*A deliberate mistake: plclab reports "
+                    f"[{error.group(1)}]({'../' * depth}problems/{error.group(1)}/index.md).*"]
         if lang in PLAYGROUND_LANGUAGES:
             code = "\n".join(lines[i + 1:j]) + "\n"
             out += ["", f'<a class="try-it" href="{try_link(code, lang, depth)}">'
