@@ -5,3 +5,6 @@ ADRs) and the playground, whose Python side (:mod:`plclab.site.playground_api`,
 
 Importing this package imports nothing: the playground loads only the modules it needs.
 """
+
+__all__ = ["build", "commands", "lab_check", "pages", "playground_api", "plant_svg", "serve",
+           "bundle"]

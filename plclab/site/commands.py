@@ -10,7 +10,8 @@ from plclab.cli_registry import arg, command
 
 
 @command("site")
-@arg("action", choices=["build", "serve"], help="build the site, or build and serve it")
+@arg("action", choices=["build", "serve"], metavar="ACTION",
+     help="build: build the site; serve: build it and serve it on 127.0.0.1")
 @arg("--out", metavar="DIR", default=None,
      help="where the site goes (default: plclab-site in the temporary directory); never the "
           "source tree")
