@@ -125,7 +125,7 @@ def lab_pages(docs: Path, site_assets: Path) -> list[Any]:
             if (lab_dir / "README.md").exists() else f"# {data.get('title', lab)}\n"
         parts = [_LINK.sub(lambda m: m.group(2) if not m.group(3).startswith("http")
                            else m.group(0), readme).rstrip(), "",
-                 "## I/O table", "", "| name | address | type | description |",
+                 "## I/O table of lab.toml", "", "| name | address | type | description |",
                  "|---|---|---|---|"]
         parts += [f"| `{io['name']}` | `{io.get('address', '')}` | {io.get('type', '')} | "
                   f"{_md_cell(io.get('description', ''))} |" for io in data.get("io", [])]

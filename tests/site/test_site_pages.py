@@ -43,7 +43,7 @@ def test_every_chapter_is_a_page_and_its_examples_open_in_the_playground(docs):
 
 def test_lab_pages_show_the_io_table_and_nothing_private(docs):
     page = (docs / "labs" / "tank-two-position" / "index.md").read_text()
-    assert "## I/O table" in page and "| `LS1` | `%IX0.0` | BOOL |" in page
+    assert "## I/O table of lab.toml" in page and "| `LS1` | `%IX0.0` | BOOL |" in page
     listed = page.split("## Scenarios your program runs in")[1].split("## Criteria")[0]
     assert "**normal**" in listed and "start-full" not in listed  # the hidden scenario
     for lab in (REPO / "labs").iterdir():
