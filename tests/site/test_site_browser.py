@@ -21,11 +21,17 @@ def site(tmp_path_factory):
     pytest.importorskip("mkdocs")
     pytest.importorskip("material")
     pytest.importorskip("playwright")
+    from plclab.errors import PlcError
     from plclab.site.build import build
     from plclab.site.serve import serve_in_thread
 
     out = tmp_path_factory.mktemp("site") / "site"
-    rep = build(out)
+    try:
+        rep = build(out)
+    except PlcError as e:
+        if e.code != "PLC3042":
+            raise
+        pytest.skip(f"Pyodide could not be installed from npm here: {e.message}")
     server, base = serve_in_thread(out)
     yield out, base, rep
     server.shutdown()
@@ -190,4 +196,22 @@ def test_try_it_link_and_check_against_the_lab(site, browser):
     m = re.search(r"(\d+) of (\d+) points", page.inner_text("#pg-status"))
     assert m and m.group(1) == m.group(2) and int(m.group(2)) > 0
     assert page.locator("#pg-results tr.pg-pass").count() > 5
+    assert errors == []
+
+
+def test_motor_lab_checked_in_the_page(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.select_option("#pg-lab", "motor-start-stop")
+    assert page.input_value("#pg-plant") == "motor"
+    assert page.locator("#pg-buttons button").all_inner_texts() == ["START", "STOP", "OL_RESET"]
+    page.select_option("#pg-lang", "st")
+    page.fill("#pg-code", "PROGRAM Motor\nVAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL;\n"
+              "OVERLOAD AT %IX0.4 : BOOL; K1 AT %QX0.0 : BOOL; END_VAR\n"
+              "K1 := (START OR K1) AND STOP AND NOT OVERLOAD;\nEND_PROGRAM\n")
+    page.click("#pg-check")
+    wait_state(page, "checked")
+    m = re.search(r"(\d+) of (\d+) points", page.inner_text("#pg-status"))
+    assert m and m.group(1) == m.group(2) and int(m.group(2)) > 0
     assert errors == []
