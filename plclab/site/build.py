@@ -77,8 +77,8 @@ def mkdocs_config(docs: Path, out: Path, nav: list[Any]) -> dict[str, Any]:
     }
 
 
-def generate(docs: Path, playground: bool = True, figures: bool = True) -> tuple[list[Any],
-                                                                                 list[str]]:
+def generate(docs: Path, playground: bool = True, figures: bool = True,
+             notebooks: bool = False) -> tuple[list[Any], list[str]]:
     """Write every page (and the playground's assets) into ``docs``; returns the nav and the
     course's problems."""
     pages.write(docs / "index.md", (SITE_SOURCES / "home.md").read_text("utf-8"))
@@ -92,14 +92,16 @@ def generate(docs: Path, playground: bool = True, figures: bool = True) -> tuple
         core_zip(pg / "plclab-core.zip")
         copy_pyodide(docs / "pyodide")
     nav = [{"Home": "index.md"}, {"Course": course_nav}, {"Playground": "playground/index.md"},
-           {"Labs": lab_nav}, {"Diagnostic codes": pages.problem_pages(docs)},
+           {"Labs": lab_nav}, {"Notebooks": pages.notebook_pages(docs, execute=notebooks)},
+           {"Diagnostic codes": pages.problem_pages(docs)},
            {"Reference": pages.reference_pages(docs)}, {"Decisions": pages.adr_pages(docs)}]
     return nav, problems
 
 
 def build(out: str | Path | None = None, playground: bool = True,
-          figures: bool = True) -> BuildReport:
-    """Build the site into ``out`` (default: ``plclab-site`` in the temporary directory)."""
+          figures: bool = True, notebooks: bool = False) -> BuildReport:
+    """Build the site into ``out`` (default: ``plclab-site`` in the temporary directory);
+    ``notebooks=True`` runs the lab notebooks to show their outputs (minutes)."""
     try:
         import material  # noqa: F401
         import mkdocs  # noqa: F401
@@ -110,7 +112,7 @@ def build(out: str | Path | None = None, playground: bool = True,
     rep = BuildReport(out_dir, playground=playground)
     with tempfile.TemporaryDirectory(prefix="plclab-site-src-") as tmp:
         docs = Path(tmp) / "docs"
-        nav, rep.course_problems = generate(docs, playground, figures)
+        nav, rep.course_problems = generate(docs, playground, figures, notebooks)
         rep.unlinked = pages.unlink_missing(docs)
         cfg = Path(tmp) / "mkdocs.yml"
         cfg.write_text(json.dumps(mkdocs_config(docs, out_dir, nav), indent=1), "utf-8")

@@ -19,11 +19,14 @@ from plclab.cli_registry import arg, command
 @arg("--no-playground", action="store_true",
      help="leave out the playground (no Pyodide download: the site is then 15 MB smaller)")
 @arg("--no-figures", action="store_true", help="do not draw the course's figures (faster)")
+@arg("--notebooks", action="store_true",
+     help="run the lab notebooks (nbclient, minutes) so their pages show the outputs")
 def cmd_site(ns: argparse.Namespace) -> int:
     from .build import build
     from .serve import serve_forever
 
-    rep = build(ns.out, playground=not ns.no_playground, figures=not ns.no_figures)
+    rep = build(ns.out, playground=not ns.no_playground, figures=not ns.no_figures,
+                notebooks=ns.notebooks)
     for w in rep.warnings:
         print(w)
     for p in rep.course_problems:

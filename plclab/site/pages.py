@@ -271,3 +271,74 @@ def unlink_missing(docs: Path) -> int:
 
 def copy_tree(src: Path, dest: Path) -> None:
     shutil.copytree(src, dest, dirs_exist_ok=True)
+
+
+# ------------------------------------------------------------------------------ notebooks
+
+
+def _output_md(out: dict[str, Any], folder: Path, stem: str, n: int) -> list[str]:
+    """One cell output as Markdown: text as a text block, a PNG as an image file; rich HTML
+    and widgets (rerun's viewer) are left out with a line saying so."""
+    kind = out.get("output_type")
+    if kind == "stream":
+        return ["```text", "".join(out.get("text", "")).rstrip(), "```"]
+    if kind == "error":
+        return ["```text", f"{out.get('ename')}: {out.get('evalue')}", "```"]
+    data = out.get("data", {})
+    if "image/png" in data:
+        name = f"{stem}-{n}.png"
+        (folder / name).write_bytes(base64.b64decode(data["image/png"]))
+        return [f"![output {n}]({name})"]
+    if "image/svg+xml" in data:
+        name = f"{stem}-{n}.svg"
+        (folder / name).write_text("".join(data["image/svg+xml"]), encoding="utf-8")
+        return [f"![output {n}]({name})"]
+    if "text/plain" in data and not any(k.startswith("application/vnd") for k in data):
+        return ["```text", "".join(data["text/plain"]).rstrip(), "```"]
+    return ["*(an interactive output, shown only when the notebook runs in Jupyter)*"]
+
+
+def notebook_pages(docs: Path, execute: bool = False) -> list[Any]:
+    """Each lab notebook as a page: its Markdown, its code and, with ``execute``, the outputs of
+    a run (nbclient, in the notebooks' folder). Without ``execute`` the pages say how to see
+    them run."""
+    try:
+        import nbformat
+    except ImportError:
+        write(docs / "notebooks" / "index.md", "# Notebooks\n\nThis site was built without "
+              "nbformat (pip install 'plclab[site]'), so the notebooks are not shown.\n")
+        return ["notebooks/index.md"]
+    src = REPO / "notebooks"
+    folder = docs / "notebooks"
+    folder.mkdir(parents=True, exist_ok=True)
+    nav: list[Any] = ["notebooks/index.md"]
+    rows = ["# Notebooks", "", "One Jupyter notebook per lab: the task, your program in a cell, "
+            "a run on the plant with its timing diagram, and the lab's checks. Open them with "
+            "`pip install 'plclab[notebooks]'` and `jupyter lab notebooks/`.", ""]
+    if not execute:
+        rows += ["These pages show the notebooks without outputs (`plclab site build "
+                 "--notebooks` runs them and shows what they print and draw).", ""]
+    for path in sorted(src.glob("*.ipynb")):
+        nb = nbformat.read(path, as_version=4)
+        if execute:
+            from nbclient import NotebookClient
+
+            NotebookClient(nb, timeout=600, kernel_name="python3",
+                           resources={"metadata": {"path": str(src)}}).execute()
+        lines: list[str] = []
+        n = 0
+        for cell in nb.cells:
+            if cell.cell_type == "markdown":
+                lines += [cell.source.rstrip(), ""]
+            elif cell.cell_type == "code":
+                lines += ["```python", cell.source.rstrip(), "```", ""]
+                for out in cell.get("outputs", []):
+                    n += 1
+                    lines += _output_md(out, folder, path.stem, n) + [""]
+        write(folder / f"{path.stem}.md", "\n".join(lines))
+        title = next((c.source.splitlines()[0].lstrip("# ") for c in nb.cells
+                      if c.cell_type == "markdown" and c.source.startswith("# ")), path.stem)
+        rows.append(f"- [{title}]({path.stem}.md)")
+        nav.append(f"notebooks/{path.stem}.md")
+    write(folder / "index.md", "\n".join(rows) + "\n")
+    return nav

@@ -92,3 +92,23 @@ def test_out_must_be_outside_the_source_tree_and_not_a_foreign_folder(tmp_path):
     assert e.value.code == "PLC3041"
     (tmp_path / site_build.MARKER).write_text("")
     assert site_build.check_out(tmp_path) == tmp_path.resolve()
+
+
+def test_notebooks_are_pages_with_their_code(docs):
+    nbs = sorted((REPO / "notebooks").glob("*.ipynb"))
+    assert nbs
+    for nb in nbs:
+        page = (docs / "notebooks" / f"{nb.stem}.md").read_text()
+        assert "```python" in page and "PROGRAM" in page
+
+
+def test_a_notebook_output_becomes_text_an_image_or_a_note(tmp_path):
+    png = base64.b64encode(b"\x89PNG fake").decode()
+    assert pages._output_md({"output_type": "stream", "text": ["12 of 12 points\n"]},
+                            tmp_path, "nb", 1) == ["```text", "12 of 12 points", "```"]
+    assert pages._output_md({"output_type": "display_data", "data": {"image/png": png}},
+                            tmp_path, "nb", 2) == ["![output 2](nb-2.png)"]
+    assert (tmp_path / "nb-2.png").read_bytes() == b"\x89PNG fake"
+    widget = {"output_type": "display_data",
+              "data": {"application/vnd.jupyter.widget-view+json": {}, "text/plain": "W"}}
+    assert "interactive output" in pages._output_md(widget, tmp_path, "nb", 3)[0]
