@@ -293,6 +293,8 @@ def _output_md(out: dict[str, Any], folder: Path, stem: str, n: int) -> list[str
         name = f"{stem}-{n}.svg"
         (folder / name).write_text("".join(data["image/svg+xml"]), encoding="utf-8")
         return [f"![output {n}]({name})"]
+    if "text/markdown" in data:
+        return ["".join(data["text/markdown"]).rstrip()]
     if "text/plain" in data and not any(k.startswith("application/vnd") for k in data):
         return ["```text", "".join(data["text/plain"]).rstrip(), "```"]
     return ["*(an interactive output, shown only when the notebook runs in Jupyter)*"]

@@ -112,3 +112,6 @@ def test_a_notebook_output_becomes_text_an_image_or_a_note(tmp_path):
     widget = {"output_type": "display_data",
               "data": {"application/vnd.jupyter.widget-view+json": {}, "text/plain": "W"}}
     assert "interactive output" in pages._output_md(widget, tmp_path, "nb", 3)[0]
+    md = {"output_type": "display_data", "data": {"text/markdown": "**12/18**",
+                                                  "text/plain": "<Markdown object>"}}
+    assert pages._output_md(md, tmp_path, "nb", 4) == ["**12/18**"]
