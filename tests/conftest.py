@@ -23,6 +23,8 @@ FOLDER_MARKERS = {
     "sim/test_sim_closed_loops.py": ("slow",),
     "plants/test_plants_conveyor.py": ("physics",),
     "viz/test_viz_trace.py": ("rerun",),
+    "site/test_site_browser.py": ("slow",),
+    "site/test_site_pyodide.py": ("slow",),
 }
 
 

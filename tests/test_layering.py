@@ -45,11 +45,15 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("grade", ("plclab.grade",))],
     # the course: chapters, their examples, figures from real runs and quizzes.
     [("course", ("plclab.course",))],
+    # the web site: pages from the course, labs, catalogue and plants; the playground's Python
+    # side (plclab.site.playground_api, lab_check) itself needs only the core and the plants.
+    [("site", ("plclab.site",))],
     # the command line: every `commands` module is a CLI front end of its package.
     [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
               "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",
               "plclab.viz.diagram_commands",
-              "plclab.course.commands", "plclab.scada.commands"))],
+              "plclab.course.commands", "plclab.scada.commands",
+              "plclab.site.commands"))],
 ]
 
 # Layers that must import nothing outside the standard library and plclab (the PLC runs

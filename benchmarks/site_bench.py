@@ -1,0 +1,85 @@
+"""Benchmark: the playground in a real browser (issue 17): how long Python and plclab take to
+load in the page, and how many scans of the tank program per second the page runs, beside the
+same Session in CPython.
+
+Run ``python benchmarks/site_bench.py [--site DIR] [--repeat N] [--seconds S]``. Without
+``--site`` the site is built first (into a temporary folder). Each load is a fresh browser
+context (an empty cache: what a first visit costs); the table prints the median and the range.
+Needs Debian's Chromium at /usr/bin/chromium and Playwright.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from plclab.site import playground_api as api  # noqa: E402
+from plclab.site.build import build  # noqa: E402
+from plclab.site.serve import serve_in_thread  # noqa: E402
+
+
+def cpython_scans_per_second(seconds: float) -> float:
+    s = api.Session(api.TANK_EXAMPLE, "st", "tank")
+    t = time.perf_counter()
+    s.advance(seconds, every=0.1)
+    return s.scans / (time.perf_counter() - t)
+
+
+def browser_numbers(base: str, repeat: int, seconds: float) -> tuple[list[float], list[float]]:
+    from playwright.sync_api import sync_playwright
+
+    loads, rates = [], []
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=["--no-sandbox"])
+        for _ in range(repeat):
+            ctx = browser.new_context()
+            page = ctx.new_page()
+            t0 = time.perf_counter()
+            page.goto(base + "playground/")
+            page.wait_for_function("document.getElementById('pg-status').dataset.state=='ready'",
+                                   timeout=180000)
+            loads.append(time.perf_counter() - t0)
+            r = page.evaluate(f"window.plclabPlayground.run({seconds})")
+            rates.append(r["scansPerSecond"])
+            ctx.close()
+        browser.close()
+    return loads, rates
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--site", type=Path, help="a site built by plclab site build")
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--seconds", type=float, default=600.0, help="virtual time per run")
+    ns = ap.parse_args()
+    site = ns.site
+    if site is None:
+        site = Path(tempfile.mkdtemp(prefix="plclab-site-bench-")) / "site"
+        t = time.perf_counter()
+        build(site)
+        print(f"site built in {time.perf_counter() - t:.1f} s")
+    server, base = serve_in_thread(site)
+    try:
+        loads, rates = browser_numbers(base, ns.repeat, ns.seconds)
+    finally:
+        server.shutdown()
+    native = cpython_scans_per_second(ns.seconds)
+    med = statistics.median(rates)
+    print(f"\nplayground, {ns.repeat} cold loads, tank program on the tank plant, 20 ms scans")
+    print(f"{'':34}{'median':>12}{'min':>12}{'max':>12}")
+    print(f"{'load: page -> ready (s)':34}{statistics.median(loads):12.2f}{min(loads):12.2f}"
+          f"{max(loads):12.2f}")
+    print(f"{'browser (Pyodide) scans/s':34}{med:12.0f}{min(rates):12.0f}{max(rates):12.0f}")
+    print(f"{'CPython scans/s (same Session)':34}{native:12.0f}")
+    print(f"{'ratio CPython / browser':34}{native / med:12.2f}")
+    print(f"{'virtual time / wall time, browser':34}{med * 0.02:12.0f}x")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,43 @@
+"""Serve a built site on loopback, with the MIME types the playground needs (``.wasm`` as
+``application/wasm``, so the browser compiles Pyodide while it downloads)."""
+
+from __future__ import annotations
+
+import functools
+import http.server
+import threading
+from pathlib import Path
+
+EXTRA_TYPES = {".wasm": "application/wasm", ".mjs": "text/javascript", ".zip": "application/zip",
+               ".json": "application/json", ".svg": "image/svg+xml"}
+
+
+class _Handler(http.server.SimpleHTTPRequestHandler):
+    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map, **EXTRA_TYPES}
+
+    def log_message(self, format: str, *args: object) -> None:  # noqa: A002 - the base's name
+        pass
+
+
+def make_server(root: Path, port: int = 0) -> http.server.ThreadingHTTPServer:
+    """An HTTP server for ``root`` on 127.0.0.1 (``port`` 0: a free one)."""
+    handler = functools.partial(_Handler, directory=str(root))
+    return http.server.ThreadingHTTPServer(("127.0.0.1", port), handler)
+
+
+def serve_in_thread(root: Path, port: int = 0) -> tuple[http.server.ThreadingHTTPServer, str]:
+    """Start serving in a daemon thread; returns the server and its base URL."""
+    server = make_server(root, port)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server, f"http://127.0.0.1:{server.server_address[1]}/"
+
+
+def serve_forever(root: Path, port: int) -> None:
+    server = make_server(root, port)
+    print(f"serving {root} at http://127.0.0.1:{server.server_address[1]}/ (Ctrl-C stops)")
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.server_close()

@@ -1,0 +1,80 @@
+"""The playground's Python side (what the page calls under Pyodide), run in CPython."""
+
+import pytest
+
+from plclab.errors import PlcError
+from plclab.site import playground_api as api
+
+
+def test_tank_program_switches_the_pump_within_a_minute():
+    s = api.Session(api.TANK_EXAMPLE, "st", "tank")
+    assert s.ok and s.diagnostics == []
+    rows = s.advance(60.0, every=0.1)
+    assert len(rows) == 600 and s.scans == 3000
+    pumps = [r["PUMP"] for r in rows]
+    assert pumps[0] is True and pumps[-1] is False  # on from the start, off at LS2
+    assert max(r["LEVEL"] for r in rows) >= 1.45
+    assert set(rows[0]) == {"t", "LEVEL", "LS1", "LS2", "PUMP"}
+
+
+def test_a_variable_named_like_the_signal_is_wired_without_an_address():
+    text = ("PROGRAM P\nVAR LS1, LS2, PUMP : BOOL; END_VAR\n"
+            "PUMP := ((NOT LS1) OR PUMP) AND (NOT LS2);\nEND_PROGRAM\n")
+    s = api.Session(text, "st", "tank")
+    assert s.mapped == {"LS1": "LS1", "LS2": "LS2", "PUMP": "PUMP"}
+    assert s.advance(1.0)[-1]["PUMP"] is True
+
+
+def test_syntax_error_is_a_diagnostic_at_its_line():
+    text = "PROGRAM P\nVAR x : INT; END_VAR\nx := 1 +;\nEND_PROGRAM\n"
+    s = api.Session(text, "st", "tank")
+    assert not s.ok and s.advance(1.0) == []
+    assert s.diagnostics[0]["code"] == "PLC0010" and s.diagnostics[0]["line"] == 3
+    assert api.check(text)[0]["line"] == 3
+
+
+def test_a_program_that_drives_nothing_gets_a_warning():
+    s = api.Session("PROGRAM P\nVAR x : BOOL; END_VAR\nx := TRUE;\nEND_PROGRAM\n", "st", "tank")
+    assert s.ok
+    assert [d["code"] for d in s.diagnostics] == ["PLC3044"]
+    assert "PUMP (%QX0.0)" in s.diagnostics[0]["message"]
+
+
+def test_motor_buttons_pressed_from_the_page_start_and_stop_it():
+    text = ("PROGRAM M\nVAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL;\n"
+            "K1 AT %QX0.0 : BOOL; END_VAR\nK1 := (START OR K1) AND STOP;\nEND_PROGRAM\n")
+    s = api.Session(text, "st", "motor", scan_ms=10)
+    s.advance(0.5)
+    s.set_input("START", True)
+    s.advance(0.2)
+    s.release("START")
+    s.set_input("START", False)
+    s.release("START")
+    rows = s.advance(2.0)
+    assert rows[-1]["K1"] is True and rows[-1]["RUN"] is True
+    s.set_input("STOP", False)  # the NC button pressed
+    rows = s.advance(1.0)
+    assert rows[-1]["K1"] is False
+
+
+def test_il_and_ld_programs_run_too():
+    il = api.Session(open("labs/tank-two-position/solution/tank.il").read(), "il", "tank")
+    ld = api.Session(open("labs/tank-two-position/solution/tank.ld").read(), "ld", "tank")
+    assert il.ok and ld.ok
+    assert [r["PUMP"] for r in il.advance(60, 1)] == [r["PUMP"] for r in ld.advance(60, 1)]
+
+
+def test_unknown_plant_is_plc3044():
+    with pytest.raises(PlcError) as e:
+        api.make_plant("boiler")
+    assert e.value.code == "PLC3044"
+
+
+def test_a_runtime_fault_stops_the_session_with_its_code():
+    text = ("PROGRAM P\nVAR PUMP AT %QX0.0 : BOOL; a : ARRAY[1..3] OF INT; i : INT := 5; "
+            "END_VAR\na[i] := 1;\nEND_PROGRAM\n")
+    s = api.Session(text, "st", "tank")
+    assert s.ok
+    s.advance(1.0)
+    assert not s.ok
+    assert s.diagnostics[-1]["code"].startswith("PLC2")

@@ -1,0 +1,217 @@
+"""The built site in a real browser: Debian's Chromium driven by Playwright, the site served on
+loopback. Screenshots go to the folder ``site-screenshots`` of the test's temporary directory
+(printed at the end of the run)."""
+
+import re
+import shutil
+from pathlib import Path
+from urllib.parse import urljoin, urlparse
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    if not Path(CHROMIUM).exists():
+        pytest.skip(f"no Chromium at {CHROMIUM} (apt-get install chromium)")
+    if shutil.which("node") is None and shutil.which("npm") is None:
+        pytest.skip("node/npm are not installed: the playground's Pyodide cannot be fetched")
+    pytest.importorskip("mkdocs")
+    pytest.importorskip("material")
+    pytest.importorskip("playwright")
+    from plclab.errors import PlcError
+    from plclab.site.build import build
+    from plclab.site.serve import serve_in_thread
+
+    out = tmp_path_factory.mktemp("site") / "site"
+    try:
+        rep = build(out)
+    except PlcError as e:
+        if e.code != "PLC3042":
+            raise
+        pytest.skip(f"Pyodide could not be installed from npm here: {e.message}")
+    server, base = serve_in_thread(out)
+    yield out, base, rep
+    server.shutdown()
+    server.server_close()
+
+
+@pytest.fixture(scope="module")
+def browser(site):
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+        yield b
+        b.close()
+
+
+@pytest.fixture(scope="module")
+def shots(tmp_path_factory):
+    d = tmp_path_factory.mktemp("site-screenshots")
+    yield d
+    print(f"\nsite screenshots: {d}")
+
+
+def open_page(browser, url):
+    """A page at ``url`` and the console errors and failed requests it produced."""
+    page = browser.new_page(viewport={"width": 1280, "height": 900})
+    errors: list[str] = []
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.on("requestfailed", lambda r: errors.append(f"failed: {r.url}"))
+    page.on("response", lambda r: errors.append(f"{r.status}: {r.url}") if r.status >= 400
+            else None)
+    page.goto(url)
+    page.wait_for_load_state("load")
+    return page, errors
+
+
+def all_pages(out: Path) -> list[str]:
+    return sorted(p.relative_to(out).as_posix() for p in out.rglob("index.html"))
+
+
+def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(site, browser):
+    out, base, rep = site
+    assert rep.warnings == []
+    paths = all_pages(out)
+    assert len(paths) > 150  # chapters, labs, one page per code, plants, ADRs
+    seen_links: set[str] = set()
+    page = browser.new_page()
+    errors: list[str] = []
+    page.on("console", lambda m: errors.append(f"{page.url}: {m.text}")
+            if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(f"{page.url}: {e}"))
+    for rel in paths:
+        if rel.startswith("playground/"):
+            continue  # loads Python: its own test below
+        url = urljoin(base, rel[: -len("index.html")])
+        resp = page.goto(url)
+        assert resp.status == 200, url
+        for href in page.eval_on_selector_all("a[href]", "els => els.map(e => e.href)"):
+            u = urlparse(href)
+            if u.netloc == urlparse(base).netloc:
+                seen_links.add(u._replace(fragment="", query="").geturl())
+        for src in page.eval_on_selector_all("img[src]", "els => els.map(e => e.src)"):
+            seen_links.add(src)
+    page.close()
+    assert errors == []
+    broken = []
+    for link in sorted(seen_links):
+        target = out / urlparse(link).path.lstrip("/")
+        if not (target.is_file() or (target / "index.html").is_file()):
+            broken.append(link)
+    assert broken == []
+
+
+def test_search_finds_ton(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, base)
+    page.click("label.md-search__icon, .md-search__input", timeout=5000)
+    for _ in range(15):  # the search index loads in a web worker: type again until it answers
+        page.fill("input.md-search__input", "")
+        page.type("input.md-search__input", "TON")
+        try:
+            page.wait_for_selector(".md-search-result__item", timeout=2000)
+            break
+        except Exception:  # noqa: BLE001 - playwright's TimeoutError: not ready yet
+            continue
+    titles = page.inner_text(".md-search-result__list")
+    assert re.search(r"\bTON\b", titles)
+    assert errors == []
+
+
+def test_home_chapter_and_lab_pages(site, browser, shots):
+    out, base, _ = site
+    page, errors = open_page(browser, base)
+    assert "plclab" in page.title()
+    page.screenshot(path=str(shots / "home.png"))
+    page, errors2 = open_page(browser, urljoin(base, "course/10-timers-counters/"))
+    assert page.locator("img[src$='ton.svg']").count() == 1
+    assert page.locator("a.try-it").count() > 3
+    page.screenshot(path=str(shots / "chapter.png"))
+    page, errors3 = open_page(browser, urljoin(base, "labs/tank-two-position/"))
+    table = page.locator("xpath=//h2[@id='io-table-of-labtoml']/following::table[1]")
+    assert table.count() == 1 and "%IX0.0" in table.inner_text()
+    assert "LS1" in table.inner_text() and "PUMP" in table.inner_text()
+    page.screenshot(path=str(shots / "lab.png"))
+    assert errors == errors2 == errors3 == []
+
+
+def wait_state(page, state, timeout=120000):
+    page.wait_for_function(
+        f"['{state}', 'failed'].includes(document.getElementById('pg-status').dataset.state)",
+        timeout=timeout)
+    assert page.get_attribute("#pg-status", "data-state") == state, page.inner_text("#pg-status")
+
+
+def test_playground_runs_the_tank_for_60_s_and_shows_the_pump_switching(site, browser, shots):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    assert "TankLevel" in page.input_value("#pg-code")
+    page.click("#pg-run60")
+    wait_state(page, "ran")
+    summary = page.inner_text("#pg-summary")
+    assert "t = 60.0 s, 3000 scans" in summary
+    assert int(page.get_attribute("#pg-summary", "data-switchings")) >= 2
+    assert "now OFF" in summary  # switched on at the start, off at LS2
+    page.screenshot(path=str(shots / "playground.png"), full_page=True)
+    assert errors == []
+
+
+def test_playground_shows_a_syntax_error_at_its_line(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.fill("#pg-code", "PROGRAM P\nVAR x : INT; END_VAR\nx := 1 +;\nEND_PROGRAM\n")
+    page.click("#pg-compile")
+    wait_state(page, "error")
+    first = page.locator("#pg-diagnostics li").first
+    assert first.get_attribute("data-code") == "PLC0010"
+    assert first.get_attribute("data-line") == "3"
+    assert first.inner_text().startswith("line 3")
+    assert page.locator("#pg-gutter .pg-bad").inner_text() == "3"
+    assert errors == []
+
+
+def test_try_it_link_and_check_against_the_lab(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "labs/tank-two-position/"))
+    page.click("a.try-it")
+    wait_state(page, "ready")
+    assert "your code here" in page.input_value("#pg-code")  # the starter
+    assert page.input_value("#pg-lab") == "tank-two-position"
+    page.click("#pg-check")
+    wait_state(page, "checked")
+    assert "0 of" in page.inner_text("#pg-status")  # the starter does nothing yet
+    solution = ("PROGRAM TankLevel\nVAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL;\n"
+                "PUMP AT %QX0.0 : BOOL; END_VAR\nPUMP := ((NOT LS1) OR PUMP) AND NOT LS2;\n"
+                "END_PROGRAM\n")
+    page.fill("#pg-code", solution)
+    page.click("#pg-check")
+    wait_state(page, "checked")
+    m = re.search(r"(\d+) of (\d+) points", page.inner_text("#pg-status"))
+    assert m and m.group(1) == m.group(2) and int(m.group(2)) > 0
+    assert page.locator("#pg-results tr.pg-pass").count() > 5
+    assert errors == []
+
+
+def test_motor_lab_checked_in_the_page(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.select_option("#pg-lab", "motor-start-stop")
+    assert page.input_value("#pg-plant") == "motor"
+    assert page.locator("#pg-buttons button").all_inner_texts() == ["START", "STOP", "OL_RESET"]
+    page.select_option("#pg-lang", "st")
+    page.fill("#pg-code", "PROGRAM Motor\nVAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL;\n"
+              "OVERLOAD AT %IX0.4 : BOOL; K1 AT %QX0.0 : BOOL; END_VAR\n"
+              "K1 := (START OR K1) AND STOP AND NOT OVERLOAD;\nEND_PROGRAM\n")
+    page.click("#pg-check")
+    wait_state(page, "checked")
+    m = re.search(r"(\d+) of (\d+) points", page.inner_text("#pg-status"))
+    assert m and m.group(1) == m.group(2) and int(m.group(2)) > 0
+    assert errors == []
