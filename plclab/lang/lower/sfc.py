@@ -109,6 +109,7 @@ def lower_sfc(pou: A.Pou, payload: list[Chart], types: LoweringTypes) -> list[Di
         return diags
     low = _Lowering(pou, chart, types)
     low.run()
+    pou.sfc = chart
     return diags + low.diags
 
 
