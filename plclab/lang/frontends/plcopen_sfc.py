@@ -81,8 +81,15 @@ class _SfcReader:
         self.used_actions: set[str] = set()
         self.x_of: dict[int, float] = {}
         self.referenced_names: set[str] = set()
+        self.hidden_count = 0
 
     # -- helpers ----------------------------------------------------------------------------
+    def hidden(self) -> str:
+        """A generated name for a condition without a name of its own (``__SFC_C<n>``: never
+        built from the file's text, which is untrusted)."""
+        self.hidden_count += 1
+        return f"__SFC_C{self.hidden_count}"
+
     def err(self, code: str, msg: str, el: ET.Element | None) -> None:
         self.imp.err(code, msg, el)
 
@@ -293,7 +300,7 @@ class _SfcReader:
             if _tag(body) == "ST":
                 tr.cond = self.st_expr(body)
             else:
-                tr.name = f"__SFC_C{el.get('localId')}"
+                tr.name = self.hidden()
                 tr.il = self.il(body)
         elif kind == "reference":
             self.referenced(el, tr, kid)
@@ -362,7 +369,7 @@ class _SfcReader:
         if tr.cond is not None:  # a plain condition: anonymous, like Beremiz writes it
             tr.name, tr.text = None, ""
         elif again:  # the name is declared by its first use: this one copies it
-            hidden = f"__SFC_C{el.get('localId')}"
+            hidden = self.hidden()
             tr.name, tr.text = hidden, hidden
             if tr.body is not None or tr.pending:
                 tr.body = (tr.body or []) + [A.Assign(tr.loc, A.Name(tr.loc, hidden, text=hidden),
@@ -412,7 +419,7 @@ class _SfcReader:
     def wired(self, el: ET.Element, tr: Transition, cpi: ET.Element, graphics) -> None:
         """LD or FBD elements of the SFC body wired into the transition's condition: a network
         of its own, ending in an output variable that writes the hidden condition."""
-        hidden = f"__SFC_C{el.get('localId')}"
+        hidden = self.hidden()
         tag = "LD" if any(_tag(g) in ("contact", "coil", "leftPowerRail") for g in graphics) \
             else "FBD"
         by_id = {g.get("localId"): g for g in graphics}
@@ -426,7 +433,7 @@ class _SfcReader:
                     net.append(g)
                     todo.append(g)
         net.extend(g for g in graphics if _tag(g) == "leftPowerRail" and id(g) not in seen)
-        out = ET.SubElement(net, "outVariable", {"localId": f"sfc-cond-{el.get('localId')}"})
+        out = ET.SubElement(net, "outVariable", {"localId": f"{hidden}-out"})
         out.append(cpi)
         expr = ET.SubElement(out, "expression")
         expr.text = "TRUE"
