@@ -314,3 +314,23 @@ def test_a_graphical_transition_body_must_write_the_transition():
                              trans(2, 1, '<reference name="InFBD"/>'), step(3, "Next", 2)]), bad)
     found = [c for c, _ in codes(xml)]
     assert "PLC0186" in found
+
+
+def test_beremiz_defaults_an_action_without_qualifier_is_n_and_initial_false_is_a_step():
+    """Beremiz writes ``<action localId="0">`` without a qualifier (the schema's default N)
+    and ``initialStep="false"`` (the shape of its first_steps example, written anew)."""
+    block = ('<actionBlock localId="9"><connectionPointIn><connection refLocalId="3"/>'
+             '</connectionPointIn><action localId="0"><relPosition x="0" y="0"/><inline><ST>'
+             '<xhtml:p><![CDATA[n := n + 1;]]></xhtml:p></ST></inline></action></actionBlock>')
+    xml = project("\n".join([step(1, "Idle", initial=True), trans(2, 1, inline("go")),
+                             step(3, "Run", 2).replace('name="Run"',
+                                                       'name="Run" initialStep="false"'),
+                             trans(4, 3, inline("NOT go")), jump(5, 4, "Idle"), block]),
+                  "<actions/>")
+    plc = load(xml)
+    plc["Main.go"] = True
+    plc.scan(3)
+    assert plc["Main.n"] == 3
+    plc["Main.go"] = False
+    plc.scan(2)
+    assert plc["Main.n"] == 4 and plc["Main.Idle.X"], "N: one final scan after the step"
