@@ -155,6 +155,19 @@ LABS_CONFIG: dict[str, dict] = {
             "while the sequence waits for the light curtain?",
         ],
     },
+    "washing-machine": {
+        "scenario": "silk",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "Two transitions leave Fill. What decides which one fires when LEVEL_SW closes, and "
+            "what would a simultaneous divergence FROM Fill TO (Boiling, Warming) do instead?",
+            "The abort transitions have PRIORITY := 0. What happens in the scan in which the "
+            "door opens just as Warming.T reaches 5 minutes, with and without the priority?",
+            "HEATER(N) in Boiling and HEATER(S) in Boiling: draw both on the timing diagram. "
+            "Which step would need HEATER(R)?",
+        ],
+    },
 }
 
 

@@ -7,7 +7,8 @@ Signals
 -------
 Panel: ``START`` (NO button), ``STOP`` (NC button, ``True`` while not pressed), and the mode
 selector with two contacts ``COTTON`` and ``SILK`` (a three-position selector: cotton, off,
-silk; the scenario should not set both). Actuators: ``FILL_VALVE``, ``DRAIN_VALVE``,
+silk; the scenario should not set both), and the door switch ``DOOR`` (NC: ``True`` while the
+door is closed). Actuators: ``FILL_VALVE``, ``DRAIN_VALVE``,
 ``HEATER``, ``MOTOR`` (drum). Sensors: ``LEVEL`` (litres), ``LEVEL_SW`` (pressure switch,
 ``True`` at or above ``level_full``), ``EMPTY`` (``True`` at or below ``level_empty``),
 ``TEMP`` (degC), ``DRUM_SPEED`` (rpm).
@@ -24,7 +25,8 @@ exchanging water: drain and fill at the same time. The drum speed follows ``MOTO
 first-order lag.
 
 Events: ``overflow``, ``dry_heating``, ``boiling``, ``drum_dry`` (drum turning with no water
-for more than 10 s).
+for more than 10 s), ``door_open_running`` (the drum motor or the heater still on a second
+after the door was opened).
 """
 
 from __future__ import annotations
@@ -74,6 +76,7 @@ class Washer(Plant):
         "dry_heating": "the heater is on but not covered by water",
         "boiling": "the water boils",
         "drum_dry": "the drum turned without water for more than 10 s",
+        "door_open_running": "the drum motor or the heater stayed on with the door open",
     }
     FAULTS = {
         "heater_fail": "the heater is burnt out",
@@ -126,6 +129,9 @@ class Washer(Plant):
                     "COTTON", "panel", "mode selector contact COTTON (boil 10 min)", initial=True
                 ),
                 bool_signal("SILK", "panel", "mode selector contact SILK (warm 5 min)"),
+                bool_signal(
+                    "DOOR", "panel", "door switch, NC: TRUE while the door is closed", initial=True
+                ),
                 bool_signal("FILL_VALVE", "actuator", "cold water inlet valve"),
                 bool_signal("DRAIN_VALVE", "actuator", "drain valve / pump"),
                 bool_signal("HEATER", "actuator", "heating element"),
@@ -148,7 +154,9 @@ class Washer(Plant):
         self.volume_overflow = 0.0
         self.energy_in = 0.0
         self._dry_drum = 0.0
-        self._flags = {"overflow": False, "dry": False, "boil": False, "drum": False}
+        self._door_run = 0.0
+        self._flags = {"overflow": False, "dry": False, "boil": False, "drum": False,
+                       "door": False}
 
     def _faults_changed(self) -> None:
         f = self._faults
@@ -208,6 +216,15 @@ class Washer(Plant):
         self.volume_out += vout
         self.volume = v
         self.temp = t
+        if (io["HEATER"] or io["MOTOR"]) and not io["DOOR"]:
+            self._door_run += h  # a second of grace: the PLC and its relays react in a scan
+            if self._door_run >= 1.0 and not flags["door"]:
+                flags["door"] = True
+                self._emit("door_open_running", "the drum motor or the heater is still on a "
+                           "second after the door was opened")
+        else:
+            self._door_run = 0.0
+            flags["door"] = False
         # drum
         target = self.drum_speed if io["MOTOR"] else 0.0
         d = self.drum

@@ -389,6 +389,8 @@ def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
             if t.passed and t.score:
                 t.score = 0.0
                 t.message += f" (voided: the critical criterion '{void.name}' failed)"
+    if any(not t.passed for t in tests):  # an SFC: where the chart stands, and why
+        run.notes.extend(f"At the end: {line}" for line in trace.meta.get("sfc_end", []))
     if media_dir is not None and any(not t.passed for t in tests):
         from .feedback import draw_failures
 

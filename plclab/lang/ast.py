@@ -295,6 +295,9 @@ class Pou:
     pending: list[PendingBody] = field(default_factory=list, compare=False, repr=False)
     # text ladder only: the drawn networks (plclab.lang.frontends.ld.Network), for drawings
     networks: list[Any] = field(default_factory=list, compare=False, repr=False)
+    # an SFC body only: the chart it was lowered from (plclab.lang.lower.sfc.Chart), for the
+    # trace's SFC lane, the feedback and the drawing (ADR 0023)
+    sfc: Any = field(default=None, compare=False, repr=False)
 
     # object-oriented extensions (plclab.lang.frontends.oop, ADR 0021): a FUNCTION_BLOCK's
     # base (one) or an INTERFACE's bases (several), the interfaces it implements, its METHODs

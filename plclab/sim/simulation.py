@@ -212,7 +212,11 @@ class Simulation:
 
             watch = split_names(watch)
         watch = list(watch)
-        self._build_recorder(watch + [x for x in sc.watch if x not in watch])
+        watch += [x for x in sc.watch if x not in watch]
+        from .sfc_lane import step_paths  # the SFC lane: every step flag (ADR 0023)
+
+        self._sfc_steps = [x for x in step_paths(plc) if x not in watch]
+        self._build_recorder(watch + self._sfc_steps)
         # -- scenario
         self._ops: list[tuple[int, int, Callable[[int], None]]] = []
         self._ramps: list[list[Any]] = []
@@ -750,7 +754,9 @@ class Simulation:
             evs, hm = hk.finish(self)
             extra += evs
             hook_meta.update(hm)
-        events = sorted(self.events + bounce + extra, key=lambda e: e.time)
+        sfc = self._sfc_lane(cols, time)
+        events = sorted(self.events + bounce + extra + sfc.pop("events"),
+                        key=lambda e: e.time)
         meta = {
             "plant": self.plant.name, "title": getattr(self.plant, "title", ""),
             "plant_params": {k: v for k, v in self.plant_params.items()
@@ -769,9 +775,23 @@ class Simulation:
             "edge_initial": initial, "warnings": list(self.warnings),
             "plclab_version": __version__,
             **hook_meta,
+            **sfc,
         }
         wall = {"scan_s": np.asarray(rec.wall, dtype=np.float64) / 1e9, "run_s": self.wall_s}
         return Trace(time, cols, kinds, meta, events, wall, edges)
+
+    def _sfc_lane(self, cols: dict[str, Any], time: Any) -> dict[str, Any]:
+        """The charts (``sfc``), why they stand where they are (``sfc_end``) and the
+        transition firings (``events``) of the programs with an SFC body; nothing otherwise."""
+        if not self._sfc_steps:
+            return {"events": []}
+        from .sfc_lane import sfc_meta, step_events, why_stuck
+
+        columns = {name.upper(): col for name, col in zip(
+            self.watch, self._g_watch.names, strict=True)}
+        meta = sfc_meta(self.plc, columns)
+        return {"sfc": meta, "sfc_end": why_stuck(self.plc),
+                "events": step_events(meta, time, cols)}
 
     def _edges(self) -> tuple[dict[str, Any], dict[str, bool], list[Any]]:
         import numpy as np

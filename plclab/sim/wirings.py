@@ -155,6 +155,7 @@ DEFAULTS: dict[str, tuple[str, list[dict[str, Any]]]] = {
         _di("%IX0.3", "SILK", "mode selector contact SILK"),
         _di("%IX0.4", "LEVEL_SW", "level pressure switch: TRUE when full"),
         _di("%IX0.5", "EMPTY", "TRUE when the tub is empty"),
+        _di("%IX0.6", "DOOR", "door switch, NC: TRUE while the door is closed"),
         _do("%QX0.0", "FILL_VALVE", "cold water inlet valve"),
         _do("%QX0.1", "DRAIN_VALVE", "drain valve / pump"),
         _do("%QX0.2", "HEATER", "heating element contactor", **_RELAY),

@@ -23,6 +23,8 @@ class Event(_EventBase):
     ``bounce``         a digital input contact bounced (source: the PLC address)
     ``plc_fault``      the PLC stopped on a run-time fault (source: ``plc``)
     ``until``          the run's stop condition became true (source: ``scenario``)
+    ``sfc_step``       a chart's active steps changed: ``"Fill -> Boiling"`` (source: the
+                       program; data ``left``, ``entered``; ADR 0023)
 
     >>> e = Event(1.5, "overflow", "tank", "the level reached the rim", {"volume": 2.0})
     >>> t, kind, source, message = e

@@ -21,7 +21,8 @@ from .series import Series
 
 def series(trace, names: list[str] | None = None, t0: float | None = None,
            t1: float | None = None) -> list[Series]:
-    """The named columns of a trace as step series (default: plant signals, then wired I/O)."""
+    """The named columns of a trace as step series (default: plant signals, then wired I/O),
+    then the SFC lane of each chart (its active steps), if the program has charts."""
     if names is None:
         names = list(trace.signals) + [r["column"] for r in trace.io
                                        if r.get("column") in trace.columns]
@@ -36,7 +37,9 @@ def series(trace, names: list[str] | None = None, t0: float | None = None,
         kind = {"float": "real"}.get(kind, kind)
         s = Series(col, trace.time, trace.columns[col], kind, units.get(col, ""))
         out.append(s.window(t0, t1) if (t0 is not None or t1 is not None) else s)
-    return out
+    from .sfc_lane import sfc_series  # the active steps of each chart, at the bottom
+
+    return out + sfc_series(trace, t0, t1)
 
 
 def parse_window(text: str | None) -> tuple[float | None, float | None]:

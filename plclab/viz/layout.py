@@ -229,6 +229,11 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
             lanes.append(Lane(w, series(col, "bool"), "var", col))
         else:
             analog.append((w, col, "watched", trace.kind(col) != "float"))
+    from .sfc_lane import step_columns  # a lane per SFC step (ADR 0023)
+
+    for label, col in step_columns(trace):
+        if (wanted is None or col in wanted) and not any(ln.series.name == col for ln in lanes):
+            lanes.append(Lane(label, series(col, "bool"), "var", col))
     labels = {a[0] for a in analog}
     for sig in trace.signals:
         col = _resolve(trace, sig)

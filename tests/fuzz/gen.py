@@ -386,20 +386,138 @@ def gen_xml(rng: random.Random) -> tuple[str, str]:
     lang = rng.choice(["ST", "IL"])
     text = st_body(rng) if lang == "ST" else il_body(rng)
     inner = f"<![CDATA[{text}]]>" if rng.random() < 0.5 else escape(text)
-    twice = ('<inputVars><variable name="a"><type><INT/></type></variable></inputVars>'
-             "</interface><interface>")
-    acc_if = ("<inputVars>" + _xml_var("x", "<INT/>") + _xml_var("en", "<BOOL/>") +
-              "</inputVars><outputVars>" + _xml_var("total", "<DINT/>") +
-              _xml_var("n", "<INT/>") + "</outputVars>")
-    pous = [
-        ("Twice", "function", "<returnType><INT/></returnType>" + twice.split("</interface>")[0],
-         "<ST><xhtml:p>Twice := LIMIT(-16000, a, 16000) * 2;</xhtml:p></ST>"),
-        ("Acc", "functionBlock", acc_if,
-         "<ST><xhtml:p>IF en THEN total := total + x; n := n + 1; END_IF;\n"
-         "IF n &gt; 1000 THEN n := 0; total := 0; END_IF;</xhtml:p></ST>"),
+    pous = _xml_library() + [
         ("Main", "program", _main_interface(), f"<{lang}><xhtml:p>{inner}</xhtml:p></{lang}>"),
     ]
     return xml_project(pous), "gen.xml"
 
 
-GENERATORS = {"st": gen_st, "il": gen_il, "ld": gen_ld, "xml": gen_xml}
+def _xml_library() -> list[tuple[str, str, str, str]]:
+    """The FUNCTION Twice and the FUNCTION_BLOCK Acc of :data:`LIBRARY_ST` as PLCopen POUs."""
+    twice = ('<inputVars><variable name="a"><type><INT/></type></variable></inputVars>'
+             "</interface><interface>")
+    acc_if = ("<inputVars>" + _xml_var("x", "<INT/>") + _xml_var("en", "<BOOL/>") +
+              "</inputVars><outputVars>" + _xml_var("total", "<DINT/>") +
+              _xml_var("n", "<INT/>") + "</outputVars>")
+    return [
+        ("Twice", "function", "<returnType><INT/></returnType>" + twice.split("</interface>")[0],
+         "<ST><xhtml:p>Twice := LIMIT(-16000, a, 16000) * 2;</xhtml:p></ST>"),
+        ("Acc", "functionBlock", acc_if,
+         "<ST><xhtml:p>IF en THEN total := total + x; n := n + 1; END_IF;\n"
+         "IF n &gt; 1000 THEN n := 0; total := 0; END_IF;</xhtml:p></ST>"),
+    ]
+
+
+# -- SFC ---------------------------------------------------------------------------------------
+QUALIFIERS = ("N", "R", "S", "P", "P1", "P0", "L", "D", "SD", "DS", "SL")
+
+
+def _chart(rng: random.Random) -> tuple[list[str], list[tuple[list[int], list[int], str, int | None]],
+                                        dict[int, list[tuple[str, str, str | None]]], list[str]]:
+    """A random chart: step names, transitions (from, to, condition, priority), the action
+    associations of each step (action, qualifier, time) and the declared actions' bodies."""
+    g = StGen(rng, max_depth=2)
+    steps = [f"Step{k}" for k in range(rng.randint(2, 7))]
+    trans = []
+    for k in range(1, len(steps)):  # a spine, so every step is reachable
+        trans.append(([rng.randrange(k)], [k], g.expr("BOOL"), None))
+    for _ in range(rng.randint(0, 4)):  # loops, alternatives, parallel branches
+        src = rng.sample(range(len(steps)), rng.choice([1, 1, 1, 2]) if len(steps) > 1 else 1)
+        dst = rng.sample(range(len(steps)), rng.choice([1, 1, 2]) if len(steps) > 1 else 1)
+        cond = rng.choice([g.expr("BOOL"), f"{steps[src[0]]}.T >= {_time_lit(rng)}",
+                           f"{steps[src[0]]}.X AND b0"])
+        trans.append((src, dst, cond, rng.choice([None, None, rng.randint(0, 3)])))
+    bodies = [" ".join(StGen(rng, max_depth=2).stmts(rng.randint(1, 3)))
+              for _ in range(rng.randint(0, 2))]
+    assoc: dict[int, list[tuple[str, str, str | None]]] = {}
+    names = [f"A{k}" for k in range(len(bodies))] + ["b1", "b2", "b3"]
+    for k in range(len(steps)):
+        for _ in range(rng.randint(0, 2)):
+            q = rng.choice(QUALIFIERS)
+            t = _time_lit(rng).replace("TIME#-5s", "T#5ms") if q in QUALIFIERS[6:] else None
+            assoc.setdefault(k, []).append((rng.choice(names), q, t))
+    return steps, trans, assoc, bodies
+
+
+def gen_sfc(rng: random.Random) -> tuple[str, str]:
+    """A random chart in textual SFC or as a PLCopen XML <SFC> body (single-source
+    transitions only, divergences and jumps the way Beremiz draws them)."""
+    steps, trans, assoc, bodies = _chart(rng)
+    if rng.random() < 0.5:
+        out = [LIBRARY_ST, "PROGRAM Main", _decls()]
+        for k, name in enumerate(steps):
+            acts = " ".join(f"{a}({q}{', ' + t if t else ''});" for a, q, t in assoc.get(k, []))
+            out.append(f"{'INITIAL_STEP' if k == 0 else 'STEP'} {name}: {acts} END_STEP")
+        for src, dst, cond, prio in trans:
+            p = f" (PRIORITY := {prio})" if prio is not None else ""
+
+            def lst(ix: list[int]) -> str:
+                names = [steps[i] for i in ix]
+                return names[0] if len(names) == 1 else "(" + ", ".join(names) + ")"
+            out.append(f"TRANSITION{p} FROM {lst(src)} TO {lst(dst)} := {cond}; END_TRANSITION")
+        out += [f"ACTION A{k}: {b} END_ACTION" for k, b in enumerate(bodies)]
+        return "\n".join(out + ["END_PROGRAM", ""]), "gen_sfc.st"
+    ids = iter(range(1, 10_000))
+    sid = {k: next(ids) for k in range(len(steps))}
+    els = []
+    single = [(s[0], d, c, p) for s, d, c, p in trans]
+    for k, name in enumerate(steps):
+        cpi = ""
+        ini = ' initialStep="true"' if k == 0 else ""
+        els.append(f'<step localId="{sid[k]}" name="{name}"{ini}>{cpi}<connectionPointOut/></step>')
+        acts = assoc.get(k, [])
+        if acts:
+            inner = "".join(f'<action localId="{j}" qualifier="{q}"'
+                            + (f' duration="{t}"' if t else "")
+                            + f'><reference name="{a}"/></action>'
+                            for j, (a, q, t) in enumerate(acts))
+            els.append(f'<actionBlock localId="{next(ids)}"><connectionPointIn><connection '
+                       f'refLocalId="{sid[k]}"/></connectionPointIn>{inner}</actionBlock>')
+    incoming: dict[int, list[int]] = {}
+    for k in range(len(steps)):
+        outs = [t for t in single if t[0] == k]
+        src = sid[k]
+        if len(outs) > 1:
+            src = next(ids)
+            els.append(f'<selectionDivergence localId="{src}"><connectionPointIn><connection '
+                       f'refLocalId="{sid[k]}"/></connectionPointIn></selectionDivergence>')
+        for x, (_, dst, cond, prio) in enumerate(outs):
+            tid = next(ids)
+            p = f' priority="{prio}"' if prio is not None else ""
+            els.append(f'<transition localId="{tid}"{p}><position x="{x * 100}" y="0"/>'
+                       f'<connectionPointIn><connection refLocalId="{src}"/></connectionPointIn>'
+                       f'<connectionPointOut/><condition><inline name=""><ST><xhtml:p>'
+                       f'<![CDATA[{cond}]]></xhtml:p></ST></inline></condition></transition>')
+            if len(dst) > 1:
+                did = next(ids)
+                els.append(f'<simultaneousDivergence localId="{did}"><connectionPointIn>'
+                           f'<connection refLocalId="{tid}"/></connectionPointIn>'
+                           '</simultaneousDivergence>')
+                tid = did
+            for d in dst:
+                if rng.random() < 0.5:
+                    incoming.setdefault(d, []).append(tid)
+                else:
+                    els.append(f'<jumpStep localId="{next(ids)}" targetName="{steps[d]}">'
+                               f'<connectionPointIn><connection refLocalId="{tid}"/>'
+                               '</connectionPointIn></jumpStep>')
+    for d, tids in incoming.items():  # wire the steps' inputs (a convergence for several)
+        conn = "".join(f'<connectionPointIn><connection refLocalId="{t}"/></connectionPointIn>'
+                       for t in tids)
+        if len(tids) > 1:
+            cid = next(ids)
+            els.append(f'<selectionConvergence localId="{cid}">{conn}<connectionPointOut/>'
+                       '</selectionConvergence>')
+            conn = f'<connectionPointIn><connection refLocalId="{cid}"/></connectionPointIn>'
+        k = next(i for i, e in enumerate(els) if e.startswith(f'<step localId="{sid[d]}"'))
+        els[k] = els[k].replace("<connectionPointOut/>", conn + "<connectionPointOut/>", 1)
+    actions = "".join(f'<action name="A{k}"><body><ST><xhtml:p><![CDATA[{b}]]></xhtml:p></ST>'
+                      "</body></action>" for k, b in enumerate(bodies))
+    iface = _main_interface()
+    if actions:  # the POU's <actions> sit between its interface and its body (TC6 order)
+        iface += "</interface><actions>" + actions + "</actions><interface>"
+    body = "<SFC>" + "\n".join(els) + "</SFC>"
+    return xml_project(_xml_library() + [("Main", "program", iface, body)]), "gen_sfc.xml"
+
+
+GENERATORS = {"st": gen_st, "il": gen_il, "ld": gen_ld, "xml": gen_xml, "sfc": gen_sfc}

@@ -117,7 +117,12 @@ KEYWORDS = ["PROGRAM", "END_PROGRAM", "VAR", "VAR_GLOBAL", "VAR_INPUT", "VAR_OUT
             "STRING", "TON", "CTU", "T#1s", "16#FFFF", "1.0E400", "99999999999999999999",
             "[ ]", "(S)", "+", "|", "---", "<![CDATA[", "]]>", "</pou>", "<variable name=\"z\">",
             "&amp;", "&#0;", "(*", "*)", "{", "}", "'", "$", "\"", ";", ":", "..", "%IX0.0",
-            "%QW99999", "%MD4", "T#0s", "-", "**", "=>", ",", "[", "]"]
+            "%QW99999", "%MD4", "T#0s", "-", "**", "=>", ",", "[", "]",
+            # SFC, textual and PLCopen
+            "INITIAL_STEP", "STEP", "END_STEP", "TRANSITION", "FROM", "END_TRANSITION",
+            "ACTION", "END_ACTION", "(N)", "(L, T#1s)", "<step localId=\"1\" name=\"S\"/>",
+            "<jumpStep localId=\"7\" targetName=\"S\"/>", "refLocalId=\"1\"",
+            "</SFC>", "<macroStep localId=\"9\" name=\"M\">"]
 
 
 def _tokens(text: str) -> list[str]:

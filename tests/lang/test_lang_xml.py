@@ -197,10 +197,14 @@ def test_not_a_plcopen_project_is_plc0180():
     assert errs[0].code == "PLC0180" and "<project" in errs[0].message
 
 
-def test_sfc_body_is_unsupported_with_name():
+def test_sfc_body_is_read_as_a_chart_and_actions_outside_sfc_are_unsupported():
     text = project(program("<SFC><step localId=\"3\" name=\"Init\"/></SFC>", BOOLS))
-    errs = errors(text)
-    assert errs[0].code == "PLC0181" and "<SFC>" in errs[0].message
+    assert errors(text)[0].code == "PLC0152"  # read (tests/lang/test_plcopen_sfc.py): no initial step
+    pou = program("<ST><xhtml:p>a := b;</xhtml:p></ST>", BOOLS).replace(
+        "<body>", "<actions><action name=\"A1\"><body><ST><xhtml:p>a := TRUE;</xhtml:p></ST>"
+        "</body></action></actions><body>")
+    errs = errors(project(pou))
+    assert errs[0].code == "PLC0181" and "<actions>" in errs[0].message
 
 
 def test_unsupported_graphic_element_names_its_local_id():

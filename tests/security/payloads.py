@@ -163,8 +163,61 @@ def xml_cases(secret: str = "../secret/hidden.txt") -> list[tuple[str, dict[str,
     return cases
 
 
+def _sfc(sfc: str, extra: str = "") -> str:
+    return _xml("Main", "v", "v := 1;", extra=extra).replace(
+        '<body><ST><xhtml xmlns="http://www.w3.org/1999/xhtml">v := 1;</xhtml></ST></body>',
+        f"<body><SFC>{sfc}</SFC></body>")
+
+
+def sfc_cases() -> list[tuple[str, dict[str, str]]]:
+    """PLCopen <SFC> bodies whose localIds, names, targets, references, qualifiers and
+    durations carry payloads (plclab/lang/frontends/plcopen_sfc.py generates its own names)."""
+    q = "&quot;"
+    evil = [f"1{q}); __import__({q}{S}{q})#", "x']; import os #", "__import__", "a&amp;b"]
+    cases = []
+    for i, e in enumerate(evil):
+        cond = ('<condition><inline name=""><IL><xhtml xmlns="http://www.w3.org/1999/xhtml">'
+                "LD TRUE</xhtml></IL></inline></condition>")
+        wired = ('<leftPowerRail localId="L"/><contact localId="C"><connectionPointIn>'
+                 '<connection refLocalId="L"/></connectionPointIn><variable>TRUE</variable>'
+                 '</contact>')
+        chart = (f'<step localId="{e}" name="Init" initialStep="true"/>'
+                 f'<transition localId="t{e}"><connectionPointIn><connection refLocalId="{e}"/>'
+                 f'</connectionPointIn>{cond}</transition>'
+                 f'<step localId="s{e}" name="Next"><connectionPointIn><connection '
+                 f'refLocalId="t{e}"/></connectionPointIn></step>{wired}'
+                 f'<transition localId="u{e}"><connectionPointIn><connection '
+                 f'refLocalId="s{e}"/></connectionPointIn><condition><connectionPointIn>'
+                 '<connection refLocalId="C"/></connectionPointIn></condition></transition>'
+                 f'<jumpStep localId="j{e}" targetName="Init"><connectionPointIn><connection '
+                 f'refLocalId="u{e}"/></connectionPointIn></jumpStep>'
+                 f'<actionBlock localId="a{e}"><connectionPointIn><connection refLocalId="{e}"/>'
+                 '</connectionPointIn><action localId="0" qualifier="L" duration="T#1s">'
+                 '<inline><ST><xhtml xmlns="http://www.w3.org/1999/xhtml">v := v + 1;</xhtml>'
+                 '</ST></inline></action></actionBlock>')
+        cases.append((f"sfc-local-id-{i}", {"p.xml": _sfc(chart)}))
+        for where in ("step", "reference", "target", "qualifier", "action"):
+            def f(field: str, default: str, where: str = where, e: str = e) -> str:
+                return e if field == where else default
+            names = (f'<step localId="1" name="{f("step", "Init")}" initialStep="true"/>'
+                     '<transition localId="2"><connectionPointIn><connection refLocalId="1"/>'
+                     f'</connectionPointIn><condition><reference name="{f("reference", "T1")}"'
+                     f'/></condition></transition><jumpStep localId="3" targetName='
+                     f'"{f("target", "Init")}"><connectionPointIn><connection refLocalId="2"/>'
+                     '</connectionPointIn></jumpStep><actionBlock localId="4">'
+                     '<connectionPointIn><connection refLocalId="1"/></connectionPointIn>'
+                     f'<action localId="0" qualifier="{f("qualifier", "N")}"><reference '
+                     f'name="{f("action", "A1")}"/></action></actionBlock>')
+            extra = ('<transitions><transition name="T1"><body><ST><xhtml xmlns="http://www.w3.'
+                     'org/1999/xhtml">:= v &gt; 0;</xhtml></ST></body></transition></transitions>'
+                     '<actions><action name="A1"><body><ST><xhtml xmlns="http://www.w3.org/1999'
+                     '/xhtml">v := v + 1;</xhtml></ST></body></action></actions>')
+            cases.append((f"sfc-{where}-{i}", {"p.xml": _sfc(names, extra)}))
+    return cases
+
+
 def all_cases() -> list[tuple[str, dict[str, str]]]:
-    return st_cases() + il_cases() + ld_cases() + xml_cases()
+    return st_cases() + il_cases() + ld_cases() + xml_cases() + sfc_cases()
 
 
 # file names a student can choose (each holds a valid program)

@@ -409,6 +409,11 @@ class _Importer:
             self.fail("PLC0183", f"function {name} has no <returnType>", pel)
         pou = A.Pou(self.loc(pel), kind, name.upper(), decls, [], ret, name)
         self.out.pous.append(pou)
+        body = self.kid(pel, "body")
+        if body is not None and self.kid(body, "SFC") is not None:  # ADR 0023
+            from .plcopen_sfc import read_sfc_pou  # the chart, its actions and transitions
+
+            return read_sfc_pou(self, pou, pel)
         for extra in ("actions", "transitions"):
             el = self.kid(pel, extra)
             if el is not None and self.kids(el):

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 from ...errors import Diagnostic, Location
 from .. import ast as A
 from .il import Instr, lower_il
+from .network import lower_network
 from .sfc_checks import check_chart
 from .types import LoweringTypes
 
@@ -75,6 +76,7 @@ class Transition:
     cond: A.Expr | None = None
     body: list[A.Stmt] | None = None
     il: list[Instr] | None = None
+    pending: list[A.PendingBody] = field(default_factory=list)  # LD/FBD (PLCopen XML)
 
 
 @dataclass(eq=False)
@@ -86,6 +88,7 @@ class Action:
     text: str
     body: list[A.Stmt] = field(default_factory=list)
     il: list[Instr] | None = None
+    pending: list[A.PendingBody] = field(default_factory=list)  # LD/FBD/IL (PLCopen XML)
 
 
 @dataclass(eq=False)
@@ -106,6 +109,7 @@ def lower_sfc(pou: A.Pou, payload: list[Chart], types: LoweringTypes) -> list[Di
         return diags
     low = _Lowering(pou, chart, types)
     low.run()
+    pou.sfc = chart
     return diags + low.diags
 
 
@@ -201,6 +205,7 @@ class _Lowering:
                 cond = _name(t.name, loc)
         else:
             assert t.name is not None
+            body.extend(self.sub_statements(t.pending))  # an LD/FBD network writing the name
             body.extend(t.body or [])
             if t.il is not None:
                 body.extend(self.il_statements(t.il + [
@@ -269,7 +274,7 @@ class _Lowering:
                                          A.Member(loc, _name(inst, loc), "Q", text="Q")))
             else:
                 body = (self.il_statements(action.il) if action.il is not None
-                        else action.body)
+                        else action.body + self.sub_statements(action.pending))
                 self.out.append(A.If(loc, [(A.Member(loc, _name(inst, loc), "A", text="A"),
                                             body)]))
 
@@ -300,14 +305,26 @@ class _Lowering:
                 "labels and RET are not supported there; write the choice in ST (IF ... "
                 "END_IF) or with JMP-free IL (S, R, conditional CALC)", jumps[0].loc))
             return []
+        return self.sub_statements([A.PendingBody("IL", instrs, self.pou.loc)])
+
+    def sub_statements(self, pending: list[A.PendingBody]) -> list[A.Stmt]:
+        """Bodies still to lower (IL, LD/FBD networks of a PLCopen chart) as statements; their
+        hidden variables are shared with the POU."""
+        if not pending:
+            return []
         tmp = A.Pou(self.pou.loc, self.pou.kind, self.pou.name,
                     list(self.pou.decls) + self.decls, [], self.pou.return_type,
                     self.pou.spelling)
         known = {id(d) for d in tmp.decls}
-        self.diags.extend(lower_il(tmp, instrs, self.types))
+        lowerings = {"IL": lower_il, "NETWORK": lower_network}
+        out: list[A.Stmt] = []
+        for body in pending:
+            tmp.body = []
+            self.diags.extend(lowerings[body.kind](tmp, body.payload, self.types))
+            out.extend(tmp.body)
         have = {d.name for d in self.pou.decls} | {d.name for d in self.decls}
         for d in tmp.decls:
             if id(d) not in known and d.name not in have:
                 self.decls.append(d)
                 have.add(d.name)
-        return tmp.body
+        return out

@@ -53,7 +53,8 @@ def check_chart(chart: Chart, pou: A.Pou, types: LoweringTypes) -> list[Diagnost
                 hint = f"; did you mean {steps[close[0]].text}?" if close else \
                     "; declare it with STEP ... END_STEP"
                 err("PLC0150", f"transition uses step '{t.spelling.get(n, n)}', which is not declared{hint}", loc)
-        if t.cond is None and t.il is None and not _assigns(t.body or [], t.name):
+        if t.cond is None and t.il is None and not t.pending and \
+                not _assigns(t.body or [], t.name):
             what = t.name or "the transition"
             err("PLC0159", f"the body of transition {what} never assigns its condition; write "
                 f"'{what} := <condition>;' in it, or use ':= <condition>;' after the TO steps",
