@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..compile.codegen import Compiled, kind_name
+from ..compile.real32 import single_cell
 from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
@@ -249,8 +250,9 @@ class Plc:
         self.image_in = bytearray(self.image_size)
         self.image_out = bytearray(self.image_size)
         self.memory = bytearray(self.image_size)
+        cell, f32_cell = single_cell()  # this PLC's own REAL rounding cell (ADR 0024)
         ns.update(_CTX=self.ctx, _B=self.budget, _I=self.image_in, _Q=self.image_out,
-                  _M=self.memory, __name__="plclab_program")
+                  _M=self.memory, _F32=cell, _f32=f32_cell, __name__="plclab_program")
         exec(self.compiled.code, ns)
         ns["_G"] = ns["_Globals"]()
         ns["_P"] = ns["_Programs"]()
