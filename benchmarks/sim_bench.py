@@ -104,7 +104,7 @@ def case_ventilation(scale: float) -> tuple[Simulation, float]:
 
 
 CASES = {
-    "tank": ("tank, two-position, 10 ms scans", case_tank, 1000.0),
+    "tank": ("tank, two-position, 10 ms scans", case_tank, 5000.0),  # issue 19
     "conveyor": ("conveyor, ~25 bottles, 10 ms", case_conveyor, 50.0),
     "ventilation": ("ventilation, staged fans, 100 ms", case_ventilation, 5000.0),
 }
