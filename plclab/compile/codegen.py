@@ -1185,6 +1185,9 @@ class Codegen(FastPaths):
             return str(c - lo)
         rng = self.interval(ix)
         if rng is not None and lo <= rng[0] and rng[1] <= hi:
+            folded = self.folded_index(ix, lo)  # fastpaths.py
+            if folded is not None:
+                return folded
             return f"({code}){off}" if off else code
         w = self.where(ix.loc)
         if isinstance(ix, A.Name | A.Member):

@@ -84,6 +84,21 @@ class FastPaths:
             code = f"({tmp} {op} {b} if ({tmp} := {left}) >= 0 else -(-{tmp} {op} {b}))"
         return f"(-{code})" if op == "//" and c < 0 else code
 
+    # -- array index -------------------------------------------------------------------------
+    def folded_index(self, ix: A.Expr, lo: int) -> str | None:
+        """The flat offset of a checked-in-range index ``name + c`` (or ``name - c``) with the
+        low bound folded into the constant: ``a[j + 1]`` of ``ARRAY[1..n]`` is ``a[j]``. None
+        for any other index (the plain ``(code) - lo``)."""
+        if not (self.fast and isinstance(ix, A.Binary) and ix.op in ("+", "-") and
+                isinstance(ix.left, A.Name)):
+            return None
+        c = const_int(ix.right)
+        if c is None:
+            return None
+        k = (c if ix.op == "+" else -c) - lo
+        name = self.ex(ix.left)
+        return name if k == 0 else f"{name} + {k}" if k > 0 else f"{name} - {-k}"
+
     # -- loops --------------------------------------------------------------------------------
     def call_free(self, nodes: list) -> bool:
         """Whether ``nodes`` (statements, expressions, None) hold only plain statements and

@@ -57,6 +57,7 @@ def test_the_fast_code_is_really_emitted():
     code = plclab.compile_sources([(LOOPS, "x.st")]).source
     assert "_F32[0] =" in code and "v_0L" in code and "finally:" in code
     assert "_imod" not in code.split("class P_MAIN")[1] and "_w" in code
+    assert "[v_0L" in code and "+ 1]" in code  # b[k + 1] with low bound 0 folded
 
 
 DIVS = """
@@ -111,6 +112,12 @@ FOR j := 0 TO 4 DO
     FOR k := j TO 4 DO
         x := x + k MOD 3;
     END_FOR
+    FOR k := 0 TO 3 DO
+        b[k + 1] := b[k + 1] + b[k] * 0.5;
+    END_FOR
+END_FOR
+FOR k := 1 TO 9 DO
+    IF a[k] > a[k + 1] THEN hits := hits + 1; END_IF
 END_FOR
 k := lim;
 WHILE k > 0 DO
