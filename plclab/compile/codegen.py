@@ -1252,7 +1252,8 @@ class Codegen(FastPaths):
                 return f"_idiv({left}, {right})"
             if t.kind == "time":
                 return f"_round(_rdiv({left}, {right}))"
-            return f"_rdiv({left}, {right})"
+            fast = self.real_division(e, left, right)  # fastpaths.py
+            return fast if fast is not None else f"_rdiv({left}, {right})"
         if op == "MOD":
             return f"_imod({left}, {right})"
         if op == "-" and lt.kind == "date" and rt.kind == "date":  # seconds -> TIME in ms

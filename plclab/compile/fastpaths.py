@@ -84,6 +84,17 @@ class FastPaths:
             code = f"({tmp} {op} {b} if ({tmp} := {left}) >= 0 else -(-{tmp} {op} {b}))"
         return f"(-{code})" if op == "//" and c < 0 else code
 
+    def real_division(self, e: A.Binary, left: str, right: str) -> str | None:
+        """REAL ``a / b`` inline when ``a`` is a literal or a variable (evaluating it first or
+        second makes no difference): the helper ``_rdiv`` is called only to fault when ``b``
+        is zero. None: the plain ``_rdiv(a, b)``."""
+        t = T.base_of(e.ty) if e.ty is not None else None
+        if not self.fast or t is None or t.kind != "real" or \
+                not isinstance(e.left, A.Literal | A.Name) or not self.call_free([e.right]):
+            return None  # (a call in b could change a: keep the order a, b)
+        b = self.new_tmp()
+        return f"({left} / {b} if ({b} := {right}) != 0 else _rdiv({left}, {b}))"
+
     # -- array index -------------------------------------------------------------------------
     def folded_index(self, ix: A.Expr, lo: int) -> str | None:
         """The flat offset of a checked-in-range index ``name + c`` (or ``name - c``) with the

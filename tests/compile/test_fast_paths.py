@@ -58,6 +58,7 @@ def test_the_fast_code_is_really_emitted():
     assert "_F32[0] =" in code and "v_0L" in code and "finally:" in code
     assert "_imod" not in code.split("class P_MAIN")[1] and "_w" in code
     assert "[v_0L" in code and "+ 1]" in code  # b[k + 1] with low bound 0 folded
+    assert "!= 0 else _rdiv(" in plclab.compile_sources([(REALS, "x.st")]).source
 
 
 DIVS = """
@@ -94,6 +95,28 @@ def test_the_float32_cell_rounds_as_f32(x):
     a, b = rounded(x), f32(x)
     assert a == b or (math.isnan(a) and math.isnan(b))
     assert math.copysign(1, a) == math.copysign(1, b) or math.isnan(a)
+
+
+REALS = """
+PROGRAM Main
+VAR a, b, q1, q2 : REAL; la, lb, q3 : LREAL; END_VAR
+q1 := a / b;
+q2 := 1.5 / b;
+q3 := la / lb;
+END_PROGRAM
+"""
+_REALS = plc_both(REALS)
+
+
+@settings(max_examples=200, deadline=None, database=None)
+@given(a=st.floats(width=32), b=st.floats(width=32) | st.sampled_from([0.0, -0.0]),
+       la=st.floats(), lb=st.floats() | st.just(0.0))
+def test_real_division_inline_matches_the_helper(a, b, la, lb):
+    """Division by zero faults (PLC2001) at the same place; NaN and infinities pass through."""
+    fast, plain = (Plc(p.compiled) for p in _REALS)
+    inputs = {"Main.a": a, "Main.b": b, "Main.la": la, "Main.lb": lb}
+    got, want = run(fast, inputs), run(plain, inputs)
+    assert repr(got) == repr(want)  # repr: NaN compares unequal to itself
 
 
 LOOPS = """
