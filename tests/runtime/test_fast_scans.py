@@ -59,6 +59,8 @@ def drive(plc, how: str, steps: list[tuple[int, int]]):
         try:
             if how == "batch":
                 plc.scan(scans)
+            elif how == "run":
+                plc.run(cycles=scans)
             elif how == "plain":
                 for _ in range(scans):
                     plc._scan_once()
@@ -76,8 +78,9 @@ def drive(plc, how: str, steps: list[tuple[int, int]]):
                       min_size=1, max_size=6))
 def test_every_way_of_scanning_ends_in_the_same_state(program, steps):
     results = {how: drive(Plc(_COMPILED[program]), how, steps)
-               for how in ("plain", "batch", "one", "scanner")}
+               for how in ("plain", "batch", "run", "one", "scanner")}
     assert results["batch"] == results["plain"]
+    assert results["run"] == results["plain"]
     assert results["one"] == results["plain"]
     assert results["scanner"] == results["plain"]
 
