@@ -176,7 +176,7 @@ class FastPaths:
                 not self.call_free([*body, cond]) or \
                 any(isinstance(x, A.For | A.While | A.Repeat) for x in A.walk_stmts(body)):
             return False
-        w = self.local_budget = self.new_tmp("_w")
+        w = self.local_budget = self.new_tmp()
         self.emit(f"{w} = _B.left")
         self.emit("try:")
         self.ind += 1

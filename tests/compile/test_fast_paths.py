@@ -56,7 +56,7 @@ def test_the_fast_code_is_really_emitted():
     """The comparison below would be empty if the fast paths never fired."""
     code = plclab.compile_sources([(LOOPS, "x.st")]).source
     assert "_F32[0] =" in code and "v_0L" in code and "finally:" in code
-    assert "_imod" not in code.split("class P_MAIN")[1] and "_w" in code
+    assert "_imod" not in code.split("class P_MAIN")[1] and "_B.left = _t" in code
     assert "[v_0L" in code and "+ 1]" in code  # b[k + 1] with low bound 0 folded
     assert "!= 0 else _rdiv(" in plclab.compile_sources([(REALS, "x.st")]).source
 
