@@ -90,15 +90,12 @@ def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>",
     """Parse, check and compile; raise one PlcError carrying every diagnostic on error.
     ``dialect``: the dialect of files without a ``{dialect}`` pragma (ADR 0017)."""
     from .compile.codegen import generate
-    from .compile.gc_pause import gc_paused
 
-    with gc_paused():  # the collector would walk the whole tree and free nothing (ADR 0024)
-        project, diags = check_sources(sources, dialect)
-        if project is None:
-            errors = [d for d in diags if d.severity == "error"]
-            raise PlcError(errors[0].code, errors[0].message, errors[0].location,
-                           diagnostics=diags)
-        compiled = generate(project, filename)
+    project, diags = check_sources(sources, dialect)
+    if project is None:
+        errors = [d for d in diags if d.severity == "error"]
+        raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
+    compiled = generate(project, filename)
     compiled.diagnostics = diags  # type: ignore[attr-defined]
     return compiled
 
