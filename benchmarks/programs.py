@@ -318,3 +318,139 @@ PROGRAMS = [
     ("bubble sort 100", BUBBLE, Bubble),
     ("string handling", STRINGS, Strings),
 ]
+
+
+# =============================================================================================
+# Tuned Python: what a careful Python programmer writes for the same work and the same final
+# state (issue 19). Locals instead of attribute loads in loops, wraps and MOD written inline,
+# constants hoisted, REAL rounded through a one-element float32 array (no function call).
+# =============================================================================================
+from array import array  # noqa: E402
+
+_A32 = array("f", [0.0])
+
+
+class TunedForSum(ForSum):
+    def body(self):
+        s = 0
+        for i in range(1, 101):
+            s = ((s + i + 2147483648) & 0xFFFFFFFF) - 2147483648
+        self.s = s
+        self.i = 101
+
+
+class TunedCaseSm(CaseSm):
+    def body(self, a=_A32):
+        ticks = ((self.ticks + 32769) & 0xFFFF) - 32768
+        st = self.state
+        if st == 0:
+            self.pump = False
+            self.valve = False
+            if ticks > 3:
+                self.state = 1
+                ticks = 0
+        elif st == 1:
+            self.pump = True
+            a[0] = self.level + 0.5
+            self.level = level = a[0]
+            if level >= 10.0:
+                self.state = 2
+        elif st == 2:
+            self.pump = False
+            self.valve = True
+            a[0] = self.level - 1.0
+            self.level = level = a[0]
+            if level <= 0.0:
+                self.state = 3
+                self.level = 0.0
+        elif st == 3:
+            c = self.count = ((self.count + 2147483649) & 0xFFFFFFFF) - 2147483648
+            self.alarm = (c % 10 if c >= 0 else -(-c % 10)) == 0
+            self.state = 0
+            ticks = 0
+        else:
+            self.state = 0
+        self.ticks = ticks
+
+
+class TunedTons(Tons):
+    def body(self):
+        done = 0
+        run = self.run
+        for t in self.t:
+            t.IN = run
+            t.PT = 500
+            t()
+            if t.Q:
+                done = ((done + 32769) & 0xFFFF) - 32768
+        self.done = done
+        self.i = 101
+
+
+class TunedPid(Pid):
+    def body(self, a=_A32):
+        sp, pv, e_prev, integ = self.sp, self.pv, self.e_prev, self.integ
+        kp, ki, kd, dt = self.kp, self.ki, self.kd, self.dt
+        c05, c01 = f32(0.05), f32(0.01)
+        e = deriv = u = 0.0
+        for _ in range(1, 11):
+            a[0] = sp - pv
+            e = a[0]
+            x = integ + e * dt
+            a[0] = -100.0 if x < -100.0 else 100.0 if x > 100.0 else x
+            integ = a[0]
+            if dt == 0:
+                raise ZeroDivisionError
+            a[0] = (e - e_prev) / dt
+            deriv = a[0]
+            x = kp * e + ki * integ + kd * deriv
+            a[0] = 0.0 if x < 0.0 else 100.0 if x > 100.0 else x
+            u = a[0]
+            e_prev = e
+            a[0] = pv + (u * c05 - (pv - 20.0) * c01) * dt
+            pv = a[0]
+        self.pv, self.e_prev, self.integ = pv, e_prev, integ
+        self.e, self.deriv, self.u = e, deriv, u
+        self.n = 11
+
+
+class TunedBubble(Bubble):
+    def body(self):
+        a = self.a
+        seed = self.seed
+        for i in range(100):
+            x = seed * 1103515245 + 12345
+            x = x % 2147483647 if x >= 0 else -(-x % 2147483647)
+            seed = ((x + 2147483648) & 0xFFFFFFFF) - 2147483648
+            a[i] = ((((seed % 1000 if seed >= 0 else -(-seed % 1000))) + 32768) & 0xFFFF) - 32768
+        self.seed = seed
+        tmp = self.tmp
+        for i in range(1, 100):
+            for j in range(100 - i):
+                x, y = a[j], a[j + 1]
+                if x > y:
+                    tmp = x
+                    a[j] = y
+                    a[j + 1] = tmp
+            self.j = 100 - i + 1
+        self.tmp = tmp
+        self.i = 100
+
+
+class TunedStrings(Strings):
+    def body(self):
+        self.n = ((self.n + 32769) & 0xFFFF) - 32768
+        msg = ("Station " + self.name)[:80]
+        msg = (msg + ": running")[:80]
+        pos = msg.find(":") + 1
+        part = msg[:max(pos - 1, 0)]
+        self.len_ = len(part)
+        p = pos + 2
+        msg = (msg[:p - 1] + "stopped" + msg[p + 6:])[:80]
+        self.part = msg[0:4]
+        self.msg = (msg + "!")[:80][1:]
+        self.pos = pos
+
+
+TUNED = {ForSum: TunedForSum, CaseSm: TunedCaseSm, Tons: TunedTons, Pid: TunedPid,
+         Bubble: TunedBubble, Strings: TunedStrings}

@@ -110,9 +110,10 @@ class _Bottle:
         body = self.body
         self.x, self.y = body.position
         a = body.angle
-        self.angle = a
-        self.cos = math.cos(a)
-        self.sin = math.sin(a)
+        if a != self.angle:  # an upright bottle riding the belt keeps its angle: no cos/sin
+            self.angle = a
+            self.cos = math.cos(a)
+            self.sin = math.sin(a)
 
     def contains(self, px: float, py: float) -> bool:
         """Is the point inside the bottle's rotated rectangle (a beam broken)?"""

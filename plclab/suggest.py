@@ -8,7 +8,6 @@
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable
 
 
@@ -19,6 +18,8 @@ def suggest(word: object, candidates: Iterable[object], n: int = 1, cutoff: floa
     With ``ignore_case`` both sides are compared upper-cased and the candidates are returned in
     their own spelling.
     """
+    import difflib  # only when a name is not found: keeps `plclab check` start-up short
+
     cands = [str(c) for c in candidates]
     if not ignore_case:
         return difflib.get_close_matches(str(word), cands, n=n, cutoff=cutoff)

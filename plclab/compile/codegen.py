@@ -28,6 +28,7 @@ from ..lang.limits import compiler_guard
 from ..lang.walk import UnhandledNode
 from . import oop_emit
 from .builtins_emit import EMITTERS, Emission, const_int
+from .fastpaths import FastPaths
 from .real32 import f32 as _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
@@ -66,7 +67,7 @@ class Compiled:
         return None
 
 
-class Codegen:
+class Codegen(FastPaths):
     def __init__(self, project: Project, filename: str = "<plclab>") -> None:
         self.p = project
         self.filename = filename
@@ -96,6 +97,7 @@ class Codegen:
         self.locals: set[str] = set()  # Python locals (v_X) of the function being generated
         self.has_self = False  # the function being generated is a method (self.X members)
         self.helper: _Helper | None = None  # the outlined block being generated, if any
+        self.init_fast_paths()  # fastpaths.py (ADR 0024)
 
     # -- emission -----------------------------------------------------------------------------
     def where(self, loc: Location | None) -> int:
@@ -572,11 +574,13 @@ class Codegen:
             self.assign_to(s.target, "True" if s.op == "S=" else "False")
             self.ind -= 1
             return
-        val = self.coerce(self.ex(s.value), s.value.ty, tt, s.value)
+        raw = self.ex(s.value)
+        val = self.coerce(raw, s.value.ty, tt, s.value)
         if T.resolve(tt).is_aggregate and not isinstance(s.value, A.Call):
             val = self.copy_code(val, tt)
         self.flush_pre()
-        self.assign_to(s.target, val)
+        if not self.real_store(s.target, raw, val):  # fast path (fastpaths.py)
+            self.assign_to(s.target, val)
 
     def assign_to(self, target: A.Expr, val: str) -> None:
         if isinstance(target, A.Member) and isinstance(target.sym, A.Pou):  # a PROPERTY's SET
@@ -778,11 +782,14 @@ class Codegen:
                 self.ind -= 1
 
     def _watchdog(self, loc: Location) -> None:
-        w = self.where(loc)
-        self.emit("_B.left -= 1")
-        self.emit(f"if _B.left < 0: _wd({w})")
+        for line in self.watchdog_lines(self.where(loc)):  # fastpaths.py
+            self.emit(line)
 
     def s_While(self, s: A.While) -> None:
+        if not self.local_watchdog(s.body, s.cond, lambda: self.plain_while(s)):
+            self.plain_while(s)
+
+    def plain_while(self, s: A.While) -> None:
         cond = self.ex(s.cond)
         if self.pre:
             pre, self.pre = self.pre, []
@@ -802,6 +809,10 @@ class Codegen:
         self.ind -= 1
 
     def s_Repeat(self, s: A.Repeat) -> None:
+        if not self.local_watchdog(s.body, s.cond, lambda: self.plain_repeat(s)):
+            self.plain_repeat(s)
+
+    def plain_repeat(self, s: A.Repeat) -> None:
         self.emit("while True:")
         self.ind += 1
         self._watchdog(s.loc)
@@ -841,6 +852,10 @@ class Codegen:
             self.emit("return")
 
     def s_For(self, s: A.For) -> None:
+        if not self.local_for(s, self.plain_for):  # fastpaths.py
+            self.plain_for(s)
+
+    def plain_for(self, s: A.For) -> None:
         """FOR as the hardware runs it: ``v := v + step`` wraps at the variable's type limits.
         When the bounds and a literal step prove that the loop ends without wrapping, it is a
         plain Python ``range`` charged to the watchdog up front; otherwise ``_frange`` decides
@@ -1066,7 +1081,7 @@ class Codegen:
         if d is T.ANY or s is T.ANY:
             return code
         simple = isinstance(e, _SIMPLE) or (isinstance(e, A.Call) and e.target is not None and
-                                            (e.target.kind == "function" or
+                                            (e.target.kind in ("function", "conv") or
                                              _in_range_builtin(e)))
         if isinstance(d, T.Subrange):
             if isinstance(e, A.Literal) and isinstance(e.value, int):
@@ -1191,7 +1206,8 @@ class Codegen:
             if sym.storage == "global":
                 return f"_G.{ident(sym.decl.name)}"
             if sym.storage == "self":
-                return f"self.{ident(sym.decl.name)}"
+                code = f"self.{ident(sym.decl.name)}"
+                return self.local_names.get(code, code)  # a local in a fast loop
             if sym.storage in ("this", "super"):  # THIS^, SUPER^ (ADR 0021)
                 return "self"
             return f"v_{ident(sym.decl.name)}"
@@ -1241,6 +1257,9 @@ class Codegen:
             return str(c - lo)
         rng = self.interval(ix)
         if rng is not None and lo <= rng[0] and rng[1] <= hi:
+            folded = self.folded_index(ix, lo)  # fastpaths.py
+            if folded is not None:
+                return folded
             return f"({code}){off}" if off else code
         w = self.where(ix.loc)
         if isinstance(ix, A.Name | A.Member):
@@ -1296,12 +1315,17 @@ class Codegen:
                 left = f"({left} * 1000000)"
             if rt is T.TIME:
                 right = f"({right} * 1000000)"
+        if op in ("/", "MOD"):
+            fast = self.div_by_literal(e, left)  # fastpaths.py
+            if fast is not None:
+                return fast
         if op == "/":
             if t.kind in ("int", "bits") or (t.kind == "time" and rt.kind in ("int", "bits")):
                 return f"_idiv({left}, {right})"
             if t.kind == "time":
                 return f"_round(_rdiv({left}, {right}))"
-            return f"_rdiv({left}, {right})"
+            fast = self.real_division(e, left, right)  # fastpaths.py
+            return fast if fast is not None else f"_rdiv({left}, {right})"
         if op == "MOD":
             return f"_imod({left}, {right})"
         if op == "-" and lt.kind == "date" and rt.kind == "date":  # seconds -> TIME in ms

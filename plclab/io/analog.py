@@ -240,7 +240,7 @@ class AnalogInput:
         self._stuck = None
         if fault == "stuck":
             if value is None:
-                self._stuck = (self._counts, self._status)
+                self._stuck = (self._counts, self.status)
             else:
                 x = self.transmitter.output(value)
                 self._stuck = (self._code(x), self._diagnose(x))
@@ -263,8 +263,13 @@ class AnalogInput:
 
     @property
     def status(self) -> Status:
-        """The module's diagnostics for the last conversion."""
-        return self._stuck[1] if self._stuck is not None else self._status
+        """The module's diagnostics for the last conversion (worked out when first asked:
+        most conversions are never diagnosed, issue 19)."""
+        if self._stuck is not None:
+            return self._stuck[1]
+        if self._status is None:
+            self._status = self._diagnose(self._signal)
+        return self._status
 
     @property
     def eng(self) -> float:
@@ -307,7 +312,7 @@ class AnalogInput:
     def _convert(self) -> None:
         self._signal = self._y
         self._counts = self._code(self._y)
-        self._status = self._diagnose(self._y)
+        self._status = None  # diagnosed from self._signal when asked (see status)
         self._n = self._rng.gauss(0.0, self.noise) if self.noise > 0.0 else 0.0
 
     def sample(self, t: float, value: float) -> int:

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..compile.codegen import Compiled, kind_name
+from ..compile.real32 import single_cell
 from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
@@ -99,6 +100,7 @@ MIN_CYCLE_NS = MIN_INTERVAL_NS  # 0.1 ms: the fastest task a PLC of the course r
 MAX_CYCLE_NS = MAX_INTERVAL_NS  # one day
 MAX_SCANS = 100_000_000  # scans per run()/scan() call
 MAX_IMAGE = 65_536  # bytes of each process image area (%I, %Q, %M)
+_IMAGE_USE = re.compile(r"\b_[IQ]\b")  # generated code touching the input or output image
 _ADDR_RE = re.compile(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?")
 _SIZE_BYTES = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}
 
@@ -258,8 +260,9 @@ class Plc:
         self.image_in = bytearray(self.image_size)
         self.image_out = bytearray(self.image_size)
         self.memory = bytearray(self.image_size)
+        cell, f32_cell = single_cell()  # this PLC's own REAL rounding cell (ADR 0024)
         ns.update(_CTX=self.ctx, _B=self.budget, _I=self.image_in, _Q=self.image_out,
-                  _M=self.memory, __name__="plclab_program",
+                  _M=self.memory, _F32=cell, _f32=f32_cell, __name__="plclab_program",
                   _INIT_RETAINS=not getattr(self, "_warm", False))  # FB_init (ADR 0021)
         exec(self.compiled.code, ns)
         ns["_G"] = ns["_Globals"]()
@@ -311,6 +314,8 @@ class Plc:
         located = any(True for _ in self.compiled.located)
         self._sync_in = ns["_sync_in"] if located else None
         self._sync_out = ns["_sync_out"] if located else None
+        # whether the program reads or writes a process image (fast scans, ADR 0024)
+        self._images = located or _IMAGE_USE.search(self.compiled.source) is not None
         progs = ns["_P"]
         self._task_bodies = [
             (t.interval_ns, [getattr(progs, n.upper())._body for n in t.programs])
@@ -339,29 +344,100 @@ class Plc:
             for _ in range(n):
                 self._scan_once()
             return
-        # the common case (RUN, nothing forced, one cyclic task): the same steps as
-        # _scan_once with everything held in locals
+        self._fast_scans(n)
+
+    def _fast_scans(self, n: int) -> None:
+        """The common case (RUN, nothing forced, one cyclic task, no system bytes): the steps
+        of :meth:`_scan_once` with everything in locals. A program that uses no process image
+        (no located variable, no direct address) cannot see the image copies, so they are made
+        once after the ``n`` scans, with the same end state (ADR 0024); nothing reads the scan
+        count or the first-scan flag during these scans, so they are set once at the end."""
         ctx, budget, limit = self.ctx, self.budget, self.budget.limit
         img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
-        sync_in, sync_out, bodies, tick = self._sync_in, self._sync_out, self._single, self._tick_ns
+        bodies, tick = self._single, self._tick_ns
+        k = 0
         try:
-            for _ in range(n):
-                budget.left = limit
+            if self._images:
+                sync_in, sync_out = self._sync_in, self._sync_out
+                for k in range(n):  # noqa: B007 - k counts the scans done if one faults
+                    budget.left = limit
+                    img_in[:] = inputs
+                    if sync_in is not None:
+                        sync_in()
+                    for body in bodies:
+                        body()
+                    if sync_out is not None:
+                        sync_out()
+                    outputs[:] = img_out
+                    t = ctx.now_ns + tick
+                    ctx.now_ns = t
+                    ctx.now = t // 1_000_000
+            elif len(bodies) == 1:
+                body = bodies[0]
+                for k in range(n):  # noqa: B007
+                    budget.left = limit
+                    body()
+                    t = ctx.now_ns + tick
+                    ctx.now_ns = t
+                    ctx.now = t // 1_000_000
                 img_in[:] = inputs
+                outputs[:] = img_out
+            else:
+                for k in range(n):  # noqa: B007
+                    budget.left = limit
+                    for body in bodies:
+                        body()
+                    t = ctx.now_ns + tick
+                    ctx.now_ns = t
+                    ctx.now = t // 1_000_000
+                img_in[:] = inputs
+                outputs[:] = img_out
+        except BaseException as exc:  # noqa: BLE001
+            ctx.scan_count += k
+            if not self._images:
+                img_in[:] = inputs
+            self._to_stop(exc)
+        ctx.first_scan = False
+        ctx.scan_count += n
+
+    def scanner(self):
+        """A function that runs one scan, as ``scan()`` does, at less cost per call: what it
+        needs is bound once (the simulation calls it every cycle). While the PLC is not in
+        the common case (STOP, forced values, several tasks, system bytes, or after a
+        restart, or with a watch table's trigger points or a pending modify) it simply calls
+        :meth:`scan`."""
+        plc = self
+        bodies = self._single
+        if bodies is None or len(bodies) != 1:
+            return self.scan
+        body = bodies[0]
+        ctx, budget, tick = self.ctx, self.budget, self._tick_ns
+        img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
+        sync_in, sync_out = self._sync_in, self._sync_out
+
+        def scan_one() -> None:
+            if (plc._single is not bodies or plc.state != "RUN" or plc.forced
+                    or plc._system_bytes or any(plc._watch_parts)):  # trigger points: scan()
+                plc.scan()
+                return
+            budget.left = budget.limit
+            img_in[:] = inputs
+            try:
                 if sync_in is not None:
                     sync_in()
-                for body in bodies:
-                    body()
+                body()
                 if sync_out is not None:
                     sync_out()
-                outputs[:] = img_out
-                ctx.first_scan = False
-                ctx.scan_count += 1
-                t = ctx.now_ns + tick
-                ctx.now_ns = t
-                ctx.now = t // 1_000_000
-        except BaseException as exc:  # noqa: BLE001
-            self._to_stop(exc)
+            except BaseException as exc:  # noqa: BLE001
+                plc._to_stop(exc)
+            outputs[:] = img_out
+            t = ctx.now_ns + tick
+            ctx.now_ns = t
+            ctx.now = t // 1_000_000
+            ctx.first_scan = False
+            ctx.scan_count += 1
+
+        return scan_one
 
     def _scan_once(self) -> None:
         ctx = self.ctx
@@ -446,8 +522,7 @@ class Plc:
                                f"{_fmt_ns(self._tick_ns)}; one call runs at most {MAX_SCANS:,}: "
                                "split the run into several calls")
         _check_count(cycles, "run: cycles")
-        for _ in range(cycles):
-            self._scan_once()
+        self.scan(cycles)  # the fast scan loop when it applies (same state, ADR 0024)
 
     def advance(self, duration: Any) -> None:
         """Run scans for ``duration`` of virtual time (``plc.advance('T#2s')``)."""

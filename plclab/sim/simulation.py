@@ -580,7 +580,7 @@ class Simulation:
         drain = plant.drain_events
         tr = self.transfer
         read_in, read_out, apply_out = tr.read_in, tr.read_out, tr.apply_out
-        scan = plc.scan
+        scan = plc.scanner()  # one scan, prebound (ADR 0024)
         rec = self.recorder
         prow = self._g_plant.rows.append
         irow = self._g_in.rows.append

@@ -27,7 +27,7 @@ from plclab.runtime.rt import HELPERS
 MANGLED = re.compile(r"^(?:[FPSEM]|v)_[A-Z0-9_]+$")  # M_: methods (ADR 0021)
 UPPER = re.compile(r"^[A-Z0-9_]+$")
 TEMPS = re.compile(r"^_(?:r|c|f|t|test_)\d+$")
-RUNTIME_NAMES = {"_B", "_CTX", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc", "n", "self",
+RUNTIME_NAMES = {"_B", "_CTX", "_F32", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc", "n", "self",
                  "__slots__", "_Globals", "_Programs", "_sync_in", "_sync_out", "__init__",
                  "_body", "_copy", "_math",
                  "_ITF", "_INIT_RETAINS"}  # ADR 0021: a block's interfaces, FB_init's flag

@@ -19,9 +19,17 @@ from dataclasses import dataclass
 
 from ...errors import Diagnostic, PlcError
 from .. import ast as A
-from . import il, ld, plcopen, st
+from . import il, ld, st
 
 ParseFn = Callable[[str, str], tuple[A.SourceFile, list[Diagnostic]]]
+
+
+def _plcopen_parse(text: str, file: str) -> tuple[A.SourceFile, list[Diagnostic]]:
+    """PLCopen XML, its module (and the XML parser) imported on first use: start-up of
+    commands on ST files stays short (issue 19)."""
+    from . import plcopen
+
+    return plcopen.parse(text, file)
 
 
 @dataclass(frozen=True)
@@ -39,7 +47,7 @@ FRONT_ENDS: tuple[FrontEnd, ...] = (
     FrontEnd("ST", "Structured Text (IL bodies recognised)", (".st", ".iecst", ".txt", ""), st.parse),
     FrontEnd("IL", "Instruction List", (".il",), il.parse),
     FrontEnd("LD", "Ladder Diagram as text", (".ld",), ld.parse),
-    FrontEnd("PLCopen", "PLCopen XML (ST, IL, LD, FBD bodies)", (".xml",), plcopen.parse),
+    FrontEnd("PLCopen", "PLCopen XML (ST, IL, LD, FBD bodies)", (".xml",), _plcopen_parse),
 )
 
 @dataclass(frozen=True)
