@@ -16,8 +16,9 @@ programs and values.
   counter, written back to the budget in a ``finally``.
 
 "Call-free" means the body holds only the node classes in :data:`_PLAIN_NODES` and calls only
-standard functions and conversions: nothing else can read or write the instance's variables
-while the loop runs, so the locals cannot be seen stale.
+standard functions and conversions -- no method, no property, no dereference ``r^``, no
+``THIS^``: nothing else can read or write the instance's variables while the loop runs, so the
+locals cannot be seen stale.
 """
 
 from __future__ import annotations
@@ -123,8 +124,12 @@ class FastPaths:
                 if isinstance(n, A.Call) and (n.target is None or
                                               n.target.kind not in ("builtin", "conv")):
                     return False
-                if isinstance(n, A.Name) and n.sym is not None and \
-                        not isinstance(n.sym, VarSym):
+                if isinstance(n, A.Name) and n.sym is not None and (
+                        not isinstance(n.sym, VarSym) or n.sym.storage in ("this", "super")):
+                    return False
+                # a property runs user code; r^ reads or writes whatever r points at, maybe
+                # a variable the loop holds in a local (ADR 0021)
+                if isinstance(n, A.Member) and (n.field_name == "^" or isinstance(n.sym, A.Pou)):
                     return False
         return True
 
