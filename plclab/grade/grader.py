@@ -192,6 +192,17 @@ class _Running:
         return (self.inbox.done is not None or self.inbox.failure is not None
                 or bool(self.rejected))
 
+    @property
+    def exitcode(self) -> int | None:
+        return self.proc.exitcode
+
+    def log_text(self) -> str:
+        return read_child_log(self.workdir)
+
+    def close(self) -> None:
+        with_conn_closed(self.conn)
+        shutil.rmtree(self.workdir, ignore_errors=True)
+
     def drain(self) -> None:
         """Take every message waiting on the pipe; a bad one rejects the child's results."""
         while not self.eof and not self.rejected:
@@ -235,14 +246,18 @@ class Grader:
         ``progress(done, total, student, outcome)`` after each submission.
     scenarios : names, optional
         Only these scenarios (``plclab lab check``: the visible ones); default: all.
+    executor : str, optional
+        None: a local process pool of ``jobs`` children; ``tcp://HOST:PORT``: the Dask
+        scheduler whose workers run the children (:mod:`plclab.grade.cluster`).
     """
 
     def __init__(self, lab: Lab, out: str | os.PathLike, jobs: int = 2,
                  timeout: float | None = None, memory_mb: int | None = None,
                  force: bool = False, media: bool = True,
                  progress: Callable[[int, int, str, Outcome], None] | None = None,
-                 scenarios: list[str] | None = None) -> None:
+                 scenarios: list[str] | None = None, executor: str | None = None) -> None:
         self.lab = lab
+        self.executor = executor
         self.out = Path(out)
         self.jobs = max(1, int(jobs))
         self.timeout = float(timeout if timeout is not None else lab.time_limit)
@@ -274,7 +289,12 @@ class Grader:
         if self.progress:
             for st, oc in sorted(outcomes.items()):
                 self.progress(done_n, total, st, oc)
-        if todo:
+        if todo and self.executor:
+            from .cluster import run_on_cluster
+
+            for oc in run_on_cluster(self, self.executor, todo, total, done_n):
+                outcomes[oc.result.student] = oc
+        elif todo:
             for oc in self._run(todo, total, done_n):
                 outcomes[oc.result.student] = oc
         results = [outcomes[s.student] for s in subs]
@@ -366,7 +386,18 @@ class Grader:
             self._payload = lab_payload(self.lab)
         return self._payload
 
-    def _start(self, ctx: Any, sub: Submission) -> _Running | Outcome:
+    def job_of(self, sub: Submission) -> dict[str, Any]:
+        """What a child needs besides the lab and its working folder (the same on every
+        executor)."""
+        return {"sources": sub.sources, "student": sub.student, "media": self.media,
+                "memory_mb": self.memory_mb, "scenarios": self.scenarios,
+                "cpu_seconds": self.timeout + CPU_MARGIN,
+                "selftest_crash": bool(self.selftest_crash)
+                and self.selftest_crash == sub.student}
+
+    def prepare(self, sub: Submission) -> Path | Outcome:
+        """Read a submission again (it may have changed since :func:`discover`) and empty the
+        student's folder of old pictures; the rejected outcome when it cannot be run."""
         if not sub.sources:
             _read(sub)
             if sub.error is not None:
@@ -375,13 +406,16 @@ class Grader:
         d.mkdir(parents=True, exist_ok=True)
         for old in list(d.glob("*.png")) + list(d.glob("*.rrd")):
             old.unlink()
+        return d
+
+    def _start(self, ctx: Any, sub: Submission) -> _Running | Outcome:
+        d = self.prepare(sub)
+        if isinstance(d, Outcome):
+            return d
         workdir = Path(tempfile.mkdtemp(prefix="plclab-grade-"))
         lab, checks = self._lab_payload()
-        job = {"lab": lab, "checks": checks, "sources": sub.sources, "student": sub.student,
-               "workdir": str(workdir), "media": self.media, "memory_mb": self.memory_mb,
-               "scenarios": self.scenarios,
-               "cpu_seconds": self.timeout + CPU_MARGIN, "grader_pid": os.getpid(),
-               "selftest_crash": bool(self.selftest_crash) and self.selftest_crash == sub.student}
+        job = {"lab": lab, "checks": checks, **self.job_of(sub), "workdir": str(workdir),
+               "grader_pid": os.getpid()}
         sub.sources = []
         from .worker import child_main
 
@@ -412,11 +446,13 @@ class Grader:
         res.lab_title = self.lab.title
         res.execution_time = float(wall)
 
-    def _finish(self, r: _Running, timed_out: bool) -> Outcome:
+    def _finish(self, r: Any, timed_out: bool) -> Outcome:
+        """The outcome of a child (a :class:`_Running` here, or one replayed from a cluster
+        worker, :class:`plclab.grade.cluster.Replayed`), written to the student's folder."""
         wall = time.monotonic() - r.start
         lab = self.lab
         box = r.inbox
-        code = r.proc.exitcode
+        code = r.exitcode
         cpu = code == -getattr(signal, "SIGXCPU", 0)  # RLIMIT_CPU: a late wall-clock kill
         if r.rejected:
             res = failed_result(lab, "rejected", "The grading process sent results the grader "
@@ -455,8 +491,7 @@ class Grader:
         self._stamp(res, r.sub, wall)
         self._write_student(res, r.sub.dirname)
         self._keep_log(r)
-        with_conn_closed(r.conn)
-        shutil.rmtree(r.workdir, ignore_errors=True)
+        r.close()
         return Outcome(res, False, wall, r.sub.dirname)
 
     def _complete(self, res: Result, diags: list[str] | None) -> None:
@@ -477,26 +512,10 @@ class Grader:
         res.scenarios.sort(key=lambda s: order.get(s.name, 0))
         res.tests.sort(key=lambda t: order.get(t.scenario, 0))
 
-    def _keep_log(self, r: _Running) -> None:
-        """The end of the child's stdout/stderr, if it wrote any (read without following a
-        link, at most LIMITS["log"] bytes)."""
-        from .worker import LOG_NAME
-
+    def _keep_log(self, r: Any) -> None:
+        """The end of the child's stdout/stderr, if it wrote any."""
         log = r.media / LOG
-        text = ""
-        try:
-            fd = os.open(r.workdir / LOG_NAME, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
-                         | getattr(os, "O_NONBLOCK", 0))
-        except OSError:
-            fd = -1
-        if fd >= 0:
-            try:
-                st = os.fstat(fd)
-                if stat.S_ISREG(st.st_mode) and st.st_size:
-                    os.lseek(fd, max(0, st.st_size - LIMITS["log"]), os.SEEK_SET)
-                    text = os.read(fd, LIMITS["log"]).decode("utf-8", "replace")
-            finally:
-                os.close(fd)
+        text = r.log_text()
         if text.strip():
             write_atomic(log, text)
         else:
@@ -518,6 +537,27 @@ class Grader:
 
     def _write_gradebook(self, results: list[Result]) -> None:
         write_atomic(self.out / "grades.csv", gradebook_csv(results, self.test_names()))
+
+
+def read_child_log(workdir: Path) -> str:
+    """The end of a child's stdout/stderr file in its working folder (read without following
+    a link, at most LIMITS["log"] bytes; "" when there is none)."""
+    from .worker import LOG_NAME
+
+    text = ""
+    try:
+        fd = os.open(workdir / LOG_NAME, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
+                     | getattr(os, "O_NONBLOCK", 0))
+    except OSError:
+        return ""
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISREG(st.st_mode) and st.st_size:
+            os.lseek(fd, max(0, st.st_size - LIMITS["log"]), os.SEEK_SET)
+            text = os.read(fd, LIMITS["log"]).decode("utf-8", "replace")
+    finally:
+        os.close(fd)
+    return text
 
 
 def with_conn_closed(conn: Any) -> None:
