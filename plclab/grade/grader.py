@@ -571,24 +571,46 @@ def with_conn_closed(conn: Any) -> None:
 
 
 class ProgressBar:
-    """A one-line progress bar (only used when stdout is a terminal)."""
+    """A one-line progress bar with rate and ETA (only used when stdout is a terminal).
+    Unchanged submissions count as done but not in the rate: it is the grading's speed."""
 
     def __init__(self, stream: Any = None, width: int = 30) -> None:
         self.stream = stream or sys.stdout
         self.width = width
         self.t0 = time.monotonic()
+        self.graded = 0
 
-    def __call__(self, done: int, total: int, student: str, oc: Outcome) -> None:
+    def line(self, done: int, total: int, student: str, oc: Outcome, now: float) -> str:
+        """The bar's text after ``done`` of ``total`` submissions."""
+        self.graded += 0 if oc.skipped else 1
         frac = done / total if total else 1.0
         n = int(round(frac * self.width))
         bar = "#" * n + "." * (self.width - n)
-        el = time.monotonic() - self.t0
+        el = max(now - self.t0, 1e-9)
+        rate = self.graded / el * 60
+        eta = (total - done) / (self.graded / el) if self.graded else None
         what = "skipped" if oc.skipped else f"{oc.result.score:g}/{oc.result.max_score:g}"
-        line = f"\r[{bar}] {done}/{total} {el:5.1f} s  {student[:24]:<24} {what:<12}"
-        self.stream.write(line)
+        left = "--" if eta is None else _clock(eta)
+        return (f"\r[{bar}] {done}/{total} {_clock(el)} {rate:5.0f}/min ETA {left:>5}  "
+                f"{student[:20]:<20} {what:<10}")
+
+    def __call__(self, done: int, total: int, student: str, oc: Outcome) -> None:
+        self.stream.write(self.line(done, total, student, oc, time.monotonic()))
         if done == total:
             self.stream.write("\n")
         self.stream.flush()
+
+
+def _clock(seconds: float) -> str:
+    """``m:ss`` (or ``h:mm:ss``).
+
+    >>> _clock(75.2), _clock(3725)
+    ('1:15', '1:02:05')
+    """
+    s = int(round(seconds))
+    h, rest = divmod(s, 3600)
+    m, sec = divmod(rest, 60)
+    return f"{h}:{m:02d}:{sec:02d}" if h else f"{m}:{sec:02d}"
 
 
 def summary_table(outcomes: list[Outcome]) -> str:
