@@ -65,10 +65,10 @@ def parse_executor(text: str | None) -> str | None:
 def collect_child(job: dict[str, Any], timeout: float) -> dict[str, Any]:
     """Run one grading child here (as the local grader does) and return what it sent, raw:
     ``{"messages": [bytes], "exitcode", "timed_out", "rejected", "wall", "log"}``."""
-    from .grader import _context, read_child_log
+    from .spawn import child_context, read_child_log
     from .worker import child_main
 
-    ctx = _context()
+    ctx = child_context()
     parent, child = ctx.Pipe(duplex=False)
     proc = ctx.Process(target=child_main, args=(job, child), daemon=True,
                        name="plclab-grade-task")
@@ -219,16 +219,14 @@ def run_on_cluster(grader: Any, address: str, todo: deque[Any], total: int,
     completes (the order of completion, like the local pool)."""
     from distributed import as_completed
 
-    from .grader import Outcome
-
     client = connect(address)
-    finished: list[Outcome] = []
+    finished: list[Any] = []
     try:
         payload = client.scatter([grader._lab_payload()], broadcast=True)[0]  # noqa: SLF001
         futures: dict[Any, tuple[Any, Path]] = {}
         for sub in todo:
             d = grader.prepare(sub)
-            if isinstance(d, Outcome):  # changed since discover: rejected now
+            if not isinstance(d, Path):  # changed since discover: rejected now (an Outcome)
                 finished.append(d)
                 done_n += 1
                 continue

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import contextlib
 import json
-import multiprocessing
 import os
 import shutil
 import signal
@@ -43,6 +42,7 @@ from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
 from .protocol import LIMITS, MEDIA_NAME, Inbox, Rejected
 from .safety import clean_text, output_dirname
+from .spawn import child_context, read_child_log
 
 GRADER_VERSION = "2"
 SIDECAR = ".plclab-result.json"
@@ -137,28 +137,6 @@ def _read(sub: Submission) -> None:
     sub.sources = sources
     sub.files = [n for _, n in sources]
     sub.hash = source_hash(sources)
-
-
-def _context() -> Any:
-    methods = multiprocessing.get_all_start_methods()
-    if "forkserver" in methods:
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["__main__", "plclab.grade._preload"])
-        _start_forkserver()
-        return ctx
-    return multiprocessing.get_context("spawn")
-
-
-def _start_forkserver() -> None:
-    """Start the forkserver (if it is not running) with the minimal environment, so neither
-    it nor the children it forks ever hold the instructor's variables."""
-    from multiprocessing import forkserver
-
-    from .sandbox import environ_as, minimal_env
-
-    tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
-    with environ_as(minimal_env(None, "forkserver")):
-        forkserver.ensure_running()
 
 
 def _signame(code: int | None) -> str:
@@ -335,7 +313,7 @@ class Grader:
         return res
 
     def _run(self, todo: deque[Submission], total: int, done_n: int) -> list[Outcome]:
-        ctx = _context()
+        ctx = child_context()
         running: list[_Running] = []
         finished: list[Outcome] = []
         try:
@@ -537,27 +515,6 @@ class Grader:
 
     def _write_gradebook(self, results: list[Result]) -> None:
         write_atomic(self.out / "grades.csv", gradebook_csv(results, self.test_names()))
-
-
-def read_child_log(workdir: Path) -> str:
-    """The end of a child's stdout/stderr file in its working folder (read without following
-    a link, at most LIMITS["log"] bytes; "" when there is none)."""
-    from .worker import LOG_NAME
-
-    text = ""
-    try:
-        fd = os.open(workdir / LOG_NAME, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
-                     | getattr(os, "O_NONBLOCK", 0))
-    except OSError:
-        return ""
-    try:
-        st = os.fstat(fd)
-        if stat.S_ISREG(st.st_mode) and st.st_size:
-            os.lseek(fd, max(0, st.st_size - LIMITS["log"]), os.SEEK_SET)
-            text = os.read(fd, LIMITS["log"]).decode("utf-8", "replace")
-    finally:
-        os.close(fd)
-    return text
 
 
 def with_conn_closed(conn: Any) -> None:

@@ -36,21 +36,20 @@ def failure_figure(series: Sequence[Series], lo: float, hi: float, heights: Sequ
                    title: str = "", markers: Sequence[tuple[float, str]] = (),
                    width: float = 9.0,
                    thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
-                   ) -> Any:
+                   labels: Sequence[tuple[float, str, int]] = ()) -> Any:
     """A figure (outside pyplot's registry) of ``series`` (already windowed to [lo, hi]),
-    one band of height ``heights[i]`` (inches) per row, top to bottom."""
+    one band of height ``heights[i]`` (inches) per row, top to bottom. ``labels`` are the
+    markers' labels placed by :func:`plclab.viz.timing.marker_labels` (time, text, row)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.ticker import MaxNLocator
-
-    from .timing import marker_labels
 
     h_in = 0.5 + sum(heights)
     fig = Figure(figsize=(width, h_in))
     FigureCanvasAgg(fig)
     label_chars = max((len(s.name) + (len(s.unit) + 3 if s.unit else 0) for s in series),
                       default=4)
-    levels = max((lv for _, _, lv in marker_labels(markers, lo, hi)), default=-1) + 1
+    levels = max((lv for _, _, lv in labels), default=-1) + 1
     top_in = 0.3 + (0.2 if title else 0) + 0.16 * levels
     right_in = 0.75 if thresholds else 0.25
     left = min(0.45, (0.15 + 0.065 * label_chars + 0.3) / width)
@@ -76,7 +75,7 @@ def failure_figure(series: Sequence[Series], lo: float, hi: float, heights: Sequ
     for t, _label in markers:
         if lo <= t <= hi:
             ax.axvline(t, color="tab:red", lw=0.8, ls="--")
-    for t, label, level in marker_labels(markers, lo, hi):
+    for t, label, level in labels:
         ax.annotate(label, (t, 1.02 + 0.17 * level / (frac * h_in)),  # 0.17 in a row
                     xycoords=("data", "axes fraction"), fontsize=7, color="tab:red",
                     annotation_clip=False)

@@ -48,7 +48,8 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     if fixed_layout:  # the feedback's diagram: one Axes, a fraction of the cost
         from .failure_diagram import failure_figure
 
-        fig = failure_figure(series, lo, hi, heights, title, markers, width, thresholds)
+        fig = failure_figure(series, lo, hi, heights, title, markers, width, thresholds,
+                             marker_labels(markers, lo, hi))
         if path is not None:
             fig.savefig(str(path), dpi=dpi)
         return fig
