@@ -41,7 +41,9 @@ def start_cluster(workers: int = SLOTS) -> tuple[str, list[subprocess.Popen]]:
     """A loopback scheduler and ``workers`` single-thread worker processes."""
     from distributed import Client
 
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    env = {**os.environ, "PYTHONPATH": str(ROOT),
+           # the statistical profiler samples every thread each 10 ms: CPU the children need
+           "DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED": "False"}
     port = _free_port()
     addr = f"tcp://127.0.0.1:{port}"
     quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL,
