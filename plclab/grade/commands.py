@@ -1,7 +1,7 @@
 """Command-line sub-commands ``plclab grade`` and ``plclab lab``.
 
-``plclab grade LAB SUBMISSIONS_DIR [--jobs N] [--out DIR] [--timeout 30s] [--force]``
-grades a folder of submissions; ``plclab lab list``, ``plclab lab show LAB``, ``plclab lab
+``plclab grade LAB SUBMISSIONS [--jobs N] [--out DIR] [--executor dask://HOST:PORT]`` (or
+``--manifest course.toml``) grades a folder (or an LMS zip) of submissions; ``plclab lab list``, ``plclab lab show LAB``, ``plclab lab
 check LAB FILE...`` (a student's local run of the visible scenarios, ending with ``score:
 X/Y``) and ``plclab lab new ID`` (an instructor's scaffold).
 """
@@ -35,12 +35,17 @@ def _labs_arg(p: argparse.ArgumentParser) -> None:
 
 
 @command("grade")
-@arg("lab", metavar="LAB", help="lab id (see: plclab lab list) or lab folder")
-@arg("submissions", metavar="SUBMISSIONS_DIR",
-     help="folder with one file or one folder per student")
+@arg("lab", metavar="LAB", nargs="?", help="lab id (see: plclab lab list) or lab folder")
+@arg("submissions", metavar="SUBMISSIONS", nargs="?",
+     help="folder with one file or one folder per student, or an LMS export .zip of either")
+@arg("--manifest", default=None, metavar="TOML", help="grade many labs in one run: a [labs] "
+     'table of lab = "submissions folder" lines (instead of LAB SUBMISSIONS)')
+@arg("--executor", default="local", metavar="WHERE", help="local (a process pool, the "
+     "default) or dask://HOST:PORT (the workers of a Dask scheduler; see docs/grading-cluster.md)")
 @arg("--jobs", "-j", type=int, default=None, help="submissions graded in parallel "
-     "(default: the number of CPUs)")
-@arg("--out", default=None, metavar="DIR", help="output folder (default: ./grades)")
+     "(default: the number of CPUs; local executor)")
+@arg("--out", default=None, metavar="DIR", help="output folder (default: SUBMISSIONS-grades "
+     "beside the submissions; with --manifest: DIR/<lab>/)")
 @arg("--timeout", default=None, help="wall-clock limit per submission, e.g. 30s (default: the "
      "lab's time_limit)")
 @arg("--memory", default=None, help="memory limit per submission, e.g. 1.5GB (default: the "
@@ -48,14 +53,26 @@ def _labs_arg(p: argparse.ArgumentParser) -> None:
 @arg("--force", action="store_true", help="regrade submissions that did not change")
 @arg("--no-media", action="store_true", help="no timing diagrams and recordings (faster)")
 @arg("--labs", action="append", default=[], metavar="DIR", help="also look for labs in DIR")
-@arg("--quiet", "-q", action="store_true", help="no summary table")
+@arg("--quiet", "-q", action="store_true", help="no table of students")
 def cmd_grade(ns: argparse.Namespace) -> int:
     from plclab.sim import parse_seconds
 
-    from .grader import Grader, ProgressBar, summary_table
-    from .lab import load_lab, parse_memory
+    from .batch import default_out, read_manifest
+    from .cluster import parse_executor
+    from .lab import parse_memory
 
-    lab = load_lab(ns.lab, ns.labs, deep=True)
+    if ns.manifest and (ns.lab or ns.submissions):
+        raise grade_error("PLC5062", "give either --manifest TOML or LAB SUBMISSIONS, not both")
+    if ns.manifest:
+        runs = read_manifest(ns.manifest)
+        where = [(lab, subs, Path(ns.out) / Path(lab).name if ns.out else default_out(subs))
+                 for lab, subs in runs]
+    elif ns.lab and ns.submissions:
+        where = [(ns.lab, Path(ns.submissions),
+                  Path(ns.out) if ns.out else default_out(ns.submissions))]
+    else:
+        raise grade_error("PLC5026", "give LAB SUBMISSIONS (e.g. plclab grade tank-two-position "
+                          "submissions/) or --manifest course.toml")
     jobs = ns.jobs if ns.jobs is not None else (os.cpu_count() or 1)
     if jobs < 1:
         raise grade_error("PLC5026", "--jobs must be 1 or more")
@@ -72,16 +89,34 @@ def cmd_grade(ns: argparse.Namespace) -> int:
             memory = parse_memory(ns.memory)
         except ValueError as e:
             raise grade_error("PLC5026", f"--memory: {e}") from None
-    out = Path(ns.out or "grades")
+    executor = parse_executor(ns.executor)
+    for lab_name, subs, out in where:
+        _grade_one_lab(ns, lab_name, subs, out, jobs, timeout, memory, executor,
+                       multi=len(where) > 1)
+    return 0
+
+
+def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path, jobs: int,
+                   timeout: float | None, memory: int | None, executor: str | None,
+                   multi: bool) -> None:
+    from .batch import Unpacked, run_summary
+    from .grader import Grader, ProgressBar, summary_table
+    from .lab import load_lab
+
+    lab = load_lab(lab_name, ns.labs, deep=True)
+    if multi:
+        print(f"== {lab.id}: {subs} -> {out}")
     bar = ProgressBar() if sys.stdout.isatty() else None
-    g = Grader(lab, out, jobs, timeout, memory, ns.force, not ns.no_media, progress=bar)
-    outcomes = g.grade_folder(ns.submissions)
+    g = Grader(lab, out, jobs, timeout, memory, ns.force, not ns.no_media, progress=bar,
+               executor=executor)
+    with Unpacked(subs) as folder:
+        outcomes = g.grade_folder(folder)
     if not ns.quiet:
         print(summary_table(outcomes))
+    print(run_summary(outcomes))
     graded = sum(1 for o in outcomes if not o.skipped)
     print(f"{graded} graded, {len(outcomes) - graded} unchanged; results in {out}/<student>/, "
           f"gradebook {out / 'grades.csv'}")
-    return 0
 
 
 @command("grade-bundle")

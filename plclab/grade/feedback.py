@@ -70,13 +70,19 @@ def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
 def diagram_names(trace: Any, lab: Any, crit: Any) -> list[str]:
     """The signals of a failure diagram: the lab's, the criterion's, the student's --watch."""
     out: list[str] = []
-    for n in (list(lab.diagram_signals) + list(crit.relevant_signals())
-              + list(getattr(lab, "student_watch", []))):
+    watch = list(getattr(lab, "student_watch", []))
+    for n in list(lab.diagram_signals) + list(crit.relevant_signals()) + watch:
         if n in trace and trace.resolve(n) not in out:
             out.append(trace.resolve(n))
     if not out:
-        out = [r["plant_column"] for r in trace.io][:MAX_SIGNALS]
-    return out[:MAX_SIGNALS + len(getattr(lab, "student_watch", []))]
+        return [r["plant_column"] for r in trace.io][:MAX_SIGNALS]
+    cap = MAX_SIGNALS + len(watch)
+    if len(out) > cap:  # the failed criterion's own signals and --watch are never dropped
+        must = {trace.resolve(n) for n in [*crit.relevant_signals(), *watch] if n in trace}
+        room = max(0, cap - len(must))
+        keep = set(must) | set([n for n in out if n not in must][:room])
+        out = [n for n in out if n in keep]
+    return out
 
 
 def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Path, run: Any,

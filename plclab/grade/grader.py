@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import contextlib
 import json
-import multiprocessing
 import os
 import shutil
 import signal
@@ -43,6 +42,7 @@ from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
 from .protocol import LIMITS, MEDIA_NAME, Inbox, Rejected
 from .safety import clean_text, output_dirname
+from .spawn import child_context, read_child_log
 
 GRADER_VERSION = "2"
 SIDECAR = ".plclab-result.json"
@@ -139,28 +139,6 @@ def _read(sub: Submission) -> None:
     sub.hash = source_hash(sources)
 
 
-def _context() -> Any:
-    methods = multiprocessing.get_all_start_methods()
-    if "forkserver" in methods:
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["__main__", "plclab.grade._preload"])
-        _start_forkserver()
-        return ctx
-    return multiprocessing.get_context("spawn")
-
-
-def _start_forkserver() -> None:
-    """Start the forkserver (if it is not running) with the minimal environment, so neither
-    it nor the children it forks ever hold the instructor's variables."""
-    from multiprocessing import forkserver
-
-    from .sandbox import environ_as, minimal_env
-
-    tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
-    with environ_as(minimal_env(None, "forkserver")):
-        forkserver.ensure_running()
-
-
 def _signame(code: int | None) -> str:
     if code is None:
         return "still running"
@@ -191,6 +169,17 @@ class _Running:
     def final(self) -> bool:
         return (self.inbox.done is not None or self.inbox.failure is not None
                 or bool(self.rejected))
+
+    @property
+    def exitcode(self) -> int | None:
+        return self.proc.exitcode
+
+    def log_text(self) -> str:
+        return read_child_log(self.workdir)
+
+    def close(self) -> None:
+        with_conn_closed(self.conn)
+        shutil.rmtree(self.workdir, ignore_errors=True)
 
     def drain(self) -> None:
         """Take every message waiting on the pipe; a bad one rejects the child's results."""
@@ -235,14 +224,18 @@ class Grader:
         ``progress(done, total, student, outcome)`` after each submission.
     scenarios : names, optional
         Only these scenarios (``plclab lab check``: the visible ones); default: all.
+    executor : str, optional
+        None: a local process pool of ``jobs`` children; ``tcp://HOST:PORT``: the Dask
+        scheduler whose workers run the children (:mod:`plclab.grade.cluster`).
     """
 
     def __init__(self, lab: Lab, out: str | os.PathLike, jobs: int = 2,
                  timeout: float | None = None, memory_mb: int | None = None,
                  force: bool = False, media: bool = True,
                  progress: Callable[[int, int, str, Outcome], None] | None = None,
-                 scenarios: list[str] | None = None) -> None:
+                 scenarios: list[str] | None = None, executor: str | None = None) -> None:
         self.lab = lab
+        self.executor = executor
         self.out = Path(out)
         self.jobs = max(1, int(jobs))
         self.timeout = float(timeout if timeout is not None else lab.time_limit)
@@ -274,7 +267,12 @@ class Grader:
         if self.progress:
             for st, oc in sorted(outcomes.items()):
                 self.progress(done_n, total, st, oc)
-        if todo:
+        if todo and self.executor:
+            from .cluster import run_on_cluster
+
+            for oc in run_on_cluster(self, self.executor, todo, total, done_n):
+                outcomes[oc.result.student] = oc
+        elif todo:
             for oc in self._run(todo, total, done_n):
                 outcomes[oc.result.student] = oc
         results = [outcomes[s.student] for s in subs]
@@ -315,7 +313,7 @@ class Grader:
         return res
 
     def _run(self, todo: deque[Submission], total: int, done_n: int) -> list[Outcome]:
-        ctx = _context()
+        ctx = child_context()
         running: list[_Running] = []
         finished: list[Outcome] = []
         try:
@@ -366,7 +364,18 @@ class Grader:
             self._payload = lab_payload(self.lab)
         return self._payload
 
-    def _start(self, ctx: Any, sub: Submission) -> _Running | Outcome:
+    def job_of(self, sub: Submission) -> dict[str, Any]:
+        """What a child needs besides the lab and its working folder (the same on every
+        executor)."""
+        return {"sources": sub.sources, "student": sub.student, "media": self.media,
+                "memory_mb": self.memory_mb, "scenarios": self.scenarios,
+                "cpu_seconds": self.timeout + CPU_MARGIN,
+                "selftest_crash": bool(self.selftest_crash)
+                and self.selftest_crash == sub.student}
+
+    def prepare(self, sub: Submission) -> Path | Outcome:
+        """Read a submission again (it may have changed since :func:`discover`) and empty the
+        student's folder of old pictures; the rejected outcome when it cannot be run."""
         if not sub.sources:
             _read(sub)
             if sub.error is not None:
@@ -375,13 +384,16 @@ class Grader:
         d.mkdir(parents=True, exist_ok=True)
         for old in list(d.glob("*.png")) + list(d.glob("*.rrd")):
             old.unlink()
+        return d
+
+    def _start(self, ctx: Any, sub: Submission) -> _Running | Outcome:
+        d = self.prepare(sub)
+        if isinstance(d, Outcome):
+            return d
         workdir = Path(tempfile.mkdtemp(prefix="plclab-grade-"))
         lab, checks = self._lab_payload()
-        job = {"lab": lab, "checks": checks, "sources": sub.sources, "student": sub.student,
-               "workdir": str(workdir), "media": self.media, "memory_mb": self.memory_mb,
-               "scenarios": self.scenarios,
-               "cpu_seconds": self.timeout + CPU_MARGIN, "grader_pid": os.getpid(),
-               "selftest_crash": bool(self.selftest_crash) and self.selftest_crash == sub.student}
+        job = {"lab": lab, "checks": checks, **self.job_of(sub), "workdir": str(workdir),
+               "grader_pid": os.getpid()}
         sub.sources = []
         from .worker import child_main
 
@@ -412,11 +424,13 @@ class Grader:
         res.lab_title = self.lab.title
         res.execution_time = float(wall)
 
-    def _finish(self, r: _Running, timed_out: bool) -> Outcome:
+    def _finish(self, r: Any, timed_out: bool) -> Outcome:
+        """The outcome of a child (a :class:`_Running` here, or one replayed from a cluster
+        worker, :class:`plclab.grade.cluster.Replayed`), written to the student's folder."""
         wall = time.monotonic() - r.start
         lab = self.lab
         box = r.inbox
-        code = r.proc.exitcode
+        code = r.exitcode
         cpu = code == -getattr(signal, "SIGXCPU", 0)  # RLIMIT_CPU: a late wall-clock kill
         if r.rejected:
             res = failed_result(lab, "rejected", "The grading process sent results the grader "
@@ -455,8 +469,7 @@ class Grader:
         self._stamp(res, r.sub, wall)
         self._write_student(res, r.sub.dirname)
         self._keep_log(r)
-        with_conn_closed(r.conn)
-        shutil.rmtree(r.workdir, ignore_errors=True)
+        r.close()
         return Outcome(res, False, wall, r.sub.dirname)
 
     def _complete(self, res: Result, diags: list[str] | None) -> None:
@@ -477,26 +490,10 @@ class Grader:
         res.scenarios.sort(key=lambda s: order.get(s.name, 0))
         res.tests.sort(key=lambda t: order.get(t.scenario, 0))
 
-    def _keep_log(self, r: _Running) -> None:
-        """The end of the child's stdout/stderr, if it wrote any (read without following a
-        link, at most LIMITS["log"] bytes)."""
-        from .worker import LOG_NAME
-
+    def _keep_log(self, r: Any) -> None:
+        """The end of the child's stdout/stderr, if it wrote any."""
         log = r.media / LOG
-        text = ""
-        try:
-            fd = os.open(r.workdir / LOG_NAME, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
-                         | getattr(os, "O_NONBLOCK", 0))
-        except OSError:
-            fd = -1
-        if fd >= 0:
-            try:
-                st = os.fstat(fd)
-                if stat.S_ISREG(st.st_mode) and st.st_size:
-                    os.lseek(fd, max(0, st.st_size - LIMITS["log"]), os.SEEK_SET)
-                    text = os.read(fd, LIMITS["log"]).decode("utf-8", "replace")
-            finally:
-                os.close(fd)
+        text = r.log_text()
         if text.strip():
             write_atomic(log, text)
         else:
@@ -531,24 +528,46 @@ def with_conn_closed(conn: Any) -> None:
 
 
 class ProgressBar:
-    """A one-line progress bar (only used when stdout is a terminal)."""
+    """A one-line progress bar with rate and ETA (only used when stdout is a terminal).
+    Unchanged submissions count as done but not in the rate: it is the grading's speed."""
 
     def __init__(self, stream: Any = None, width: int = 30) -> None:
         self.stream = stream or sys.stdout
         self.width = width
         self.t0 = time.monotonic()
+        self.graded = 0
 
-    def __call__(self, done: int, total: int, student: str, oc: Outcome) -> None:
+    def line(self, done: int, total: int, student: str, oc: Outcome, now: float) -> str:
+        """The bar's text after ``done`` of ``total`` submissions."""
+        self.graded += 0 if oc.skipped else 1
         frac = done / total if total else 1.0
         n = int(round(frac * self.width))
         bar = "#" * n + "." * (self.width - n)
-        el = time.monotonic() - self.t0
+        el = max(now - self.t0, 1e-9)
+        rate = self.graded / el * 60
+        eta = (total - done) / (self.graded / el) if self.graded else None
         what = "skipped" if oc.skipped else f"{oc.result.score:g}/{oc.result.max_score:g}"
-        line = f"\r[{bar}] {done}/{total} {el:5.1f} s  {student[:24]:<24} {what:<12}"
-        self.stream.write(line)
+        left = "--" if eta is None else _clock(eta)
+        return (f"\r[{bar}] {done}/{total} {_clock(el)} {rate:5.0f}/min ETA {left:>5}  "
+                f"{student[:20]:<20} {what:<10}")
+
+    def __call__(self, done: int, total: int, student: str, oc: Outcome) -> None:
+        self.stream.write(self.line(done, total, student, oc, time.monotonic()))
         if done == total:
             self.stream.write("\n")
         self.stream.flush()
+
+
+def _clock(seconds: float) -> str:
+    """``m:ss`` (or ``h:mm:ss``).
+
+    >>> _clock(75.2), _clock(3725)
+    ('1:15', '1:02:05')
+    """
+    s = int(round(seconds))
+    h, rest = divmod(s, 3600)
+    m, sec = divmod(rest, 60)
+    return f"{h}:{m:02d}:{sec:02d}" if h else f"{m}:{sec:02d}"
 
 
 def summary_table(outcomes: list[Outcome]) -> str:

@@ -30,6 +30,8 @@ class Series:
 
     def changes(self) -> list[tuple[float, Any]]:
         """(time, value) at the first sample and wherever the value changes."""
+        if _is_array(self.times) and _is_array(self.values) and len(self.values) > 1:
+            return _array_changes(self.times, self.values)
         out: list[tuple[float, Any]] = []
         prev = object()
         for t, v in zip(self.times, self.values, strict=True):
@@ -47,6 +49,9 @@ class Series:
         hi = float("inf") if t1 is None else t1
         if len(self.times) and self.times[0] >= lo and self.times[-1] <= hi:
             return self  # already inside (a windowed series drawn again): no copy
+        if _is_array(self.times) and _is_array(self.values):
+            ts, vs = _array_window(self.times, self.values, lo, hi)
+            return Series(self.name, ts, vs, self.kind, self.unit, self.labels)
         ts, vs = [], []
         before = None
         for t, v in zip(self.times, self.values, strict=True):
@@ -72,6 +77,31 @@ class Series:
         if isinstance(v, float):
             return f"{v:.4g}"
         return str(v)
+
+
+def _is_array(x: Any) -> bool:
+    """A NumPy array (a trace's column): windowed and scanned by NumPy, not element-wise."""
+    return hasattr(x, "dtype") and hasattr(x, "searchsorted") and getattr(x, "ndim", 0) == 1
+
+
+def _array_window(times: Any, values: Any, lo: float, hi: float) -> tuple[list, list]:
+    """:meth:`Series.window` of sorted NumPy columns (binary search, then one slice)."""
+    i = int(times.searchsorted(lo, "left"))
+    j = int(times.searchsorted(hi, "right"))
+    ts, vs = times[i:j].tolist(), values[i:j].tolist()
+    if i > 0 and (not ts or ts[0] > lo):
+        ts.insert(0, lo)
+        vs.insert(0, values[i - 1].item())
+    return ts, vs
+
+
+def _array_changes(times: Any, values: Any) -> list[tuple[float, Any]]:
+    """:meth:`Series.changes` of NumPy columns (one vectorised comparison)."""
+    import numpy as np
+
+    at = np.flatnonzero(values[1:] != values[:-1]) + 1
+    keep = np.concatenate(([0], at))
+    return list(zip(times[keep].astype(float).tolist(), values[keep].tolist(), strict=True))
 
 
 def _py(v: Any) -> Any:

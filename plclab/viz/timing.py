@@ -35,18 +35,26 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     their labels are merged and stacked so that they never overlap. ``thresholds`` maps a
     series name to (value, label) pairs drawn as dotted horizontal lines (a limit, a switch
     level). Integer series with many values (ADC counts) are drawn as lines, like REALs.
-    ``fixed_layout`` places the rows with margins computed from the label lengths instead of
-    matplotlib's ``tight_layout`` (which measures every tick and costs about 0.1 s): for the
-    feedback diagrams drawn for every failure. Returns the matplotlib figure.
+    ``fixed_layout`` draws every row in one Axes with margins computed from the label lengths
+    (:mod:`plclab.viz.failure_diagram`) instead of one Axes per row and ``tight_layout``:
+    the feedback diagrams drawn for every failure. Returns the matplotlib figure.
     """
     plt = _mpl()
     series = [_as_analog(s.window(t0, t1)) for s in series]
     rows = len(series)
     heights = [0.6 if s.kind in ("bool",) else 0.7 if s.kind != "real" else 1.6 for s in series]
-    fig, axes = plt.subplots(rows, 1, sharex=True, figsize=(width, 0.5 + sum(heights)),
-                             gridspec_kw={"height_ratios": heights}, squeeze=False)
     lo = t0 if t0 is not None else min((s.times[0] for s in series if len(s.times)), default=0)
     hi = t1 if t1 is not None else max((s.times[-1] for s in series if len(s.times)), default=1)
+    if fixed_layout:  # the feedback's diagram: one Axes, a fraction of the cost
+        from .failure_diagram import failure_figure
+
+        fig = failure_figure(series, lo, hi, heights, title, markers, width, thresholds,
+                             marker_labels(markers, lo, hi))
+        if path is not None:
+            fig.savefig(str(path), dpi=dpi)
+        return fig
+    fig, axes = plt.subplots(rows, 1, sharex=True, figsize=(width, 0.5 + sum(heights)),
+                             gridspec_kw={"height_ratios": heights}, squeeze=False)
     for ax, s in zip(axes[:, 0], series, strict=True):
         _draw(ax, s, lo, hi)
         for value, label in (thresholds or {}).get(s.name, ()):
@@ -64,18 +72,7 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     axes[-1, 0].set_xlabel("time [s]")
     if title:
         fig.suptitle(title, fontsize=10)
-    if fixed_layout:
-        h = 0.5 + sum(heights)
-        label = max((len(s.name) + (len(s.unit) + 3 if s.unit else 0) for s in series),
-                    default=4)
-        levels = max((lv for _, _, lv in marker_labels(markers, lo, hi)), default=-1) + 1
-        top_in = 0.35 + (0.2 if title else 0) + 0.16 * levels
-        right_in = 0.75 if thresholds else 0.2
-        fig.subplots_adjust(left=min(0.45, (0.1 + 0.065 * label + 0.35) / width),
-                            right=1 - right_in / width, bottom=0.45 / h,
-                            top=max(0.5, 1 - top_in / h), hspace=0.35)
-    else:
-        fig.tight_layout()
+    fig.tight_layout()
     if path is not None:
         fig.savefig(str(path), dpi=dpi)
         plt.close(fig)

@@ -58,3 +58,27 @@ def test_a_fix_without_a_concept_is_a_lab_error(tmp_path):
     with pytest.raises(PlcError) as e:
         load_lab(str(lab))
     assert e.value.code == "PLC5055"
+
+
+LITERAL = ("IF ", " THEN", ":=", "END_IF")
+"""Marks of a literal fix (a statement or an assignment), which belong in ``hint_fix``."""
+
+
+def _all_labs():
+    from plclab.grade.lab import list_labs
+
+    return [load_lab(p) for p in list_labs([])]
+
+
+@pytest.mark.parametrize("lab", _all_labs(), ids=lambda lab: lab.id)
+def test_every_lab_gives_the_concept_first_and_the_literal_fix_only_in_tier_2(lab):
+    for c in lab.criteria:
+        if c.hint:
+            assert not any(m in c.hint for m in LITERAL), (c.name, c.hint)
+        if c.hint_fix:
+            assert c.hint and c.hint_fix != c.hint
+
+
+def test_several_labs_have_a_second_tier():
+    labs = [lab.id for lab in _all_labs() if any(c.hint_fix for c in lab.criteria)]
+    assert len(labs) >= 8, labs

@@ -91,3 +91,19 @@ def test_the_reference_solutions_are_clean(sol):
     _, diags = check_sources([(sol.read_text(encoding="utf-8"), sol.name)], lint=True,
                              io_table=lab.io)
     assert not [str(d) for d in diags if d.code.startswith("PLC021")]
+
+
+def test_plcopen_exports_keep_their_io_mapping_outside_the_file():
+    """PLC0214 is not raised for the language demos examples/motor.xml and project.xml (an
+    IDE's export maps its I/O in the project, not in the XML), but is with a lab's table."""
+    from pathlib import Path
+
+    from plclab.project import check_sources
+
+    root = Path(__file__).resolve().parents[2] / "examples"
+    for name in ("motor.xml", "project.xml"):
+        src = [((root / name).read_text(encoding="utf-8"), str(root / name))]
+        _, diags = check_sources(src, lint=True)
+        assert "PLC0214" not in [d.code for d in diags], name
+        _, diags = check_sources(src, lint=True, io_table=[Row("START", "%IX0.0")])
+        assert "PLC0214" in [d.code for d in diags], name

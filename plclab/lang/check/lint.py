@@ -7,7 +7,8 @@ lab check``; never after a syntax error (its findings would be follow-ons).
 * PLC0211 a timer, counter or edge block called only inside IF/CASE (it misses the edge);
 * PLC0212 an output (``%Q``) assigned twice, unconditionally, in one scan (double coil);
 * PLC0213 an integer division whose result becomes a REAL (the fraction is lost first);
-* PLC0214 no located variables: the program reads no input and drives no output;
+* PLC0214 no located variables: the program reads no input and drives no output (a PLCopen
+  XML export only with a lab's I/O table: its I/O mapping lives in the IDE's project);
 * PLC0215 an address that contradicts the lab's I/O table (``lab check`` only);
 * PLC0216 no program at all: an empty or comment-only file.
 """
@@ -67,7 +68,10 @@ def lint(files: list[A.SourceFile], io_table: Iterable[IoRow] | None = None
     # a configuration may wire the program instead: VAR_CONFIG addresses or its connections
     direct = direct or any(f.config_vars or any(c.config_vars or any(
         i.call is not None for i in c.instances) for c in f.configs) for f in files)
-    if programs and not located and not direct:
+    # A PLCopen XML export keeps its I/O mapping in the IDE's project, outside the file
+    # (Beremiz, OpenPLC Editor): without a lab's I/O table to hold it to, no PLC0214.
+    exported = all(f.file.lower().endswith(".xml") for f in files)
+    if programs and not located and not direct and (io_table is not None or not exported):
         p = programs[0]
         warn("PLC0214", f"PROGRAM {p.spelling or p.name} has no located variables: it reads "
              "no input and drives no output; declare them with AT, e.g. START AT %IX0.0 : "

@@ -1,0 +1,99 @@
+"""Grading 100 submissions, half of them failing, with media (diagrams and recordings), on
+``--jobs 2``: the issue-19 target is under 15 s on a 2-core machine. Printed, never asserted.
+
+The submissions are tank-two-position's reference solutions (ST, IL, LD) and its mistakes,
+each varied harmlessly (see ``grade_bench.vary``), exactly half of each. Besides the wall
+time it prints the mean child time of a passing and of a failing submission, and their ratio
+(a failing one draws diagrams and a recording).
+
+    python benchmarks/grade_many.py [--n 100] [--jobs 2] [--no-media] [--before SECONDS]
+
+``--before`` prints a measured earlier wall time beside this one (before/after).
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import shutil
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+LAB = "tank-two-position"
+TARGET_S = 15.0
+
+
+def make_half_failing(folder: Path, n: int, seed: int = 7) -> dict[str, bool]:
+    """``n`` submissions, the first half correct and the rest mistakes, shuffled; returns
+    student -> is a correct program."""
+    from grade_bench import vary
+
+    lab = ROOT / "labs" / LAB
+    good = sorted((lab / "solution").iterdir())
+    bad = sorted((lab / "mistakes").iterdir())
+    rng = random.Random(seed)
+    kinds = [True] * (n // 2) + [False] * (n - n // 2)
+    rng.shuffle(kinds)
+    truth = {}
+    for i, correct in enumerate(kinds):
+        src = (good if correct else bad)[i % len(good if correct else bad)]
+        student = f"student{i:03d}"
+        (folder / f"{student}{src.suffix}").write_text(
+            vary(src.read_text(encoding="utf-8"), src.suffix, rng), encoding="utf-8")
+        truth[student] = correct
+    return truth
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--n", type=int, default=100)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--no-media", action="store_true")
+    p.add_argument("--before", type=float, default=None,
+                   help="an earlier wall time (s) to print beside this one")
+    ns = p.parse_args(argv)
+    from plclab.grade.grader import Grader
+    from plclab.grade.lab import load_lab
+
+    base = Path(tempfile.mkdtemp(prefix="plclab-grade-many-"))
+    try:
+        subs, out = base / "submissions", base / "results"
+        subs.mkdir()
+        truth = make_half_failing(subs, ns.n)
+        lab = load_lab(LAB, deep=True)
+        t0 = time.perf_counter()
+        outcomes = Grader(lab, out, jobs=ns.jobs, media=not ns.no_media).grade_folder(subs)
+        wall = time.perf_counter() - t0
+        passing = [o.wall_s for o in outcomes if truth[o.result.student]]
+        failing = [o.wall_s for o in outcomes if not truth[o.result.student]]
+        wrong = [o.result.student for o in outcomes
+                 if (o.result.score == o.result.max_score) != truth[o.result.student]]
+        pngs = len(list(out.glob("*/*.png")))
+        rrds = len(list(out.glob("*/*.rrd")))
+    finally:
+        shutil.rmtree(base, ignore_errors=True)
+    media = "no media" if ns.no_media else f"media: {pngs} PNG, {rrds} .rrd"
+    print(f"{LAB}: {len(outcomes)} submissions ({len(failing)} failing), jobs {ns.jobs}, "
+          f"{media}")
+    mp, mf = statistics.mean(passing), statistics.mean(failing)
+    print(f"{'':<28}{'before':>10}{'now':>10}")
+    before = f"{ns.before:.1f} s" if ns.before else "-"
+    print(f"{'wall time':<28}{before:>10}{wall:>8.1f} s")
+    print(f"{'per submission (child)':<28}{'':>10}{'pass':>5} {mp:.2f} s / fail {mf:.2f} s "
+          f"(fail/pass {mf / mp:.1f}x)")
+    print(f"{'submissions per minute':<28}{'':>10}{len(outcomes) / wall * 60:>10.0f}")
+    print(f"target < {TARGET_S:g} s: {'met' if wall < TARGET_S else 'MISSED'}")
+    if wrong:
+        print(f"MISGRADED: {wrong}")
+    return 1 if wrong else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

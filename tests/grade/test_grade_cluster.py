@@ -1,0 +1,204 @@
+"""The grader on a Dask cluster (issue 20): a loopback cluster, scheduler and two workers as
+separate processes, started once for the module, grades mixed submissions exactly as the local
+executor does; a worker killed mid-run loses nothing; a second run skips what is done."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+distributed = pytest.importorskip("distributed")
+
+pytestmark = pytest.mark.cluster
+
+ROOT = Path(__file__).resolve().parents[2]
+LAB = ROOT / "labs" / "tank-two-position"
+LOOP = ("PROGRAM Spin\nVAR n : DINT; i : DINT; p AT %QX0.0 : BOOL; END_VAR\n"
+        "FOR i := 1 TO 1000000 DO n := n + 1; END_FOR;\np := n > 0;\nEND_PROGRAM\n")
+"""An endless program the watchdog does not stop: a million iterations (half the watchdog's
+budget) in every scan, about a second each, for thousands of scans."""
+TIMEOUT = 60.0
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _env() -> dict[str, str]:
+    return {**os.environ, "PYTHONPATH": str(ROOT), "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
+
+
+def _start_worker(address: str, *extra: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                             "--nthreads", "1", "--no-dashboard", *extra], env=_env(),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+
+
+def _wait_workers(address: str, n: int, timeout: float = 60.0) -> None:
+    with distributed.Client(address, timeout="30s", set_as_default=False) as c:
+        c.wait_for_workers(n, timeout=timeout)
+
+
+def _stop(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGTERM)
+        try:
+            proc.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait(timeout=5)
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """``tcp://127.0.0.1:PORT`` of a scheduler with two worker processes (one per module)."""
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    sched = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
+                              "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+                             env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=True)
+    workers = _start_worker(address, "--nworkers", "2")
+    try:
+        _wait_workers(address, 2)
+        yield address
+    finally:
+        _stop(workers)
+        _stop(sched)
+
+
+@pytest.fixture(scope="module")
+def lab():
+    from plclab.grade.lab import load_lab
+
+    return load_lab(str(LAB), deep=True)
+
+
+def _mixed(folder: Path) -> Path:
+    folder.mkdir()
+    shutil.copy(LAB / "solution" / "tank.st", folder / "correct.st")
+    shutil.copy(LAB / "solution" / "tank.il", folder / "correct_il.il")
+    shutil.copy(LAB / "mistakes" / "never_stops.st", folder / "wrong.st")
+    (folder / "syntax.st").write_text("PROGRAM P\nVAR x : INT END_VAR\nEND_PROGRAM\n",
+                                      encoding="utf-8")
+    shutil.copy(LAB / "solution" / "tank.st", folder / "crash.st")
+    return folder
+
+
+def _results(out: Path) -> dict[str, bytes]:
+    """Every student's results.json with the timing field blanked (the only allowed
+    difference), as bytes."""
+    got = {}
+    for f in sorted(out.glob("*/results.json")):
+        text = f.read_text(encoding="utf-8")
+        data = json.loads(text)
+        assert "execution_time" in data
+        blank = text.replace(json.dumps(data["execution_time"]), "0", 1)
+        got[f.parent.name] = blank.encode()
+    return got
+
+
+def test_cluster_grades_like_the_local_executor(cluster, lab, tmp_path, monkeypatch):
+    from plclab.grade.grader import Grader
+
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_CRASH", "crash")
+    subs = _mixed(tmp_path / "subs")
+    # a generous limit: on a loaded machine a correct program must not hit it
+    local = Grader(lab, tmp_path / "local", jobs=2, timeout=120).grade_folder(subs)
+    remote = Grader(lab, tmp_path / "dask", timeout=120, executor=cluster).grade_folder(subs)
+    status = {o.result.student: o.result.status for o in remote}
+    assert status == {o.result.student: o.result.status for o in local}
+    assert status == {"correct": "ok", "correct_il": "ok", "wrong": "ok",
+                      "syntax": "compile_error", "crash": "crash"}
+    assert {o.result.student: o.result.score for o in remote}["wrong"] < lab.max_score
+    a, b = _results(tmp_path / "local"), _results(tmp_path / "dask")
+    assert a.keys() == b.keys() == status.keys()
+    for student in a:
+        assert a[student] == b[student], student
+    pics = sorted(p.name for p in (tmp_path / "dask" / "wrong").iterdir())
+    assert pics == sorted(p.name for p in (tmp_path / "local" / "wrong").iterdir())
+    assert any(p.endswith(".png") for p in pics)
+    assert (tmp_path / "dask" / "grades.csv").read_bytes().count(b"\n") == 6
+
+
+def test_an_endless_program_stops_at_the_limit_on_a_worker(cluster, lab, tmp_path):
+    from plclab.grade.grader import Grader
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "loop.st").write_text(LOOP, encoding="utf-8")
+    # how far a stopped program got depends on the machine's speed: status and message only
+    local = Grader(lab, tmp_path / "local", timeout=3.0).grade_folder(subs)[0].result
+    remote = Grader(lab, tmp_path / "dask", timeout=3.0, executor=cluster).grade_folder(
+        subs)[0].result
+    assert local.status == remote.status == "timeout"
+    assert "PLC5023" in remote.message and remote.message == local.message
+
+
+def test_a_second_run_skips_what_is_done(cluster, lab, tmp_path):
+    from plclab.grade.grader import Grader
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    for name in ("a", "b", "c"):
+        shutil.copy(LAB / "solution" / "tank.st", subs / f"{name}.st")
+    out = tmp_path / "out"
+    first = Grader(lab, out, timeout=TIMEOUT, executor=cluster).grade_folder(subs)
+    assert [o.skipped for o in first] == [False] * 3
+    (subs / "b.st").write_text((LAB / "mistakes" / "follows_ls1.st").read_text())
+    again = Grader(lab, out, timeout=TIMEOUT, executor=cluster).grade_folder(subs)
+    assert {o.result.student: o.skipped for o in again} == {"a": True, "b": False,
+                                                             "c": True}
+    assert {o.result.student: o.result.score == lab.max_score for o in again} == {
+        "a": True, "b": False, "c": True}
+
+
+def test_a_worker_killed_mid_run_loses_no_submission(cluster, lab, tmp_path):
+    from plclab.grade.grader import Grader
+
+    doomed = _start_worker(cluster, "--no-nanny", "--name", "doomed")
+    try:
+        _wait_workers(cluster, 3)
+        subs = tmp_path / "subs"
+        subs.mkdir()
+        for k in range(6):
+            (subs / f"spin{k}.st").write_text(LOOP, encoding="utf-8")
+        shutil.copy(LAB / "solution" / "tank.st", subs / "tank.st")
+        outcomes: list = []
+        run = threading.Thread(target=lambda: outcomes.extend(
+            Grader(lab, tmp_path / "out", timeout=4.0, executor=cluster).grade_folder(subs)))
+        run.start()
+        with distributed.Client(cluster, set_as_default=False) as c:
+            deadline = time.monotonic() + 60
+            busy = False
+            while time.monotonic() < deadline and not busy:
+                info = c.scheduler_info()["workers"]
+                addr = next((a for a, w in info.items() if w.get("name") == "doomed"), None)
+                busy = addr is not None and bool(c.processing().get(addr))
+                time.sleep(0.2)
+        assert busy, "the third worker never got a task"
+        time.sleep(1.0)  # its child is running
+        os.killpg(doomed.pid, signal.SIGKILL)
+        run.join(timeout=240)
+        assert not run.is_alive()
+    finally:
+        _stop(doomed)
+    status = {o.result.student: o.result.status for o in outcomes}
+    assert sorted(status) == [*(f"spin{k}" for k in range(6)), "tank"]
+    # a task lost with its worker would be a crash (or missing): each ran again elsewhere
+    assert [status[f"spin{k}"] for k in range(6)] == ["timeout"] * 6
+    assert status["tank"] in ("ok", "timeout")  # timeout only on a very loaded machine
+    assert all((tmp_path / "out" / s / "results.json").is_file() for s in status)
