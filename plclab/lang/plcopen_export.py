@@ -88,9 +88,12 @@ class _Exporter:
             for c in f.configs:
                 self.configuration(configs, c, loose)
                 loose = []
-        if loose:  # globals outside a configuration: PLCopen keeps globals in one
-            self.configuration(configs, A.Configuration(Location("", 0, 0), "config", [], [], []),
-                               loose)
+        if loose:  # globals outside a configuration: PLCopen keeps globals in one, which then
+            # runs every PROGRAM under its own name, as plclab does without a configuration
+            where = Location("", 0, 0)
+            programs = [A.ProgramInstance(where, p.spelling or p.name, None, p.spelling or p.name)
+                        for f in files for p in f.pous if p.kind == "PROGRAM"]
+            self.configuration(configs, A.Configuration(where, "config", [], [], programs), loose)
         ET.indent(root, "  ")
         return "<?xml version='1.0' encoding='utf-8'?>\n" + ET.tostring(root, "unicode") + "\n"
 
