@@ -1406,10 +1406,16 @@ class Codegen(FastPaths):
 
     def user_function(self, info: CallInfo) -> str:
         pou: A.Pou = info.callee
+        args = self.call_arguments(pou.decls, info)
+        return self.call_with_results(f"F_{ident(pou.name)}({', '.join(args)})", pou.decls, info)
+
+    def call_arguments(self, decls: list[A.VarDecl], info: CallInfo) -> list[str]:
+        """The Python arguments of a FUNCTION or METHOD call: each VAR_INPUT (its initial value
+        when not given) and VAR_IN_OUT, in declaration order."""
         given = {d.name: x for d, x in info.inputs}
         given_io = {d.name: x for d, x in info.inouts}
         args = []
-        for d in pou.decls:
+        for d in decls:
             if d.section == "VAR_INPUT":
                 x = given.get(d.name)
                 if x is None:
@@ -1422,8 +1428,12 @@ class Codegen(FastPaths):
             elif d.section == "VAR_IN_OUT":
                 x = given_io.get(d.name)
                 args.append(self.inout_code(d, x) if x is not None else "None")
-        call = f"F_{ident(pou.name)}({', '.join(args)})"
-        outs = [d for d in pou.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
+        return args
+
+    def call_with_results(self, call: str, decls: list[A.VarDecl], info: CallInfo) -> str:
+        """``call`` (Python returning the result, then the VAR_OUTPUT and VAR_IN_OUT values) as
+        an expression of its result; the outputs and in-outs go to their targets in ``pre``."""
+        outs = [d for d in decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
         if not outs:
             return call
         tmp = self.new_tmp("_f")

@@ -149,22 +149,7 @@ def method_call(cg: Codegen, e: A.Call, info: CallInfo) -> str:
     f = e.func
     assert isinstance(f, A.Member)
     obj_t = T.resolve(f.obj.ty)
-    given = {d.name: x for d, x in info.inputs}
-    given_io = {d.name: x for d, x in info.inouts}
-    args = []
-    for d in m.decls:
-        if d.section == "VAR_INPUT":
-            x = given.get(d.name)
-            if x is None:
-                args.append(cg.init_code(d.init, d.ty))
-            else:
-                code = cg.coerce(cg.ex(x), x.ty, d.ty, x)
-                if T.resolve(d.ty).is_aggregate:
-                    code = cg.copy_code(code, d.ty)
-                args.append(code)
-        elif d.section == "VAR_IN_OUT":
-            x = given_io.get(d.name)
-            args.append(cg.ex(x) if x is not None else "None")
+    args = cg.call_arguments(m.decls, info)
     if is_super(f.obj):
         base = obj_t.pou  # SUPER^'s type is the base block
         call = f"P_{ident(base.name)}.{method_name(m)}(self{''.join(', ' + a for a in args)})"
@@ -173,21 +158,4 @@ def method_call(cg: Codegen, e: A.Call, info: CallInfo) -> str:
         if isinstance(obj_t, T.InterfaceType):
             obj = f"_iref({obj}, {repr(ident(m.name))}, {cg.where_now})"
         call = f"{obj}.{method_name(m)}({', '.join(args)})"
-    outs = [d for d in m.decls if d.section in ("VAR_OUTPUT", "VAR_IN_OUT")]
-    if not outs:
-        return call
-    tmp = cg.new_tmp("_f")
-    cg.pre.append(f"{tmp} = {call}")
-    bound = {d.name: (tgt, neg) for d, tgt, neg in info.outputs}
-    for d, x in info.inouts:
-        if not T.resolve(d.ty).is_aggregate:
-            bound[d.name] = (x, False)
-    for i, d in enumerate(outs, start=1):
-        if d.name in bound:
-            tgt, neg = bound[d.name]
-            v = f"{tmp}[{i}]"
-            if neg:
-                v = f"(not {v})"
-            lv = cg.ex(tgt)
-            cg.pre.append(f"{lv} = {cg.coerce(v, d.ty, tgt.ty, None)}")
-    return f"{tmp}[0]"
+    return cg.call_with_results(call, m.decls, info)
