@@ -168,17 +168,7 @@ class FbdWriter:
             lit = self.value(A.Literal(s.loc, s.op == "S=", "BOOL", None,
                                        "TRUE" if s.op == "S=" else "FALSE"), x - COL,
                              self.y + ROW)
-            el = self.element("block", x, self.y, typeName="MOVE")
-            ins = sub(el, "inputVariables")
-            connect(sub(sub(ins, "variable", formalParameter="EN"), "connectionPointIn"),
-                     *cond)
-            connect(sub(sub(ins, "variable", formalParameter="IN"), "connectionPointIn"),
-                     *lit)
-            sub(el, "inOutVariables")
-            outs = sub(el, "outputVariables")
-            for pin in ("ENO", "OUT"):
-                sub(sub(outs, "variable", formalParameter=pin), "connectionPointOut")
-            src: tuple[str, str | None] = (el.get("localId") or "", "OUT")
+            src: tuple[str, str | None] = self.enabled_move(x, self.y, cond, lit)
             self.y += ROW
         else:
             src = self.value(s.value, x - COL, self.y)
@@ -192,18 +182,21 @@ class FbdWriter:
             x = 200 + COL * (_depth(a.value) + 1)
             top = self.y
             val = self.value(a.value, x - COL, self.y)
-            el = self.element("block", x, top, typeName="MOVE")
-            ins = sub(el, "inputVariables")
-            connect(sub(sub(ins, "variable", formalParameter="EN"), "connectionPointIn"),
-                     *cond)
-            connect(sub(sub(ins, "variable", formalParameter="IN"), "connectionPointIn"),
-                     *val)
-            sub(el, "inOutVariables")
-            outs = sub(el, "outputVariables")
-            for pin in ("ENO", "OUT"):
-                sub(sub(outs, "variable", formalParameter=pin), "connectionPointOut")
-            self.out_variable(a.target, (el.get("localId") or "", "OUT"), x + COL, top)
+            self.out_variable(a.target, self.enabled_move(x, top, cond, val), x + COL, top)
             self.y = max(self.y, top) + ROW
+
+    def enabled_move(self, x: float, y: float, en: tuple, value: tuple) -> tuple[str, str]:
+        """A MOVE block at (x, y) whose EN and IN are wired to ``en`` and ``value``; the
+        connection to its OUT."""
+        el = self.element("block", x, y, typeName="MOVE")
+        ins = sub(el, "inputVariables")
+        connect(sub(sub(ins, "variable", formalParameter="EN"), "connectionPointIn"), *en)
+        connect(sub(sub(ins, "variable", formalParameter="IN"), "connectionPointIn"), *value)
+        sub(el, "inOutVariables")
+        outs = sub(el, "outputVariables")
+        for pin in ("ENO", "OUT"):
+            sub(sub(outs, "variable", formalParameter=pin), "connectionPointOut")
+        return el.get("localId") or "", "OUT"
 
     def out_variable(self, target: A.Expr, src: tuple[str, str | None], x: float,
                      y: float) -> None:
