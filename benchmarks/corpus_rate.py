@@ -6,7 +6,8 @@ each DIR is checked on its own, in the dialect its ``{dialect}`` pragma names, e
 checks without errors and holds a program is then loaded and scanned 100 times (10 ms apart).
 The table gives, per DIR: files, accepted, accepted and ran 100 scans without a fault, the
 rate, and the most frequent first error codes with one example each, which is what to work on
-next. ``--list`` also prints each file's outcome.
+next. ``--list`` also prints each file's outcome. Files under a ``_excluded`` folder (invalid on
+purpose, or needing a vendor library or another file) are not counted.
 
 The corpus itself is not in the repository unless its licence allows it (MIT, BSD, Apache,
 LGPL with attribution; see ``tests/corpus/`` where such files are kept with their source).
@@ -27,6 +28,7 @@ from plclab.errors import PlcError  # noqa: E402
 from plclab.project import check_sources  # noqa: E402
 
 SCANS = 100
+EXCLUDED = "_excluded"  # files not valid or not self-contained, kept aside with the reason
 
 
 @dataclass
@@ -82,7 +84,8 @@ def judge(path: Path, root: Path) -> Outcome:
 
 
 def measure(root: Path) -> list[Outcome]:
-    files = sorted(p for p in root.rglob("*") if p.suffix.lower() in (".st", ".xml"))
+    files = sorted(p for p in root.rglob("*") if p.suffix.lower() in (".st", ".xml")
+                   and EXCLUDED not in p.relative_to(root).parts)
     return [judge(p, root) for p in files]
 
 

@@ -235,4 +235,5 @@ EMITTERS: dict[str, Callable[[Emission], str]] = {
     "len": lambda m: f"len({m.codes[0]})",
     "concat": _concat,
     "string_call": _string_call,
+    "system_time": lambda m: "_CTX.now",  # TIME(): the scan's time in ms (wraps on store)
 }

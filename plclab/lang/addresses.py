@@ -10,7 +10,8 @@ runtime, the simulator and the Modbus server keep reading one form:
 * ``%IW2.5.7.1`` (hierarchical, three fields or more: bus, rack, module, channel): the leading
   fields name hardware a simulated PLC does not have; the last field is the item (here
   ``%IW1``), and the front end warns (PLC0175). A hierarchical bit address keeps its last two
-  fields as byte.bit. (``%MW1.2``, two fields, stays an error: a bit part on a word.)
+  fields as byte.bit. (``%MW1.2``, two fields, stays an error, a bit part on a word, except in
+  the dialects that write it as module.item: MATIEC/Beremiz and strict IEC, ADR 0031.)
 
 Anything else (a bit number above 7, an oversized number) is left as written for the checker's
 PLC0120 and PLC0127.
@@ -31,17 +32,24 @@ ADDRESS_RE = re.compile(r"%([IQM])([XBWDL]?)([0-9]+(?:\.[0-9]+)*)")
 _MAX_DIGITS = 9  # longer numbers are left for the checker (PLC0127)
 
 
-def hierarchical(text: str) -> bool:
-    """Three fields or more (``%IW2.5.7.1``, ``%IX0.1.2``)."""
+def hierarchical(text: str, words: bool = False) -> bool:
+    """Three fields or more (``%IW2.5.7.1``, ``%IX0.1.2``); with ``words`` (the dialects
+    whose ``hierarchical_words`` is set) also two on a byte/word address (``%IW0.1``)."""
     m = ADDRESS_RE.fullmatch(text.strip().upper())
     if m is None:
         return False
-    return m.group(3).count(".") >= 2
+    dots = m.group(3).count(".")
+    return dots >= 2 or (words and dots == 1 and m.group(2) not in ("", "X"))
 
 
-def canonical(text: str) -> str:
+def canonical(text: str, words: bool = False) -> str:
     """The S7 form of an IEC direct address (see the module text); ``text`` upper-cased and
-    otherwise unchanged when it is not an address this module rewrites."""
+    otherwise unchanged when it is not an address this module rewrites. ``words``: a two-field
+    byte/word address is hierarchical too (MATIEC, Beremiz: ``%IW0.1`` -> ``%IW1``).
+
+    >>> canonical("%IW0.1"), canonical("%IW0.1", words=True), canonical("%IX0.1", words=True)
+    ('%IW0.1', '%IW1', '%IX0.1')
+    """
     up = text.strip().upper()
     m = ADDRESS_RE.fullmatch(up)
     if m is None:
@@ -52,7 +60,8 @@ def canonical(text: str) -> str:
     if size == "X" and len(fields) == 1:  # a flat bit number
         n = int(fields[0])
         return f"%{area}X{n // 8}.{n % 8}"
-    if len(fields) < 3:  # byte.bit, a byte/word number (%MW1.2 stays: PLC0120 explains it)
+    if len(fields) < 3 and (size == "X" or len(fields) == 1 or not words):
+        # byte.bit, a byte/word number (%MW1.2 stays unless ``words``: PLC0120 explains it)
         return f"%{area}{size}{'.'.join(fields)}"
     if size == "X":
         return f"%{area}X{int(fields[-2])}.{fields[-1]}"

@@ -127,6 +127,9 @@ _add(
     _B("ASSERT_NEAR", ("ACTUAL", "EXPECTED", "TOL", "MSG"), "assert_near", "test", min_args=3,
        test_only=True, statement_only=True, natives=("_assert_near",)),
     _B("ADVANCE_TIME", ("T",), "advance_time", "test", test_only=True, statement_only=True),
+    # CODESYS's TIME(): the milliseconds since the PLC started, a TIME (CODESYS online help,
+    # *Functions*, "TIME() function"); the other dialects have no such function (PLC0106)
+    _B("TIME", (), "system_time", "system_time", min_args=0),
     # the functions of time data types, IEC 61131-3 ed.3 Table 37 (ed.2 Table 30): ``args`` the
     # argument types (NUM: any number), ``operator`` how the emitter combines them
     *(_B(n, ("IN1", "IN2"), "datetime", "datetime", min_args=2, args=args, result=res,

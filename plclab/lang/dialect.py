@@ -38,13 +38,27 @@ class Dialect:
     # TIME <-> number conversions count seconds (MATIEC: TIME_TO_REAL(T#1500ms) = 1.5), not
     # milliseconds (CODESYS, TIA Portal: 1500.0)
     time_in_seconds: bool = False
+    # a POU whose END_PROGRAM / END_FUNCTION_BLOCK / END_FUNCTION is missing at the end of the
+    # file or before the next POU: the CODESYS editor shows none, so copied code has none
+    # (PLC0280, a warning); elsewhere it is the syntax error PLC0010
+    end_keyword_optional: bool = False
+    # ``TIME()``: the milliseconds since the PLC started (CODESYS online help, *Functions*,
+    # "TIME() function"); elsewhere PLC0106
+    system_time: bool = False
+    # ``%IW0.1``: a two-field address of a byte/word/double word is hierarchical (module 0,
+    # item 1), read by its last field with PLC0175, as MATIEC and Beremiz write it; CODESYS
+    # and S7 have no such form (PLC0120: a '.bit' part on a word)
+    hierarchical_words: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
-    Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False),
-    Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False),
+    Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False,
+            hierarchical_words=True),
+    Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
+            end_keyword_optional=True, system_time=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
-    Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True),
+    Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
+            hierarchical_words=True),
 )}
 DEFAULT = "codesys"
 

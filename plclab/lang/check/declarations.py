@@ -206,7 +206,8 @@ class Declarations(Pass):
                      d.loc)
             return
         if size_ch != "X" and len(parts) != 1:
-            self.err("PLC0120", f"{addr}: only bit addresses (%IX, %QX, %MX) have a '.bit' part",
+            self.err("PLC0120", f"{addr}: only bit addresses (%IX, %QX, %MX) have a '.bit' part"
+                     " (MATIEC and Beremiz write module.item: choose {dialect 'matiec'})",
                      d.loc)
             return
         self.image_extent(addr, size_ch, parts[0], d.loc)

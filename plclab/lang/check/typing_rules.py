@@ -186,6 +186,15 @@ def _advance_time(t: Typing) -> T.Type:
     return T.VOID
 
 
+def _system_time(t: Typing) -> T.Type:
+    d = t.cx.cx.dialect(t.call.loc)
+    if not d.system_time:
+        t.cx.err("PLC0106", f"TIME() (the time since the PLC started) is a CODESYS function; "
+                 f"the dialect '{d.name}' has none: time an interval with a TON, or choose "
+                 "{dialect 'codesys'}", t.call.loc)
+    return T.TIME
+
+
 TYPING_RULES: dict[str, Callable[[Typing], T.Type]] = {
     "number_same": _number_same, "float": _float, "atan2": _atan2, "to_dint": _to_dint,
     "same": _same, "expt": _expt, "arithmetic": _arithmetic, "extremum": _extremum,
@@ -193,5 +202,5 @@ TYPING_RULES: dict[str, Callable[[Typing], T.Type]] = {
     "bitwise": _bitwise, "datetime": _datetime,
     "compare": _compare, "signature": _signature, "concat": _concat,
     "assert_compare": _assert_compare, "assert_bool": _assert_bool,
-    "assert_near": _assert_near, "advance_time": _advance_time,
+    "assert_near": _assert_near, "advance_time": _advance_time, "system_time": _system_time,
 }

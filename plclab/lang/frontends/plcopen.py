@@ -40,6 +40,7 @@ import xml.parsers.expat as expat
 from ...errors import Diagnostic, Location, PlcError
 from .. import ast as A
 from ..addresses import canonical
+from ..dialect import current as current_dialect
 from ..lexer import identifier_problem
 from ..lower.network import Elem
 from ..parsing import ParseAbort
@@ -352,7 +353,7 @@ class _Importer:
         init = self.init_value(iv) if iv is not None else None
         addr = v.get("address")
         if addr is not None:
-            addr = canonical(addr)
+            addr = canonical(addr, current_dialect().hierarchical_words)
             if not re.match(r"^%[IQM][XBWDL]?[0-9]+(\.[0-9]+)*$|^%[IQM]\*$", addr):
                 self.fail("PLC0183", f"variable {name}: {addr!r} is not a direct address such "
                           "as %IX0.0", v)

@@ -281,13 +281,26 @@ class Parser:
         edges, self.edge_inputs = self.edge_inputs, []
         end_loc = self.loc()
         if not self.accept(end_kw):
-            self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
+            self.missing_end(end_kw, kind, name_tok)
         pou.body, pou.language, pou.end_loc = body, language, end_loc
         if pending is not None:  # IL: lowered once every file is parsed (types are known)
             pou.pending.append(pending)
         if edges:  # R_EDGE / F_EDGE inputs, lowered after the body they qualify
             pou.pending.append(A.PendingBody("EDGE", edges, self.loc(head)))
         return pou
+
+    def missing_end(self, end_kw: str, kind: str, name_tok: Token) -> None:
+        """No END_PROGRAM / END_FUNCTION_BLOCK / END_FUNCTION: a syntax error, except where
+        the dialect's editor hides them (CODESYS: code copied from its editor has none) and the
+        file ends or the next POU begins here; then the warning PLC0280."""
+        if not (self.dialect.end_keyword_optional and (
+                self.at("EOF") or self.tok.kind in _POU_START)):
+            self.fail_expected(f"{end_kw} to close {kind} {name_tok.text}")
+        add_capped(self.diagnostics, Diagnostic(
+            "PLC0280", f"{kind} {name_tok.text[:40]} has no {end_kw}; the CODESYS editor hides "
+            f"it, a text file needs it: add {end_kw} before "
+            + ("the end of the file" if self.at("EOF") else f"{self.tok.text[:20]}"),
+            self.loc(), "warning"), self.file)
 
     def pou_body(self, end_kw: str) -> tuple[list[A.Stmt], str, A.PendingBody | None]:
         """(statements, language, pending body) of a POU body: ST, or IL when the body looks
@@ -527,8 +540,9 @@ class Parser:
     def address(self, t: Token) -> str:
         """A direct address in its canonical form (:mod:`plclab.lang.addresses`); a
         hierarchical one is read by its last field, with a warning."""
-        address = canonical(t.value)
-        if t.value != address and hierarchical(t.value):
+        words = self.dialect.hierarchical_words
+        address = canonical(t.value, words)
+        if t.value != address and hierarchical(t.value, words):
             add_capped(self.diagnostics, Diagnostic(
                 "PLC0175", f"{t.text[:40]} is hierarchical; plclab's process image is flat, so "
                 f"it is read as {address} (the leading fields name hardware a simulated PLC "
