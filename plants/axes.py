@@ -197,8 +197,13 @@ class Axes(Plant):
         return out
 
     def geometry(self) -> dict[str, Any]:
-        shapes = []
+        shapes: list[dict[str, Any]] = []
         for i, ax in enumerate(self.axes.values()):
-            shapes.append({"type": "rect", "name": ax.name.lower(), "x": 0.0, "y": 0.3 * i,
-                           "w": ax.travel / 1000.0, "h": 0.1})
+            y = 0.3 * (len(self.axes) - 1 - i)  # the belt on top
+            shapes += [
+                {"type": "rect", "name": ax.name.lower(), "x": 0.0, "y": y,
+                 "w": ax.travel / 1000.0, "h": 0.1},
+                {"type": "mark", "name": f"{ax.name}_HOME", "x": 0.0, "y": y + 0.15},
+                {"type": "mark", "name": f"{ax.name}_FAULT", "x": 0.5, "y": y + 0.15},
+            ]
         return {"shapes": shapes}

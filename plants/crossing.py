@@ -146,7 +146,12 @@ class Crossing(Plant):
                 "wait_max": self.wait_max}
 
     def geometry(self) -> dict[str, Any]:
+        lamps = [("CAR_RED", 0.0, 14.0), ("CAR_YELLOW", 0.0, 11.5), ("CAR_GREEN", 0.0, 9.0),
+                 ("PED_RED", 11.0, 14.0), ("PED_GREEN", 11.0, 11.5), ("WAIT_LAMP", 11.0, 9.0)]
         return {"shapes": [
             {"type": "rect", "name": "road", "x": 0.0, "y": 0.0, "w": 20.0, "h": 7.0},
             {"type": "rect", "name": "zebra", "x": 9.0, "y": 0.0, "w": 3.0, "h": 7.0},
+            *[{"type": "circle", "name": n, "x": x, "y": y, "r": 0.4} for n, x, y in lamps],
+            {"type": "mark", "name": "ON_CROSSING", "x": 10.5, "y": 3.5},
+            {"type": "mark", "name": "PED_WAITING", "x": 3.0, "y": -2.0},
         ]}
