@@ -168,6 +168,32 @@ LABS_CONFIG: dict[str, dict] = {
             "Which step would need HEATER(R)?",
         ],
     },
+    "drive-homing": {
+        "scenario": "drive-trip",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "Add a fourth drive (a second belt). Which lines change in the program with the "
+            "interface, and which in the classic one in solution/?",
+            "Home() restarts the command's timeout. What happens to a drive with a broken home "
+            "switch if the sequence calls Home() in every scan?",
+            "The piston trips during homing. Why must the belt and the pump stop too, although "
+            "nothing is wrong with them?",
+        ],
+    },
+    "pedestrian-crossing": {
+        "scenario": "slow-walker",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "A pedestrian taps the button for 0.3 s while the cars are in their first 20 s of "
+            "green. Which step remembers the tap, and what would be lost without it?",
+            "WAIT_LAMP stays on for one scan of pedestrian green. Why one scan, and which rule of "
+            "SFC evolution says so?",
+            "In slow-walker PedClear lasts longer than 3 s. Read its step time in the trace: how "
+            "long did the cars wait, and what ended the wait?",
+        ],
+    },
 }
 
 

@@ -21,8 +21,10 @@ import difflib
 import inspect
 from typing import Any
 
+from .axes import Axes
 from .base import Event, Plant, PlantError, Signal, StepProfile
 from .conveyor import Conveyor
+from .crossing import Crossing
 from .heater import Heater
 from .motor import Motor
 from .press import Press
@@ -33,7 +35,9 @@ from .washer import Washer
 
 __all__ = [
     "PLANTS",
+    "Axes",
     "Conveyor",
+    "Crossing",
     "Event",
     "Heater",
     "Motor",
@@ -52,7 +56,9 @@ __all__ = [
 ]
 
 PLANTS: dict[str, type[Plant]] = {
-    cls.name: cls for cls in (Motor, Tank, Sump, Heater, Conveyor, Ventilation, Press, Washer)
+    cls.name: cls for cls in (
+        Motor, Tank, Sump, Heater, Conveyor, Ventilation, Press, Washer, Axes, Crossing
+    )
 }
 
 

@@ -163,6 +163,35 @@ DEFAULTS: dict[str, tuple[str, list[dict[str, Any]]]] = {
         _ai("%IW64", "LEVEL", 0.0, 30.0, "water level transmitter 0..30 l"),
         _ai("%IW66", "TEMP", 0.0, 100.0, "water temperature transmitter 0..100 degC"),
     ]),
+    # -- drives lab (labs/drive-homing): encoders as REAL millimetres through module direct
+    "axes": ("Three axes (belt, piston, pump): reversing contactors, home switches, drive "
+             "fault contacts, encoders in mm, START/RESET buttons and two lamps", [
+        _di("%IX0.0", "START", "start push button, NO", **_BUTTON),
+        _di("%IX0.1", "RESET", "alarm reset push button, NO", **_BUTTON),
+        *[row for i, axis in enumerate(("BELT", "PISTON", "PUMP")) for row in (
+            _di(f"%IX0.{2 + 2 * i}", f"{axis}_HOME", f"{axis.lower()} home switch"),
+            _di(f"%IX0.{3 + 2 * i}", f"{axis}_FAULT", f"{axis.lower()} drive fault contact"),
+            _do(f"%QX0.{2 * i}", f"{axis}_FWD", f"{axis.lower()} forward contactor", **_RELAY),
+            _do(f"%QX0.{1 + 2 * i}", f"{axis}_REV", f"{axis.lower()} reverse contactor",
+                **_RELAY),
+            {"plc": f"%ID{100 + 4 * i}", "signal": f"{axis}_POS", "module": "direct",
+             "description": f"{axis.lower()} encoder position, mm (REAL)"})],
+        _do("%QX0.6", "READY_LAMP", "READY lamp"),
+        _do("%QX0.7", "ALARM_LAMP", "ALARM lamp"),
+    ]),
+    # -- traffic-light lab (labs/pedestrian-crossing)
+    "crossing": ("Pedestrian crossing: request button, kerb and crossing sensors, car and "
+                 "pedestrian lamps", [
+        _di("%IX0.0", "REQUEST", "pedestrian request button, NO", **_BUTTON),
+        _di("%IX0.1", "PED_WAITING", "kerb sensor"),
+        _di("%IX0.2", "ON_CROSSING", "crossing sensor"),
+        _do("%QX0.0", "CAR_RED", "car red lamp"),
+        _do("%QX0.1", "CAR_YELLOW", "car yellow lamp"),
+        _do("%QX0.2", "CAR_GREEN", "car green lamp"),
+        _do("%QX0.3", "PED_RED", "pedestrian red lamp"),
+        _do("%QX0.4", "PED_GREEN", "pedestrian green lamp"),
+        _do("%QX0.5", "WAIT_LAMP", "'signal comes' lamp"),
+    ]),
 }
 """plant -> (description, rows) of the default wiring tables."""
 

@@ -13,7 +13,8 @@ ALL = list_plants()
 
 
 def test_registry_lists_all_plants() -> None:
-    assert ALL == ["motor", "tank", "sump", "heater", "conveyor", "ventilation", "press", "washer"]
+    assert ALL == ["motor", "tank", "sump", "heater", "conveyor", "ventilation", "press", "washer",
+                   "axes", "crossing"]
     for name, cls in PLANTS.items():
         assert cls.name == name
         assert issubclass(cls, Plant)

@@ -76,7 +76,8 @@ def test_errors_are_messages(prog, capsys, args, code):
 def test_plants_lists_every_plant_and_details_one(capsys):
     assert main(["plants"]) == 0
     out = capsys.readouterr().out
-    for name in ("motor", "tank", "sump", "heater", "conveyor", "ventilation", "press", "washer"):
+    for name in ("motor", "tank", "sump", "heater", "conveyor", "ventilation", "press", "washer",
+                 "axes", "crossing"):
         assert f"{name} — " in out
     assert "LEVEL          sensor    real  m      0..2" in out
     assert main(["plants", "tank"]) == 0
