@@ -15,6 +15,11 @@ Each ``[[figure]]`` of a chapter's ``figures.toml`` names a ``file`` (``.svg`` o
 * ``ladder``     - a ``.ld`` example rendered as a ladder diagram (SVG only).
 * ``model``      - closed-loop step responses of controllers on a linear plant model, computed
   with python-control (:mod:`plclab.course.models`).
+* ``render``     - an example drawn as ``plclab render`` draws it (SVG): an FBD or LD network, an
+  SFC chart, or a listing; ``pou`` picks the POU (default: the first).
+* ``lab``        - an example run in a lab's scenario (``lab``, ``scenario``): the lab's plant,
+  wiring, scan, plant parameters, alarms and recipe, as the grader runs it; the timing diagram
+  shows ``signals``, the SFC lane of each chart, and every alarm state change as a marker.
 """
 
 from __future__ import annotations
@@ -24,7 +29,7 @@ from typing import Any
 
 from .model import Chapter, course_error
 
-KINDS = ("block", "scan_cycle", "program", "plant", "ladder", "model")
+KINDS = ("block", "scan_cycle", "program", "plant", "ladder", "model", "render", "lab")
 
 
 def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, str]:
@@ -63,8 +68,19 @@ def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, s
             raise course_error(f"{where}: ladder figures are SVG")
         path.write_text(render(source), encoding="utf-8")
         return path, f"ladder of {source.name}"
+    if kind == "render":
+        from ..viz.diagram_commands import render_file
+
+        if not name.endswith(".svg"):
+            raise course_error(f"{where}: render figures are SVG")
+        path.write_text(render_file(str(source), spec.get("pou")), encoding="utf-8")
+        return path, f"render of {source.name}"
     if kind == "program":
         return path, _program_figure(source, spec, path)
+    if kind == "lab":
+        from .lab_figures import lab_figure
+
+        return path, lab_figure(source, spec, path)
     return path, _plant_figure(source, spec, path)
 
 
