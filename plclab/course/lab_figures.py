@@ -10,8 +10,9 @@ from typing import Any
 from .model import course_error
 
 
-def lab_run(source: Path, lab_id: str, scenario: str) -> Any:
-    """The trace of ``source`` in the scenario ``scenario`` of the lab ``lab_id``."""
+def lab_run(source: Path, lab_id: str, scenario: str, watch: list[str] | None = None) -> Any:
+    """The trace of ``source`` in the scenario ``scenario`` of the lab ``lab_id``; ``watch``
+    adds PLC variables to the lab's watched ones."""
     import plclab
     from plclab.grade.lab import load_lab
     from plclab.sim import Simulation
@@ -25,7 +26,7 @@ def lab_run(source: Path, lab_id: str, scenario: str) -> Any:
                            f"{names}") from exc
     plc = plclab.load(source, cycle_time=lab.scan)
     sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
-                     plant_params={**lab.plant_params, **sc.plant_params})
+                     watch=[*lab.all_watch(sc), *(watch or [])], plant_params={**lab.plant_params, **sc.plant_params})
     if lab.alarms:
         from plclab.scada.alarms import AlarmServer
 
@@ -48,7 +49,9 @@ def lab_figure(source: Path, spec: dict[str, Any], path: Path) -> str:
 
     if "lab" not in spec or "scenario" not in spec:
         raise course_error(f"{path.name}: a lab figure needs lab = \"ID\" and scenario = \"NAME\"")
-    trace = lab_run(source, spec["lab"], spec["scenario"])
+    wanted = spec.get("signals") or []
+    trace = lab_run(source, spec["lab"], spec["scenario"],  # PLC variables are watched
+                    [n for n in wanted if "." in n])
     ss = series(trace, spec.get("signals"))
     log = alarm_log(trace)
     markers = [(e.time, f"{e.id} {e.state}") for e in log]
