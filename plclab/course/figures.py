@@ -69,11 +69,9 @@ def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, s
         path.write_text(render(source), encoding="utf-8")
         return path, f"ladder of {source.name}"
     if kind == "render":
-        from ..viz.diagram_commands import render_file
-
         if not name.endswith(".svg"):
             raise course_error(f"{where}: render figures are SVG")
-        path.write_text(render_file(str(source), spec.get("pou")), encoding="utf-8")
+        path.write_text(_render(source, spec.get("pou"), where), encoding="utf-8")
         return path, f"render of {source.name}"
     if kind == "program":
         return path, _program_figure(source, spec, path)
@@ -82,6 +80,31 @@ def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, s
 
         return path, lab_figure(source, spec, path)
     return path, _plant_figure(source, spec, path)
+
+
+def _render(source: Path, pou: str | None, where: str) -> str:
+    """The SVG of an FBD or LD network or an SFC chart, drawn as ``plclab render`` draws it."""
+    from ..lang.frontends.registry import for_file
+    from ..project import read_sources
+
+    [(text, fname)] = read_sources([str(source)])
+    src, diags = for_file(fname).parse(text, fname)
+    errors = [d for d in diags if d.severity == "error"]
+    if errors:
+        raise course_error(f"{where}: {errors[0]}")
+    chosen = [p for p in src.pous if pou is None or p.name == pou.upper()]
+    if not chosen:
+        raise course_error(f"{where}: {source.name} has no POU {pou}")
+    p = chosen[0]
+    if any(b.kind == "NETWORK" for b in p.pending):
+        from ..viz.render_network import render_source
+
+        return render_source(text, fname, p.name, None)
+    if any(b.kind == "SFC" for b in p.pending) or p.language == "SFC":
+        from ..viz.render_sfc import render_sfc_svg
+
+        return render_sfc_svg(p)
+    raise course_error(f"{where}: render figures draw FBD, LD or SFC; {p.name} is {p.language}")
 
 
 def _program_figure(source: Path, spec: dict[str, Any], path: Path) -> str:

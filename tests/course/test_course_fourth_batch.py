@@ -89,3 +89,10 @@ def test_chapter_16_terminal_output_is_what_plclab_run_prints(capsys, monkeypatc
     for command, expected in blocks:
         assert main(command.split()[1:]) == 0
         assert capsys.readouterr().out == expected
+
+
+def test_a_render_figure_of_an_st_program_is_refused(tmp_path):
+    ch = find_chapter(13)
+    with pytest.raises(PlcError) as e:
+        draw(ch, {"file": "x.svg", "kind": "render", "source": "station.st"}, tmp_path)
+    assert "FBD, LD or SFC" in str(e.value)
