@@ -96,3 +96,18 @@ def test_a_render_figure_of_an_st_program_is_refused(tmp_path):
     with pytest.raises(PlcError) as e:
         draw(ch, {"file": "x.svg", "kind": "render", "source": "station.st"}, tmp_path)
     assert "FBD, LD or SFC" in str(e.value)
+
+
+def test_the_fbd_tank_runs_like_the_ladder_tank_as_chapter_7_says():
+    from plclab.sim import run
+
+    traces = []
+    for number, figure in ((6, "tank_run.svg"), (7, "tank_run.svg")):
+        ch = find_chapter(number)
+        spec = _spec(ch, figure)
+        traces.append(run([str(ch.folder / "examples" / spec["program"])], plant=spec["plant"],
+                          duration=spec["duration"], plant_params=spec.get("plant_params")))
+    ladder, fbd = traces
+    for name in ("LS1", "LS2", "PUMP"):
+        assert np.array_equal(np.asarray(ladder[name]), np.asarray(fbd[name]))
+    assert "switch for switch" in find_chapter(7).text
