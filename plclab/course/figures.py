@@ -15,6 +15,11 @@ Each ``[[figure]]`` of a chapter's ``figures.toml`` names a ``file`` (``.svg`` o
 * ``ladder``     - a ``.ld`` example rendered as a ladder diagram (SVG only).
 * ``model``      - closed-loop step responses of controllers on a linear plant model, computed
   with python-control (:mod:`plclab.course.models`).
+* ``render``     - an example drawn as ``plclab render`` draws it (SVG): an FBD or LD network, an
+  SFC chart, or a listing; ``pou`` picks the POU (default: the first).
+* ``lab``        - an example run in a lab's scenario (``lab``, ``scenario``): the lab's plant,
+  wiring, scan, plant parameters, alarms and recipe, as the grader runs it; the timing diagram
+  shows ``signals``, the SFC lane of each chart, and every alarm state change as a marker.
 """
 
 from __future__ import annotations
@@ -24,7 +29,7 @@ from typing import Any
 
 from .model import Chapter, course_error
 
-KINDS = ("block", "scan_cycle", "program", "plant", "ladder", "model")
+KINDS = ("block", "scan_cycle", "program", "plant", "ladder", "model", "render", "lab")
 
 
 def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, str]:
@@ -63,9 +68,43 @@ def draw(chapter: Chapter, spec: dict[str, Any], out_dir: Path) -> tuple[Path, s
             raise course_error(f"{where}: ladder figures are SVG")
         path.write_text(render(source), encoding="utf-8")
         return path, f"ladder of {source.name}"
+    if kind == "render":
+        if not name.endswith(".svg"):
+            raise course_error(f"{where}: render figures are SVG")
+        path.write_text(_render(source, spec.get("pou"), where), encoding="utf-8")
+        return path, f"render of {source.name}"
     if kind == "program":
         return path, _program_figure(source, spec, path)
+    if kind == "lab":
+        from .lab_figures import lab_figure
+
+        return path, lab_figure(source, spec, path)
     return path, _plant_figure(source, spec, path)
+
+
+def _render(source: Path, pou: str | None, where: str) -> str:
+    """The SVG of an FBD or LD network or an SFC chart, drawn as ``plclab render`` draws it."""
+    from ..lang.frontends.registry import for_file
+    from ..project import read_sources
+
+    [(text, fname)] = read_sources([str(source)])
+    src, diags = for_file(fname).parse(text, fname)
+    errors = [d for d in diags if d.severity == "error"]
+    if errors:
+        raise course_error(f"{where}: {errors[0]}")
+    chosen = [p for p in src.pous if pou is None or p.name == pou.upper()]
+    if not chosen:
+        raise course_error(f"{where}: {source.name} has no POU {pou}")
+    p = chosen[0]
+    if any(b.kind == "NETWORK" for b in p.pending):
+        from ..viz.render_network import render_source
+
+        return render_source(text, fname, p.name, None)
+    if any(b.kind == "SFC" for b in p.pending) or p.language == "SFC":
+        from ..viz.render_sfc import render_sfc_svg
+
+        return render_sfc_svg(p)
+    raise course_error(f"{where}: render figures draw FBD, LD or SFC; {p.name} is {p.language}")
 
 
 def _program_figure(source: Path, spec: dict[str, Any], path: Path) -> str:
