@@ -15,10 +15,8 @@ from plclab.project import parse_sources
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAMS = sorted(
-    [p for p in (ROOT / "examples").iterdir() if p.suffix in (".st", ".il", ".ld", ".xml")
-     and p.name != "sfc_s0_s4.st"]
-    + [p for p in (ROOT / "labs").glob("*/solution/*") if p.suffix in (".st", ".il", ".ld")
-       and "INITIAL_STEP" not in p.read_text(encoding="utf-8")])  # SFC: not exported (PLC4042)
+    [p for p in (ROOT / "examples").iterdir() if p.suffix in (".st", ".il", ".ld", ".xml")]
+    + [p for p in (ROOT / "labs").glob("*/solution/*") if p.suffix in (".st", ".il", ".ld")])
 
 
 def exported(path: Path, fbd: bool) -> str:
