@@ -146,13 +146,7 @@ class SfcWriter:
                        if any(x == n for x, _ in t.targets) and direct(t, n)]
             level[n] = max(feeders) + 1 if feeders else (0 if self.steps[n].initial else
                                                          max(level.values(), default=-1) + 1)
-        columns: dict[int, int] = {}
-        pos: dict[str, tuple[int, int]] = {}
-        for n in order:
-            col = columns.get(level[n], 0)
-            columns[level[n]] = col + 1
-            pos[n] = (40 + col * COLUMN, 20 + level[n] * ROW)
-        tx = self.transition_x(pos, leaving)
+        pos, tx = self.place(order, level, leaving, direct)
         # ids first: elements refer to each other in both directions
         step_id = {s.name: self.lid() for s in ch.steps}
         div_id = {n: self.lid() for n, ks in leaving.items() if len(ks) > 1}
@@ -160,16 +154,21 @@ class SfcWriter:
         conv_id = {k: self.lid() for k, t in enumerate(ch.transitions) if len(t.sources) > 1}
         sdiv_id = {k: self.lid() for k, t in enumerate(ch.transitions) if len(t.targets) > 1}
         feeders: dict[str, list[str]] = {s.name: [] for s in ch.steps}
+        feeder_x: dict[tuple[str, str], int] = {}  # (feeder, step) -> x of the wire
         jumps: list[tuple[str, str, int, int]] = []  # (from id, target, x, y)
+        branch_x: dict[tuple[int, int], int] = {}  # (transition, target) -> x of its wire
         for k, t in enumerate(ch.transitions):
             src = tr_id[k] if k not in sdiv_id else sdiv_id[k]
-            y = pos[t.sources[0][0]][1] + STEP_H + 70
+            y = max(pos[m][1] for m, _ in t.sources) + STEP_H + 70
             for i, (n, _) in enumerate(t.targets):
+                bx = pos[n][0] + STEP_W // 2 if direct(t, n) and k in sdiv_id else \
+                    tx[k] + 10 + i * BRANCH
+                branch_x[k, i] = bx
                 if direct(t, n):
                     feeders[n].append(src)
+                    feeder_x[src, n] = bx
                 else:
-                    jumps.append((src, n, tx[k] + 4 + i * BRANCH, y + (50 if k in sdiv_id
-                                                                         else 30)))
+                    jumps.append((src, n, bx - 6, y + (50 if k in sdiv_id else 30)))
 
         def out_point(n: str) -> str:
             return div_id.get(n, step_id[n])
@@ -179,13 +178,14 @@ class SfcWriter:
             into = feeders[s.name]
             conv = self.lid() if len(into) > 1 else None
             if conv is not None:
+                xs = [feeder_x[f, s.name] for f in into] + [x + STEP_W // 2]
+                left = min(xs)
                 el = sub(sfc, "selectionConvergence", localId=conv, height="1",
-                         width=str(BRANCH * (len(into) - 1)))
-                sub(el, "position", x=str(x + STEP_W // 2 - BRANCH * (len(into) - 1) // 2),
-                    y=str(y - 20))
-                for i, f in enumerate(into):
-                    self.point_in(el, [f], BRANCH * i, 0)
-                self.point_out(el, BRANCH * (len(into) - 1) // 2, 1)
+                         width=str(max(xs) - left))
+                sub(el, "position", x=str(left), y=str(y - 12))
+                for f in into:
+                    self.point_in(el, [f], feeder_x[f, s.name] - left, 0)
+                self.point_out(el, x + STEP_W // 2 - left, 1)
             attrs = {"localId": step_id[s.name], "name": s.text or s.name}
             if s.initial:
                 attrs["initialStep"] = "true"
@@ -204,20 +204,22 @@ class SfcWriter:
                 width = max(tx[k] for k in ks) + 10 - left
                 el = sub(sfc, "selectionDivergence", localId=div_id[s.name], height="1",
                          width=str(width))
-                sub(el, "position", x=str(left), y=str(y + STEP_H + 20))
+                sub(el, "position", x=str(left), y=str(y + STEP_H + 35))
                 self.point_in(el, [step_id[s.name]], x + STEP_W // 2 - left, 0)
                 for k in ks:
                     self.point_out(el, tx[k] + 10 - left, 1)
         for k, t in enumerate(ch.transitions):
-            y = pos[t.sources[0][0]][1] + STEP_H + 70
+            y = max(pos[m][1] for m, _ in t.sources) + STEP_H + 70
             ins = [out_point(n) for n, _ in t.sources]
             if k in conv_id:
+                xs = [pos[m][0] + STEP_W // 2 for m, _ in t.sources] + [tx[k] + 10]
+                left = min(xs)
                 el = sub(sfc, "simultaneousConvergence", localId=conv_id[k], height="3",
-                         width=str(BRANCH * (len(ins) - 1)))
-                sub(el, "position", x=str(tx[k] + 10), y=str(y - 12))
-                for i, f in enumerate(ins):
-                    self.point_in(el, [f], BRANCH * i, 0)
-                self.point_out(el, 0, 3)
+                         width=str(max(xs) - left))
+                sub(el, "position", x=str(left), y=str(y - 12))
+                for f, bx in zip(ins, xs, strict=False):
+                    self.point_in(el, [f], bx - left, 0)
+                self.point_out(el, tx[k] + 10 - left, 3)
                 ins = [conv_id[k]]
             attrs = {"localId": tr_id[k], "height": "2", "width": "20"}
             if t.priority is not None:
@@ -233,12 +235,14 @@ class SfcWriter:
                 assert t.cond is not None  # the checker: an unnamed transition has ':= e;'
                 text_body(sub(sub(cond, "inline", name=""), "ST"), hide(st_expr(t.cond)))
             if k in sdiv_id:
+                xs = [branch_x[k, i] for i in range(len(t.targets))] + [tx[k] + 10]
+                left = min(xs)
                 el = sub(sfc, "simultaneousDivergence", localId=sdiv_id[k], height="3",
-                         width=str(BRANCH * (len(t.targets) - 1)))
-                sub(el, "position", x=str(tx[k] + 10), y=str(y + 20))
-                self.point_in(el, [tr_id[k]], 0, 0)
+                         width=str(max(xs) - left))
+                sub(el, "position", x=str(left), y=str(y + 20))
+                self.point_in(el, [tr_id[k]], tx[k] + 10 - left, 0)
                 for i in range(len(t.targets)):
-                    self.point_out(el, BRANCH * i, 3)
+                    self.point_out(el, branch_x[k, i] - left, 3)
         for src, target, x, y in jumps:
             el = sub(sfc, "jumpStep", localId=self.lid(),
                      targetName=self.steps[target].text or target, height="13", width="12")
@@ -260,24 +264,41 @@ class SfcWriter:
             i += 1
         return seen + [s.name for s in ch.steps if s.name not in seen]
 
-    def transition_x(self, pos: dict[str, tuple[int, int]],
-                     leaving: dict[str, list[int]]) -> list[int]:
-        """The x of each transition: under its first step, branches in declared order. When
-        that would put two rivals (transitions sharing a step, same priority) in the wrong
-        order from left to right, every transition gets a column of its own, in declared
-        order, since the importer tries rivals left to right."""
+    def place(self, order: list[str], level: dict[str, int], leaving: dict[str, list[int]],
+              direct) -> tuple[dict[str, tuple[int, int]], list[int]]:
+        """(x, y) of every step and x of every transition. The transitions a step leads to
+        (those whose first preceding step it is) take one column each, left to right in
+        declared order, starting under the step; a step goes in the column of the first
+        transition that leads down to it, or the next free one of its row."""
         ch = self.chart
-        xs = []
-        for k, t in enumerate(ch.transitions):
-            first = t.sources[0][0]
-            branch = [j for j in leaving[first] if ch.transitions[j].sources[0][0] == first]
-            xs.append(pos[first][0] + STEP_W // 2 - 10 + branch.index(k) * BRANCH)
+        anchored = {n: [k for k in ks if ch.transitions[k].sources[0][0] == n]
+                    for n, ks in leaving.items()}
+        used: dict[int, set[int]] = {}
+        col: dict[str, int] = {}
+        tcol: dict[int, int] = {}
+        for n in order:
+            want = next((tcol[k] for k, t in enumerate(ch.transitions)
+                         if k in tcol and any(x == n for x, _ in t.targets) and direct(t, n)), 0)
+            row = used.setdefault(level[n], set())
+            width = max(len(anchored[n]), 1)
+            c = want
+            while any(c + i in row for i in range(width)):
+                c += 1
+            row.update(range(c, c + width))
+            col[n] = c
+            for i, k in enumerate(anchored[n]):
+                tcol[k] = c + i
+        pos = {n: (40 + col[n] * COLUMN, 20 + level[n] * ROW) for n in order}
+        xs = [40 + tcol[k] * COLUMN + STEP_W // 2 - 10 for k in range(len(ch.transitions))]
+        # the importer tries rivals (transitions sharing a step, same priority) left to right:
+        # when the columns disagree with the declared order, each transition gets its own
+        # column in declared order
         for ks in leaving.values():
             for a, i in enumerate(ks):
                 for j in ks[a + 1:]:
                     if ch.transitions[i].priority == ch.transitions[j].priority and xs[i] > xs[j]:
-                        return [40 + k * BRANCH for k in range(len(ch.transitions))]
-        return xs
+                        return pos, [40 + k * BRANCH for k in range(len(ch.transitions))]
+        return pos, xs
 
     # -- pieces ---------------------------------------------------------------------------------
     def action_block(self, sfc: ET.Element, s: Step, step: str, x: int, y: int) -> None:
