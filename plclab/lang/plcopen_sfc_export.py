@@ -146,7 +146,11 @@ class SfcWriter:
                        if any(x == n for x, _ in t.targets) and direct(t, n)]
             level[n] = max(feeders) + 1 if feeders else (0 if self.steps[n].initial else
                                                          max(level.values(), default=-1) + 1)
-        pos, tx = self.place(order, level, leaving, direct)
+        pos, tx = self.place(order, level, leaving, direct, last=False)
+        if tx is None:  # a transition leaving several steps drawn under its last one
+            pos, tx = self.place(order, level, leaving, direct, last=True)
+        if tx is None:  # each transition in a column of its own, in declared order
+            tx = [40 + k * BRANCH for k in range(len(ch.transitions))]
         # ids first: elements refer to each other in both directions
         step_id = {s.name: self.lid() for s in ch.steps}
         div_id = {n: self.lid() for n, ks in leaving.items() if len(ks) > 1}
@@ -265,13 +269,21 @@ class SfcWriter:
         return seen + [s.name for s in ch.steps if s.name not in seen]
 
     def place(self, order: list[str], level: dict[str, int], leaving: dict[str, list[int]],
-              direct) -> tuple[dict[str, tuple[int, int]], list[int]]:
+              direct, last: bool) -> tuple[dict[str, tuple[int, int]], list[int] | None]:
         """(x, y) of every step and x of every transition. The transitions a step leads to
-        (those whose first preceding step it is) take one column each, left to right in
-        declared order, starting under the step; a step goes in the column of the first
-        transition that leads down to it, or the next free one of its row."""
+        (those whose first preceding step it is, or ``last``) take one column each, left to
+        right in declared order, starting under the step; a step goes in the column of the
+        first transition that leads down to it, or the next free one of its row. The x are
+        None when they would put rivals (transitions sharing a step, same priority) in another
+        order than the declared one: the importer tries rivals left to right."""
         ch = self.chart
-        anchored = {n: [k for k in ks if ch.transitions[k].sources[0][0] == n]
+        rank = {n: i for i, n in enumerate(order)}
+
+        def anchor(t: Transition) -> str:
+            names = [n for n, _ in t.sources]
+            return max(names, key=rank.__getitem__) if last else names[0]
+
+        anchored = {n: [k for k in ks if anchor(ch.transitions[k]) == n]
                     for n, ks in leaving.items()}
         used: dict[int, set[int]] = {}
         col: dict[str, int] = {}
@@ -290,14 +302,11 @@ class SfcWriter:
                 tcol[k] = c + i
         pos = {n: (40 + col[n] * COLUMN, 20 + level[n] * ROW) for n in order}
         xs = [40 + tcol[k] * COLUMN + STEP_W // 2 - 10 for k in range(len(ch.transitions))]
-        # the importer tries rivals (transitions sharing a step, same priority) left to right:
-        # when the columns disagree with the declared order, each transition gets its own
-        # column in declared order
         for ks in leaving.values():
             for a, i in enumerate(ks):
                 for j in ks[a + 1:]:
                     if ch.transitions[i].priority == ch.transitions[j].priority and xs[i] > xs[j]:
-                        return pos, [40 + k * BRANCH for k in range(len(ch.transitions))]
+                        return pos, None
         return pos, xs
 
     # -- pieces ---------------------------------------------------------------------------------

@@ -151,6 +151,21 @@ TRANSITION FROM Done TO Idle := NOT a; END_TRANSITION
 ACTION Tick: k := k + 1; END_ACTION
 END_FUNCTION_BLOCK
 
+(* rivals on both sides of a transition leaving two steps: no column order keeps them all,
+   every transition gets a column of its own *)
+FUNCTION_BLOCK Crossed
+VAR_INPUT a, b, c : BOOL; END_VAR
+VAR_OUTPUT k : INT; END_VAR
+INITIAL_STEP Idle: END_STEP
+STEP S1: Tock(N); END_STEP
+STEP S2: END_STEP
+TRANSITION FROM Idle TO (S1, S2) := a OR b; END_TRANSITION
+TRANSITION FROM S2 TO Idle := b; END_TRANSITION
+TRANSITION FROM (S1, S2) TO Idle := a; END_TRANSITION
+TRANSITION FROM S1 TO Idle := c; END_TRANSITION
+ACTION Tock: k := k + 1; END_ACTION
+END_FUNCTION_BLOCK
+
 PROGRAM Main
 VAR
     go, a, b, c : BOOL;
@@ -158,15 +173,20 @@ VAR
     lamp, busy : BOOL;
     s : Seq;
     br : Branches;
+    cr : Crossed;
+    kc : INT;
 END_VAR
 s(go := go, a := a, b := b, c := c);
 n := s.n; m := s.m; lamp := s.lamp; busy := s.busy;
 br(a := a, b := b, c := c);
 k := br.k;
+cr(a := a, b := b, c := c);
+kc := cr.k;
 END_PROGRAM
 """
 STEP_FLAGS = [f"Main.s.{s}.X" for s in ("Idle", "Split", "Left", "Right", "Join")] + \
-    [f"Main.br.{s}.X" for s in ("Idle", "L", "R", "Done")] + ["Main.s.Back"]
+    [f"Main.br.{s}.X" for s in ("Idle", "L", "R", "Done")] + ["Main.s.Back"] + \
+    [f"Main.cr.{s}.X" for s in ("Idle", "S1", "S2")]
 
 
 def test_every_sfc_element_round_trips_with_the_same_steps_scan_by_scan():
