@@ -32,7 +32,7 @@ import xml.etree.ElementTree as ET
 from ..errors import PlcError
 from . import ast as A
 from .lower.sfc import Chart, Step, Transition
-from .plcopen_elements import hide, sub, text_body
+from .plcopen_elements import hide, sub, text_body, visible
 from .unparse import expr as st_expr
 from .unparse import unparse
 
@@ -90,7 +90,7 @@ class SfcWriter:
         if named:
             holder = sub(pel, "transitions")
             for t in named:
-                tel = sub(holder, "transition", name=t.text or t.name or "")
+                tel = sub(holder, "transition", name=visible(t.text or t.name or ""))
                 body = t.body
                 if t.cond is not None:  # the name stays a variable: assign it
                     body = [A.Assign(t.loc, A.Name(t.loc, t.name or "", text=t.text), t.cond)]
@@ -234,7 +234,7 @@ class SfcWriter:
             self.point_out(el, 10, 2)
             cond = sub(el, "condition")
             if t.name:
-                sub(cond, "reference", name=t.text or t.name)
+                sub(cond, "reference", name=visible(t.text or t.name or ""))
             else:
                 assert t.cond is not None  # the checker: an unnamed transition has ':= e;'
                 text_body(sub(sub(cond, "inline", name=""), "ST"), hide(st_expr(t.cond)))

@@ -277,3 +277,24 @@ def test_the_exported_washer_runs_the_labs_scenarios_like_the_textual_one():
         assert any(c.endswith(".X") for c in a.columns)  # the steps are in the trace
         for c in a.columns:
             assert np.array_equal(a[c], b[c]), (sc.name, c)
+
+
+def test_a_plcopen_chart_in_st_exports_again_with_legal_names():
+    """A transition referenced twice in the source XML: its copy has a generated name, which
+    the export makes a legal identifier; the chart runs the same after export."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_plcopen_sfc import TRANSITIONS, jump, project, step, trans
+
+    xml = project("\n".join([
+        step(1, "Idle", initial=True), trans(2, 1, '<reference name="Stmts"/>'),
+        step(3, "Mid", 2), trans(4, 3, '<reference name="Stmts"/>'), step(5, "End", 4),
+        trans(6, 5, '<inline name=""><ST><xhtml:p><![CDATA[NOT a]]></xhtml:p></ST></inline>'),
+        jump(7, 6, "Idle")]), TRANSITIONS)
+    files, _ = parse_sources([(xml, "chart.xml")])
+    out = export_plcopen(files[-1:], sources={"chart.xml": xml})
+    assert "__" not in out.replace("xmlns", "")
+    original, again = plclab.loads(xml, "chart.xml"), plclab.loads(out, "chart_export.xml")
+    names = original.variables() + [f"Main.{s}.X" for s in ("Idle", "Mid", "End")]
+    assert trace(again, names, 80, 3) == trace(original, names, 80, 3)
