@@ -13,7 +13,8 @@ What is written (ADR 0022):
   ``GT``...), ``NOT`` of a variable as a negated pin, set/reset assignments as ``MOVE`` with
   ``EN``, an ``executionOrderId`` on every element (the order of the statements).
 
-SFC bodies are not exported here (the SFC front end owns them): :class:`PlcError` PLC4042.
+**SFC** bodies as ``<SFC>`` charts with their ``<actions>`` and ``<transitions>``
+(:mod:`.plcopen_sfc_export`); what a chart cannot carry is :class:`PlcError` PLC4042.
 
 >>> from plclab.project import parse_sources
 >>> files, _ = parse_sources([("PROGRAM P VAR a, b : BOOL; END_VAR b := NOT a; END_PROGRAM",
@@ -33,6 +34,7 @@ from . import ast as A
 from .plcopen_elements import HIDDEN_PREFIX, NS, XHTML, hide, sub, text_body, visible
 from .plcopen_fbd_export import FbdWriter, fb_types_of, fbd_exportable
 from .plcopen_ld_export import WRITABLE, NetworkWriter
+from .plcopen_sfc_export import SfcWriter, chart_names, source_chart
 from .unparse import expr as st_expr
 from .unparse import unparse
 
@@ -184,10 +186,10 @@ class _Exporter:
 
     # -- POUs ---------------------------------------------------------------------------------
     def pou(self, parent: ET.Element, p: A.Pou, file: str) -> None:
-        if p.language == "SFC":
-            raise PlcError("PLC4042", f"{p.spelling or p.name} has an SFC body; plclab's "
-                           "PLCopen export writes ST, IL, LD (as ST) and FBD bodies only: "
-                           "write the chart's logic in ST to export it", p.loc)
+        chart = source_chart(p, file, self.sources) if p.language == "SFC" else None
+        if p.language == "SFC" and chart is None:
+            raise PlcError("PLC4042", f"{p.spelling or p.name} has an SFC body whose chart is "
+                           "not known here; export it from its source file", p.loc)
         pel = sub(parent, "pou", name=p.spelling or p.name, pouType=_KINDS[p.kind])
         iface = sub(pel, "interface")
         if p.return_type is not None:
@@ -195,9 +197,11 @@ class _Exporter:
         il = self.il_text(p, file) if p.language == "IL" else None
         net = self.network(p, file) if p.language in ("LD", "FBD") else None
         groups: dict[tuple[str, bool, bool], list[A.VarDecl]] = {}
+        lowered = chart_names(chart) if chart is not None else set()
         for d in p.decls:
-            if net is not None and d.name.startswith(HIDDEN_PREFIX):
-                continue  # the lowering's own variables: the network is written, not its ST
+            if (net is not None or chart is not None) and d.name.startswith(HIDDEN_PREFIX) \
+                    or d.name in lowered:
+                continue  # the lowering's own variables: the network/chart is written, not its ST
             groups.setdefault((d.section, d.constant, d.retain), []).append(d)
         for (section, constant, retain), decls in groups.items():
             attrs = {}
@@ -208,6 +212,9 @@ class _Exporter:
             sec = sub(iface, _SECTIONS.get(section, "localVars"), **attrs)
             for d in decls:
                 self.variable(sec, d)
+        if chart is not None:  # SFC: <actions>, <transitions> and the chart (ADR 0022)
+            SfcWriter(p, chart, file, self.sources).write(pel)
+            return
         body = sub(pel, "body")
         if il is not None:
             text_body(sub(body, "IL"), il)
