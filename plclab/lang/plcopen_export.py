@@ -186,6 +186,11 @@ class _Exporter:
 
     # -- POUs ---------------------------------------------------------------------------------
     def pou(self, parent: ET.Element, p: A.Pou, file: str) -> None:
+        if p.kind not in _KINDS or p.methods or p.extends or p.implements:
+            raise PlcError("PLC4043", f"{p.spelling or p.name} uses the object-oriented "
+                           "extensions (INTERFACE, METHOD, EXTENDS, IMPLEMENTS), which PLCopen XML "
+                           "TC6 v2.01 cannot express; export a program without them, or keep "
+                           "the ST file", p.loc)
         chart = source_chart(p, file, self.sources) if p.language == "SFC" else None
         if p.language == "SFC" and chart is None:
             raise PlcError("PLC4042", f"{p.spelling or p.name} has an SFC body whose chart is "

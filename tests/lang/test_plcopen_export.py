@@ -14,9 +14,20 @@ from plclab.lang.plcopen_export import NS, export_plcopen
 from plclab.project import parse_sources
 
 ROOT = Path(__file__).resolve().parents[2]
-PROGRAMS = sorted(
-    [p for p in (ROOT / "examples").iterdir() if p.suffix in (".st", ".il", ".ld", ".xml")]
+ALL_PROGRAMS = sorted(
+    [p for p in (ROOT / "examples").rglob("*") if p.suffix in (".st", ".il", ".ld", ".xml")]
     + [p for p in (ROOT / "labs").glob("*/solution/*") if p.suffix in (".st", ".il", ".ld")])
+
+
+def object_oriented(path: Path) -> bool:
+    """Uses METHOD/INTERFACE/EXTENDS/IMPLEMENTS, which TC6 v2.01 cannot express (PLC4043)."""
+    files, _ = parse_sources([(path.read_text(encoding="utf-8"), path.name)])
+    return any(p.kind == "INTERFACE" or p.methods or p.extends or p.implements
+               for p in files[-1].pous)
+
+
+OBJECT_ORIENTED = [p for p in ALL_PROGRAMS if object_oriented(p)]
+PROGRAMS = [p for p in ALL_PROGRAMS if p not in OBJECT_ORIENTED]
 
 
 def exported(path: Path, fbd: bool) -> str:
@@ -298,3 +309,10 @@ def test_a_plcopen_chart_in_st_exports_again_with_legal_names():
     original, again = plclab.loads(xml, "chart.xml"), plclab.loads(out, "chart_export.xml")
     names = original.variables() + [f"Main.{s}.X" for s in ("Idle", "Mid", "End")]
     assert trace(again, names, 80, 3) == trace(original, names, 80, 3)
+
+
+@pytest.mark.parametrize("path", OBJECT_ORIENTED, ids=lambda p: p.name)
+def test_an_object_oriented_program_is_refused_clearly(path):
+    with pytest.raises(PlcError) as e:
+        exported(path, fbd=False)
+    assert e.value.code == "PLC4043" and "object-oriented" in str(e.value)
