@@ -168,6 +168,20 @@ LABS_CONFIG: dict[str, dict] = {
             "Which step would need HEATER(R)?",
         ],
     },
+    # labs16 (issue 16): one lab per chapter that had none
+    "bottle-packing": {
+        "scenario": "run",
+        "duration": "25s",
+        "window": (0.0, 25.0),
+        "questions": [
+            "The sixth bottle stops in front of X1 when the belt stops. Why is it not counted "
+            "again when the belt starts and the counter has been reset?",
+            "TO_GO comes from a CTD and IN_BOX from a CTU. Which of the two would you show on "
+            "the operator panel, and which one would you compare with the box size?",
+            "What happens to the count if the operator presses STOP while a bottle is in the "
+            "beam? Try it with a scenario action.",
+        ],
+    },
 }
 
 

@@ -19,6 +19,9 @@ Integration is explicit Euler on the volume; the outflows of a step are limited 
 actually present, and water above the rim is lost as overflow, so the books always balance:
 ``volume_in - volume_out - volume_overflow == volume - volume0`` (see :meth:`Tank.snapshot`).
 
+``FAULT_LAMP`` is a panel lamp the PLC lights for a measurement fault (wire-break lab); the plant
+only shows it.
+
 Events: ``overflow`` (the level reaches the rim), ``dry_run`` (the outlet or the consumers draw
 from an empty tank).
 """
@@ -145,6 +148,7 @@ class Tank(Plant):
                     "LEVEL_MA", "sensor", "mA", 0, 20, "level transmitter 4-20 mA over 0..height"
                 ),
                 real_signal("FLOW_IN", "sensor", "m3/s", 0, qmax, "pump delivery"),
+                bool_signal("FAULT_LAMP", "lamp", "measurement fault lamp on the panel"),
             ]
         )
 
