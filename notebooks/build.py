@@ -182,6 +182,18 @@ LABS_CONFIG: dict[str, dict] = {
             "beam? Try it with a scenario action.",
         ],
     },
+    "level-4-20ma": {
+        "scenario": "wire-break",
+        "duration": None,
+        "window": (60.0, 180.0),
+        "questions": [
+            "The broken loop reads 32767 counts. What level would a program that trusts the "
+            "number compute, and what would its pump do?",
+            "Why does a 0-20 mA signal make a wire break invisible, and a 4-20 mA one not?",
+            "A 12-bit card gives 4096 steps over 4-20 mA. How many millimetres of level is one "
+            "step on this 2 m tank?",
+        ],
+    },
 }
 
 

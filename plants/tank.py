@@ -88,6 +88,8 @@ class Tank(Plant):
         "ls2_stuck_off": "high level switch LS2 always reads FALSE",
         "pump_fail": "the pump motor turns but delivers nothing",
         "transmitter_open": "the 4-20 mA loop is broken: LEVEL_MA reads 0 mA",
+        "transmitter_fail": "the transmitter detects its own failure and drives the loop to a "
+        "NAMUR NE43 failure current (param ma, default 3.4 mA; 21.5 for an upscale failure)",
     }
 
     def __init__(
@@ -173,6 +175,8 @@ class Tank(Plant):
         self._ls1_off = "ls1_stuck_off" in f
         self._ls2_off = "ls2_stuck_off" in f
         self._tx_open = "transmitter_open" in f
+        fail = f.get("transmitter_fail")
+        self._tx_fail_ma = None if fail is None else float(fail.get("ma", 3.4))
         leak = f.get("leak")
         self._k_leak = (
             0.0
@@ -250,7 +254,12 @@ class Tank(Plant):
         io["LEVEL"] = lvl
         io["LS1"] = lvl >= self.ls1_height and not self._ls1_off
         io["LS2"] = lvl >= self.ls2_height and not self._ls2_off
-        io["LEVEL_MA"] = 0.0 if self._tx_open else 4.0 + 16.0 * lvl / self.height
+        if self._tx_open:
+            io["LEVEL_MA"] = 0.0
+        elif self._tx_fail_ma is not None:
+            io["LEVEL_MA"] = self._tx_fail_ma
+        else:
+            io["LEVEL_MA"] = 4.0 + 16.0 * lvl / self.height
         io["FLOW_IN"] = self.q_pump
 
     # ------------------------------------------------------------------ records
