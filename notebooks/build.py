@@ -194,6 +194,19 @@ LABS_CONFIG: dict[str, dict] = {
             "step on this 2 m tank?",
         ],
     },
+    "scan-timing": {
+        "scenario": "start-stop",
+        "duration": None,
+        "window": (0.4, 0.7),
+        "questions": [
+            "REACTION_MS reads about 50 ms. Which parts of it are the relay output, the "
+            "contactor, the input filter and the scan?",
+            "Move the start/stop circuit into the slow task. What is the longest reaction now, "
+            "and why can a press of 60 ms be lost?",
+            "The fast task measures exactly 10 ms on this virtual PLC. What would a real PLC "
+            "show, and what does a cycle overrun do to it?",
+        ],
+    },
 }
 
 
