@@ -207,6 +207,19 @@ LABS_CONFIG: dict[str, dict] = {
             "show, and what does a cycle overrun do to it?",
         ],
     },
+    "modbus-operator": {
+        "scenario": "operate",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "Why does the PLC write 0 back into the command register? What could the station "
+            "not tell without it?",
+            "A station writes -200 into holding register 1. Which number travels in the "
+            "Modbus frame, and what does the program's INT see?",
+            "Run the solution with `plclab serve --plant tank` and drive it with "
+            "`plclab.modbus.connect()`. Which register tells you that the PLC is alive?",
+        ],
+    },
 }
 
 
