@@ -46,8 +46,6 @@ def _value(trace, name, t):
 
 def acknowledged(trace, within=0.1):
     """Every nonzero value of CMD (%MW0) goes back to 0 within ``within`` seconds."""
-    import numpy as np
-
     x = trace[CMD].astype(float) != 0
     tt = trace.time
     start = None
@@ -60,7 +58,6 @@ def acknowledged(trace, within=0.1):
             return (False, f"CMD (%MW0) still holds {int(trace[CMD][i])} at t = {tt[i]:.2f} s, "
                     f"{float(tt[i]) - start:.2f} s after it was written", start, [CMD])
     n = len(writes(trace, CMD))
-    del np
     return True, f"all {n} command(s) were acknowledged", None, [CMD]
 
 
@@ -100,7 +97,7 @@ def follows(trace, band=0.15, settle=60.0):
     checked = 0.0
     for a, b in running_periods(trace):
         edges = [a] + [t for t, _ in sp if a < t < b] + [b]
-        for s0, s1 in zip(edges[:-1], edges[1:]):
+        for s0, s1 in zip(edges[:-1], edges[1:], strict=True):
             lo = s0 + float(settle)
             if lo >= s1:
                 continue
