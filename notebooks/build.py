@@ -194,6 +194,58 @@ LABS_CONFIG: dict[str, dict] = {
             "long did the cars wait, and what ended the wait?",
         ],
     },
+    # labs16 (issue 16): one lab per chapter that had none
+    "bottle-packing": {
+        "scenario": "run",
+        "duration": "25s",
+        "window": (0.0, 25.0),
+        "questions": [
+            "The sixth bottle stops in front of X1 when the belt stops. Why is it not counted "
+            "again when the belt starts and the counter has been reset?",
+            "TO_GO comes from a CTD and IN_BOX from a CTU. Which of the two would you show on "
+            "the operator panel, and which one would you compare with the box size?",
+            "What happens to the count if the operator presses STOP while a bottle is in the "
+            "beam? Try it with a scenario action.",
+        ],
+    },
+    "level-4-20ma": {
+        "scenario": "wire-break",
+        "duration": None,
+        "window": (60.0, 180.0),
+        "questions": [
+            "The broken loop reads 32767 counts. What level would a program that trusts the "
+            "number compute, and what would its pump do?",
+            "Why does a 0-20 mA signal make a wire break invisible, and a 4-20 mA one not?",
+            "A 12-bit card gives 4096 steps over 4-20 mA. How many millimetres of level is one "
+            "step on this 2 m tank?",
+        ],
+    },
+    "scan-timing": {
+        "scenario": "start-stop",
+        "duration": None,
+        "window": (0.4, 0.7),
+        "questions": [
+            "REACTION_MS reads about 50 ms. Which parts of it are the relay output, the "
+            "contactor, the input filter and the scan?",
+            "Move the start/stop circuit into the slow task. What is the longest reaction now, "
+            "and why can a press of 60 ms be lost?",
+            "The fast task measures exactly 10 ms on this virtual PLC. What would a real PLC "
+            "show, and what does a cycle overrun do to it?",
+        ],
+    },
+    "modbus-operator": {
+        "scenario": "operate",
+        "duration": None,
+        "window": None,
+        "questions": [
+            "Why does the PLC write 0 back into the command register? What could the station "
+            "not tell without it?",
+            "A station writes -200 into holding register 1. Which number travels in the "
+            "Modbus frame, and what does the program's INT see?",
+            "Run the solution with `plclab serve --plant tank` and drive it with "
+            "`plclab.modbus.connect()`. Which register tells you that the PLC is alive?",
+        ],
+    },
 }
 
 

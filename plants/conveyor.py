@@ -16,7 +16,8 @@ Signals
 ``CONVEYOR`` runs the belt motor; the belt speed ramps to ``belt_speed`` and back to zero with
 the acceleration limits ``belt_accel`` / ``belt_decel`` (a rate-limited drive; set a large
 ``belt_decel`` to model an abrupt stop). ``BELT_SPEED`` reports it. ``START``/``STOP`` (NO/NC)
-are the operator buttons of the textbook's ladder program.
+are the operator buttons of the textbook's ladder program. ``BOX_LAMP`` is a panel lamp the PLC
+lights while a box is changed (packing lab); the plant only shows it.
 
 ``X1``/``X2`` are ``True`` while something breaks the beam. The beams cross the belt, so in
 the side view each is a point ``(x_eye, height)``; a bottle breaks a beam when that point lies
@@ -299,6 +300,7 @@ class Conveyor(Plant):
                     "FILL_LEVEL", "sensor", "%", 0, 100, "fill of the bottle under the nozzle"
                 ),
                 real_signal("BELT_SPEED", "sensor", "m/s", 0, self.belt_speed, "belt speed"),
+                bool_signal("BOX_LAMP", "lamp", "packing lamp: box full, change the box"),
             ]
         )
 

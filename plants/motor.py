@@ -13,6 +13,8 @@ Wiring modelled
   With ``overload_breaks_coil=True`` (the default) its 95-96 contact is wired in series with the
   coil, so a trip drops the contactor whatever the PLC writes. The relay stays tripped until
   ``OL_RESET`` is pressed (or ``auto_reset=True``) and it has cooled down.
+* ``HEARTBEAT`` is a panel lamp the PLC may drive (the scan-timing lab blinks it from a slow
+  task); the plant only shows it.
 
 Physics
 -------
@@ -147,6 +149,7 @@ class Motor(Plant):
                 bool_signal("OVERLOAD", "sensor", "overload relay contact 97-98: TRUE = tripped"),
                 real_signal("SPEED", "sensor", "rpm", 0, self.sync_speed, "shaft speed"),
                 real_signal("CURRENT", "sensor", "A", 0, i_max, "line current (RMS)"),
+                bool_signal("HEARTBEAT", "lamp", "panel lamp driven by the PLC (only shown)"),
             ]
         )
 

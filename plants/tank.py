@@ -19,6 +19,9 @@ Integration is explicit Euler on the volume; the outflows of a step are limited 
 actually present, and water above the rim is lost as overflow, so the books always balance:
 ``volume_in - volume_out - volume_overflow == volume - volume0`` (see :meth:`Tank.snapshot`).
 
+``FAULT_LAMP`` is a panel lamp the PLC lights for a measurement fault (wire-break lab); the plant
+only shows it.
+
 Events: ``overflow`` (the level reaches the rim), ``dry_run`` (the outlet or the consumers draw
 from an empty tank).
 """
@@ -85,6 +88,8 @@ class Tank(Plant):
         "ls2_stuck_off": "high level switch LS2 always reads FALSE",
         "pump_fail": "the pump motor turns but delivers nothing",
         "transmitter_open": "the 4-20 mA loop is broken: LEVEL_MA reads 0 mA",
+        "transmitter_fail": "the transmitter detects its own failure and drives the loop to a "
+        "NAMUR NE43 failure current (param ma, default 3.4 mA; 21.5 for an upscale failure)",
     }
 
     def __init__(
@@ -145,6 +150,7 @@ class Tank(Plant):
                     "LEVEL_MA", "sensor", "mA", 0, 20, "level transmitter 4-20 mA over 0..height"
                 ),
                 real_signal("FLOW_IN", "sensor", "m3/s", 0, qmax, "pump delivery"),
+                bool_signal("FAULT_LAMP", "lamp", "measurement fault lamp on the panel"),
             ]
         )
 
@@ -169,6 +175,8 @@ class Tank(Plant):
         self._ls1_off = "ls1_stuck_off" in f
         self._ls2_off = "ls2_stuck_off" in f
         self._tx_open = "transmitter_open" in f
+        fail = f.get("transmitter_fail")
+        self._tx_fail_ma = None if fail is None else float(fail.get("ma", 3.4))
         leak = f.get("leak")
         self._k_leak = (
             0.0
@@ -246,7 +254,12 @@ class Tank(Plant):
         io["LEVEL"] = lvl
         io["LS1"] = lvl >= self.ls1_height and not self._ls1_off
         io["LS2"] = lvl >= self.ls2_height and not self._ls2_off
-        io["LEVEL_MA"] = 0.0 if self._tx_open else 4.0 + 16.0 * lvl / self.height
+        if self._tx_open:
+            io["LEVEL_MA"] = 0.0
+        elif self._tx_fail_ma is not None:
+            io["LEVEL_MA"] = self._tx_fail_ma
+        else:
+            io["LEVEL_MA"] = 4.0 + 16.0 * lvl / self.height
         io["FLOW_IN"] = self.q_pump
 
     # ------------------------------------------------------------------ records

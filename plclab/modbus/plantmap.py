@@ -31,7 +31,7 @@ coil's bit or the register's bytes; the others keep the plant's own value (the t
 >>> from plants import get_plant
 >>> lay = plant_layout(get_plant("tank"))
 >>> [s.name for s in lay.di], [s.name for s in lay.coils], [s.name for s in lay.hr]
-(['LS1', 'LS2'], ['PUMP'], ['PUMP_SPEED'])
+(['LS1', 'LS2'], ['PUMP', 'FAULT_LAMP'], ['PUMP_SPEED'])
 >>> plc_address("ir", 2)
 '%IW68'
 """

@@ -133,10 +133,10 @@ def test_plant_layout_in_signal_order():
     lay = PM.plant_layout(plant)
     assert [s.name for s in lay.di] == ["LS1", "LS2"]
     assert [s.name for s in lay.ir] == ["LEVEL", "LEVEL_MA", "FLOW_IN"]
-    assert [s.name for s in lay.coils] == ["PUMP"]
+    assert [s.name for s in lay.coils] == ["PUMP", "FAULT_LAMP"]  # the lamp: level-4-20ma lab
     assert [s.name for s in lay.hr] == ["PUMP_SPEED"]
     assert [s.name for s in lay.panel_hr] == ["VALVE"]
-    assert lay.counts() == [2, 3, 1, 1, 0, 1]
+    assert lay.counts() == [2, 3, 2, 1, 0, 1]
     assert PM.plc_address("di", 9) == "%IX1.1" and PM.plc_address("ir", 0) == "%IW64"
     assert PM.plc_address("hr", 1) == "%QW66"
     assert "LS1" in PM.format_plant_map(plant)

@@ -63,12 +63,12 @@ def test_plant_server_map():
             level = c.read_input_registers(0, count=3).registers
             assert abs(A.from_register(level[0], 0, 2) - 1.0) < 0.01
             info = c.read_input_registers(1000, count=8).registers
-            assert info[:6] == [2, 3, 1, 1, 0, 1]
+            assert info[:6] == [2, 3, 2, 1, 0, 1]  # coils: PUMP, FAULT_LAMP
             assert not c.write_coil(0, True).isError()
             assert c.read_coils(0).bits[0] is True
             assert not c.write_register(0, A.to_register(50, 0, 100)).isError()
             assert not c.write_register(1000, A.to_register(25, 0, 100)).isError()  # VALVE
-            assert c.read_coils(1).isError() and c.read_discrete_inputs(2).isError()
+            assert c.read_coils(2).isError() and c.read_discrete_inputs(2).isError()
             assert c.read_input_registers(3).isError() and c.read_holding_registers(1).isError()
             assert c.write_registers(0, [1, 2]).isError()  # HR 1 does not exist
         finally:

@@ -137,7 +137,7 @@ def test_decimate_snapshot_and_watch():
 def test_io_columns_and_names():
     tr = sim_tank().run("1s")
     assert tr.signals == ["PUMP", "PUMP_SPEED", "VALVE", "LS1", "LS2", "LEVEL", "LEVEL_MA",
-                          "FLOW_IN"]
+                          "FLOW_IN", "FAULT_LAMP"]
     rows = {r["plc"]: r for r in tr.io}
     assert rows["%IX0.0"]["plant_column"] == "LS1" and rows["%IX0.0"]["direction"] == "in"
     assert rows["%QX0.0"]["module"] == "do" and rows["%QX0.0"]["direction"] == "out"
