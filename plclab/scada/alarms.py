@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.scada.files import read_toml
 
 
 @dataclass(frozen=True)
@@ -297,16 +298,7 @@ class AlarmServer:
     @classmethod
     def load(cls, path: str | Path) -> AlarmServer:
         """Read an alarm configuration (TOML: ``[[alarm]]`` rows, optional ``[class.NAME]``)."""
-        import tomllib
-
-        path = Path(path)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except OSError as e:
-            raise PlcError("PLC6020", f"cannot read alarm file {path}: {e.strerror}") from None
-        except tomllib.TOMLDecodeError as e:
-            raise PlcError("PLC6020", f"{path}: not valid TOML ({e})") from None
-        return cls.from_dict(data, str(path))
+        return cls.from_dict(read_toml(path, "PLC6020", "alarm file"), str(path))
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], source: str = "alarms") -> AlarmServer:

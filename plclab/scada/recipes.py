@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.scada.files import read_toml
 
 
 @dataclass(frozen=True)
@@ -151,16 +152,7 @@ class Recipe:
     @classmethod
     def load(cls, path: str | Path) -> Recipe:
         """Read a recipe (TOML): ``name``, ``[[element]]`` rows, ``[record.NAME]`` tables."""
-        import tomllib
-
-        path = Path(path)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except OSError as e:
-            raise PlcError("PLC6040", f"cannot read recipe {path}: {e.strerror}") from None
-        except tomllib.TOMLDecodeError as e:
-            raise PlcError("PLC6040", f"{path}: not valid TOML ({e})") from None
-        return cls.from_dict(data, str(path))
+        return cls.from_dict(read_toml(path, "PLC6040", "recipe"), str(path))
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], source: str = "recipe") -> Recipe:

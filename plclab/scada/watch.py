@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.scada.files import read_toml
 
 TRIGGERS = ("scan_start", "scan_end", "stop")
 FORMATS = ("auto", "bool", "dec", "hex", "bin", "oct", "float", "char", "time")
@@ -157,16 +158,7 @@ class WatchTable:
     @classmethod
     def load(cls, path: str | Path) -> WatchTable:
         """Read a watch table from TOML (see ``docs/scada.md``)."""
-        import tomllib
-
-        path = Path(path)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except OSError as e:
-            raise PlcError("PLC6010", f"cannot read watch table {path}: {e.strerror}") from None
-        except tomllib.TOMLDecodeError as e:
-            raise PlcError("PLC6010", f"{path}: not valid TOML ({e})") from None
-        return cls.from_dict(data, str(path))
+        return cls.from_dict(read_toml(path, "PLC6010", "watch table"), str(path))
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], source: str = "watch table") -> WatchTable:
