@@ -122,6 +122,19 @@ def close_hint(name: str, candidates) -> str:
     return f"; did you mean {close[0]}?" if close else ""
 
 
+def result_decl(p: A.Pou) -> A.VarDecl:
+    """The variable named after a FUNCTION or METHOD that holds its result (section
+    ``RETURN``; VOID without a return type), made on first use."""
+    if p.return_decl is None:
+        rd = A.VarDecl(p.loc, p.name, p.return_type or A.NamedTypeRef(p.loc, "VOID"),
+                       section="RETURN", spelling=p.spelling)
+        rd.used = True
+        if p.return_type is None:
+            rd.ty = T.VOID
+        p.return_decl = rd
+    return p.return_decl
+
+
 def instance_label(instance: str, pou: A.Pou) -> str:
     """How a program instance is named in paths: the POU as written when the instance is the
     POU itself (no configuration), else the instance name."""
@@ -290,14 +303,7 @@ class SymbolTable:
             st = "local" if (storage_local or d.section == "VAR_TEMP") else "self"
             names[d.name] = VarSym(d, st, p)
         if p.kind == "FUNCTION":
-            if p.return_decl is None:
-                rd = A.VarDecl(p.loc, p.name, p.return_type or A.NamedTypeRef(p.loc, "VOID"),
-                               section="RETURN", spelling=p.spelling)
-                rd.used = True
-                if p.return_type is None:
-                    rd.ty = T.VOID
-                p.return_decl = rd
-            names[p.name] = VarSym(p.return_decl, "local", p)
+            names[p.name] = VarSym(result_decl(p), "local", p)
         if p.kind == "FUNCTION_BLOCK":
             self._this_super(names, p)
         return Scope(names, self.globals)
@@ -317,14 +323,7 @@ class SymbolTable:
                 names[d.name] = VarSym(inst if inst is not None else d, "self", owner)
             else:
                 names[d.name] = VarSym(d, "local", m)
-        if m.return_decl is None:
-            rd = A.VarDecl(m.loc, m.name, m.return_type or A.NamedTypeRef(m.loc, "VOID"),
-                           section="RETURN", spelling=m.spelling)
-            rd.used = True
-            if m.return_type is None:
-                rd.ty = T.VOID
-            m.return_decl = rd
-        names[m.name] = VarSym(m.return_decl, "local", m)
+        names[m.name] = VarSym(result_decl(m), "local", m)
         if m.name.endswith("__GET"):  # a PROPERTY's GET: its result has the property's name
             names[m.name[:-5]] = names[m.name]
         return Scope(names, self.globals)
