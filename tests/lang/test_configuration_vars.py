@@ -189,3 +189,32 @@ def test_a_wrong_connection_is_reported(connections: str, code: str, words: str)
     errors = [d for d in diags if d.severity == "error"]
     assert errors and errors[0].code == code, errors
     assert words in errors[0].message and errors[0].location.line == 12
+
+
+def test_var_config_reaches_inherited_wildcards_of_a_derived_block() -> None:
+    """Issue 14: located variables inside derived FBs -- an AT %I* declared in the base block is
+    a member of every derived instance, and VAR_CONFIG completes it there."""
+    src = """
+FUNCTION_BLOCK Base
+VAR_INPUT sensor AT %I* : BOOL; END_VAR
+VAR_OUTPUT lamp AT %Q* : BOOL; END_VAR
+lamp := sensor;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Derived EXTENDS Base
+VAR count : INT; END_VAR
+SUPER^();
+IF sensor THEN count := count + 1; END_IF
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR d : Derived; END_VAR
+d();
+END_PROGRAM
+VAR_CONFIG
+    Main.d.sensor AT %IX0.2 : BOOL;
+    Main.d.lamp AT %QX0.5 : BOOL;
+END_VAR
+"""
+    plc = plclab.loads(src)
+    plc["%IX0.2"] = True
+    plc.scan(2)
+    assert (plc["%QX0.5"], plc["Main.d.count"]) == (True, 2)
