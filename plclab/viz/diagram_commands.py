@@ -65,18 +65,10 @@ def render_file(path: str, pou: str | None = None, values: dict[str, Any] | None
     return _render(text, name, pou, values)
 
 
-def _parse(text: str, name: str):
-    from ..lang.frontends.registry import for_file
-
-    src, diags = for_file(name).parse(text, name)
-    errors = [d for d in diags if d.severity == "error"]
-    if errors:
-        raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
-    return src
-
-
 def _render(text: str, name: str, pou: str | None, values) -> str:
-    src = _parse(text, name)
+    from .render_network import parse_source
+
+    src = parse_source(text, name)
     chosen = [p for p in src.pous if pou is None or p.name == pou.upper()]
     if not chosen:
         names = ", ".join(p.spelling or p.name for p in src.pous) or "none"
@@ -87,13 +79,9 @@ def _render(text: str, name: str, pou: str | None, values) -> str:
 
         return render_source(text, name, p.name, values)
     if any(b.kind == "SFC" for b in p.pending) or p.language == "SFC":
-        try:
-            from . import render_sfc  # type: ignore[attr-defined]
-        except ImportError:
-            raise PlcError("PLC4041", f"{p.spelling or p.name} is an SFC chart and this "
-                           "installation has no SFC renderer (plclab.viz.render_sfc); draw "
-                           "another POU with --pou") from None
-        return render_sfc.render_sfc_svg(p, values=values)
+        from .render_sfc import render_sfc_svg
+
+        return render_sfc_svg(p, values=values)
     from .render_listing import render_listing
 
     title = f"{name}: {p.kind} {p.spelling or p.name} ({p.language})"

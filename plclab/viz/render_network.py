@@ -419,7 +419,9 @@ def _draw(e, lay: _Layout, xl: float, xr: float, y: float) -> str:
     return ""
 
 
-def _parse(text: str, file: str):
+def parse_source(text: str, file: str):
+    """One source file parsed by its front end, not lowered (networks stay elements); the
+    first error as a PlcError."""
     from ..lang.frontends.registry import for_file
 
     src, diags = for_file(file).parse(text, file)
@@ -440,13 +442,13 @@ def _networks(src) -> list[tuple[Any, list]]:
 
 def network_pous(text: str, file: str) -> list[tuple[Any, list]]:
     """(POU, its network elements) for each LD/FBD POU of a source (parsed, not lowered)."""
-    return _networks(_parse(text, file))
+    return _networks(parse_source(text, file))
 
 
 def render_source(text: str, file: str, pou: str | None = None,
                   values: dict[str, Any] | None = None) -> Svg:
     """The network of POU ``pou`` (default: the first LD/FBD POU) of a source as SVG."""
-    src = _parse(text, file)
+    src = parse_source(text, file)
     chosen = [(p, els) for p, els in _networks(src) if pou is None or p.name == pou.upper()]
     if not chosen:
         raise PlcError("PLC4040", f"{file} has no LD or FBD body" + (

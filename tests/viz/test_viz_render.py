@@ -2,7 +2,6 @@
 PLCopen XML), boxes with pins on both sides, the right rail aligned, power flow from values;
 ST and IL listings; the command line with SVG, PNG, a trace's values, and plclab export."""
 
-import importlib.util
 import re
 from pathlib import Path
 
@@ -11,7 +10,7 @@ import pytest
 from plclab.cli import main
 from plclab.errors import PlcError
 from plclab.viz.render_listing import render_listing
-from plclab.viz.render_network import _Layout, network_pous, render_source
+from plclab.viz.render_network import _Layout, network_pous, parse_source, render_source
 
 ROOT = Path(__file__).resolve().parents[2]
 EX = ROOT / "examples"
@@ -128,12 +127,9 @@ def test_unknown_pou_is_plc4040(capsys):
     assert "PLC4040" in capsys.readouterr().err
 
 
-def test_sfc_body_goes_to_the_sfc_renderer_or_says_it_is_missing(capsys):
+def test_sfc_body_goes_to_the_sfc_renderer(capsys):
     code = main(["render", str(EX / "sfc_s0_s4.st")])
-    if importlib.util.find_spec("plclab.viz.render_sfc") is None:
-        assert code == 1 and "PLC4041" in capsys.readouterr().err
-    else:
-        assert code == 0 and capsys.readouterr().out.startswith("<svg")
+    assert code == 0 and capsys.readouterr().out.startswith("<svg")
 
 
 def test_export_command_writes_xml_that_imports(tmp_path):
@@ -163,15 +159,10 @@ ALL = sorted([p for p in EX.rglob("*") if p.suffix in (".st", ".il", ".ld", ".xm
 
 @pytest.mark.parametrize("path", ALL, ids=lambda p: str(p.relative_to(ROOT)))
 def test_every_pou_of_every_example_and_lab_solution_is_drawn(path):
-    from plclab.viz.diagram_commands import _parse, render_file
+    from plclab.viz.diagram_commands import render_file
 
-    pous = _parse(path.read_text(encoding="utf-8"), path.name).pous
+    pous = parse_source(path.read_text(encoding="utf-8"), path.name).pous
     assert pous
     for p in pous:
-        try:
-            svg = render_file(str(path), p.name)
-        except PlcError as e:  # a chart, while plclab.viz.render_sfc is not installed
-            assert e.code == "PLC4041"
-            assert importlib.util.find_spec("plclab.viz.render_sfc") is None
-            continue
+        svg = render_file(str(path), p.name)
         assert svg.startswith("<svg") and (p.spelling or p.name) in svg
