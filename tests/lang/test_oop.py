@@ -396,8 +396,7 @@ r := REF(x); F := r^; END_FUNCTION""")
     assert "PLC0239" in codes("PROGRAM P VAR r : REFERENCE TO INT; END_VAR END_PROGRAM")
 
 
-def test_a_method_called_from_il_with_cal_and_calc():
-    src = """FUNCTION_BLOCK Pump
+START_PUMP = """FUNCTION_BLOCK Pump
 VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
 METHOD Start : BOOL
 VAR_INPUT rpm : INT; END_VAR
@@ -406,7 +405,12 @@ speed := rpm;
 Start := TRUE;
 END_METHOD
 END_FUNCTION_BLOCK
-PROGRAM Main
+"""
+"""A block with one method, called from IL and from a ladder box below."""
+
+
+def test_a_method_called_from_il_with_cal_and_calc():
+    src = START_PUMP + """PROGRAM Main
 VAR p : Pump; go : BOOL; isOn : BOOL; END_VAR
     LD go
     CALC p.Start(rpm := 1500)
@@ -493,16 +497,7 @@ TEST 'p' VAR s : Servo; a : Axis; END_VAR a := s; a.Pos := 4; ASSERT_EQ(s.Pos, 8
 
 
 def test_a_method_called_from_a_ladder_box():
-    src = """FUNCTION_BLOCK Pump
-VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
-METHOD Start : BOOL
-VAR_INPUT rpm : INT; END_VAR
-Enabled := TRUE;
-speed := rpm;
-Start := TRUE;
-END_METHOD
-END_FUNCTION_BLOCK
-PROGRAM Main
+    src = START_PUMP + """PROGRAM Main
 VAR go : BOOL; p : Pump; started : BOOL; lamp : BOOL; END_VAR
 |   go                                      lamp   |
 |---[ ]----[p.Start 1500 -> started]--------( )----|
