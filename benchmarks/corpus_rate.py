@@ -40,10 +40,17 @@ class Outcome:
 
 
 def dialect_for(path: Path, root: Path) -> str | None:
+    """The dialect of the nearest ``DIALECT`` file, or ``dialect`` key of a ``SOURCE.toml``
+    (the committed corpus, ``tests/corpus/``), from the file's folder up to ``root``."""
+    import tomllib
+
     for folder in [path.parent, *path.parent.parents]:
         marker = folder / "DIALECT"
         if marker.is_file():
             return marker.read_text().strip() or None
+        source = folder / "SOURCE.toml"
+        if source.is_file():
+            return tomllib.loads(source.read_text(encoding="utf-8")).get("dialect") or None
         if folder == root:
             break
     return None
@@ -83,10 +90,14 @@ def judge(path: Path, root: Path) -> Outcome:
     return Outcome(path, "ran")
 
 
+def corpus_files(root: Path) -> list[Path]:
+    """Every ``.st`` and ``.xml`` file under ``root`` outside ``_excluded`` folders, sorted."""
+    return sorted(p for p in root.rglob("*") if p.suffix.lower() in (".st", ".xml")
+                  and EXCLUDED not in p.relative_to(root).parts)
+
+
 def measure(root: Path) -> list[Outcome]:
-    files = sorted(p for p in root.rglob("*") if p.suffix.lower() in (".st", ".xml")
-                   and EXCLUDED not in p.relative_to(root).parts)
-    return [judge(p, root) for p in files]
+    return [judge(p, root) for p in corpus_files(root)]
 
 
 def report(root: Path, outcomes: list[Outcome], listing: bool) -> None:
