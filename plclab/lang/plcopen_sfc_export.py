@@ -189,7 +189,7 @@ class SfcWriter:
                 sub(el, "position", x=str(left), y=str(y - 12))
                 for f in into:
                     self.point_in(el, [f], feeder_x[f, s.name] - left, 0)
-                self.point_out(el, x + STEP_W // 2 - left, 1)
+                self.point_out(el, x + STEP_W // 2 - left, 1, formal=False)
             attrs = {"localId": step_id[s.name], "name": s.text or s.name}
             if s.initial:
                 attrs["initialStep"] = "true"
@@ -223,7 +223,7 @@ class SfcWriter:
                 sub(el, "position", x=str(left), y=str(y - 12))
                 for f, bx in zip(ins, xs, strict=False):
                     self.point_in(el, [f], bx - left, 0)
-                self.point_out(el, tx[k] + 10 - left, 3)
+                self.point_out(el, tx[k] + 10 - left, 3, formal=False)
                 ins = [conv_id[k]]
             attrs = {"localId": tr_id[k], "height": "2", "width": "20"}
             if t.priority is not None:
@@ -231,7 +231,7 @@ class SfcWriter:
             el = sub(sfc, "transition", **attrs)
             sub(el, "position", x=str(tx[k]), y=str(y))
             self.point_in(el, ins, 10, 0)
-            self.point_out(el, 10, 2)
+            self.point_out(el, 10, 2, formal=False)
             cond = sub(el, "condition")
             if t.name:
                 sub(cond, "reference", name=visible(t.text or t.name or ""))
@@ -331,8 +331,12 @@ class SfcWriter:
             sub(cpi, "connection", refLocalId=r)
 
     @staticmethod
-    def point_out(el: ET.Element, x: int, y: int) -> None:
-        out = sub(el, "connectionPointOut", formalParameter="")
+    def point_out(el: ET.Element, x: int, y: int, *, formal: bool = True) -> None:
+        """A ``connectionPointOut``; TC6 v2.01 gives ``formalParameter`` to those of a step and
+        of the divergences only (a transition's or a convergence's has none: the XSD refuses
+        it), and Beremiz writes ``formalParameter=""`` where it may."""
+        attrs = {"formalParameter": ""} if formal else {}
+        out = sub(el, "connectionPointOut", **attrs)
         sub(out, "relPosition", x=str(x), y=str(y))
 
 

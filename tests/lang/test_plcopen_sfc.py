@@ -277,6 +277,22 @@ def test_an_ld_condition_wired_in_the_sfc_body():
     assert plc["Main.Next.X"]
 
 
+def test_a_condition_wired_the_tc6_v200_way_without_connection_point_in():
+    """TC6 v2.00 files (Beremiz 2008, tests/linux/test_master_DS401GUI) put the <connection>
+    in <condition> itself; v2.01 wraps it in <connectionPointIn>. Both read the same."""
+    ld = ('<leftPowerRail localId="20"><connectionPointOut formalParameter=""/></leftPowerRail>'
+          '<contact localId="21"><connectionPointIn><connection refLocalId="20"/>'
+          '</connectionPointIn><connectionPointOut/><variable>a</variable></contact>')
+    xml = project("\n".join([step(1, "Idle", initial=True), ld,
+                             trans(2, 1, '<connection refLocalId="21"/>'), step(3, "Next", 2)]))
+    plc = load(xml)
+    plc.scan()
+    assert plc["Main.Idle.X"]
+    plc["Main.a"] = True
+    plc.scan()
+    assert plc["Main.Next.X"]
+
+
 # -- diagnostics ----------------------------------------------------------------------------
 @pytest.mark.parametrize("sfc, extra, code", [
     # a transition fed by a transition

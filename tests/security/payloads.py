@@ -157,6 +157,17 @@ def xml_cases(secret: str = "../secret/hidden.txt") -> list[tuple[str, dict[str,
     cases.append(("xml-billion-laughs", {"p.xml": _xml(
         "Main", "v", "s := '&l8;';",
         doctype=f'<!DOCTYPE project [<!ENTITY l0 "lol">{laughs}]>\n')}))
+    for i, n in enumerate(names):  # TC6 v2.00: the program named by <pouInstance type=...>
+        cases.append((f"xml-v200-instance-type-{i}", {"p.xml": _xml(
+            "Main", "v", "v := v + 1;").replace("</types>\n</project>", (
+                '</types>\n<instances><configurations><configuration name="c"><resource '
+                'name="r"><task name="t" interval="00:00:00.010000" priority="0"><pouInstance '
+                f'name="i" type="{n}"/></task></resource></configuration></configurations>'
+                "</instances>\n</project>"))}))
+    logger = '<variable name="log"><type><derived name="LOGGER"/></type></variable>'
+    cases.append(("xml-dropped-logger-call", {"p.xml": _xml(  # the call is left out (PLC0250)
+        "Main", "v", f"log(TRIG := TRUE, MSG := {STRINGS[0]}, LEVEL := CRITICAL); v := 1;"
+    ).replace('<variable name="s">', logger + '<variable name="s">')}))
     cases.append(("xml-attr-newline", {"p.xml": _xml(
         "Main", "v", "v := 1;", extra=f'<documentation><xhtml xmlns="http://www.w3.org/1999/'
         f'xhtml">{S}\n"""</xhtml></documentation>')}))

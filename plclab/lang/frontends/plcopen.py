@@ -146,6 +146,11 @@ class _Importer:
         self.file = file
         self.diags: list[Diagnostic] = []
         self.out = A.SourceFile(file)
+        # the Beremiz runtime blocks this file does not declare itself (a project may define its
+        # own LOGGER: Beremiz's tests/logging does, with C inside; then it is the user's POU)
+        self.runtime_only = set(BEREMIZ_ONLY)
+        self.dropped: set[str] = set()  # the current POU's runtime-block instances left out
+        self.loglevel_used: ET.Element | None = None  # where the file first names LOGLEVEL
 
     # -- helpers ----------------------------------------------------------------------------
     def loc(self, el: ET.Element) -> Location:
@@ -242,6 +247,8 @@ class _Importer:
                 except _Bad:
                     pass
             pous = self.kid(types, "pous")
+            self.runtime_only -= {(pel.get("name") or "").upper()
+                                  for pel in (self.kids(pous) if pous is not None else [])}
             for pel in self.kids(pous) if pous is not None else []:
                 try:
                     self.pou(pel)
@@ -254,7 +261,21 @@ class _Importer:
                 self.configuration(c)
             except _Bad:
                 pass
+        self.beremiz_loglevel()
         return self.out
+
+    def beremiz_loglevel(self) -> None:
+        """Beremiz's runtime library declares ``TYPE LOGLEVEL : (CRITICAL, WARNING, INFO, DEBUG)
+        := INFO; END_TYPE`` (its NativeLib.xml, beside LOGGER) and projects use it without
+        declaring it (``lvl : LOGLEVEL := INFO`` wired to a LOGGER's LEVEL, Beremiz's
+        tests/projects/c_runtime). A project that names it and does not declare it gets that
+        declaration: plain IEC, it runs; the LOGGER itself is still left out (PLC0250)."""
+        if self.loglevel_used is None or any(t.name == "LOGLEVEL" for t in self.out.types):
+            return
+        loc = self.loc(self.loglevel_used)
+        members = [(m, None, loc) for m in ("CRITICAL", "WARNING", "INFO", "DEBUG")]
+        self.out.types.append(A.TypeDecl(loc, "LOGLEVEL", A.EnumTypeRef(loc, members),
+                                         A.Name(loc, "INFO", "INFO"), "LOGLEVEL"))
 
     # -- types ------------------------------------------------------------------------------
     def data_type(self, dt: ET.Element) -> None:
@@ -285,7 +306,10 @@ class _Importer:
                 length.isdigit() else None
             return A.StringTypeRef(loc, tag == "wstring", ln)
         if tag == "derived":
-            return A.NamedTypeRef(loc, self.ident(t.get("name"), t, "type name").upper())
+            name = self.ident(t.get("name"), t, "type name").upper()
+            if name == "LOGLEVEL" and self.loglevel_used is None:
+                self.loglevel_used = t
+            return A.NamedTypeRef(loc, name)
         if tag == "array":
             ranges = []
             for d in self.kids(t, "dimension"):
@@ -384,9 +408,10 @@ class _Importer:
         """A variable whose type is a Beremiz runtime block: warned about and left out."""
         t = self.kid(v, "type")
         d = self.kid(t, "derived") if t is not None else None
-        if d is None or (d.get("name") or "").upper() not in BEREMIZ_ONLY:
+        if d is None or (d.get("name") or "").upper() not in self.runtime_only:
             return False
         self.warn_beremiz(d.get("name") or "", v)
+        self.dropped.add((v.get("name") or "").upper())
         return True
 
     # -- POUs -------------------------------------------------------------------------------
@@ -400,6 +425,7 @@ class _Importer:
                       "functionBlock or function", pel)
         decls: list[A.VarDecl] = []
         ret = None
+        self.dropped = set()
         iface = self.kid(pel, "interface")
         if iface is not None:
             decls = self.var_sections(iface, set(_SECTIONS.values()) - {"VAR_GLOBAL"})
@@ -445,6 +471,33 @@ class _Importer:
         if not p.at("EOF"):
             p.error("PLC0010", f"unexpected '{p.tok.text}' in the ST body of {pou.spelling}")
         self.diags.extend(p.diagnostics)
+        if self.dropped:
+            pou.body = self.drop_runtime_calls(pou.body)
+
+    def drop_runtime_calls(self, body: list[A.Stmt]) -> list[A.Stmt]:
+        """Calls of a left-out Beremiz runtime instance in an ST body (``LOGGER0(TRIG := ...,
+        LEVEL := CRITICAL);``, Beremiz's tests/projects/modbus_test_tcp) go with it: each
+        becomes an empty statement, with the warning PLC0250 at the call."""
+        out: list[A.Stmt] = []
+        for s in body:
+            if (isinstance(s, A.CallStmt) and isinstance(s.call.func, A.Name)
+                    and s.call.func.name in self.dropped):
+                self.diags.append(Diagnostic(
+                    "PLC0250", f"the call of {s.call.func.text or s.call.func.name} (a Beremiz "
+                    "runtime block, not available in plclab) is left out", s.loc, "warning"))
+                out.append(A.Empty(s.loc))
+                continue
+            if isinstance(s, A.If):
+                s.branches = [(c, self.drop_runtime_calls(b)) for c, b in s.branches]
+            elif isinstance(s, A.Case):
+                for br in s.branches:
+                    br.body = self.drop_runtime_calls(br.body)
+            elif isinstance(s, A.For | A.While | A.Repeat):
+                s.body = self.drop_runtime_calls(s.body)
+            if isinstance(s, A.If | A.Case) and s.orelse is not None:
+                s.orelse = self.drop_runtime_calls(s.orelse)
+            out.append(s)
+        return out
 
     def il_body(self, pou: A.Pou, lang: ET.Element) -> None:
         p = self.text_parser(None, lang)
@@ -532,7 +585,7 @@ class _Importer:
                              f"{']' if k == 'contact' else ')'} {v.text.strip() if v is not None else ''}"
                     pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
                 elif k == "block":
-                    if (el.get("typeName") or "").upper() in BEREMIZ_ONLY:
+                    if (el.get("typeName") or "").upper() in self.runtime_only:
                         skipped.add(el.get("localId") or "")
                         self.warn_beremiz(el.get("typeName") or "", el)
                         continue
@@ -687,7 +740,12 @@ class _Importer:
         outs = self.kid(el, "outputVariables")
         out_pins = []
         for v in self.kids(outs, "variable") if outs is not None else []:
-            pin = self.pin_name(v, el, set())
+            if not inst and not (v.get("formalParameter") or "").strip() and "OUT" not in out_pins:
+                # a function's result pin without a name: TC6 v2.00 files (Beremiz 2008, its
+                # tests/linux/test_master_DS401GUI) write formalParameter="" where v2.01 has OUT
+                pin = "OUT"
+            else:
+                pin = self.pin_name(v, el, set())
             out_pins.append(pin)
             if v.get("negated") in ("true", "1"):
                 e.neg_out.add(pin)
@@ -764,7 +822,8 @@ class _Importer:
 
     def instance(self, pi: ET.Element, task: str | None) -> A.ProgramInstance:
         n = self.ident(pi.get("name"), pi, "program instance name")
-        t = self.ident(pi.get("typeName"), pi, "program type")
+        # TC6 v2.01 names the program with typeName, v2.00 (Beremiz before 2012) with type
+        t = self.ident(pi.get("typeName", pi.get("type")), pi, "program type")
         return A.ProgramInstance(self.loc(pi), n.upper(), task, t.upper())
 
 
@@ -838,9 +897,12 @@ def _num(s: str | None) -> float:
 
 
 def _iso_duration(s: str) -> str:
-    """``PT0.02S`` (ISO 8601, some exporters) -> ``T#20ms``; IEC literals pass through."""
+    """``PT0.02S`` (ISO 8601, some exporters) -> ``T#20ms``; ``00:00:00.050000`` (an
+    ``xsd:time``, what TC6 v2.00 files of Beremiz before its v2.01 format hold, e.g. its
+    tests/linux/test_master) -> ``T#50ms``; IEC literals pass through."""
     num = r"([0-9]+(?:\.[0-9]+)?)"
-    m = re.match(rf"^PT(?:{num}H)?(?:{num}M)?(?:{num}S)?$", s.strip())
+    m = re.match(rf"^PT(?:{num}H)?(?:{num}M)?(?:{num}S)?$", s.strip()) or \
+        re.match(r"^([0-9]{1,2}):([0-9]{2}):([0-9]{2}(?:\.[0-9]+)?)$", s.strip())
     if not m:
         return s
     h, mi, sec = (float(x) if x else 0.0 for x in m.groups())

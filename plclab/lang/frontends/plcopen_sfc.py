@@ -306,6 +306,13 @@ class _SfcReader:
             self.referenced(el, tr, kid)
         elif kind == "connectionPointIn":
             self.wired(el, tr, kid, graphics)
+        elif kind == "connection":
+            # TC6 v2.00 (Beremiz before 2012, its tests/linux/test_master_DS401GUI) puts the
+            # <connection>s in <condition> itself; v2.01 wraps them in <connectionPointIn>
+            cpi = ET.Element(cond.tag[: -len("condition")] + "connectionPointIn")
+            cpi.extend(k for k in self.imp.kids(cond) if _tag(k) == "connection")
+            self.imp.starts[id(cpi)] = self.imp.starts.get(id(cond), (0, 0))
+            self.wired(el, tr, cpi, graphics)
         else:
             self.fail("PLC0186", f"{self.imp.describe(el)} has an empty <condition>; write an "
                       "inline condition, a reference or wire LD/FBD elements to it", cond)

@@ -173,6 +173,23 @@ def test_beremiz_runtime_blocks_are_skipped_with_a_warning():
     assert run(plc, [dict(b=True)], ("y", "s")) == [(True, "")]
 
 
+def test_a_project_that_declares_its_own_logger_uses_it():
+    """Beremiz's tests/logging project declares a function block named LOGGER itself (its body
+    calls C); a declared POU is the user's, not the runtime block, so it is not skipped."""
+    logger = ('<pou name="LOGGER" pouType="functionBlock"><interface><inputVars>'
+              + var("TRIG") + '</inputVars><outputVars>' + var("SEEN") + '</outputVars>'
+              '</interface><body><ST><![CDATA[IF TRIG THEN SEEN := TRUE; END_IF;]]></ST>'
+              '</body></pou>')
+    body = (invar(1, "a") + block(2, "LOGGER", {"TRIG": (1, None)}, ["SEEN"], instance="log")
+            + outvar(3, "y", 2, "SEEN"))
+    variables = BOOLS + var("log", '<derived name="LOGGER"/>')
+    text = project(program(body, variables) + logger)
+    assert not [d for d in check_sources([(text, "t.xml")])[1] if d.code == "PLC0250"]
+    plc = plclab.loads(text, "t.xml")
+    assert run(plc, [dict(a=False), dict(a=True), dict(a=False)], ("y",)) == [
+        (False,), (True,), (True,)]
+
+
 def test_a_loop_through_an_in_out_variable_reads_the_variable():
     """A counter drawn the Beremiz way: cnt -> ADD(1, cnt) -> SEL(G := reset, IN0 := sum,
     IN1 := 0) -> inOutVariable cnt -> outVariable out. The ADD reads the variable's value."""
@@ -209,3 +226,57 @@ def test_function_block_with_en_runs_only_when_enabled_and_eno_follows_en():
     # disabled, the counter does not see the rising edge of scan 3; enabled again, it sees
     # b rise against the value of its last run
     assert got == [(True, 1), (True, 1), (False, 1), (False, 1), (True, 2)]
+
+
+def test_a_runtime_block_called_from_st_is_left_out_with_its_call():
+    """Beremiz's tests/projects/modbus_test_tcp calls a LOGGER from an ST function block, with
+    LEVEL := CRITICAL (an enumerated value of the runtime's LOGLEVEL): the call goes too."""
+    st = ('<pou name="P" pouType="program"><interface><localVars>' + var("x") + var("n", "INT")
+          + var("log", '<derived name="LOGGER"/>') + '</localVars></interface><body><ST>'
+          '<![CDATA[IF x THEN\n  log(TRIG := TRUE, MSG := \'OK\', LEVEL := CRITICAL);\n'
+          '  n := n + 1;\nEND_IF;]]></ST></body></pou>')
+    text = project(st)
+    ds = check_sources([(text, "t.xml")])[1]
+    assert not [d for d in ds if d.severity == "error"]
+    calls = [d for d in ds if d.code == "PLC0250" and "call of" in d.message]
+    assert len(calls) == 1 and calls[0].location.line > 0
+    plc = plclab.loads(text, "t.xml")
+    assert run(plc, [dict(x=True), dict(x=True)], ("n",)) == [(1,), (2,)]
+
+
+def test_beremiz_loglevel_is_declared_when_a_project_names_it():
+    """Beremiz's NativeLib declares TYPE LOGLEVEL : (CRITICAL, WARNING, INFO, DEBUG) := INFO;
+    projects use it undeclared (tests/projects/c_runtime); a project's own declaration wins."""
+    variables = BOOLS + var("lvl", '<derived name="LOGLEVEL"/>')
+    body = (invar(1, "lvl") + invar(2, "WARNING", y=40)
+            + block(3, "EQ", {"IN1": (1, None), "IN2": (2, None)}, ["OUT"])
+            + outvar(4, "y", 3, "OUT"))
+    text = project(program(body, variables))
+    assert not [d for d in check_sources([(text, "t.xml")])[1] if d.severity == "error"]
+    plc = plclab.loads(text, "t.xml")
+    assert run(plc, [{}], ("y",)) == [(False,)]  # INFO, the type's initial value
+    own = text.replace("<dataTypes/>", '<dataTypes><dataType name="LOGLEVEL"><baseType><enum>'
+                       '<values><value name="WARNING"/><value name="INFO"/></values></enum>'
+                       '</baseType></dataType></dataTypes>')
+    plc = plclab.loads(own, "t.xml")
+    assert run(plc, [{}], ("y",)) == [(True,)]  # its first value, WARNING
+
+
+def test_a_function_result_pin_without_a_name_is_its_result():
+    """TC6 v2.00 files (Beremiz 2008) write a function block's result pin as
+    formalParameter="" (v2.01: OUT), and wire from it without a formalParameter."""
+    fn = ('<pou name="TWICE" pouType="function"><interface><returnType><INT/></returnType>'
+          '<inputVars>' + var("X", "INT") + '</inputVars></interface><body><ST>'
+          '<![CDATA[TWICE := X * 2;]]></ST></body></pou>')
+    body = (invar(1, "n") + block(2, "TWICE", {"X": (1, None)}, [""]) + outvar(3, "m", 2))
+    variables = BOOLS + var("n", "INT") + var("m", "INT")
+    text = project(program(body, variables) + fn)
+    assert not [d for d in check_sources([(text, "t.xml")])[1] if d.severity == "error"]
+    plc = plclab.loads(text, "t.xml")
+    assert run(plc, [dict(n=21)], ("m",)) == [(42,)]
+    # an instance's pin still needs its name
+    bad = project(program(invar(1, "a") + block(2, "R_TRIG", {"CLK": (1, None)}, [""],
+                                                instance="r") + outvar(3, "y", 2),
+                          BOOLS + var("r", '<derived name="R_TRIG"/>')))
+    errs = [d for d in check_sources([(bad, "t.xml")])[1] if d.severity == "error"]
+    assert errs and errs[0].code == "PLC0183"

@@ -272,3 +272,19 @@ def test_a_contact_drives_a_block_input_without_a_coil():
         plc.scan()
         got.append(plc["P.cnt"])
     assert got == [1, 2, 17, 18]
+
+
+def test_a_tc6_v200_project_names_its_program_with_type_and_its_interval_as_a_time():
+    """Beremiz's projects before TC6 v2.01 (tests/linux/test_master, 2008): the namespace
+    http://www.plcopen.org/xml/tc6.xsd, ``<pouInstance type=...>`` and the task interval as an
+    ``xsd:time`` (``00:00:00.050000``)."""
+    old = (BEREMIZ_STYLE.replace("http://www.plcopen.org/xml/tc6_0201",
+                                 "http://www.plcopen.org/xml/tc6.xsd")
+           .replace('interval="T#20ms"', 'interval="00:00:00.050000"')
+           .replace('<pouInstance name="instance0" typeName="program0"/>',
+                    '<pouInstance name="instance0" type="program0"/>'))
+    assert 'type="program0"' in old and "00:00:00.050000" in old
+    plc = plclab.loads(old, "plc.xml")
+    assert [(t.name, t.interval.value) for t in plc.project.tasks] == [("TASK0", 50_000_000)]
+    plc.scan()
+    assert plc["instance0.count"] == 1
