@@ -24,7 +24,7 @@ from typing import Any
 ENABLED = True
 """False: every scan goes through the plain loop (for comparisons and debugging)."""
 
-_RESERVED = frozenset({"k", "k_end", "next_op", "scan", "t_ns", "t", "v", "w0", "w1", "pending",
+_RESERVED = frozenset({"k", "k_end", "next_op", "scan", "checked", "t_ns", "t", "v", "w0", "w1", "pending",
                        "fault", "st"})
 
 
@@ -50,12 +50,15 @@ def key(sim: Any) -> tuple[Any, ...]:
             bool(sim._g_watch.names), sim.substeps)
 
 
-def build(sim: Any) -> Callable[[int, int, float, Callable[[], None]], int]:
-    """The fused loop of ``sim``: ``fast(k, k_end, next_op, scan) -> k``.
+def build(sim: Any) -> Callable[..., int]:
+    """The fused loop of ``sim``: ``fast(k, k_end, next_op, scan, checked) -> k``.
 
     Runs scans ``k, k+1, ...`` while ``k < k_end`` and the scan's time is before ``next_op``
-    (the time of the next scenario action, ns), with ``scan`` the PLC's prebound scan; returns
-    the number of the first scan it did not run (also stored in ``sim.k``, on a fault too).
+    (the time of the next scenario action, ns); returns the number of the first scan it did
+    not run (also stored in ``sim.k``, on a fault too). ``checked`` is the PLC's prebound scan
+    (``Plc.scanner()``), ``scan`` the same or its ``unchecked`` part when ``ready()`` held
+    at the call: nothing in the loop but a fault changes what ``ready()`` checks, so after
+    the PLC's state changed the loop goes on with ``checked``.
     """
     from plclab.errors import PlcRuntimeFault
 
@@ -89,7 +92,7 @@ def build(sim: Any) -> Callable[[int, int, float, Callable[[], None]], int]:
             emit(ln[4:], indent)
 
     params = "".join(f", {n}={n}" for n in ns)
-    emit(f"def fast(k, k_end, next_op, scan, *{params}):")
+    emit(f"def fast(k, k_end, next_op, scan, checked, *{params}):")
     emit("pending = L_len(L_prows)", 4)
     emit("st = L_sim._plc_state", 4)
     emit("try:", 4)
@@ -113,6 +116,7 @@ def build(sim: Any) -> Callable[[int, int, float, Callable[[], None]], int]:
     emit("if L_plc.state != st:", i)
     emit("L_pchanged(t_ns)", i + 4)
     emit("st = L_sim._plc_state", i + 4)
+    emit("scan = checked", i + 4)
     for j, item in enumerate(tr.out_items):
         emit(f"q{j} = {item}", i)
     # 4. record

@@ -583,7 +583,8 @@ class Simulation:
         ops = self._ops
         tick = self.scan_ns
         k_end = self.k + n
-        scan = None
+        scan: Any = None
+        unchecked = ready = None
         perf = _time.perf_counter_ns
         while self.k < k_end:
             i = self._op_i
@@ -594,9 +595,12 @@ class Simulation:
             if scan is None:
                 self._check_clock()
                 scan = self.plc.scanner()  # one scan, prebound (ADR 0024)
+                unchecked = getattr(scan, "unchecked", None)
+                ready = getattr(scan, "ready", None)
             w_start = perf()
             try:
-                fast(self.k, k_end, next_op, scan)
+                fast(self.k, k_end, next_op,
+                     unchecked if unchecked is not None and ready() else scan, scan)
             finally:
                 self.wall_s += (perf() - w_start) / 1e9
 
