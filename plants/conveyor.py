@@ -70,11 +70,28 @@ COS_FALLEN = 0.5  # |cos(angle)| below this: fallen (tilted more than 60 degrees
 COS_UPRIGHT = 0.95  # |cos(angle)| above this: upright enough to be filled
 KNOCK_LEAD = 0.5  # m: knocks happen at least this far before the eyes (a fall takes ~0.3 m)
 
+# pymunk's C getters of a body's position and angle (what Body.position and Body.angle call),
+# found when the first conveyor is built; None when this pymunk does not have them
+_POSE: tuple[Any, Any] | None = None
+
+
+def _find_pose_getters() -> None:
+    global _POSE
+    try:
+        from pymunk._chipmunk_cffi import lib
+    except ImportError:  # pragma: no cover - another pymunk: use its properties
+        return
+    get_pos = getattr(lib, "cpBodyGetPosition", None)
+    get_angle = getattr(lib, "cpBodyGetAngle", None)
+    if get_pos is not None and get_angle is not None:
+        _POSE = (get_pos, get_angle)
+
 
 class _Bottle:
     __slots__ = (
         "angle",
         "body",
+        "cb",
         "cos",
         "fallen",
         "fill",
@@ -97,6 +114,7 @@ class _Bottle:
         self.hh = hh
         self.slot = slot
         self.body = body
+        self.cb = getattr(body, "_body", None) if _POSE is not None else None
         self.shape = shape
         self.fill = 0.0
         self.fallen = False
@@ -108,9 +126,16 @@ class _Bottle:
         self.sin = 0.0
 
     def sync(self) -> None:
-        body = self.body
-        self.x, self.y = body.position
-        a = body.angle
+        cb = self.cb
+        if cb is not None:  # pymunk's own getters without its properties (issue 19)
+            v = _POSE[0](cb)
+            self.x = v.x
+            self.y = v.y
+            a = _POSE[1](cb)
+        else:
+            body = self.body
+            self.x, self.y = body.position
+            a = body.angle
         if a != self.angle:  # an upright bottle riding the belt keeps its angle: no cos/sin
             self.angle = a
             self.cos = math.cos(a)
@@ -278,6 +303,7 @@ class Conveyor(Plant):
         self.max_dt = float(max_dt)
         self._hw = self.bottle_width / 2.0
         self._hh = self.bottle_height / 2.0
+        self._snap_template: dict[str, float] | None = None  # see snapshot()
         self._slot_keys = [
             (f"bottle{i}.id", f"bottle{i}.x", f"bottle{i}.y", f"bottle{i}.angle")
             for i in range(self.max_bottles)
@@ -309,6 +335,8 @@ class Conveyor(Plant):
         import pymunk  # lazy: only this plant needs it
 
         self._pm = pymunk
+        if _POSE is None:
+            _find_pose_getters()
         space = pymunk.Space()
         space.gravity = (0.0, -9.81)
         space.iterations = 10
@@ -623,18 +651,25 @@ class Conveyor(Plant):
     # ------------------------------------------------------------------ records
     def snapshot(self) -> dict[str, float]:
         """Counters, belt and cylinder state and every slot's bottle id/x/y/angle (NaN = free)."""
-        out: dict[str, float] = {k: float(v) for k, v in self.counts.items()}
+        tmpl = self._snap_template
+        if tmpl is None or len(tmpl) != len(self.counts) + 5 + 4 * len(self._slot_keys):
+            # the keys in their order, every slot free: one copy a scan instead of a loop
+            tmpl = {k: 0.0 for k in self.counts}
+            for k in ("spilled_volume", "filled_volume", "belt_speed", "cylinder", "on_belt"):
+                tmpl[k] = 0.0
+            for slot_keys in self._slot_keys:
+                for k in slot_keys:
+                    tmpl[k] = NAN
+            self._snap_template = tmpl
+        out = tmpl.copy()
+        for k, v in self.counts.items():
+            out[k] = float(v)
         out["spilled_volume"] = self.spilled_volume
         out["filled_volume"] = self.filled_volume
         out["belt_speed"] = self.v_belt
         out["cylinder"] = self.cyl
         out["on_belt"] = float(len(self._bottles))
         keys = self._slot_keys
-        for k_id, k_x, k_y, k_a in keys:
-            out[k_id] = NAN
-            out[k_x] = NAN
-            out[k_y] = NAN
-            out[k_a] = NAN
         for b in self._bottles:
             k_id, k_x, k_y, k_a = keys[b.slot]
             out[k_id] = float(b.id)
