@@ -18,6 +18,7 @@ and comes back. See ADR 0032.
 
 from __future__ import annotations
 
+import gc
 from collections.abc import Callable
 from typing import Any
 
@@ -80,7 +81,7 @@ def build(sim: Any) -> Callable[..., int]:
         "L_drain": plant.drain_events, "L_pevents": sim._plant_events,
         "L_pfault": sim._plc_fault, "L_pchanged": sim._plc_changed,
         "L_adv": getattr(plant, "_advance", None), "L_outp": getattr(plant, "_outputs", None),
-        "L_io": getattr(plant, "_io", None), "L_len": len,
+        "L_io": getattr(plant, "_io", None), "L_len": len, "L_collect": gc.collect,
     })
     lines: list[str] = []
 
@@ -137,6 +138,7 @@ def build(sim: Any) -> Callable[..., int]:
     emit(f"if pending >= {_CHUNK}:", r)
     emit("L_flush()", r + 4)
     emit("pending = 0", r + 4)
+    emit("L_collect(0)", r + 4)  # the cyclic GC is paused during the loop: young objects
     # 5. plant
     if inline_step:  # Plant.step(h) for 0 < h <= max_dt
         step = ["L_adv(L_h)", "L_pl.time += L_h", "L_outp()"]
