@@ -104,6 +104,7 @@ class _Bottle:
         "shape",
         "sin",
         "slot",
+        "ta",
         "x",
         "y",
     )
@@ -122,6 +123,7 @@ class _Bottle:
         self.knocked = False
         self.passed = False
         self.x = self.y = self.angle = 0.0
+        self.ta = 0.0  # the angle of cos and sin (worked out when first needed: trig)
         self.cos = 1.0
         self.sin = 0.0
 
@@ -136,13 +138,21 @@ class _Bottle:
             body = self.body
             self.x, self.y = body.position
             a = body.angle
-        if a != self.angle:  # an upright bottle riding the belt keeps its angle: no cos/sin
+        if a != self.angle:
             self.angle = a
+
+    def trig(self) -> None:
+        """Bring ``cos`` and ``sin`` up to the angle (only bottles near a sensor, a plate or
+        the feeder need them, and a tilt test only beyond 1 rad: issue 19)."""
+        a = self.angle
+        if a != self.ta:
+            self.ta = a
             self.cos = math.cos(a)
             self.sin = math.sin(a)
 
     def contains(self, px: float, py: float) -> bool:
         """Is the point inside the bottle's rotated rectangle (a beam broken)?"""
+        self.trig()
         dx = px - self.x
         dy = py - self.y
         c = self.cos
@@ -155,6 +165,7 @@ class _Bottle:
 
     def half_x(self, hw: float, hh: float) -> float:
         """Half extent of the bottle along the belt."""
+        self.trig()
         return hw * abs(self.cos) + hh * abs(self.sin)
 
 
@@ -480,7 +491,9 @@ class Conveyor(Plant):
         half_plate = self.plate_width / 2.0
         for b in self._bottles:
             b.sync()
-            if not b.fallen and not b.passed and abs(b.cos) < COS_FALLEN:
+            # |cos| >= cos(1 rad) = 0.54 > COS_FALLEN within 1 rad of upright: no cos needed
+            if (not b.fallen and not b.passed and not -1.0 <= b.angle <= 1.0
+                    and (b.trig() or abs(b.cos) < COS_FALLEN)):
                 b.fallen = True
                 self.counts["toppled"] += 1
                 self._emit(
@@ -567,7 +580,8 @@ class Conveyor(Plant):
         tol = self.nozzle_tolerance
         xf = self.x_fill
         for b in self._bottles:
-            if abs(b.x - xf) <= tol and abs(b.cos) >= COS_UPRIGHT and b.y < self.bottle_height:
+            if (abs(b.x - xf) <= tol and (b.trig() or abs(b.cos) >= COS_UPRIGHT)
+                    and b.y < self.bottle_height):
                 return b
         return None
 
