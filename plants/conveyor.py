@@ -489,8 +489,25 @@ class Conveyor(Plant):
         removed: list[_Bottle] = []
         sweep = self.cyl >= 0.5
         half_plate = self.plate_width / 2.0
+        # loop invariants (nothing in the loop moves the eyes, the plate or the belt's end)
+        k_hi = self.x_eye - KNOCK_LEAD
+        k_lo = k_hi - 0.2
+        x_reject = self.x_reject
+        end = self.belt_length
+        gone = end + 1.0
+        get_pos, get_angle = _POSE if _POSE is not None else (None, None)
         for b in self._bottles:
-            b.sync()
+            cb = b.cb
+            if cb is not None:  # b.sync() inline
+                v = get_pos(cb)  # type: ignore[misc]
+                b.x = x = v.x
+                b.y = v.y
+                a = get_angle(cb)  # type: ignore[misc]
+                if a != b.angle:
+                    b.angle = a
+            else:
+                b.sync()
+                x = b.x
             # |cos| >= cos(1 rad) = 0.54 > COS_FALLEN within 1 rad of upright: no cos needed
             if (not b.fallen and not b.passed and not -1.0 <= b.angle <= 1.0
                     and (b.trig() or abs(b.cos) < COS_FALLEN)):
@@ -498,31 +515,31 @@ class Conveyor(Plant):
                 self.counts["toppled"] += 1
                 self._emit(
                     "bottle_toppled",
-                    f"bottle {b.id} toppled at x = {b.x:.2f} m",
+                    f"bottle {b.id} toppled at x = {x:.2f} m",
                     id=b.id,
-                    x=b.x,
+                    x=x,
                     knocked=b.knocked,
                 )
-            if b.knock_x is not None and b.x >= b.knock_x and not b.fallen:
+            if b.knock_x is not None and x >= b.knock_x and not b.fallen:
                 self._knock(b)
             if (
                 self._knocks_left > 0
                 and not b.fallen
                 and not b.knocked
-                and self.x_eye - KNOCK_LEAD - 0.2 <= b.x <= self.x_eye - KNOCK_LEAD
+                and k_lo <= x <= k_hi
             ):
                 self._knock(b)
                 self._knocks_left -= 1
                 if self._knocks_left == 0 and "knock" in self._faults:
                     self.clear("knock")
-            if sweep and abs(b.x - self.x_reject) < b.half_x(hw, hh) + half_plate and b.y < 0.5:
+            if sweep and abs(x - x_reject) < b.half_x(hw, hh) + half_plate and b.y < 0.5:
                 removed.append(b)
                 self._reject(b)
                 continue
-            if not b.passed and b.x > self.belt_length:
+            if not b.passed and x > end:
                 b.passed = True
                 self._bin(b)
-            if b.y < -0.4 or b.x > self.belt_length + 1.0:
+            if b.y < -0.4 or x > gone:
                 removed.append(b)
                 if not b.passed:
                     self.counts["lost"] += 1
