@@ -30,12 +30,12 @@ from plclab.io.scaling import (
     CountFormat,
     SignalRange,
     Status,
-    _quantise,
     count_format,
     counts_to_eng,
     counts_to_signal,
     eng_resolution,
     eng_to_counts,
+    quantise_counts,
     signal_code,
     signal_range,
     signal_status,
@@ -347,7 +347,7 @@ class AnalogInput:
             x = self.transmitter.output(value + self._n)
             self._y = self._signal = x
             rng, fmt = self.range, self.format
-            code, flag = _quantise(
+            code, flag = quantise_counts(
                 fmt.zero + (x - rng.lo) / (rng.hi - rng.lo) * (fmt.full - fmt.zero), fmt)
             if flag < 0:  # under the range: the wire-break code (or not) as _code decides
                 code = self._code(x)
