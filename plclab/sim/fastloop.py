@@ -19,14 +19,16 @@ and comes back. See ADR 0032.
 from __future__ import annotations
 
 import gc
+import time
 from collections.abc import Callable
 from typing import Any
 
 ENABLED = True
 """False: every scan goes through the plain loop (for comparisons and debugging)."""
 
-_RESERVED = frozenset({"k", "k_end", "next_op", "scan", "checked", "t_ns", "t", "v", "w0", "w1", "pending",
-                       "fault", "st"})
+# the loop's own local names (the transfer's namespace must not use them)
+_RESERVED = frozenset({"k", "k_end", "next_op", "scan", "checked", "t_ns", "t", "v", "w0", "w1",
+                       "pending", "fault", "st", "evs"})
 
 
 def _plant_parts(plant: Any, h: float) -> tuple[bool, bool, bool]:
@@ -72,7 +74,7 @@ def build(sim: Any) -> Callable[..., int]:
     assert not clash, clash
     ns.update({
         "L_sim": sim, "L_plc": sim.plc, "L_pl": plant, "L_fault": PlcRuntimeFault,
-        "L_tick": sim.scan_ns, "L_h": sim.dt, "L_perf": __import__("time").perf_counter_ns,
+        "L_tick": sim.scan_ns, "L_h": sim.dt, "L_perf": time.perf_counter_ns,
         "L_idx": rec.index.append, "L_wall": rec.wall.append, "L_flush": rec.flush,
         "L_prows": sim._g_plant.rows, "L_prow": sim._g_plant.rows.append,
         "L_irow": sim._g_in.rows.append, "L_orow": sim._g_out.rows.append,
