@@ -1,25 +1,29 @@
 """Simulation speed: real-time factor (simulated time / wall time) of three closed loops.
 
-    python benchmarks/sim_bench.py            # the full runs (about half a minute)
+    python benchmarks/sim_bench.py            # the full runs (about a minute)
     python benchmarks/sim_bench.py --quick    # a tenth of the simulated time
     python benchmarks/sim_bench.py --profile tank   # cProfile of one case
 
-Cases (default wiring of each plant, every scan recorded):
+Cases (default wiring of each plant, every scan recorded), with the targets of issue 19:
 
-* tank + the two-position program, 1 h at 10 ms scans (target >= 1,000x real time);
-* bottle conveyor 9 m long, a bottle every 0.35 m (about 25 bottles in flight), seal-in start and
-  the textbook's reject rung, 10 min at 10 ms (target >= 50x);
+* tank + the two-position program, 1 h at 10 ms scans (target >= 5,000x real time);
+* bottle conveyor 20 m long, a bottle every 0.35 m (about 50 bottles in flight), seal-in start
+  and the textbook's reject rung, 10 min at 10 ms. Target: within 1.2x of bare pymunk, where
+  "bare pymunk" is the wall time spent inside ``space.step`` during this very run (the same
+  space, the same bodies, the same number of steps: timed by wrapping ``space.step``), so the
+  ratio is the whole simulation (PLC, I/O, plant logic, trace with every bottle's pose) over
+  the physics it cannot avoid;
 * ventilation, textbook standby logic with a temperature-staged second fan, 24 h at 100 ms
   (target >= 5,000x).
 
-This is a measurement, not a test: the numbers depend on the machine.
+This is a measurement, not a test: the numbers depend on the machine (and on its load:
+compare runs side by side).
 """
 
 from __future__ import annotations
 
 import argparse
 import cProfile
-import math
 import pstats
 import sys
 import time
@@ -94,7 +98,7 @@ def case_conveyor(scale: float) -> tuple[Simulation, float]:
     plc = plclab.loads(CONVEYOR)
     sc = Scenario().press("START", at="1s")
     sim = Simulation(plc, "conveyor", scenario=sc,
-                     plant_params={"belt_length": 9.0, "feed_pitch": 0.35})
+                     plant_params={"belt_length": 20.0, "feed_pitch": 0.35, "max_bottles": 64})
     return sim, 600.0 * scale
 
 
@@ -104,45 +108,53 @@ def case_ventilation(scale: float) -> tuple[Simulation, float]:
     return Simulation(plc, "ventilation", scenario=sc), 86400.0 * scale
 
 
-CASES = {
-    "tank": ("tank, two-position, 10 ms scans", case_tank, 5000.0),  # issue 19
-    "conveyor": ("conveyor, ~25 bottles, 10 ms", case_conveyor, 50.0),
+CASES = {  # name: (title, make, target); the conveyor's target is its ratio to bare pymunk
+    "tank": ("tank, two-position, 10 ms scans", case_tank, 5000.0),
+    "conveyor": ("conveyor, ~50 bottles, 10 ms", case_conveyor, 1.2),
     "ventilation": ("ventilation, staged fans, 100 ms", case_ventilation, 5000.0),
 }
 
 
-def bare_pymunk(sim: Simulation) -> float:
-    """Wall seconds of the conveyor's pymunk space stepped alone (same bodies as at the end of
-    the run, the same number of physics steps): what the simulation costs at the least."""
-    plant = sim.plant
-    h = sim.dt
-    n = max(1, math.ceil(h / plant.physics_dt - 1e-9))
-    space = plant._space
-    steps = sim.k * sim.substeps * n
-    t0 = time.perf_counter()
-    for _ in range(steps):
-        space.step(h / n)
-    return time.perf_counter() - t0
+def time_pymunk(sim: Simulation) -> list[int]:
+    """Wrap the conveyor's ``space.step`` so that it adds its wall time (ns) to the returned
+    cell: bare pymunk, measured on the very space, bodies and steps of the run."""
+    space = sim.plant._space
+    inner = space.step
+    cell = [0]
+    perf = time.perf_counter_ns
+
+    def step(dt: float) -> None:
+        t0 = perf()
+        inner(dt)
+        cell[0] += perf() - t0
+
+    space.step = step
+    return cell
 
 
-def measure(name: str, scale: float) -> dict[str, float | str]:
+def measure(name: str, scale: float) -> dict[str, float | str | bool]:
     title, make, target = CASES[name]
     sim, seconds = make(scale)
+    cell = time_pymunk(sim) if name == "conveyor" else None
     t0 = time.perf_counter()
     tr = sim.run(seconds)
     wall = time.perf_counter() - t0
-    extra = ""
-    if name == "conveyor":
-        bottles = sum(1 for _ in sim.plant.bottles)
-        bare = bare_pymunk(sim)
-        extra = (f"{bottles} bottles on the belt at the end; bare pymunk {bare:.2f} s, "
-                 f"{wall / bare:.2f}x of it (target 1.2x)")
-    elif name == "tank":
-        extra = f"{tr.switchings('PUMP')} pump switchings"
+    factor = seconds / wall
+    if cell is not None:
+        bottles = int(tr["on_belt"].max())
+        bare = cell[0] / 1e9
+        ratio = wall / bare
+        good = ratio <= target
+        extra = (f"up to {bottles} bottles on the belt; bare pymunk (space.step in this run) "
+                 f"{bare:.2f} s: the simulation takes {ratio:.2f}x of it (target "
+                 f"<= {target:g}x)")
     else:
-        extra = f"{tr.switchings('FAN3')} FAN3 switchings"
+        good = factor >= target
+        extra = (f"{tr.switchings('PUMP')} pump switchings" if name == "tank" else
+                 f"{tr.switchings('FAN3')} FAN3 switchings")
     return {"case": title, "simulated": seconds, "scans": sim.k, "wall": wall,
-            "factor": seconds / wall, "target": target, "us_per_scan": wall / sim.k * 1e6,
+            "factor": factor, "target": f"{target:,.0f}x" if cell is None else
+            f"{target:g}x pm", "good": good, "us_per_scan": wall / sim.k * 1e6,
             "plc_us": float(tr.wall["scan_s"].mean() * 1e6), "note": extra}
 
 
@@ -156,6 +168,7 @@ def main(argv: list[str] | None = None) -> int:
     if unknown:
         ap.error(f"unknown case {unknown[0]!r}; cases: {', '.join(CASES)}")
     scale = 0.1 if ns.quick else 1.0
+    import numpy  # noqa: F401 - the trace's import, a one-time cost of a process: not timed
     if ns.profile:
         sim, seconds = CASES[ns.profile][1](scale)
         prof = cProfile.Profile()
@@ -168,10 +181,10 @@ def main(argv: list[str] | None = None) -> int:
     ok = True
     for name in names:
         r = measure(name, scale)
-        good = r["factor"] >= r["target"]
+        good = bool(r["good"])
         ok &= good
         print(f"{r['case']:<36} {r['simulated']:>9.0f}s {r['scans']:>9} {r['wall']:>8.2f} "
-              f"{r['factor']:>11,.0f}x {r['target']:>7,.0f}x {r['us_per_scan']:>8.1f} "
+              f"{r['factor']:>11,.0f}x {r['target']:>8} {r['us_per_scan']:>8.1f} "
               f"{r['plc_us']:>7.2f}  {'ok' if good else 'BELOW TARGET'}; {r['note']}")
     return 0 if ok else 1
 

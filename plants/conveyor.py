@@ -70,11 +70,28 @@ COS_FALLEN = 0.5  # |cos(angle)| below this: fallen (tilted more than 60 degrees
 COS_UPRIGHT = 0.95  # |cos(angle)| above this: upright enough to be filled
 KNOCK_LEAD = 0.5  # m: knocks happen at least this far before the eyes (a fall takes ~0.3 m)
 
+# pymunk's C getters of a body's position and angle (what Body.position and Body.angle call),
+# found when the first conveyor is built; None when this pymunk does not have them
+_POSE: tuple[Any, Any] | None = None
+
+
+def _find_pose_getters() -> None:
+    global _POSE
+    try:
+        from pymunk._chipmunk_cffi import lib
+    except ImportError:  # pragma: no cover - another pymunk: use its properties
+        return
+    get_pos = getattr(lib, "cpBodyGetPosition", None)
+    get_angle = getattr(lib, "cpBodyGetAngle", None)
+    if get_pos is not None and get_angle is not None:
+        _POSE = (get_pos, get_angle)
+
 
 class _Bottle:
     __slots__ = (
         "angle",
         "body",
+        "cb",
         "cos",
         "fallen",
         "fill",
@@ -87,6 +104,7 @@ class _Bottle:
         "shape",
         "sin",
         "slot",
+        "ta",
         "x",
         "y",
     )
@@ -97,6 +115,7 @@ class _Bottle:
         self.hh = hh
         self.slot = slot
         self.body = body
+        self.cb = getattr(body, "_body", None) if _POSE is not None else None
         self.shape = shape
         self.fill = 0.0
         self.fallen = False
@@ -104,20 +123,36 @@ class _Bottle:
         self.knocked = False
         self.passed = False
         self.x = self.y = self.angle = 0.0
+        self.ta = 0.0  # the angle of cos and sin (worked out when first needed: trig)
         self.cos = 1.0
         self.sin = 0.0
 
     def sync(self) -> None:
-        body = self.body
-        self.x, self.y = body.position
-        a = body.angle
-        if a != self.angle:  # an upright bottle riding the belt keeps its angle: no cos/sin
+        cb = self.cb
+        if cb is not None:  # pymunk's own getters without its properties (issue 19)
+            v = _POSE[0](cb)
+            self.x = v.x
+            self.y = v.y
+            a = _POSE[1](cb)
+        else:
+            body = self.body
+            self.x, self.y = body.position
+            a = body.angle
+        if a != self.angle:
             self.angle = a
+
+    def trig(self) -> None:
+        """Bring ``cos`` and ``sin`` up to the angle (only bottles near a sensor, a plate or
+        the feeder need them, and a tilt test only beyond 1 rad: issue 19)."""
+        a = self.angle
+        if a != self.ta:
+            self.ta = a
             self.cos = math.cos(a)
             self.sin = math.sin(a)
 
     def contains(self, px: float, py: float) -> bool:
         """Is the point inside the bottle's rotated rectangle (a beam broken)?"""
+        self.trig()
         dx = px - self.x
         dy = py - self.y
         c = self.cos
@@ -130,6 +165,7 @@ class _Bottle:
 
     def half_x(self, hw: float, hh: float) -> float:
         """Half extent of the bottle along the belt."""
+        self.trig()
         return hw * abs(self.cos) + hh * abs(self.sin)
 
 
@@ -278,6 +314,7 @@ class Conveyor(Plant):
         self.max_dt = float(max_dt)
         self._hw = self.bottle_width / 2.0
         self._hh = self.bottle_height / 2.0
+        self._snap_template: dict[str, float] | None = None  # see snapshot()
         self._slot_keys = [
             (f"bottle{i}.id", f"bottle{i}.x", f"bottle{i}.y", f"bottle{i}.angle")
             for i in range(self.max_bottles)
@@ -309,6 +346,8 @@ class Conveyor(Plant):
         import pymunk  # lazy: only this plant needs it
 
         self._pm = pymunk
+        if _POSE is None:
+            _find_pose_getters()
         space = pymunk.Space()
         space.gravity = (0.0, -9.81)
         space.iterations = 10
@@ -450,38 +489,57 @@ class Conveyor(Plant):
         removed: list[_Bottle] = []
         sweep = self.cyl >= 0.5
         half_plate = self.plate_width / 2.0
+        # loop invariants (nothing in the loop moves the eyes, the plate or the belt's end)
+        k_hi = self.x_eye - KNOCK_LEAD
+        k_lo = k_hi - 0.2
+        x_reject = self.x_reject
+        end = self.belt_length
+        gone = end + 1.0
+        get_pos, get_angle = _POSE if _POSE is not None else (None, None)
         for b in self._bottles:
-            b.sync()
-            if not b.fallen and not b.passed and abs(b.cos) < COS_FALLEN:
+            cb = b.cb
+            if cb is not None:  # b.sync() inline
+                v = get_pos(cb)  # type: ignore[misc]
+                b.x = x = v.x
+                b.y = v.y
+                a = get_angle(cb)  # type: ignore[misc]
+                if a != b.angle:
+                    b.angle = a
+            else:
+                b.sync()
+                x = b.x
+            # |cos| >= cos(1 rad) = 0.54 > COS_FALLEN within 1 rad of upright: no cos needed
+            if (not b.fallen and not b.passed and not -1.0 <= b.angle <= 1.0
+                    and (b.trig() or abs(b.cos) < COS_FALLEN)):
                 b.fallen = True
                 self.counts["toppled"] += 1
                 self._emit(
                     "bottle_toppled",
-                    f"bottle {b.id} toppled at x = {b.x:.2f} m",
+                    f"bottle {b.id} toppled at x = {x:.2f} m",
                     id=b.id,
-                    x=b.x,
+                    x=x,
                     knocked=b.knocked,
                 )
-            if b.knock_x is not None and b.x >= b.knock_x and not b.fallen:
+            if b.knock_x is not None and x >= b.knock_x and not b.fallen:
                 self._knock(b)
             if (
                 self._knocks_left > 0
                 and not b.fallen
                 and not b.knocked
-                and self.x_eye - KNOCK_LEAD - 0.2 <= b.x <= self.x_eye - KNOCK_LEAD
+                and k_lo <= x <= k_hi
             ):
                 self._knock(b)
                 self._knocks_left -= 1
                 if self._knocks_left == 0 and "knock" in self._faults:
                     self.clear("knock")
-            if sweep and abs(b.x - self.x_reject) < b.half_x(hw, hh) + half_plate and b.y < 0.5:
+            if sweep and abs(x - x_reject) < b.half_x(hw, hh) + half_plate and b.y < 0.5:
                 removed.append(b)
                 self._reject(b)
                 continue
-            if not b.passed and b.x > self.belt_length:
+            if not b.passed and x > end:
                 b.passed = True
                 self._bin(b)
-            if b.y < -0.4 or b.x > self.belt_length + 1.0:
+            if b.y < -0.4 or x > gone:
                 removed.append(b)
                 if not b.passed:
                     self.counts["lost"] += 1
@@ -539,7 +597,8 @@ class Conveyor(Plant):
         tol = self.nozzle_tolerance
         xf = self.x_fill
         for b in self._bottles:
-            if abs(b.x - xf) <= tol and abs(b.cos) >= COS_UPRIGHT and b.y < self.bottle_height:
+            if (abs(b.x - xf) <= tol and (b.trig() or abs(b.cos) >= COS_UPRIGHT)
+                    and b.y < self.bottle_height):
                 return b
         return None
 
@@ -623,18 +682,25 @@ class Conveyor(Plant):
     # ------------------------------------------------------------------ records
     def snapshot(self) -> dict[str, float]:
         """Counters, belt and cylinder state and every slot's bottle id/x/y/angle (NaN = free)."""
-        out: dict[str, float] = {k: float(v) for k, v in self.counts.items()}
+        tmpl = self._snap_template
+        if tmpl is None or len(tmpl) != len(self.counts) + 5 + 4 * len(self._slot_keys):
+            # the keys in their order, every slot free: one copy a scan instead of a loop
+            tmpl = {k: 0.0 for k in self.counts}
+            for k in ("spilled_volume", "filled_volume", "belt_speed", "cylinder", "on_belt"):
+                tmpl[k] = 0.0
+            for slot_keys in self._slot_keys:
+                for k in slot_keys:
+                    tmpl[k] = NAN
+            self._snap_template = tmpl
+        out = tmpl.copy()
+        for k, v in self.counts.items():
+            out[k] = float(v)
         out["spilled_volume"] = self.spilled_volume
         out["filled_volume"] = self.filled_volume
         out["belt_speed"] = self.v_belt
         out["cylinder"] = self.cyl
         out["on_belt"] = float(len(self._bottles))
         keys = self._slot_keys
-        for k_id, k_x, k_y, k_a in keys:
-            out[k_id] = NAN
-            out[k_x] = NAN
-            out[k_y] = NAN
-            out[k_a] = NAN
         for b in self._bottles:
             k_id, k_x, k_y, k_a = keys[b.slot]
             out[k_id] = float(b.id)

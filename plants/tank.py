@@ -35,6 +35,8 @@ from .base import Plant, PlantError, ProfileSpec, StepProfile, bool_signal, real
 
 __all__ = ["Tank"]
 
+_sqrt = math.sqrt
+
 
 class Tank(Plant):
     """Hydro-accumulator with pump, outlet valve, consumer demand and level instruments.
@@ -168,6 +170,7 @@ class Tank(Plant):
         self._overflowing = False
         self._dry = False
         self.demand.reset()
+        self._no_demand = self.demand.is_zero  # asked every step otherwise (issue 19)
 
     def _faults_changed(self) -> None:
         f = self._faults
@@ -205,9 +208,9 @@ class Tank(Plant):
         v = self.volume
         vin = q * h
         # outflows from the head at the start of the step
-        sq = math.sqrt(v * self._inv_area) if v > 0.0 else 0.0
+        sq = _sqrt(v * self._inv_area) if v > 0.0 else 0.0
         q_valve = self._k_out * io["VALVE"] * sq
-        q_dem = 0.0 if self.demand.is_zero else self.demand(self.time)
+        q_dem = 0.0 if self._no_demand else self.demand(self.time)
         q_leak = self._k_leak * sq
         want = (q_valve + q_dem + q_leak) * h
         avail = v + vin

@@ -35,6 +35,7 @@ from plclab.io.scaling import (
     counts_to_signal,
     eng_resolution,
     eng_to_counts,
+    quantise_counts,
     signal_code,
     signal_range,
     signal_status,
@@ -84,9 +85,13 @@ class LinearTransmitter:
 
     def output(self, value: float) -> float:
         """Signal for the engineering value ``value``."""
-        x = self.range.from_fraction((value - self.lo) / (self.hi - self.lo))
+        rng = self.range  # rng.from_fraction and min/max, unrolled (issue 19)
+        x = rng.lo + (value - self.lo) / (self.hi - self.lo) * (rng.hi - rng.lo)
         if self.saturate:
-            x = min(self.range.sat_hi, max(self.range.sat_lo, x))
+            lo = rng.sat_lo
+            x = x if x > lo else lo
+            hi = rng.sat_hi
+            x = x if x < hi else hi
         return x
 
     def __repr__(self) -> str:
@@ -331,7 +336,27 @@ class AnalogInput:
         int
             Counts, as the PLC's input word (``%IW``) reads them.
         """
-        check_time(t, self._t, "AnalogInput.sample")
+        last = self._t
+        if (last is not None and self.fault is None and self.sample_period <= 0.0
+                and self.tau <= 0.0 and self.noise <= 0.0):
+            # a noise-free channel without filter converting now: the general path below with
+            # the calls of _input, _advance, _convert and _code unrolled (issue 19; the same
+            # arithmetic in the same order, tests/io compare it with signal_code)
+            if t < last or not math.isfinite(t):
+                check_time(t, last, "AnalogInput.sample")
+            x = self.transmitter.output(value + self._n)
+            self._y = self._signal = x
+            rng, fmt = self.range, self.format
+            code, flag = quantise_counts(
+                fmt.zero + (x - rng.lo) / (rng.hi - rng.lo) * (fmt.full - fmt.zero), fmt)
+            if flag < 0:  # under the range: the wire-break code (or not) as _code decides
+                code = self._code(x)
+            self._counts = code
+            self._status = None
+            self._n = 0.0
+            self._t = t
+            return code
+        check_time(t, last, "AnalogInput.sample")
         if self._t is None:
             self._t = self._t0 = t
             self._n = self._rng.gauss(0.0, self.noise) if self.noise > 0.0 else 0.0

@@ -310,7 +310,7 @@ def count_format(
     return CountFormat("logo", n, bipolar, 0, 1000, 1, 0, 1000)
 
 
-def _quantise(counts: float, fmt: CountFormat) -> tuple[int, int]:
+def quantise_counts(counts: float, fmt: CountFormat) -> tuple[int, int]:
     """Real-valued counts -> (code, flag); flag -1 underflow, 0 in range, +1 overflow."""
     if math.isnan(counts):
         raise ValueError("cannot convert NaN to counts")
@@ -380,7 +380,7 @@ def eng_to_counts(
         fraction = min(1.0, max(0.0, fraction))
         code = fmt.step * math.floor(_fraction_to_counts(fraction, fmt) / fmt.step + 0.5)
         return max(fmt.min_code, min(fmt.max_code, code))
-    return _quantise(_fraction_to_counts(fraction, fmt), fmt)[0]
+    return quantise_counts(_fraction_to_counts(fraction, fmt), fmt)[0]
 
 
 def counts_to_eng(
@@ -438,7 +438,7 @@ def signal_to_eng(value: float, lo: float, hi: float, signal: str | SignalRange)
 def signal_code(
     value: float, rng: SignalRange, fmt: CountFormat, wire_break_diagnostic: bool
 ) -> tuple[int, int]:
-    code, flag = _quantise(_fraction_to_counts(rng.to_fraction(value), fmt), fmt)
+    code, flag = quantise_counts(_fraction_to_counts(rng.to_fraction(value), fmt), fmt)
     if flag < 0 and rng.live_zero and wire_break_diagnostic and fmt.wire_break_code is not None:
         code = fmt.wire_break_code
     return code, flag

@@ -415,11 +415,34 @@ class Plc:
         img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
         sync_in, sync_out = self._sync_in, self._sync_out
 
+        def ready() -> bool:
+            """True while ``unchecked`` may stand for ``scan_one``."""
+            return not (plc._single is not bodies or plc.state != "RUN" or plc.forced
+                        or plc._system_bytes or any(plc._watch_parts))
+
         def scan_one() -> None:
             if (plc._single is not bodies or plc.state != "RUN" or plc.forced
                     or plc._system_bytes or any(plc._watch_parts)):  # trigger points: scan()
                 plc.scan()
                 return
+            budget.left = budget.limit  # from here on as unchecked() (a call less)
+            img_in[:] = inputs
+            try:
+                if sync_in is not None:
+                    sync_in()
+                body()
+                if sync_out is not None:
+                    sync_out()
+            except BaseException as exc:  # noqa: BLE001
+                plc._to_stop(exc)
+            outputs[:] = img_out
+            t = ctx.now_ns + tick
+            ctx.now_ns = t
+            ctx.now = t // 1_000_000
+            ctx.first_scan = False
+            ctx.scan_count += 1
+
+        def unchecked() -> None:
             budget.left = budget.limit
             img_in[:] = inputs
             try:
@@ -437,6 +460,12 @@ class Plc:
             ctx.first_scan = False
             ctx.scan_count += 1
 
+        # for a caller that knows what can change between its scans (the simulation's fused
+        # loop, ADR 0032): while ready() holds and nothing but the scans themselves runs,
+        # only a fault (state STOP) can end the common case, so the caller may check ready()
+        # once, call unchecked() and go back to scan_one after the state changed
+        scan_one.ready = ready  # type: ignore[attr-defined]
+        scan_one.unchecked = unchecked  # type: ignore[attr-defined]
         return scan_one
 
     def _scan_once(self) -> None:

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import re
 import struct
 from dataclasses import dataclass, field
 from typing import Any
@@ -139,6 +140,15 @@ class Transfer:
     apply_out: Any
     source: str  # the generated Python (for the curious and for debugging)
     warnings: list[str]
+    # the same code as loose statements, for the simulation's fused loop (ADR 0032): the
+    # input statements leave x<i> (``in_names``) and read ``t`` and the plant's values ``v``;
+    # the outputs are the expressions ``out_items`` (stored in q<i>); ``apply_body`` reads
+    # q<i> and ``t``. They run in ``namespace``.
+    namespace: dict[str, Any] = field(default_factory=dict)
+    in_body: list[str] = field(default_factory=list)
+    in_names: list[str] = field(default_factory=list)
+    out_items: list[str] = field(default_factory=list)
+    apply_body: list[str] = field(default_factory=list)
 
     def find(self, target: str) -> list[Channel]:
         """Channels whose PLC side or plant signal is ``target`` (case-insensitive)."""
@@ -531,6 +541,7 @@ def _compile(channels: list[Channel], plant: Any, plc: Any) -> Transfer:
                 emit(f"    {x} = round(v[{sig}])")
                 emit(f"    {x} = {lo} if {x} < {lo} else {hi} if {x} > {hi} else {x}")
         emit(_write_in(ch, i, x, ns))
+    in_body = lines[1:]
     emit(f"    return ({''.join(n + ', ' for n in names)})")
 
     # ---- read_out
@@ -558,11 +569,11 @@ def _compile(channels: list[Channel], plant: Any, plc: Any) -> Transfer:
         sig = repr(ch.signal.name)
         mod = ch.row.module
         if ch.signal.type == "bool":
-            cmd = f"{'not ' if ch.invert else ''}q[{i}]"
+            cmd = f"{'not ' if ch.invert else ''}@q{i}@"
             if ch.var is not None and ch.var_kind != "bool":
-                cmd = f"{'not ' if ch.invert else ''}bool(q[{i}])"
+                cmd = f"{'not ' if ch.invert else ''}bool(@q{i}@)"
         else:
-            cmd = f"q[{i}]"
+            cmd = f"@q{i}@"
         if mod == "do":
             ns[f"_n{i}"] = ch.module.apply
             emit(f"    c = {cmd}; s = {s}")
@@ -589,13 +600,18 @@ def _compile(channels: list[Channel], plant: Any, plc: Any) -> Transfer:
             emit("    if a != s[2]:")
             emit(f"        s[2] = a; _W({sig}, a)")
     emit("    return None")
+    k = lines.index("def apply_out(t, q):")
+    apply_body = lines[k + 1:-1]
+    lines = [_QREF.sub(r"q[\1]", ln) for ln in lines]
     source = "\n".join(lines) + "\n"
     code = compile(source, "<plclab-sim-io>", "exec")
     exec(code, ns)  # noqa: S102 - generated from checked rows; names only as repr() literals
-    t = Transfer(channels, ins, outs, ns["read_in"], ns["read_out"], ns["apply_out"], source,
-                 _warnings(channels, plc))
-    t.namespace = ns  # type: ignore[attr-defined]
-    return t
+    return Transfer(channels, ins, outs, ns["read_in"], ns["read_out"], ns["apply_out"], source,
+                    _warnings(channels, plc), ns, in_body, names, items,
+                    [_QREF.sub(r"q\1", ln) for ln in apply_body])
+
+
+_QREF = re.compile(r"@q(\d+)@")
 
 
 def _write_in(ch: Channel, i: int, x: str, ns: dict[str, Any]) -> str:

@@ -34,6 +34,7 @@ scenario give identical traces on every machine.
 
 from __future__ import annotations
 
+import gc
 import math
 import time as _time
 from collections.abc import Callable, Iterable
@@ -226,6 +227,7 @@ class Simulation:
         self.stop_reason = ""
         self.wall_s = 0.0
         self.hooks: list[Any] = []
+        self._fast: tuple[Any, Any] | None = None  # (key, the fused loop): built on first use
 
     def add_hook(self, hook: Any) -> Any:
         """Join an observer to every scan (e.g. :class:`plclab.scada.AlarmServer`, a watch
@@ -567,13 +569,58 @@ class Simulation:
         return self.trace
 
     def _advance(self, n: int, until: Callable[[dict[str, Any], float], bool] | None) -> None:
-        plc = self.plc
-        ctx = plc.ctx
+        """Run ``n`` scans: the common ones through the fused loop (:mod:`.fastloop`, ADR
+        0032), the others (a scenario action or a ramp, a stop condition, hooks) through
+        :meth:`_advance_plain`; both give the same trace."""
+        from . import fastloop
+
+        if until is not None or self.hooks or not fastloop.ENABLED or n < 2:
+            self._advance_plain(n, until)
+            return
+        key = fastloop.key(self)
+        if self._fast is None or self._fast[0] != key:
+            self._fast = (key, fastloop.build(self))
+        fast = self._fast[1]
+        ops = self._ops
         tick = self.scan_ns
-        if ctx.now_ns != self.t0_ns + self.k * tick:
+        k_end = self.k + n
+        scan: Any = None
+        unchecked = ready = None
+        perf = _time.perf_counter_ns
+        while self.k < k_end:
+            i = self._op_i
+            next_op = ops[i][0] if i < len(ops) else math.inf
+            if self._ramps or next_op <= self.k * tick:
+                self._advance_plain(1, None)
+                continue
+            if scan is None:
+                self._check_clock()
+                scan = self.plc.scanner()  # one scan, prebound (ADR 0024)
+                unchecked = getattr(scan, "unchecked", None)
+                ready = getattr(scan, "ready", None)
+            w_start = perf()
+            paused = gc.isenabled()
+            gc.disable()  # no cyclic GC passes over the rows (ADR 0032); young ones at flushes
+            try:
+                fast(self.k, k_end, next_op,
+                     unchecked if unchecked is not None and ready() else scan, scan)
+            finally:
+                if paused:
+                    gc.enable()
+                self.wall_s += (perf() - w_start) / 1e9
+
+    def _check_clock(self) -> None:
+        if self.plc.ctx.now_ns != self.t0_ns + self.k * self.scan_ns:
             raise sim_error("PLC4020", "the PLC's clock moved outside the simulation (plc.scan() "
                             "or plc.run() between simulation steps?); drive the PLC only through "
                             "the simulation")
+
+    def _advance_plain(self, n: int, until: Callable[[dict[str, Any], float], bool] | None
+                       ) -> None:
+        """The reference loop: one scan after another, as the module docstring says."""
+        plc = self.plc
+        tick = self.scan_ns
+        self._check_clock()
         plant = self.plant
         values = plant.values
         pstep = plant.step

@@ -4,6 +4,8 @@ import math
 import statistics
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from plclab.errors import PlcError
 from plclab.io import AnalogInput, AnalogOutput, LinearTransmitter, counts_status
@@ -295,3 +297,30 @@ def test_analog_output_faults() -> None:
     assert ao.apply(0.4, 27648) == 10.0
     with pytest.raises(PlcError):
         ao.inject("melted")
+
+
+@settings(max_examples=300, deadline=None)
+@given(values=st.lists(st.floats(-50.0, 250.0, allow_nan=False), min_size=1, max_size=20),
+       conv=st.sampled_from(["s7", "book", "full", "logo"]),
+       signal=st.sampled_from(["4-20mA", "0-20mA", "0-10V", "+-10V", "1-5V"]),
+       wbd=st.booleans(), saturate=st.booleans())
+def test_memoryless_sample_is_the_general_conversion(values: list[float], conv: str,
+                                                     signal: str, wbd: bool,
+                                                     saturate: bool) -> None:
+    """The unrolled path of a noise-free, unfiltered channel (issue 19) converts like the
+    module's general steps: transmitter -> signal_code, state included."""
+    from plclab.io.scaling import signal_code
+
+    tx = LinearTransmitter(0.0, 200.0, signal, saturate=saturate)
+    ai = AnalogInput(0.0, 200.0, signal=signal, convention=conv, transmitter=tx,
+                     wire_break_diagnostic=wbd)
+    rng = ai.range
+    for i, v in enumerate(values):
+        x = rng.from_fraction((v - 0.0) / (200.0 - 0.0))
+        if saturate:
+            x = min(rng.sat_hi, max(rng.sat_lo, x))
+        assert tx.output(v) == x
+        want = signal_code(x, rng, ai.format, wbd)[0]
+        assert ai.sample(i * 0.01, v) == want == ai.counts
+        assert ai.signal == x
+        assert ai.status == ai._diagnose(x)
