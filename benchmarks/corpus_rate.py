@@ -26,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import plclab  # noqa: E402
 from plclab.errors import PlcError  # noqa: E402
 from plclab.project import check_sources  # noqa: E402
+from plclab.runtime.plc import Plc  # noqa: E402
 
 SCANS = 100
 EXCLUDED = "_excluded"  # files not valid or not self-contained, kept aside with the reason
@@ -56,6 +57,23 @@ def dialect_for(path: Path, root: Path) -> str | None:
     return None
 
 
+def context_for(path: Path, root: Path) -> list[Path]:
+    """The files a corpus file is read together with: the ``[context]`` entry of the nearest
+    ``SOURCE.toml`` (a file -> other files of its folder, e.g. the objects of one TwinCAT
+    project that a POU uses, which its IDE compiles together), else none."""
+    import tomllib
+
+    for folder in [path.parent, *path.parent.parents]:
+        source = folder / "SOURCE.toml"
+        if source.is_file():
+            meta = tomllib.loads(source.read_text(encoding="utf-8"))
+            rel = str(path.relative_to(folder).as_posix())
+            return [folder / other for other in meta.get("context", {}).get(rel, [])]
+        if folder == root:
+            break
+    return []
+
+
 def read_text(path: Path) -> str | None:
     raw = path.read_bytes()
     for encoding in ("utf-8-sig", "latin-1"):
@@ -71,8 +89,10 @@ def judge(path: Path, root: Path) -> Outcome:
     if text is None:
         return Outcome(path, "unreadable")
     dialect = dialect_for(path, root)
+    sources = [(read_text(c) or "", c.name) for c in context_for(path, root)]
+    sources.append((text, path.name))
     try:
-        project, diags = check_sources([(text, path.name)], dialect)
+        project, diags = check_sources(sources, dialect)
     except PlcError as exc:  # a file the front ends refuse as a whole
         return Outcome(path, "rejected", exc.code, str(exc).splitlines()[0])
     errors = [d for d in diags if d.severity == "error"]
@@ -83,7 +103,7 @@ def judge(path: Path, root: Path) -> Outcome:
     if not project.programs:
         return Outcome(path, "accepted")
     try:
-        plc = plclab.loads(text, path.name, dialect=dialect)
+        plc = Plc(plclab.compile_sources(sources, dialect=dialect))
         plc.scan(SCANS)
     except PlcError as exc:
         return Outcome(path, "fault", exc.code, str(exc).splitlines()[0])

@@ -9,7 +9,8 @@ conftest = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(conftest)
 ROOT = TESTS.parent
 # folders that test the project as a whole rather than one package
-CROSS_CUTTING = {"fuzz", "security", "snapshots", "st", "cli", "notebooks"}
+CROSS_CUTTING = {"fuzz", "security", "snapshots", "st", "cli", "notebooks", "corpus",
+                 "schema"}
 
 
 def test_every_test_folder_mirrors_a_package_or_is_cross_cutting():

@@ -628,6 +628,9 @@ class Codegen(FastPaths):
             if info.eno is not None:
                 self.assign_to(info.eno, en)
             return
+        if info.kind == "action":  # inst.A(...): the POU's inputs, its action, its outputs
+            self.fb_call(c, info)
+            return
         if info.kind == "builtin" and info.callee.statement_only:
             self.test_builtin(c, info)
             return
@@ -636,7 +639,12 @@ class Codegen(FastPaths):
         self.emit(code)
 
     def fb_call(self, c: A.Call, info: CallInfo) -> None:
-        if info.kind == "program":
+        run = "_body()"
+        if info.kind == "action":  # CODESYS action (ADR 0035): on the instance before the dot
+            assert isinstance(c.func, A.Member)
+            inst = self.ex(c.func.obj)
+            run = f"{oop_emit.method_name(info.callee)}()"
+        elif info.kind == "program":
             inst = f"_P.{ident(c.func.name)}"  # type: ignore[union-attr]
         elif oop_emit.is_super(c.func):  # SUPER^(): the base block's body on this instance
             self.flush_pre()
@@ -647,7 +655,7 @@ class Codegen(FastPaths):
         fb = inst
         if not (info.inputs or info.outputs or info.inouts) and "[" not in inst:
             self.flush_pre()
-            self.emit(f"{inst}._body()")
+            self.emit(f"{inst}.{run}")
             return
         if "." in inst or "[" in inst:
             fb = "_fb"
@@ -660,7 +668,7 @@ class Codegen(FastPaths):
             self.emit(f"{fb}.{n} = {v}")
         for d, code, _ in inouts:
             self.emit(f"{fb}.{ident(d.name)} = {code}")
-        self.emit(f"{fb}._body()")
+        self.emit(f"{fb}.{run}")
         for d, _code, e in inouts:
             if not T.resolve(d.ty).is_aggregate and not d.constant:
                 self.assign_to(e, f"{fb}.{ident(d.name)}")
@@ -1397,6 +1405,8 @@ class Codegen(FastPaths):
             return oop_emit.method_call(self, e, info)
         if info.kind == "reference":
             return oop_emit.reference_operator(self, e, info)
+        if info.kind == "sizeof":  # a constant the checker computed (plclab.lang.sizeof)
+            return repr(int(info.callee))
         return "None"
 
     def inout_code(self, d: A.VarDecl, e: A.Expr) -> str:

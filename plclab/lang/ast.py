@@ -307,6 +307,9 @@ class Pou:
     methods: list[Pou] = field(default_factory=list)
     modifiers: list[str] = field(default_factory=list)
     owner: Pou | None = field(default=None, compare=False, repr=False)  # a METHOD's block
+    # a CODESYS action of a PROGRAM or FUNCTION_BLOCK (kind METHOD, no declarations of its
+    # own: it runs on its POU's data, and a call passes the POU's inputs and outputs; ADR 0035)
+    action: bool = False
 
     # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
     return_decl: VarDecl | None = annotation()

@@ -49,13 +49,28 @@ class Dialect:
     # item 1), read by its last field with PLC0175, as MATIEC and Beremiz write it; CODESYS
     # and S7 have no such form (PLC0120: a '.bit' part on a word)
     hierarchical_words: bool = False
+    # ``i := r;``: a REAL or LREAL stored in an integer variable without a conversion compiles
+    # with the warning PLC0283 and rounds as REAL_TO_INT does (CODESYS compiles it with a
+    # message; ADR 0035); elsewhere it is PLC0118
+    implicit_real_to_int: bool = False
+    # ``SIZEOF(x)``: the bytes of a variable or a type, a constant (CODESYS online help,
+    # "Operator SIZEOF"; :mod:`plclab.lang.sizeof`); elsewhere PLC0106
+    sizeof: bool = False
+    # ``ACTIONS Pou ACTION A ... END_ACTION END_ACTIONS`` and ``ACTION Pou.A ... END_ACTION``:
+    # actions of a PROGRAM or FUNCTION_BLOCK (CODESYS "Object: Action"; the text form of RuSTy
+    # and blark), called ``inst.A(...)``, ``Prog.A()`` or ``A()`` inside; elsewhere PLC0198
+    pou_actions: bool = False
+    # ``REFERENCE TO T`` with ``r REF= x`` (CODESYS online help, "Reference";
+    # :mod:`plclab.lang.lower.reference_to`); elsewhere PLC0239
+    reference_to: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False,
             hierarchical_words=True),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
-            end_keyword_optional=True, system_time=True),
+            end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
+            sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
             hierarchical_words=True),

@@ -36,6 +36,8 @@ KEYWORDS = frozenset(
 # The tokens after which a TEST block may start: the start of a file and the end of a block.
 _BLOCK_ENDS = frozenset({None, "END_PROGRAM", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_TYPE",
                          "END_VAR", "END_CONFIGURATION", "END_TEST", ";"})
+# ... and the unreserved words that end a block at the top level (ADR 0021, ADR 0035)
+_WORD_ENDS = frozenset({"END_INTERFACE", "END_ACTION", "END_ACTIONS"})
 
 
 def _test_as_name(toks: list[Token]) -> list[Token]:
@@ -47,6 +49,8 @@ def _test_as_name(toks: list[Token]) -> list[Token]:
         if t.kind != "TEST":
             continue
         prev = toks[i - 1].kind if i else None
+        if prev == "IDENT" and toks[i - 1].value in _WORD_ENDS:
+            prev = None
         if prev not in _BLOCK_ENDS or toks[i + 1].kind not in ("STRING", "WSTRING", "IDENT"):
             toks[i] = Token("IDENT", t.value, t.text, t.line, t.col)
     return toks

@@ -204,13 +204,15 @@ class RefType(Type):
 
     target: Type
     pointer: bool = False
+    reference: bool = False  # CODESYS REFERENCE TO: used without ^ (lower.reference_to)
     kind = "ref"
 
     @property
     def name(self) -> str:  # type: ignore[override]
         if self.target is ANY:
             return "NULL"
-        return f"{'POINTER TO' if self.pointer else 'REF_TO'} {self.target}"
+        word = "POINTER TO" if self.pointer else "REFERENCE TO" if self.reference else "REF_TO"
+        return f"{word} {self.target}"
 
 
 def block_type(name: str, pou: Any) -> Type:

@@ -14,6 +14,9 @@ with a ``SOURCE.toml`` that names where the files come from and what is expected
     [origin]                                 # every corpus file -> its path upstream
     "hello.st" = "examples/hello.st"
 
+    [context]                                # optional: files read together with one
+    "main.st" = ["blocks.st"]
+
     [expect]                                 # only files that are not accepted
     "refs.st" = { status = "rejected", code = "PLC0239", reason = "REFERENCE TO (ADR 0021)" }
 
@@ -84,6 +87,8 @@ def test_every_source_names_its_origin_and_licence(folder: Path):
     origin = meta.get("origin", {})
     assert kept <= set(origin), f"files without an origin: {sorted(kept - set(origin))}"
     assert set(meta.get("expect", {})) <= files, "expectations for files that are not judged"
+    for rel, others in meta.get("context", {}).items():
+        assert rel in files and set(others) <= kept, f"context of {rel}: files that are not here"
 
 
 @pytest.mark.slow

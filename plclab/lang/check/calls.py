@@ -9,7 +9,10 @@ from typing import Any
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
+from ..ast import expr_text
 from ..builtins import BUILTINS, Builtin, conversion
+from ..lower import reference_to
+from ..sizeof import sizeof, sizeof_type
 from .context import Pass, close_hint
 from .symbols import ProgSym, VarSym
 from .typing_rules import TYPING_RULES, Typing
@@ -21,7 +24,7 @@ _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
 class CallInfo:
     """A checked call: what is called and how its parameters bind (``Call.target``)."""
 
-    kind: str  # "builtin" "conv" "function" "fb" "program"
+    kind: str  # "builtin" "conv" "function" "fb" "program" "method" "reference" "sizeof"
     callee: Any  # Builtin | (src, dst) | Pou
     inputs: list[tuple[Any, A.Expr]] = field(default_factory=list)  # (VarDecl|index, expr)
     outputs: list[tuple[Any, A.Expr, bool]] = field(default_factory=list)  # (VarDecl, target, neg)
@@ -43,6 +46,15 @@ class Calls(Pass):
             if local is None and (fname.startswith("__") or fname in ("REF", "ADR")):
                 # __ISVALIDREF, __QUERYINTERFACE, REF(), ADR() (ADR 0021)
                 return self.cx.oop.reference_operator(c, fname)
+            if local is None and fname == "SIZEOF" and "SIZEOF" not in self.table.pous and \
+                    self.cx.dialect(c.loc).sizeof:
+                return self.sizeof(c)
+            if local is None and self._own_method(fname):
+                # M(...) inside a block or its methods is THIS^.M(...) (CODESYS, ed.3 6.6.5)
+                c.func = A.Member(f.loc, A.Name(f.loc, "THIS", "THIS^"), fname, f.text or fname)
+                mt = self.cx.oop.method_call(c, statement)
+                assert mt is not None
+                return mt
             if local is None:
                 pou = self.table.pous.get(fname)
                 if pou is not None and pou.kind == "FUNCTION":
@@ -85,6 +97,46 @@ class Calls(Pass):
             self.err("PLC0106", f"a value of type {ft} cannot be called", c.loc)
         self._args_only(c)
         return T.ANY
+
+    def sizeof(self, c: A.Call) -> T.Type:
+        """``SIZEOF(x)`` of a variable or a type name: a constant of the smallest unsigned
+        type that holds it (CODESYS, "Operator SIZEOF"; :mod:`plclab.lang.sizeof`)."""
+        args = [a for a in c.args if a.value is not None]
+        if len(args) != 1 or args[0].name or args[0].output:
+            self.err("PLC0197", "SIZEOF takes one variable or data type, e.g. SIZEOF(buffer) "
+                     "or SIZEOF(INT)", c.loc)
+            self._args_only(c)
+            return T.ANY
+        x = args[0].value
+        t: T.Type | None = None
+        if isinstance(x, A.Name) and self.cx.exprs.lookup(x.name) is None:
+            t = T.lookup_elementary(x.name) or self.table.types.get(x.name)
+            if t is not None:
+                x.ty = t
+        if t is None:
+            t = self.cx.exprs.expr(x, None)
+        if t is T.ANY:
+            return T.UDINT
+        n = sizeof(t)
+        if n is None:
+            self.err("PLC0197", f"SIZEOF({expr_text(x)}): the size of {T.resolve(t).name} "
+                     "(a function block instance, an interface or a reference) depends on the "
+                     "target's code and pointers; plclab gives sizes of data types only", c.loc)
+            return T.UDINT
+        c.target = CallInfo("sizeof", n)
+        return sizeof_type(n)
+
+    def _own_method(self, name: str) -> bool:
+        """Whether ``name`` is a METHOD (or ACTION) of the block or program whose body or
+        method is being checked (an unqualified call of it is a call on THIS^), and ``THIS``
+        is not hidden."""
+        p = self.cx.pou
+        block = p.owner if p is not None and p.kind == "METHOD" else p
+        if block is None or block.kind not in ("FUNCTION_BLOCK", "PROGRAM"):
+            return False
+        this = self.cx.exprs.lookup("THIS")
+        return isinstance(this, VarSym) and this.storage == "this" and \
+            name in self.cx.oop.methods(block)
 
     def _args_only(self, c: A.Call) -> None:
         for a in c.args:
@@ -153,6 +205,9 @@ class Calls(Pass):
                              f"exactly, not {tt}", a.loc)
                 inouts.append((d, a.value))
                 continue
+            dt = T.resolve(d.ty) if d.ty is not None else None
+            if isinstance(dt, T.RefType) and dt.reference and a.value is not None:
+                a.value = reference_to.ref_call(a.loc, a.value)  # a REFERENCE TO input binds
             vt = self.cx.exprs.expr(a.value, d.ty)
             self.cx.exprs.check_assignable(vt, d.ty, a.value, a.loc)
             inputs.append((d, a.value))

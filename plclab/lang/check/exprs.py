@@ -77,6 +77,14 @@ class Expressions(Pass, NodeVisitor):
             self.err("PLC0103", "STRING and WSTRING do not mix; convert with STRING_TO_WSTRING",
                      loc)
             return
+        if rs.kind == "real" and rd.kind == "int" and not isinstance(rd, T.Subrange) and \
+                self.cx.dialect(loc).implicit_real_to_int:
+            sn, dn = T.base_of(T.concrete(rs)).name, T.base_of(rd).name
+            self.warn("PLC0283", f"{sn} stored in {dn} without a conversion (accepted as in "
+                      f"CODESYS): it is rounded as {sn}_TO_{dn} rounds (2.5 -> 3, -2.5 -> -3); "
+                      f"write {sn}_TO_{dn}(...) to say so, or TRUNC(...) to drop the fraction",
+                      loc)
+            return
         hint = ""
         if rs.kind in ("int", "real", "bits", "time", "bool") and rd.kind in (
             "int", "real", "bits", "time", "bool"

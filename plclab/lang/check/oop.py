@@ -45,7 +45,8 @@ class ObjectChecks(Pass):
         """The methods callable on ``p`` by name: its own, then inherited (a block's bases, an
         interface's bases); the nearest definition wins."""
         out: dict[str, A.Pou] = {}
-        chain = [p, *self.table.bases(p)] if p.kind == "FUNCTION_BLOCK" else self.interfaces_of(p)
+        chain = [p, *self.table.bases(p)] if p.kind == "FUNCTION_BLOCK" else (
+            [p] if p.kind == "PROGRAM" else self.interfaces_of(p))  # a PROGRAM's actions
         for q in chain:
             for m in q.methods:
                 out.setdefault(m.name, m)
@@ -59,6 +60,7 @@ class ObjectChecks(Pass):
         for p in list(self.table.pous.values()):
             if p.kind in ("FUNCTION_BLOCK", "INTERFACE"):
                 self.check_header(p)
+            if p.kind in ("FUNCTION_BLOCK", "INTERFACE", "PROGRAM"):
                 for m in p.methods:
                     self.method_decls(m)
         for p in list(self.table.pous.values()):
@@ -103,10 +105,15 @@ class ObjectChecks(Pass):
                 self.err("PLC0235", f"{d.spelling or d.name} is declared again in {_label(p)}, "
                          "which inherits it already; remove this declaration or rename it",
                          d.loc)
+        self.check_duplicates(p)
+
+    def check_duplicates(self, p: A.Pou) -> None:
+        """Two methods or actions of one name, or one named like a variable (PLC0235)."""
         seen: set[str] = set()
         for m in p.methods:
             if m.name in seen:
-                self.err("PLC0235", f"{_label(p)} declares METHOD {_label(m)} twice; rename or "
+                what = "ACTION" if m.action else "METHOD"
+                self.err("PLC0235", f"{_label(p)} declares {what} {_label(m)} twice; rename or "
                          "remove one", m.loc)
             seen.add(m.name)
             if m.name.removesuffix("__GET").removesuffix("__SET") in self.table.members(p):
@@ -179,6 +186,10 @@ class ObjectChecks(Pass):
     # -- bodies -------------------------------------------------------------------------------
     def bodies(self) -> None:
         for p in list(self.table.pous.values()):
+            if p.kind == "PROGRAM":  # its actions (ADR 0035)
+                self.check_duplicates(p)
+                for m in p.methods:
+                    self.cx.stmts.check_pou_body(m)
             if p.kind != "FUNCTION_BLOCK":
                 continue
             for q in [p, *p.methods]:
@@ -215,10 +226,13 @@ class ObjectChecks(Pass):
         n = len(self.cx.diags)
         ot = T.resolve(self.cx.exprs.expr(obj, None))
         pou = ot.pou if isinstance(ot, T.FBType | T.InterfaceType) else None
-        if pou is None or pou.kind not in ("FUNCTION_BLOCK", "INTERFACE"):
+        if pou is None or pou.kind not in ("FUNCTION_BLOCK", "INTERFACE", "PROGRAM"):
             del self.cx.diags[n:]  # the caller types the expression again and reports
             return None
         m = self.methods(pou).get(f.field_name)
+        if m is None and pou.kind == "PROGRAM":
+            del self.cx.diags[n:]
+            return None
         if m is None:
             if f.field_name in self.table.members(pou):
                 del self.cx.diags[n:]
@@ -229,6 +243,8 @@ class ObjectChecks(Pass):
             self.cx.calls._args_only(c)
             return T.ANY
         self.check_access(m, f)
+        if m.action:
+            return self.action_call(c, m, statement)
         params = [d for d in m.decls if d.section != "VAR_INST"]
         ins, outs, inouts = self.cx.calls._bind(c, params, f"method {_label(m)}")
         c.target = CallInfo("method", m, ins, outs, inouts)
@@ -236,6 +252,22 @@ class ObjectChecks(Pass):
         f.ty = T.VOID
         rd = m.return_decl
         return rd.ty if rd is not None and rd.ty is not None else T.VOID
+
+    def action_call(self, c: A.Call, m: A.Pou, statement: bool) -> T.Type:
+        """``inst.A(...)`` / ``Prog.A(...)``: an action runs on its POU's data; the arguments
+        set the POU's inputs and read its outputs as a call of the POU does (CODESYS "Object:
+        Action", calling an action)."""
+        f = c.func
+        assert isinstance(f, A.Member) and m.owner is not None
+        if not statement:
+            self.err("PLC0198", f"ACTION {_label(m)} has no value: call it as a statement "
+                     f"({expr_text(f)}();) and read the outputs of {_label(m.owner)}", c.loc)
+        params = self.cx.calls.params(m.owner)
+        ins, outs, inouts = self.cx.calls._bind(c, params, f"action {_label(m)}")
+        c.target = CallInfo("action", m, ins, outs, inouts)
+        f.sym = m
+        f.ty = T.VOID
+        return T.VOID
 
     def check_access(self, m: A.Pou, f: A.Member) -> None:
         mods = set(m.modifiers)
@@ -316,11 +348,13 @@ class ObjectChecks(Pass):
 
     # -- references: REF_TO, POINTER TO, REF(), ADR(), ^, NULL --------------------------------
     def ref_type(self, r: A.RefTypeRef) -> T.Type:
-        if r.kind == "REFERENCE":
-            self.err("PLC0239", "REFERENCE TO is not supported; declare REF_TO T, assign "
-                     "r := REF(x); and write r^ where the variable is meant", r.loc)
+        if r.kind == "REFERENCE" and not self.cx.dialect(r.loc).reference_to:
+            self.err("PLC0239", "REFERENCE TO is a CODESYS type (choose {dialect 'codesys'}); "
+                     "in IEC 61131-3 declare REF_TO T, assign r := REF(x); and write r^ where "
+                     "the variable is meant", r.loc)
             return T.ANY
-        return T.RefType(self.cx.decls.type_ref(r.target), pointer=r.kind == "POINTER")
+        return T.RefType(self.cx.decls.type_ref(r.target), pointer=r.kind == "POINTER",
+                         reference=r.kind == "REFERENCE")
 
     def ref_of(self, c: A.Call, name: str, x: A.Expr) -> T.Type:
         t = self.cx.exprs.expr(x, None)

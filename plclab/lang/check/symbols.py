@@ -304,8 +304,8 @@ class SymbolTable:
             names[d.name] = VarSym(d, st, p)
         if p.kind == "FUNCTION":
             names[p.name] = VarSym(result_decl(p), "local", p)
-        if p.kind == "FUNCTION_BLOCK":
-            self._this_super(names, p)
+        if p.kind == "FUNCTION_BLOCK" or (p.kind == "PROGRAM" and p.methods):
+            self._this_super(names, p)  # a PROGRAM's actions are called on THIS (ADR 0035)
         return Scope(names, self.globals)
 
     # -- object-oriented extensions (ADR 0021) ------------------------------------------------

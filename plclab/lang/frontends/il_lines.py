@@ -55,6 +55,9 @@ def is_il_body(p, end_kw: str) -> bool:
         return False
     if t.kind == "IDENT" and same_line and nxt.kind in (":=", ".", "[", "(", "^", "=", "=>"):
         return False
+    if t.kind == "IDENT" and same_line and nxt.kind == "IDENT" and nxt.value == "REF" and \
+            p.peek(2).kind == "=":  # r REF= x; (CODESYS REFERENCE TO) is ST
+        return False
     if p.il_default:
         return True
     if t.kind == "IDENT" and same_line and nxt.kind == ":":  # a label, alone or before an op

@@ -22,13 +22,14 @@ from __future__ import annotations
 from ...errors import Diagnostic
 from ...suggest import suggest
 from .. import ast as A
-from ..lexer import add_capped
+from ..lexer import Token, add_capped
 from ..parsing import ParseAbort
 
 MODIFIERS = ("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")
 HEADER_WORDS = ("EXTENDS", "IMPLEMENTS")
 # words after which a statement list of a method or an FB body ends
-BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY", "END_GET", "END_SET"}
+BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY", "END_GET", "END_SET",
+              "END_ACTION", "END_ACTIONS"}
 MEMBER_STARTS = {"METHOD", "PROPERTY"}
 _SECTIONS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_TEMP")
 
@@ -134,6 +135,63 @@ def method(p, in_interface: bool) -> A.Pou:
     p.accept(";")
     return A.Pou(p.loc(head), "METHOD", name.value, decls, body, ret, name.text,
                  end_loc=end_loc, modifiers=mods)
+
+
+def actions_block(p) -> list[tuple[Token | None, A.Pou]]:
+    """``ACTIONS [Pou] ACTION A [:] ... END_ACTION ... END_ACTIONS`` (RuSTy's container for
+    the actions of a PROGRAM or FUNCTION_BLOCK): (the POU's name token, or None for the POU
+    just before, and the action) for each action."""
+    p.advance()
+    owner = None
+    if p.tok.kind == "IDENT" and not word(p, "ACTION", "END_ACTIONS"):
+        owner = p.advance()
+    p.accept(";")
+    out: list[tuple[Token | None, A.Pou]] = []
+    while word(p, "ACTION"):
+        qual, act = action(p)
+        out.append((qual or owner, act))
+    if not word(p, "END_ACTIONS"):
+        p.fail_expected("ACTION or END_ACTIONS to close ACTIONS")
+    p.advance()
+    p.accept(";")
+    return out
+
+
+def action(p) -> tuple[Token | None, A.Pou]:
+    """``ACTION [Pou.]Name [:] statements END_ACTION`` -> (the POU's name token if written,
+    the action as a METHOD without declarations, ``action`` set)."""
+    head = p.advance()
+    name = p.expect("IDENT", "an action name after ACTION")
+    qual = None
+    if p.accept("."):
+        qual, name = name, p.expect("IDENT", f"an action name after {name.text}.")
+    p.accept(":")
+    body = p.stmt_list(set())
+    end_loc = p.loc()
+    if not word(p, "END_ACTION"):
+        p.fail_expected(f"END_ACTION to close ACTION {name.text}")
+    p.advance()
+    p.accept(";")
+    return qual, A.Pou(p.loc(head), "METHOD", name.value, [], body, None, name.text,
+                       end_loc=end_loc, action=True)
+
+
+def attach_actions(p, out: A.SourceFile, found: list[tuple[Token | None, A.Pou, A.Pou | None]]
+                   ) -> None:
+    """Give each action to its PROGRAM or FUNCTION_BLOCK of the same file (named, or the POU
+    before the ACTIONS block); PLC0198 when there is none."""
+    pous = {q.name: q for q in out.pous if q.kind in ("PROGRAM", "FUNCTION_BLOCK")}
+    for tok, act, before in found:
+        owner = pous.get(tok.value) if tok is not None else before
+        if owner is None or owner.kind not in ("PROGRAM", "FUNCTION_BLOCK"):
+            what = f"{tok.text}, which is no PROGRAM or FUNCTION_BLOCK of this file" if tok \
+                else "no PROGRAM or FUNCTION_BLOCK before it"
+            add_capped(p.diagnostics, Diagnostic(
+                "PLC0198", f"ACTION {act.spelling} belongs to {what}; write the actions after "
+                "their POU (ACTIONS Name ... END_ACTIONS)", act.loc, "error"), p.file)
+            continue
+        act.owner = owner
+        owner.methods.append(act)
 
 
 def prop(p, in_interface: bool) -> list[A.Pou]:

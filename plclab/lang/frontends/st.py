@@ -199,6 +199,7 @@ class Parser:
     # -- file level ---------------------------------------------------------------------------
     def parse_file(self) -> A.SourceFile:
         out = A.SourceFile(self.file)
+        actions: list[tuple[Token | None, A.Pou, A.Pou | None]] = []  # CODESYS POU actions
         while not self.at("EOF"):
             start = self.i
             try:
@@ -220,6 +221,18 @@ class Parser:
                     out.pous.append(oop.interface(self))
                 elif oop.word(self, "CLASS") and self.peek().kind == "IDENT":
                     oop.refuse_class(self)
+                elif (oop.word(self, "ACTIONS") or oop.word(self, "ACTION")) and \
+                        self.peek().kind == "IDENT":  # actions of a POU (ADR 0035)
+                    if not self.dialect.pou_actions:
+                        self.error("PLC0198", f"{self.tok.text} of a PROGRAM or FUNCTION_BLOCK "
+                                   "is a CODESYS extension (IEC 61131-3 has actions only in "
+                                   "SFC); choose {dialect 'codesys'} or call a FUNCTION_BLOCK "
+                                   "or METHOD instead")
+                        raise ParseAbort
+                    before = out.pous[-1] if out.pous else None
+                    found = oop.actions_block(self) if oop.word(self, "ACTIONS") else \
+                        [oop.action(self)]
+                    actions.extend((tok, act, before) for tok, act in found)
                 else:
                     t = self.tok
                     close = (suggest(t.value, _POU_START, n=1, cutoff=0.7)
@@ -238,6 +251,7 @@ class Parser:
                     self.advance()
                 while not self.at("EOF") and self.tok.kind not in _POU_START:
                     self.advance()
+        oop.attach_actions(self, out, actions)
         return out
 
     def _native_for(self, line: int) -> str | None:
@@ -794,6 +808,12 @@ class Parser:
                 value = self.expr()
                 self.semicolon()
                 return A.Assign(loc, target, value)
+            if self.tok.kind == "IDENT" and self.tok.value == "REF" and self.peek().kind == "=":
+                self.advance()  # r REF= x; binds a REFERENCE TO (CODESYS; lower.reference_to)
+                self.advance()
+                value = self.expr()
+                self.semicolon()
+                return A.Assign(loc, target, value, op="REF=")
             if isinstance(target, A.Call):
                 self.semicolon()
                 return A.CallStmt(loc, target)
