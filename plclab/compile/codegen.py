@@ -36,11 +36,20 @@ _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
 _SIMPLE = (A.Name, A.Member, A.Index, A.Literal)
 
 
+_IDENTS: dict[str, str] = {}  # name -> its checked spelling (the generator asks many times)
+
+
 def ident(name: str) -> str:
     """The Python spelling of an ST identifier: upper case, checked to be a plain identifier."""
+    up = _IDENTS.get(name)
+    if up is not None:
+        return up
     up = name.upper()
     if not _IDENT.match(up):
         raise ValueError(f"not an identifier: {name!r}")
+    if len(_IDENTS) > 100_000:  # a long-lived process compiling many programs
+        _IDENTS.clear()
+    _IDENTS[name] = up
     return up
 
 
