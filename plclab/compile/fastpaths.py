@@ -111,7 +111,7 @@ class FastPaths:
         if name == "FIND":
             lit = args[1]
             if isinstance(lit, A.Literal) and isinstance(lit.value, str) and lit.value:
-                return f"({codes[0]}.find({codes[1]}) + 1)"
+                return f"(_str_find({codes[0]}, {codes[1]}) + 1)"
             return None
         if name == "LEFT":
             return f"{codes[0]}[:{self._at_least(args[1], codes[1], 0)}]"

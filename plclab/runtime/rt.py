@@ -663,8 +663,10 @@ def format_value(v, kind: str) -> str:
 
 _unpack_from = struct.unpack_from
 _pack_into = struct.pack_into
+_str_find = str.find  # FIND with a literal, inline (fast paths, ADR 0034)
 
 HELPERS.update({
     "_setattrs": _setattrs, "_copier": _copier, "_assert_cmp": _assert_cmp, "_assert_bool": _assert_bool,
     "_assert_near": _assert_near, "_unpack_from": _unpack_from, "_pack_into": _pack_into,
+    "_str_find": _str_find,
 })

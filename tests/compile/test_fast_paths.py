@@ -219,7 +219,7 @@ _STRINGS = plc_both(STRINGS)
 
 def test_string_functions_are_inline():
     body = _STRINGS[0].compiled.source.split("class P_MAIN")[1]
-    assert ".find('ab') + 1" in body and "_find(" in body  # FIND(s, t) may get '' : helper
+    assert "_str_find(self.S, 'ab') + 1" in body and " _find(" in body  # FIND(s, t) may get '' : helper
     assert "_left(" not in body and "_replace(" not in body and "_insert(" not in body
 
 
