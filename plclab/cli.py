@@ -170,14 +170,19 @@ def chosen_command(argv: list[str]) -> str | None:
     return None
 
 
-def build_parser(load: str | list[str] | tuple[str, ...] = ()) -> argparse.ArgumentParser:
+def build_parser(load: str | list[str] | tuple[str, ...] = (),
+                 only: bool = False) -> argparse.ArgumentParser:
     """The argument parser: every command of the table with its help line; the arguments only
-    of the commands named in *load* (``"all"`` for every command, which imports them all)."""
+    of the commands named in *load* (``"all"`` for every command, which imports them all).
+    ``only=True``: the commands of *load* alone (``main`` when the first argument is a known
+    command: the other sub-parsers would cost start-up time and never be used)."""
     p = argparse.ArgumentParser(prog="plclab", description="plclab: a virtual PLC lab for "
                                 "IEC 61131-3 (ST, IL, LD) with physics plants and an autograder.")
     p.add_argument("--version", action="version", version=f"plclab {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     for name, info in COMMAND_TABLE.items():
+        if only and name not in load:
+            continue
         sp = sub.add_parser(name, help=info.help, description=info.help)
         if load == "all" or name in load:
             load_command(name).add_args(sp)
@@ -188,7 +193,9 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
         name = chosen_command(argv)
-        parser = build_parser([name] if name in COMMAND_TABLE else [])
+        known = name in COMMAND_TABLE
+        # `plclab check f.st`: only the parser of `check`; `plclab -h check` lists them all
+        parser = build_parser([name] if known else [], only=known and argv[0] == name)
         ns = parser.parse_args(argv)
         if not ns.command:
             parser.print_help()

@@ -202,7 +202,8 @@ def _string_call(m: Emission) -> str:
             return f"{codes[0]}[{lit[2] - 1}:{lit[2] - 1 + lit[1]}]"
         head = f"{codes[0]}[:{lit[2] - 1}] + " if lit[2] > 1 else ""
         return f"({head}{codes[0]}[{lit[2] - 1 + lit[1]}:])"
-    return f"{m.native}({', '.join(codes)})"
+    fast = m.cg.string_inline(name, m.args, codes)  # fastpaths.py (ADR 0034)
+    return fast if fast is not None else f"{m.native}({', '.join(codes)})"
 
 
 def _bcd(m: Emission) -> str:  # BCD_TO_* (limit: the target's maximum), *_TO_BCD (its width)

@@ -29,17 +29,27 @@ from ..lang.walk import UnhandledNode
 from . import oop_emit
 from .builtins_emit import EMITTERS, Emission, const_int
 from .fastpaths import FastPaths
+from .pycompile import compile_lines
 from .real32 import f32 as _f32
 
 _IDENT = re.compile(r"^[A-Z_][A-Z0-9_]*$")
 _SIMPLE = (A.Name, A.Member, A.Index, A.Literal)
 
 
+_IDENTS: dict[str, str] = {}  # name -> its checked spelling (the generator asks many times)
+
+
 def ident(name: str) -> str:
     """The Python spelling of an ST identifier: upper case, checked to be a plain identifier."""
+    up = _IDENTS.get(name)
+    if up is not None:
+        return up
     up = name.upper()
     if not _IDENT.match(up):
         raise ValueError(f"not an identifier: {name!r}")
+    if len(_IDENTS) > 100_000:  # a long-lived process compiling many programs
+        _IDENTS.clear()
+    _IDENTS[name] = up
     return up
 
 
@@ -51,7 +61,7 @@ def member_path(owner: str, via: tuple[str, ...], decl: A.VarDecl) -> str:
 @dataclass
 class Compiled:
     source: str
-    code: Any
+    code: tuple[Any, ...]  # code objects, executed in order into one namespace (ADR 0034)
     filename: str
     line_where: list[int]  # generated line (1-based index - 1) -> index into locations
     locations: list[Location | None]
@@ -143,7 +153,7 @@ class Codegen(FastPaths):
         src = "\n".join(self.lines) + "\n"
         try:  # Python's own compiler recursion stays at its normal limit (no C stack overflow)
             with compiler_guard(recursion_limit=0):
-                code = compile(src, self.filename, "exec")
+                code = compile_lines(self.lines, self.filename)  # in pieces (ADR 0034)
         except (SyntaxError, RecursionError, MemoryError) as exc:
             line = getattr(exc, "lineno", None) or 0
             loc = self.locations[self.line_where[line - 1]] if 0 < line <= len(
@@ -249,14 +259,24 @@ class Codegen(FastPaths):
         if not fields:
             self.emit("pass")
         self.ind -= 1
-        self.emit("def _copy(self):")
-        self.ind += 1
-        self.emit(f"n = {cls}.__new__({cls})")
-        for d in fields:
-            self.emit(f"n.{ident(d.name)} = " + self.copy_code(f"self.{ident(d.name)}", d.ty))
-        self.emit("return n")
-        self.ind -= 2
+        self.emit(self.copier_line(fields))
+        self.ind -= 1
         self.emit("")
+
+    def copier_line(self, decls: list[A.VarDecl]) -> str:
+        """``_copy = _copier(...)``: the class's copy method, made by one runtime helper from
+        the names of its members grouped the way :meth:`copy_code` copies them (ADR 0034)."""
+        groups: tuple[list[str], ...] = ([], [], [], [])
+        for d in decls:
+            t = T.resolve(d.ty)
+            if isinstance(t, T.ArrayType):
+                groups[3 if T.resolve(t.elem).is_aggregate else 2].append(ident(d.name))
+            elif isinstance(t, T.StructType | T.FBType):
+                groups[1].append(ident(d.name))
+            else:
+                groups[0].append(ident(d.name))
+        return "_copy = _copier(" + ", ".join(
+            "(" + "".join(f"{n!r}, " for n in g) + ")" for g in groups) + ")"
 
     def copy_code(self, code: str, ty: T.Type) -> str:
         t = T.resolve(ty)
@@ -290,13 +310,7 @@ class Codegen(FastPaths):
         oop_emit.init_calls(self, pou)
         self.emit("pass")
         self.ind -= 1
-        self.emit("def _copy(self):")
-        self.ind += 1
-        self.emit(f"n = {cls}.__new__({cls})")
-        for d in members:
-            self.emit(f"n.{ident(d.name)} = " + self.copy_code(f"self.{ident(d.name)}", d.ty))
-        self.emit("return n")
-        self.ind -= 1
+        self.emit(self.copier_line(members))
         self.emit("def _body(self):")
         self.ind += 1
         self.where_now = self.where(pou.loc)

@@ -23,6 +23,8 @@ locals cannot be seen stale.
 
 from __future__ import annotations
 
+import re
+
 from ..lang import ast as A
 from ..lang import types as T
 from ..lang.check import VarSym
@@ -95,6 +97,55 @@ class FastPaths:
             return None  # (a call in b could change a: keep the order a, b)
         b = self.new_tmp()
         return f"({left} / {b} if ({b} := {right}) != 0 else _rdiv({left}, {b}))"
+
+    # -- string functions --------------------------------------------------------------------
+    def string_inline(self, name: str, args: list[A.Expr], codes: list[str]) -> str | None:
+        """FIND with a non-empty literal, LEFT, REPLACE and INSERT inline, when every argument
+        is a pure read (:func:`_pure`: variables, literals, ``+ - *``, ``LEN``; evaluating one
+        cannot fault, write anything or depend on the order). The expressions are those of the
+        helpers in ``plclab.runtime.rt`` (``_find``, ``_left``, ``_replace``, ``_insert``);
+        a slice end beyond the string is clipped by Python as the helpers' ``min`` does. None:
+        the helper call (ADR 0034)."""
+        if not self.fast or not all(_pure(a, c) for a, c in zip(args, codes, strict=True)):
+            return None
+        if name == "FIND":
+            lit = args[1]
+            if isinstance(lit, A.Literal) and isinstance(lit.value, str) and lit.value:
+                return f"(_str_find({codes[0]}, {codes[1]}) + 1)"
+            return None
+        if name == "LEFT":
+            return f"{codes[0]}[:{self._at_least(args[1], codes[1], 0)}]"
+        if name == "REPLACE":  # IN1[:P-1] + IN2 + IN1[P-1+max(L,0):], P at least 1
+            s1, s2 = codes[0], codes[1]
+            n = self._at_least(args[2], codes[2], 0)
+            p = const_int(args[3])
+            if p is not None:
+                head = max(p, 1) - 1
+                tail = str(head) if n == "0" else f"{head} + {n}"
+                return f"({s1}[:{head}] + {s2} + {s1}[{tail}:])"
+            t, u = self.new_tmp(), self.new_tmp()
+            head = f"({u} := ({t} - 1 if ({t} := {codes[3]}) > 1 else 0))"
+            return f"({s1}[:{head}] + {s2} + {s1}[{u}{'' if n == '0' else f' + {n}'}:])"
+        if name == "INSERT":  # IN1[:P] + IN2 + IN1[P:], P at least 0 (at most LEN: a slice)
+            s1, s2 = codes[0], codes[1]
+            p = self._at_least(args[2], codes[2], 0)
+            if const_int(args[2]) is not None:
+                return f"({s1}[:{p}] + {s2} + {s1}[{p}:])"
+            u = self.new_tmp()
+            return f"({s1}[:({u} := {p})] + {s2} + {s1}[{u}:])"
+        return None
+
+    def _at_least(self, e: A.Expr, code: str, lo: int) -> str:
+        """The code of ``max(e, lo)`` for a pure integer ``e``: a literal folded, ``LEN(..)``
+        (never negative) as it is when ``lo`` is 0, else a conditional with a temporary."""
+        c = const_int(e)
+        if c is not None:
+            return str(max(c, lo))
+        if lo == 0 and isinstance(e, A.Call) and isinstance(e.func, A.Name) and \
+                e.func.name == "LEN":
+            return code
+        t = self.new_tmp()
+        return f"({t} if ({t} := {code}) > {lo} else {lo})"
 
     # -- array index -------------------------------------------------------------------------
     def folded_index(self, ix: A.Expr, lo: int) -> str | None:
@@ -202,6 +253,23 @@ class FastPaths:
         if w is None:
             return ["_B.left -= 1", f"if _B.left < 0: _wd({where})"]
         return [f"{w} -= 1", f"if {w} < 0: _B.left = {w}; _wd({where})"]
+
+
+# the code of a pure read: names, attribute paths, integer and string literals, + - * and
+# parentheses, and the builtin len() (once the literals are taken out)
+_STRING_LITERAL = re.compile(r"'(?:[^'\\]|\\.)*'" + r'|"(?:[^"\\]|\\.)*"')
+_PURE_CODE = re.compile(r"[\w. ()+\-*]*")
+_CALL = re.compile(r"[\w)\]]\s*\(")
+
+
+def _pure(e: A.Expr, code: str) -> bool:
+    """``code`` (of ``e``) only reads variables and computes with ``+ - *`` and LEN: it
+    cannot fault, call user code or write anything (checked on the generated code itself,
+    which is what runs)."""
+    if isinstance(e, A.Literal):
+        return isinstance(e.value, str | int) and not isinstance(e.value, bool)
+    bare = re.sub(r"(?<![\w.])len\(", "(", _STRING_LITERAL.sub("0", code))
+    return _PURE_CODE.fullmatch(bare) is not None and _CALL.search(bare) is None
 
 
 def _plain_target(e: A.Expr) -> bool:

@@ -10,7 +10,8 @@ class.
 from __future__ import annotations
 
 import copy
-from dataclasses import dataclass, field
+import reprlib
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 from ..errors import Location
@@ -25,43 +26,43 @@ def annotation(default: Any = None) -> Any:
 # Type expressions as written in source
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class TypeRef:
     loc: Location
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class NamedTypeRef(TypeRef):
     name: str
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class StringTypeRef(TypeRef):
     wide: bool
     length: Expr | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class ArrayTypeRef(TypeRef):
     ranges: list[tuple[Expr, Expr]]
     elem: TypeRef
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class SubrangeTypeRef(TypeRef):
     base: TypeRef
     lo: Expr
     hi: Expr
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class EnumTypeRef(TypeRef):
     members: list[tuple[str, Expr | None, Location]]
     base: TypeRef | None = None
     spellings: dict[str, str] = field(default_factory=dict)  # RED -> Red, as written
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class RefTypeRef(TypeRef):
     """``REF_TO T`` (IEC ed.3), ``POINTER TO T`` or ``REFERENCE TO T`` (CODESYS); ADR 0021."""
 
@@ -69,7 +70,7 @@ class RefTypeRef(TypeRef):
     target: TypeRef
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class StructTypeRef(TypeRef):
     fields: list[VarDecl]
 
@@ -78,14 +79,14 @@ class StructTypeRef(TypeRef):
 # Expressions
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Expr:
     loc: Location
     ty: Any = annotation()  # check.exprs: the expression's type (plclab.lang.types)
     is_target: bool = annotation(False)  # check.exprs.lvalue: written to, never a temporary
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Literal(Expr):
     value: Any
     kind: str  # INT REAL BOOL STRING WSTRING TIME DATE TOD DT ENUM
@@ -94,19 +95,19 @@ class Literal(Expr):
     enum_value: int | None = annotation()  # check.exprs: the value of Color#Red (kind ENUM)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Name(Expr):
     name: str
     text: str = ""  # as written (the name is upper-cased: identifiers are case-insensitive)
     sym: Any = annotation()  # check.exprs / check.calls: VarSym | EnumSym | ProgSym
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class DirectAddr(Expr):
     address: str  # %IX0.0
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Member(Expr):
     obj: Expr
     field_name: str
@@ -116,26 +117,26 @@ class Member(Expr):
     sym: Any = annotation()
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Index(Expr):
     obj: Expr
     indices: list[Expr]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Unary(Expr):
     op: str  # "-", "+", "NOT"
     operand: Expr
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Binary(Expr):
     op: str  # + - * / MOD ** = <> < <= > >= AND OR XOR
     left: Expr
     right: Expr
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Arg:
     loc: Location
     name: str | None  # None for positional
@@ -144,21 +145,21 @@ class Arg:
     negated: bool = False  # `NOT Q => x`
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Call(Expr):
     func: Expr  # Name of a function / FB instance expression
     args: list[Arg]
     target: Any = annotation()  # check.calls: CallInfo, the callee and the bound arguments
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class ArrayInit(Expr):
     """``[1, 2, 3(0)]`` for arrays; items are (repeat, value)."""
 
     items: list[tuple[Expr | None, Expr]]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class StructInit(Expr):
     """``(a := 1, b := 2)`` for structures."""
 
@@ -169,44 +170,44 @@ class StructInit(Expr):
 # Statements
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Stmt:
     loc: Location
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Assign(Stmt):
     target: Expr
     value: Expr
     op: str = ":="  # ":=", "S=" (set), "R=" (reset) -- used by LD coils
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class CallStmt(Stmt):
     call: Call
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class If(Stmt):
     branches: list[tuple[Expr, list[Stmt]]]
     orelse: list[Stmt] | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class CaseBranch:
     loc: Location
     labels: list[Expr | tuple[Expr, Expr]]  # single values or (lo, hi) ranges
     body: list[Stmt]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Case(Stmt):
     selector: Expr
     branches: list[CaseBranch]
     orelse: list[Stmt] | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class For(Stmt):
     var: Name
     start: Expr
@@ -215,46 +216,46 @@ class For(Stmt):
     body: list[Stmt]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class While(Stmt):
     cond: Expr
     body: list[Stmt]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Repeat(Stmt):
     body: list[Stmt]
     cond: Expr
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Exit(Stmt):
     pass
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Continue(Stmt):
     pass
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Return(Stmt):
     pass
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Empty(Stmt):
     pass
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Label(Stmt):
     """A jump target (IL labels; compiled as a state machine)."""
 
     name: str
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Jump(Stmt):
     label: str
     cond: Expr | None = None
@@ -264,7 +265,7 @@ class Jump(Stmt):
 # Declarations
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class VarDecl:
     loc: Location
     name: str  # upper-case
@@ -279,7 +280,7 @@ class VarDecl:
     ty: Any = annotation()  # check.declarations: the resolved type
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Pou:
     loc: Location
     kind: str  # PROGRAM FUNCTION FUNCTION_BLOCK
@@ -315,7 +316,7 @@ class Pou:
     return_decl: VarDecl | None = annotation()
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class PendingBody:
     """A body a front end parsed into data that :mod:`plclab.lang.lower` turns into core
     statements once every declaration is known. ``kind`` is ``"IL"`` (``payload``: a list of
@@ -327,7 +328,7 @@ class PendingBody:
     loc: Location
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class TypeDecl:
     loc: Location
     name: str
@@ -336,13 +337,13 @@ class TypeDecl:
     spelling: str = ""
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class GlobalVars:
     loc: Location
     decls: list[VarDecl]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class TaskDecl:
     loc: Location
     name: str
@@ -351,7 +352,7 @@ class TaskDecl:
     single: Expr | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class ProgramInstance:
     loc: Location
     name: str
@@ -361,7 +362,7 @@ class ProgramInstance:
     call: Call | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class ConfigVar:
     """One line of VAR_CONFIG (IEC 61131-3 ed.3 6.8.2, Table 62): a variable deep inside a
     program instance given the address its ``AT %I*`` left open and/or an initial value,
@@ -375,7 +376,7 @@ class ConfigVar:
     init: Expr | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class AccessPath:
     """One line of VAR_ACCESS (IEC 61131-3 ed.3 6.8.2): a name under which a configuration
     publishes a variable or a direct address to other systems, read-only or read-write,
@@ -390,7 +391,7 @@ class AccessPath:
     read_only: bool = True
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class Configuration:
     loc: Location
     name: str
@@ -402,7 +403,7 @@ class Configuration:
     access_paths: list[AccessPath] = field(default_factory=list)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class TestBlock:
     loc: Location
     title: str
@@ -410,7 +411,7 @@ class TestBlock:
     body: list[Stmt]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, repr=False)
 class SourceFile:
     file: str
     types: list[TypeDecl] = field(default_factory=list)
@@ -496,3 +497,18 @@ def expr_text(e: Expr | None) -> str:
     if isinstance(e, Call):
         return f"{expr_text(e.func)}(...)"
     return "?"
+
+
+@reprlib.recursive_repr()
+def _node_repr(self: Any) -> str:
+    """The repr a dataclass would make (its fields with ``repr=True``): one function for
+    every node class instead of one compiled for each class at import (ADR 0034)."""
+    shown = ", ".join(f"{f.name}={getattr(self, f.name)!r}" for f in fields(self) if f.repr)
+    return f"{type(self).__qualname__}({shown})"
+
+
+for _cls in list(globals().values()):
+    if isinstance(_cls, type) and _cls.__module__ == __name__ and \
+            "__dataclass_fields__" in _cls.__dict__ and "__repr__" not in _cls.__dict__:
+        _cls.__repr__ = _node_repr
+del _cls

@@ -105,10 +105,15 @@ def identifier_problem(name: str) -> str | None:
     return f"{name!r} is not an identifier (a letter or '_', then letters, digits and '_')"
 
 
+# Blanks before a token are consumed with it (one match a token, not two); a newline takes
+# the next line's indentation along.
 _TOKEN_RE = re.compile(
     r"""
-    (?P<ws>[ \t\r\f\v]+)
-  | (?P<nl>\n)
+    [ \t\r\f\v]*
+    (?:
+    (?P<ident>[A-Za-z_][A-Za-z0-9_]*(?![A-Za-z0-9_\#]))
+  | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|[-+*<>=)\[\],;:.&^\#]|\((?!\*)|/(?![/*]))
+  | (?P<nl>\n[ \t\r\f\v]*)
   | (?P<lcomment>//[^\n]*)
   | (?P<bcomment>\(\*)
   | (?P<ccomment>/\*)
@@ -117,12 +122,11 @@ _TOKEN_RE = re.compile(
   | (?P<based>(?:2|8|16)\#[0-9A-Fa-f_]+)
   | (?P<real>[0-9][0-9_]*\.[0-9][0-9_]*(?:[eE][+-]?[0-9]+)?|[0-9][0-9_]*[eE][+-]?[0-9]+)
   | (?P<int>[0-9][0-9_]*)
-  | (?P<ident>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<addr>%[IQM][XBWDL]?[0-9]+(?:\.[0-9]+)*|%[IQM]\*)
   | (?P<partial>%[XBWDxbwd][0-9]+)
   | (?P<sstring>')
   | (?P<dstring>")
-  | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|[-+*/<>=()\[\],;:.&^\#])
+    )
     """,
     re.VERBOSE,
 )
@@ -130,6 +134,7 @@ _TOKEN_RE = re.compile(
 # characters that can never start a token (a superset would be wrong, a subset only slower)
 _NEVER_TOKEN = re.compile(r"[^\sA-Za-z0-9_%'\"{}()\[\]+\-*/<>=,;:.&^#!]+")
 _BLANKS = re.compile(r"[ \t]+")
+_BLANKS_ANY = re.compile(r"[ \t\r\f\v]+")
 MAX_DIGITS = 100  # an integer literal with more digits is an error (PLC0125)
 _LTIME_MAX = (1 << 63) - 1  # ns
 _DATE_MAX_S = (1 << 32) - 1  # DATE and DT: unsigned 32-bit seconds since 1970, as on S7/CODESYS
@@ -206,7 +211,7 @@ class Lexer:
                 continue
             blank = _BLANKS.match(text, end)
             j = blank.end() if blank else end
-            if j < n and match(text, j) is None:
+            if j < n and text[j] not in " \t\r\f\v\n" and match(text, j) is None:
                 end, last = j + 1, j
                 continue
             break
@@ -222,26 +227,46 @@ class Lexer:
     def tokens(self) -> list[Token]:
         text, pos, line, line_start = self.text, 0, 1, 0
         out: list[Token] = []
+        append = out.append
         n = len(text)
         match = _TOKEN_RE.match
+        keywords = KEYWORDS
         while pos < n:
             m = match(text, pos)
-            col = pos - line_start + 1
-            if m is None:
-                pos = self._bad_run(pos, line, col)
-                continue
+            if m is None:  # skip the blanks, then a character that starts no token, or the end
+                blank = _BLANKS_ANY.match(text, pos)
+                if blank is not None:
+                    pos = blank.end()
+                    if pos >= n:
+                        break
+                    m = match(text, pos)
+                if m is None:
+                    pos = self._bad_run(pos, line, pos - line_start + 1)
+                    continue
             kind = m.lastgroup
-            s = m.group()
-            if kind == "ws":
-                pos = m.end()
+            end = m.end()
+            s = m.group(kind)
+            pos = end - len(s)  # where the token starts (after the blanks)
+            col = pos - line_start + 1
+            # the common tokens first
+            if kind == "ident":
+                up = s.upper()
+                if ("__" in s or s == "_") and up not in CODESYS_OPERATORS:
+                    self.error("PLC0006", identifier_problem(s) or "bad identifier", line, col)
+                append(Token(up if up in keywords else "IDENT", up, s, line, col))
+                pos = end
+                continue
+            if kind == "op":
+                append(Token(s, s, s, line, col))
+                pos = end
                 continue
             if kind == "nl":
-                pos = m.end()
                 line += 1
-                line_start = pos
+                line_start = pos + 1
+                pos = end
                 continue
             if kind == "lcomment":
-                pos = m.end()
+                pos = end
                 continue
             if kind in ("bcomment", "ccomment"):
                 end_pos, line, line_start = self._skip_comment(pos, line, line_start, kind)
@@ -280,40 +305,33 @@ class Lexer:
             if kind in ("sstring", "dstring"):
                 tok, pos, ok = self._string(pos, line, col, kind == "dstring")
                 if tok is not None:
-                    out.append(tok)
+                    append(tok)
                 continue
             if kind == "typed":
                 prefix = s[:-1].upper()
-                tok, newpos = self._typed(prefix, m.end(), line, col, s)
+                tok, newpos = self._typed(prefix, end, line, col, s)
                 if tok is not None:
-                    out.append(tok)
+                    append(tok)
                     pos = newpos
                     continue
                 # Not a literal prefix: emit identifier and '#'
-                out.append(Token("IDENT", prefix, s[:-1], line, col))
-                out.append(Token("#", "#", "#", line, col + len(s) - 1))
-                pos = m.end()
+                append(Token("IDENT", prefix, s[:-1], line, col))
+                append(Token("#", "#", "#", line, col + len(s) - 1))
+                pos = end
                 continue
-            pos = m.end()
-            if kind == "ident":
-                up = s.upper()
-                if ("__" in s or s == "_") and up not in CODESYS_OPERATORS:
-                    self.error("PLC0006", identifier_problem(s) or "bad identifier", line, col)
-                out.append(Token(up if up in KEYWORDS else "IDENT", up, s, line, col))
-            elif kind == "int":
-                out.append(Token("INT", self._int(s, s, line, col), s, line, col))
+            pos = end
+            if kind == "int":
+                append(Token("INT", self._int(s, s, line, col), s, line, col))
             elif kind == "based":
                 base, digits = s.split("#", 1)
-                out.append(self._based(int(base), digits, s, line, col))
+                append(self._based(int(base), digits, s, line, col))
             elif kind == "real":
-                out.append(Token("REAL", self._real(s, s, line, col), s, line, col))
+                append(Token("REAL", self._real(s, s, line, col), s, line, col))
             elif kind == "addr":
-                out.append(Token("ADDR", s.upper(), s, line, col))
-            elif kind == "partial":  # w.%X15: partial access to a bit (IEC ed.3 Table 17)
-                out.append(Token("PARTIAL", s.upper(), s, line, col))
-            else:
-                out.append(Token(s, s, s, line, col))
-        out.append(Token("EOF", None, "", line, pos - line_start + 1))
+                append(Token("ADDR", s.upper(), s, line, col))
+            else:  # partial: w.%X15, partial access to a bit (IEC ed.3 Table 17)
+                append(Token("PARTIAL", s.upper(), s, line, col))
+        append(Token("EOF", None, "", line, pos - line_start + 1))
         return _test_as_name(out)
 
     # -- pieces -------------------------------------------------------------------------

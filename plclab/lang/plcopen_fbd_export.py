@@ -6,6 +6,7 @@ negated pin, ``IF c THEN x := e`` and set/reset assignments as MOVE enabled by E
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from dataclasses import fields
 
 from . import ast as A
 from .plcopen_elements import call_pins, connect, hide, sub
@@ -56,7 +57,7 @@ def _names(e: A.Expr) -> list[A.Name]:
         x = stack.pop()
         if isinstance(x, A.Name):
             out.append(x)
-        for v in vars(x).values():
+        for v in (getattr(x, f.name) for f in fields(x)):
             if isinstance(v, A.Expr):
                 stack.append(v)
             elif isinstance(v, list):

@@ -114,10 +114,14 @@ def walk(node: Any) -> Iterator[Any]:
     """``node`` and every node inside it, pre-order. An explicit stack, not recursion: trees
     may be nested thousands of levels deep."""
     stack = [node]
+    pop, extend, get = stack.pop, stack.extend, CHILDREN.get  # the checker's inner loop
     while stack:
-        n = stack.pop()
+        n = pop()
         yield n
-        stack.extend(reversed(children(n)))
+        kids = get(type(n))
+        if kids is None:
+            raise UnhandledNode("plclab.lang.walk.children", n)
+        extend(reversed(kids(n)))
 
 
 class NodeVisitor:

@@ -216,11 +216,13 @@ class Plc:
         self.outputs = bytearray(image_size)  # the physical output terminals
         self.forced: dict[str, Any] = {}
         # trigger points of a watch table (ADR 0025): callbacks and one-shot modifications
-        self.triggers: dict[str, list[Any]] = {t: [] for t in TRIGGERS}
+        self.triggers: dict[str, list[Any]] = {t: _Hooks(self._rewatch) for t in TRIGGERS}
         self.modified: dict[str, dict[str, Any]] = {t: {} for t in TRIGGERS}
         self.outputs_enabled_in_stop = False
-        # the same list and dict objects, for one cheap any() per scan() call
+        # the same list and dict objects; _hooked is any() of them, kept up to date by the
+        # trigger lists, modify() and _take(), so a scan() call tests one flag (ADR 0034)
         self._watch_parts = (*self.triggers.values(), *self.modified.values())
+        self._hooked = False
         self.state = "RUN"
         self.fault: PlcRuntimeFault | None = None
         self._natives = {k: natives.resolve(v) for k, v in compiled.natives.items()}
@@ -264,7 +266,8 @@ class Plc:
         ns.update(_CTX=self.ctx, _B=self.budget, _I=self.image_in, _Q=self.image_out,
                   _M=self.memory, _F32=cell, _f32=f32_cell, __name__="plclab_program",
                   _INIT_RETAINS=not getattr(self, "_warm", False))  # FB_init (ADR 0021)
-        exec(self.compiled.code, ns)
+        for code in self.compiled.code:  # the module in pieces (plclab.compile.pycompile)
+            exec(code, ns)
         ns["_G"] = ns["_Globals"]()
         ns["_P"] = ns["_Programs"]()
         return ns
@@ -324,6 +327,7 @@ class Plc:
         # one task running at the base tick: no need to check which tasks are due
         self._single = (self._task_bodies[0][1] if len(self._task_bodies) == 1 and
                         self._task_bodies[0][0] == self._tick_ns else None)
+        self._one = self._one_scan() if self._single is not None else None
 
     # -- the scan cycle -----------------------------------------------------------------------
     @property
@@ -340,11 +344,44 @@ class Plc:
         if n.__class__ is not int or not 0 <= n <= MAX_SCANS:
             _check_count(n, "scan: n")
         if (self.state != "RUN" or self.forced or self._single is None or n < 1
-                or self._system_bytes or any(self._watch_parts)):
+                or self._system_bytes or self._hooked):
             for _ in range(n):
                 self._scan_once()
             return
+        if n == 1:
+            self._one()
+            return
         self._fast_scans(n)
+
+    def _one_scan(self):
+        """``_fast_scans(1)`` with what it needs bound once (made by ``_bind``): the fixed
+        cost of a ``scan()`` call (ADR 0034). The same steps and end state, a fault included
+        (no output copy, no clock step, the scan counted); without a process image in the
+        program the order of the image copies cannot be seen."""
+        plc, ctx, budget, tick = self, self.ctx, self.budget, self._tick_ns
+        img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
+        sync_in, sync_out, bodies = self._sync_in, self._sync_out, self._single
+
+        def one() -> None:
+            budget.left = budget.limit
+            img_in[:] = inputs
+            try:
+                if sync_in is not None:
+                    sync_in()
+                for body in bodies:
+                    body()
+                if sync_out is not None:
+                    sync_out()
+                outputs[:] = img_out
+                t = ctx.now_ns + tick
+                ctx.now_ns = t
+                ctx.now = t // 1_000_000
+            except BaseException as exc:  # noqa: BLE001
+                plc._to_stop(exc)
+            ctx.first_scan = False
+            ctx.scan_count += 1
+
+        return one
 
     def _fast_scans(self, n: int) -> None:
         """The common case (RUN, nothing forced, one cyclic task, no system bytes): the steps
@@ -422,7 +459,7 @@ class Plc:
 
         def scan_one() -> None:
             if (plc._single is not bodies or plc.state != "RUN" or plc.forced
-                    or plc._system_bytes or any(plc._watch_parts)):  # trigger points: scan()
+                    or plc._system_bytes or plc._hooked):  # trigger points: scan()
                 plc.scan()
                 return
             budget.left = budget.limit  # from here on as unchecked() (a call less)
@@ -475,7 +512,7 @@ class Plc:
             ctx.now_ns += self._tick_ns
             ctx.now = ctx.now_ns // 1_000_000
             return
-        watched = self._watched
+        watched = self._hooked
         self.budget.left = self.budget.limit
         self.image_in[:] = self.inputs
         if self._system_bytes:
@@ -886,6 +923,7 @@ class Plc:
                            "or 'scan_end'")
         v = self.var(path)
         self.modified[at][path.upper()] = (v, convert_in(value, v.type, path))
+        self._hooked = True
 
     def enable_outputs_in_stop(self, enable: bool = True) -> None:
         """TIA Portal's *Enable peripheral outputs*: in STOP, modified outputs reach the
@@ -902,11 +940,16 @@ class Plc:
 
     @property
     def _watched(self) -> bool:
-        return any(self._watch_parts)
+        return self._hooked
+
+    def _rewatch(self) -> None:
+        """Recompute ``_hooked`` after a trigger list or a pending modification changed."""
+        self._hooked = any(self._watch_parts)
 
     def _take(self, at: str) -> list[tuple[str, Any]]:
         items = list(self.modified[at].items())
         self.modified[at].clear()
+        self._rewatch()
         return items
 
     def _fire(self, at: str) -> None:
@@ -936,6 +979,41 @@ class Plc:
             out += [f"{label}.{d.spelling or d.name}" for d in symbols.members(pou).values()
                     if d.section != "VAR_TEMP" and not d.name.startswith("__")]
         return out
+
+
+class _Hooks(list):
+    """The callbacks of one trigger point (``plc.triggers[at]``): a list that calls
+    ``changed()`` after every change, so the PLC keeps one flag instead of testing every
+    trigger point on each ``scan()`` call (ADR 0034)."""
+
+    __slots__ = ("_changed",)
+
+    def __init__(self, changed: Any) -> None:
+        super().__init__()
+        self._changed = changed
+
+    def __iadd__(self, other: Any) -> _Hooks:
+        super().__iadd__(other)
+        self._changed()
+        return self
+
+
+def _notifying(name: str) -> Any:
+    method = getattr(list, name)
+
+    def changed(self: _Hooks, *args: Any) -> Any:
+        out = method(self, *args)
+        self._changed()
+        return out
+
+    changed.__name__ = name
+    return changed
+
+
+for _name in ("append", "extend", "insert", "remove", "pop", "clear", "__setitem__",
+              "__delitem__"):
+    setattr(_Hooks, _name, _notifying(_name))
+del _name
 
 
 class _GlobalsType(T.Type):

@@ -11,6 +11,7 @@ import bisect
 import math
 import re
 import struct
+from operator import attrgetter as _attrgetter
 
 from ..compile.real32 import f32 as _f32  # REAL rounding, shared with the compiler
 
@@ -584,6 +585,34 @@ def _setattrs(obj, **kw):
     return obj
 
 
+def _copier(plain: tuple[str, ...], objs: tuple[str, ...], lists: tuple[str, ...],
+            obj_lists: tuple[str, ...]):
+    """The ``_copy`` method of a generated class (ADR 0034): a new instance of the same class
+    whose members ``plain`` (elementary values) are shared, ``objs`` (structures and block
+    instances) copied by their own ``_copy``, ``lists`` (arrays of elementary values) copied
+    and ``obj_lists`` (arrays of structures or blocks) copied element by element. One helper
+    instead of a generated method per class keeps the generated source short."""
+    get_plain = _attrgetter(*plain) if len(plain) > 1 else None
+
+    def _copy(self):
+        cls = self.__class__
+        n = cls.__new__(cls)
+        if get_plain is not None:
+            for k, v in zip(plain, get_plain(self), strict=True):
+                setattr(n, k, v)
+        elif plain:
+            setattr(n, plain[0], getattr(self, plain[0]))
+        for k in objs:
+            setattr(n, k, getattr(self, k)._copy())
+        for k in lists:
+            setattr(n, k, list(getattr(self, k)))
+        for k in obj_lists:
+            setattr(n, k, [e._copy() for e in getattr(self, k)])
+        return n
+
+    return _copy
+
+
 def _assert_cmp(a, b, want_equal: bool, where: int, kind: str) -> None:
     equal = a == b
     if equal != want_equal:
@@ -634,8 +663,10 @@ def format_value(v, kind: str) -> str:
 
 _unpack_from = struct.unpack_from
 _pack_into = struct.pack_into
+_str_find = str.find  # FIND with a literal, inline (fast paths, ADR 0034)
 
 HELPERS.update({
-    "_setattrs": _setattrs, "_assert_cmp": _assert_cmp, "_assert_bool": _assert_bool,
+    "_setattrs": _setattrs, "_copier": _copier, "_assert_cmp": _assert_cmp, "_assert_bool": _assert_bool,
     "_assert_near": _assert_near, "_unpack_from": _unpack_from, "_pack_into": _pack_into,
+    "_str_find": _str_find,
 })

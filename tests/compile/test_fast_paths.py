@@ -203,3 +203,42 @@ END_PROGRAM
     assert "_F32[0] = " in fast.compiled.source
     run(fast, {"Main.x": value})
     assert fast["Main.r"] == fast["Main.s"] == f32(f32(value) * 3.0)
+
+
+STRINGS = """
+PROGRAM Main
+VAR s, t, r1, r2, r3, r4, r5, r6, r7, r8 : STRING; w : WSTRING; p, n, f1, f2 : INT; END_VAR
+f1 := FIND(s, 'ab'); f2 := FIND(s, t);
+r1 := LEFT(s, n); r2 := LEFT(s, p - n);
+r3 := REPLACE(s, t, n, p); r4 := REPLACE(s, 'xy', 2, p + 1); r5 := REPLACE(s, t, n, 3);
+r6 := INSERT(s, t, p); r7 := INSERT(s, '!', LEN(s)); r8 := INSERT(s, t, 2);
+END_PROGRAM
+"""
+_STRINGS = plc_both(STRINGS)
+
+
+def test_string_functions_are_inline():
+    body = _STRINGS[0].compiled.source.split("class P_MAIN")[1]
+    assert "_str_find(self.S, 'ab') + 1" in body and " _find(" in body  # FIND(s, t) may get '' : helper
+    assert "_left(" not in body and "_replace(" not in body and "_insert(" not in body
+
+
+@settings(max_examples=300, deadline=None, database=None)
+@given(s=st.text("abxy!", max_size=12), t=st.text("ab", max_size=3),
+       p=st.integers(-3, 15), n=st.integers(-3, 15))
+def test_inline_string_functions_match_the_helpers(s, t, p, n):
+    fast, plain = _STRINGS
+    inputs = {"Main.s": s, "Main.t": t, "Main.p": p, "Main.n": n}
+    assert run(fast, inputs) == run(plain, inputs)
+
+
+def test_a_string_function_of_a_call_keeps_the_helper():
+    """An argument that could fault or call user code keeps the helper (and its order)."""
+    src = """
+FUNCTION F : INT VAR_INPUT x : INT; END_VAR F := x; END_FUNCTION
+PROGRAM Main VAR s, r : STRING; a : ARRAY[0..3] OF INT; p : INT; END_VAR
+r := LEFT(s, F(p)); r := INSERT(s, 'x', a[p]); r := REPLACE(s, 'x', 1, p / 2);
+END_PROGRAM
+"""
+    body = plclab.compile_sources([(src, "x.st")]).source.split("class P_MAIN")[1]
+    assert body.count("_left(") == 1 and "_insert(" in body and "_replace(" in body

@@ -102,3 +102,38 @@ def test_the_scanner_follows_stop_force_and_restart():
     plc.cold_restart()
     one()  # the old namespace is gone: the scanner falls back to scan()
     assert plc.scan_count == 1 and plc["Main.count"] == 1
+
+
+def test_the_trigger_flag_follows_every_change_of_the_trigger_points():
+    """scan() tests one flag, kept by the trigger lists, modify() and the scan that applies a
+    modification (ADR 0034), instead of any() over every trigger point on each call."""
+    plc = plclab.loads("PROGRAM P VAR n, m : INT; END_VAR n := n + 1; END_PROGRAM")
+    seen: list[int] = []
+
+    def cb(p, at):
+        seen.append(p["P.n"])
+
+    assert not plc._hooked
+    plc.triggers["scan_end"].append(cb)
+    assert plc._hooked
+    plc.scan(2)
+    scan_one = plc.scanner()
+    scan_one()
+    assert seen == [1, 2, 3]
+    plc.triggers["scan_end"].remove(cb)
+    assert not plc._hooked
+    plc.triggers["stop"] += [cb]
+    assert plc._hooked
+    plc.triggers["stop"].clear()
+    assert not plc._hooked
+    plc.modify("P.m", 7)
+    assert plc._hooked
+    plc.scan()
+    assert plc["P.m"] == 7 and not plc._hooked
+    plc.triggers["scan_start"].insert(0, cb)
+    del plc.triggers["scan_start"][0]
+    plc.triggers["scan_start"].extend([cb, cb])
+    plc.triggers["scan_start"].pop()
+    assert plc._hooked == any(plc._watch_parts)
+    plc.triggers["scan_start"][0:1] = []
+    assert not plc._hooked

@@ -135,30 +135,40 @@ class Parser:
         j = min(self.i + k, len(self.toks) - 1)
         return self.toks[j]
 
+    # the helpers below are the parser's inner loop: they index self.toks directly
     def loc(self, tok: Token | None = None) -> Location:
-        t = tok or self.tok
+        t = self.toks[self.i] if tok is None else tok
         return Location(self.file, t.line, t.col)
 
     def advance(self) -> Token:
-        t = self.toks[self.i]
-        if self.i < len(self.toks) - 1:
-            self.i += 1
+        i = self.i
+        t = self.toks[i]
+        if i < len(self.toks) - 1:
+            self.i = i + 1
         return t
 
     def at(self, *kinds: str) -> bool:
-        return self.tok.kind in kinds
+        return self.toks[self.i].kind in kinds
 
     def accept(self, kind: str) -> Token | None:
-        if self.tok.kind == kind:
-            return self.advance()
+        i = self.i
+        t = self.toks[i]
+        if t.kind == kind:
+            if i < len(self.toks) - 1:
+                self.i = i + 1
+            return t
         return None
 
     def error(self, code: str, msg: str, tok: Token | None = None) -> None:
         add_capped(self.diagnostics, Diagnostic(code, msg, self.loc(tok)), self.file)
 
     def expect(self, kind: str, what: str | None = None) -> Token:
-        if self.tok.kind == kind:
-            return self.advance()
+        i = self.i
+        t = self.toks[i]
+        if t.kind == kind:
+            if i < len(self.toks) - 1:
+                self.i = i + 1
+            return t
         self.fail_expected(what or _describe(kind))
         raise AssertionError  # unreachable
 
@@ -1091,6 +1101,8 @@ class Parser:
         nests the operand one level deeper for the checker and the compiler."""
         chain = 0
         while True:
+            if self.toks[self.i].kind not in (".", "[", "(", "^"):  # the usual case, quickly
+                return e
             if self.at(".", "[", "("):
                 chain += 1
                 if self.expr_depth + chain > MAX_EXPR_NESTING:
