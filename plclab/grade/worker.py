@@ -34,7 +34,8 @@ from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
            "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.scada", "rerun",
-           "plclab.viz.recording", "plclab.viz.layout")
+           "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png", "PIL.Image",
+           "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin")
 """Imported once by the forkserver. ``rerun`` costs 0.3-0.5 s to import: without it here every
 failing submission (which writes a recording) paid it again in its child."""
 
@@ -76,7 +77,7 @@ def _warm_timing_diagram() -> None:
     import io
 
     from plclab.viz.series import Series
-    from plclab.viz.timing import timing_diagram
+    from plclab.viz.timing import failure_png, timing_diagram
 
     ts = [0.0, 1.0, 2.0, 3.0]
     rows = [Series("RUN", ts, [False, True, True, False], "bool"),
@@ -86,6 +87,9 @@ def _warm_timing_diagram() -> None:
                          width=9.0, thresholds={"LEVEL [m]": [(1.4, "limit")]},
                          fixed_layout=True)
     fig.savefig(io.BytesIO(), format="png", dpi=72)
+    # the feedback's own renderer (Pillow, ADR 0033): its fonts and the PNG encoder
+    failure_png(rows, None, 0.0, 3.0, title="warm-up: x", markers=[(1.5, "fails")],
+                thresholds={"LEVEL [m]": [(1.4, "limit")]})
 
 
 def _vm_bytes() -> int:
