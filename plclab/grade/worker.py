@@ -35,16 +35,40 @@ from typing import Any
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
            "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.scada", "rerun",
            "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png", "PIL.Image",
-           "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin")
+           "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin", "plclab.grade.protocol",
+           "plclab.lang.sfc_outline", "plclab.lang.unparse", "plclab.viz.sfc_lane",
+           "plclab.scada.alarms", "plclab.scada.recipes")
 """Imported once by the forkserver. ``rerun`` costs 0.3-0.5 s to import: without it here every
-failing submission (which writes a recording) paid it again in its child."""
+failing submission (which writes a recording) paid it again in its child. Every module a
+child imports itself is compiled again in that child (there may be no ``.pyc`` to read:
+``PYTHONDONTWRITEBYTECODE``, a read-only install), about 30 ms per child for the dozen small
+modules a simulation needs, so they are here too (a test checks that grading a lab imports
+nothing new in the child)."""
+PRELOAD_PACKAGES = ("plclab.io", "plclab.trace", "plclab.sim")
+"""Packages whose every module (but the CLI's ``commands``) the forkserver imports: the I/O
+modules, trace and simulation parts a lab's wiring and criteria may use."""
+
+
+def _preload_modules() -> list[str]:
+    import importlib
+    import pkgutil
+
+    names = list(PRELOAD)
+    for pkg in PRELOAD_PACKAGES:
+        try:
+            path = importlib.import_module(pkg).__path__
+        except Exception:  # noqa: BLE001, S112 - optional speed-up only
+            continue
+        names += [m.name for m in pkgutil.walk_packages(path, pkg + ".")
+                  if not m.name.endswith(".commands")]
+    return names
 
 
 def preload() -> None:
     """Import what every grading needs (run once in the forkserver; errors are ignored)."""
     import importlib
 
-    for mod in PRELOAD + ("pymunk",):
+    for mod in _preload_modules() + ["pymunk"]:
         try:
             importlib.import_module(mod)
         except Exception:  # noqa: BLE001, S112 - optional speed-up only
