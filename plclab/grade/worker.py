@@ -1,8 +1,8 @@
 """The child process that grades one submission.
 
 The autograder (:mod:`plclab.grade.grader`) starts one process per submission through a
-multiprocessing *forkserver* that has already imported NumPy, the simulator, the plants and
-matplotlib (:func:`preload`), so a child starts in milliseconds. The child
+multiprocessing *forkserver* that has already imported NumPy, the simulator, the plants,
+rerun and Pillow (:func:`preload`), so a child starts in milliseconds. The child
 
 0. confines itself (:mod:`plclab.grade.sandbox`): an empty temporary working folder, a minimal
    environment, death with its parent, a CPU-time limit; it gets the submission's text and the
@@ -80,38 +80,23 @@ def preload() -> None:
     except Exception:  # noqa: BLE001 - only a warm-up of the compiler's caches
         pass
     try:
-        import matplotlib
-
-        matplotlib.use("Agg", force=True)
-        import matplotlib.pyplot as plt
-
-        fig = plt.figure(figsize=(2, 1))  # load the fonts once
-        fig.text(0.5, 0.5, "x")
-        fig.canvas.draw()
-        plt.close(fig)
         _warm_timing_diagram()
-    except Exception:  # noqa: BLE001 - no matplotlib: no diagrams
+    except Exception:  # noqa: BLE001 - no Pillow: no diagrams
         pass
 
 
 def _warm_timing_diagram() -> None:
     """Draw one small failure diagram (every row kind, a limit, a marker) into memory: the
-    first diagram of a process costs several times the next one (font sizes, glyphs, tick
-    formatters, the PNG encoder), and every child forked after this gets them ready."""
-    import io
-
+    first diagram of a process costs several times the next one (fonts, the PNG encoder),
+    and every child forked after this gets them ready. The diagrams are drawn with Pillow
+    (ADR 0033): the forkserver no longer imports matplotlib (about 1 s of its start-up)."""
     from plclab.viz.series import Series
-    from plclab.viz.timing import failure_png, timing_diagram
+    from plclab.viz.timing import failure_png
 
     ts = [0.0, 1.0, 2.0, 3.0]
     rows = [Series("RUN", ts, [False, True, True, False], "bool"),
             Series("STEP", ts, [0, 1, 2, 1], "int"),
             Series("LEVEL [m]", ts, [0.5, 1.0, 1.5, 1.2], "real")]
-    fig = timing_diagram(rows, None, 0.0, 3.0, title="warm-up: x", markers=[(1.5, "fails")],
-                         width=9.0, thresholds={"LEVEL [m]": [(1.4, "limit")]},
-                         fixed_layout=True)
-    fig.savefig(io.BytesIO(), format="png", dpi=72)
-    # the feedback's own renderer (Pillow, ADR 0033): its fonts and the PNG encoder
     failure_png(rows, None, 0.0, 3.0, title="warm-up: x", markers=[(1.5, "fails")],
                 thresholds={"LEVEL [m]": [(1.4, "limit")]})
 
