@@ -353,8 +353,8 @@ class RrdWriter:
             for shp in pic.frame(int(i)):
                 groups.setdefault(shp.name, []).append(shp)
             for name, shapes in groups.items():
-                key = repr([(s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
-                             round(s.h, 4), round(s.angle, 3), s.label) for s in shapes])
+                key = tuple((s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
+                             round(s.h, 4), round(s.angle, 3), s.label) for s in shapes)
                 if last.get(name) != key:
                     rows.setdefault((name, shapes[0].kind), []).append((float(t), shapes))
                     last[name] = key
@@ -365,15 +365,20 @@ class RrdWriter:
             shown |= set(groups)
         for (name, _kind), items in rows.items():
             self._shape_columns(f"/plant/{name}", items)
+        import numpy as np
+
         rr = self.rr
         for name, ts in clears.items():
-            rr.send_columns(f"/plant/{name}", indexes=[rr.TimeColumn("sim_time", duration=ts)],
+            rr.send_columns(f"/plant/{name}", indexes=[rr.TimeColumn(
+                "sim_time", duration=np.asarray(ts, dtype=np.float64))],
                             columns=rr.Clear.columns(is_recursive=[False] * len(ts)),
                             recording=self.stream)
 
     def _shape_columns(self, entity: str, items: list[tuple[float, list[Shape]]]) -> None:
         """Rows of shapes of one kind (``(time, shapes)``), as :meth:`_shapes` would log each
         of them, in one ``send_columns``."""
+        import numpy as np
+
         rr = self.rr
         kind = items[0][1][0].kind
         times = [t for t, _ in items]
@@ -396,8 +401,6 @@ class RrdWriter:
                         colors.append(s.color)
                 lengths.append(len(strips) - n0)
             if kind == "box":  # equal strips of two points: one (N, 2, 2) array converts fast
-                import numpy as np
-
                 strips = np.asarray(strips, dtype=np.float32).reshape(-1, 2, 2)
             cols = list(rr.LineStrips2D.columns(strips=strips, radii=radii, colors=colors)
                         .partition(lengths))
@@ -416,7 +419,8 @@ class RrdWriter:
             cols += list(rr.Points2D.columns(show_labels=[True] * len(items)))
         else:
             return
-        rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=times)],
+        rr.send_columns(entity, indexes=[rr.TimeColumn(
+            "sim_time", duration=np.asarray(times, dtype=np.float64))],
                         columns=cols, recording=self.stream)
 
     def _shapes(self, entity: str, shapes: list[Shape], static: bool = False) -> None:
