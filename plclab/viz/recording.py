@@ -295,19 +295,35 @@ class RrdWriter:
         rr, st = self.rr, self.stream
         levels = {"INFO": rr.TextLogLevel.INFO, "WARN": rr.TextLogLevel.WARN,
                   "ERROR": rr.TextLogLevel.ERROR}
-        for ev in sorted(self._new(rec.events), key=lambda e: e.time):
-            st.set_time("sim_time", duration=ev.time)
-            st.log("/events", rr.TextLog(f"{ev.source}: {ev.message}" if ev.source
-                                         else ev.message,
-                                         level=levels.get(ev.level, rr.TextLogLevel.INFO)))
+        # one send_columns per entity, not one log per event (a chattering relay has
+        # hundreds of operations in /details): the same rows on sim_time (ADR 0033)
+        evs = sorted(self._new(rec.events), key=lambda e: e.time)
+        if evs:
+            self._texts("/events", [ev.time for ev in evs],
+                        [f"{ev.source}: {ev.message}" if ev.source else ev.message
+                         for ev in evs],
+                        [str(levels.get(ev.level, rr.TextLogLevel.INFO)) for ev in evs])
+        details: dict[str, list[Event]] = {}
         for ev in self._new(rec.details):
-            st.set_time("sim_time", duration=ev.time)
-            st.log(f"/details/{slug(ev.kind)}", rr.TextLog(f"{ev.source}: {ev.message}"))
+            details.setdefault(f"/details/{slug(ev.kind)}", []).append(ev)
+        for entity, group in details.items():
+            self._texts(entity, [ev.time for ev in group],
+                        [f"{ev.source}: {ev.message}" for ev in group])
         for m in self._new(rec.markers):
             self._marker(m)
         if rec.summary:
             st.log("/summary", rr.TextDocument(rec.summary, media_type="text/markdown"),
                    static=True)
+
+    def _texts(self, entity: str, times: list[float], texts: list[str],
+               levels: list[str] | None = None) -> None:
+        """Rows of a ``TextLog`` (with their levels, if given) at their times."""
+        rr = self.rr
+        kw: dict[str, Any] = {"text": texts}
+        if levels is not None:
+            kw["level"] = levels
+        rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=times)],
+                        columns=rr.TextLog.columns(**kw), recording=self.stream)
 
     def _new(self, items: list[Any]) -> list[Any]:
         """The items not sent yet (a live run sends a growing recording chunk by chunk)."""
