@@ -46,26 +46,32 @@ BLACK = (0, 0, 0)
 def font(size_px: int) -> Any:
     """DejaVu Sans at ``size_px`` pixels (matplotlib's font file when it is installed,
     Pillow's own font otherwise)."""
+    import io
+
     from PIL import ImageFont
 
-    path = _font_file()
-    if path:
-        try:
-            return ImageFont.truetype(path, size_px)
+    data = _font_bytes()
+    if data:
+        try:  # from memory: no file a forked grading child would share its offset with
+            return ImageFont.truetype(io.BytesIO(data), size_px)
         except OSError:
             pass
     return ImageFont.load_default(size=size_px)
 
 
 @functools.lru_cache(maxsize=1)
-def _font_file() -> str | None:
+def _font_bytes() -> bytes | None:
+    """The bytes of matplotlib's DejaVu Sans (None when matplotlib is not installed)."""
     import importlib.util
 
     spec = importlib.util.find_spec("matplotlib")
     for root in (spec.submodule_search_locations or []) if spec else []:
         path = os.path.join(root, "mpl-data", "fonts", "ttf", "DejaVuSans.ttf")
-        if os.path.isfile(path):
-            return path
+        try:
+            with open(path, "rb") as fh:
+                return fh.read(4 << 20)
+        except OSError:
+            continue
     return None
 
 
