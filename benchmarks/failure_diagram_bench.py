@@ -1,6 +1,8 @@
 """How long a student's failure diagram takes: the PNG that ``lab check --out`` and ``grade``
 draw for a failed criterion (the lab's signals over the failure window, thresholds, the
-failure marked). Target: well under 0.1 s. Printed, never asserted.
+failure marked). Target: well under 0.1 s. Printed, never asserted. The last column draws the
+same diagram with matplotlib (``timing_diagram(fixed_layout=True)``, saved at 72 dpi), which
+the grader used before ADR 0033.
 
     python benchmarks/failure_diagram_bench.py [--repeat 20]
 """
@@ -51,7 +53,11 @@ def main() -> int:
     from plclab.grade.worker import _warm_timing_diagram
 
     _warm_timing_diagram()  # as the grader's forkserver does: "first" is a child's first one
-    print(f"{'lab':<20} {'criterion':<28} {'samples':>8} {'first':>9} {'median':>9}")
+    from plclab.viz.from_trace import series
+    from plclab.viz.timing import timing_diagram
+
+    print(f"{'lab':<20} {'criterion':<28} {'samples':>8} {'first':>9} {'median':>9} "
+          f"{'matplotlib':>10}")
     with tempfile.TemporaryDirectory() as tmp:
         for lab_id, mistake in (all_cases() if ns.all else CASES):
             lab = load_lab(lab_id)
@@ -73,8 +79,17 @@ def main() -> int:
                 timing_png(trace, names, Path(tmp) / f"{i}.png", t0, t1,
                            [(t.t_fail, f"{crit.name} fails")], crit.name, None, limits)
                 times.append(time.perf_counter() - start)
+            mpl = []
+            for i in range(min(ns.repeat, 10)):
+                start = time.perf_counter()
+                fig = timing_diagram(series(trace, names, t0, t1), None, t0, t1,
+                                     title=crit.name, markers=[(t.t_fail, "fails")],
+                                     width=9.0, thresholds=limits, fixed_layout=True)
+                fig.savefig(Path(tmp) / f"m{i}.png", dpi=72)
+                mpl.append(time.perf_counter() - start)
             print(f"{lab_id:<20} {crit.name[:28]:<28} {len(trace.time):>8} "
-                  f"{times[0] * 1000:>7.1f}ms {statistics.median(times) * 1000:>7.1f}ms")
+                  f"{times[0] * 1000:>7.1f}ms {statistics.median(times) * 1000:>7.1f}ms "
+                  f"{statistics.median(mpl) * 1000:>8.1f}ms")
     return 0
 
 

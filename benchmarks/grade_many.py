@@ -9,11 +9,16 @@ time it prints the mean child time of a passing and of a failing submission, and
     python benchmarks/grade_many.py [--n 100] [--jobs 2] [--no-media] [--before SECONDS]
 
 ``--before`` prints a measured earlier wall time beside this one (before/after).
+
+The machine is often shared, so it also prints the load average and the CPU seconds the
+children used (read from the forkserver's ``cutime``/``cstime``: it reaps them) and the
+grader's own: those barely depend on what else runs, the wall time does.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import random
 import shutil
 import statistics
@@ -51,6 +56,19 @@ def make_half_failing(folder: Path, n: int, seed: int = 7) -> dict[str, bool]:
     return truth
 
 
+def forkserver_children_cpu() -> float | None:
+    """CPU seconds (user + system) of the children the grader's forkserver has reaped."""
+    from multiprocessing import forkserver
+
+    pid = getattr(forkserver._forkserver, "_forkserver_pid", None)
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            fields = fh.read().rpartition(")")[2].split()
+        return (int(fields[13]) + int(fields[14])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError, TypeError):
+        return None
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--n", type=int, default=100)
@@ -68,9 +86,11 @@ def main(argv: list[str] | None = None) -> int:
         subs.mkdir()
         truth = make_half_failing(subs, ns.n)
         lab = load_lab(LAB, deep=True)
-        t0 = time.perf_counter()
+        load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+        t0, c0 = time.perf_counter(), time.process_time()
         outcomes = Grader(lab, out, jobs=ns.jobs, media=not ns.no_media).grade_folder(subs)
-        wall = time.perf_counter() - t0
+        wall, own = time.perf_counter() - t0, time.process_time() - c0
+        kids = forkserver_children_cpu()
         passing = [o.wall_s for o in outcomes if truth[o.result.student]]
         failing = [o.wall_s for o in outcomes if not truth[o.result.student]]
         wrong = [o.result.student for o in outcomes
@@ -88,6 +108,9 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{'wall time':<28}{before:>10}{wall:>8.1f} s")
     print(f"{'per submission (child)':<28}{'':>10}{'pass':>5} {mp:.2f} s / fail {mf:.2f} s "
           f"(fail/pass {mf / mp:.1f}x)")
+    kids_s = "-" if kids is None else f"{kids:.1f} s"
+    print(f"{'CPU: children / grader':<28}{'':>10}{kids_s:>10} / {own:.1f} s "
+          f"(load average {load:.2f} at the start)")
     print(f"{'submissions per minute':<28}{'':>10}{len(outcomes) / wall * 60:>10.0f}")
     print(f"target < {TARGET_S:g} s: {'met' if wall < TARGET_S else 'MISSED'}")
     if wrong:

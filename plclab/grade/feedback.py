@@ -132,7 +132,7 @@ def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
     """A timing diagram of ``names`` over [t0, t1], written atomically. ``labels`` renames
     PLC addresses for the reader (``%QX0.1`` -> ``REJECT (%QX0.1)``)."""
     from plclab.viz.from_trace import series
-    from plclab.viz.timing import timing_diagram
+    from plclab.viz.timing import failure_png
 
     ss = series(trace, names, t0, t1)
     limits = {}
@@ -141,15 +141,10 @@ def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
         if s.name in (thresholds or {}):
             limits[shown] = thresholds[s.name]
         s.name = shown
-    fig = timing_diagram(ss, None, t0, t1, title=title, markers=markers, width=9.0,
-                         thresholds=limits, fixed_layout=True)
+    data = failure_png(ss, None, t0, t1, title=title, markers=markers, width=9.0,
+                       thresholds=limits)  # Pillow, not matplotlib: ADR 0033
     tmp = _atomic_tmp(path)
-    try:
-        fig.savefig(str(tmp), dpi=72)
-    finally:
-        import matplotlib.pyplot as plt
-
-        plt.close(fig)
+    tmp.write_bytes(data)
     os.replace(tmp, path)
 
 

@@ -1,8 +1,8 @@
 """The child process that grades one submission.
 
 The autograder (:mod:`plclab.grade.grader`) starts one process per submission through a
-multiprocessing *forkserver* that has already imported NumPy, the simulator, the plants and
-matplotlib (:func:`preload`), so a child starts in milliseconds. The child
+multiprocessing *forkserver* that has already imported NumPy, the simulator, the plants,
+rerun and Pillow (:func:`preload`), so a child starts in milliseconds. The child
 
 0. confines itself (:mod:`plclab.grade.sandbox`): an empty temporary working folder, a minimal
    environment, death with its parent, a CPU-time limit; it gets the submission's text and the
@@ -34,16 +34,43 @@ from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
            "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.scada", "rerun",
-           "plclab.viz.recording", "plclab.viz.layout")
+           "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png", "PIL.Image",
+           "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin", "plclab.grade.protocol",
+           "plclab.lang.sfc_outline", "plclab.lang.unparse", "plclab.viz.sfc_lane",
+           "plclab.scada.alarms", "plclab.scada.recipes",
+           "numpy.ma", "dateutil.relativedelta")  # rerun imports these when it writes a file
 """Imported once by the forkserver. ``rerun`` costs 0.3-0.5 s to import: without it here every
-failing submission (which writes a recording) paid it again in its child."""
+failing submission (which writes a recording) paid it again in its child. Every module a
+child imports itself is compiled again in that child (there may be no ``.pyc`` to read:
+``PYTHONDONTWRITEBYTECODE``, a read-only install), about 30 ms per child for the dozen small
+modules a simulation needs, so they are here too (a test checks that grading a lab imports
+nothing new in the child). rerun imports ``numpy.ma`` (about 50 ms: it inspects the
+signature of every masked-array method) and ``dateutil`` only when a recording is written."""
+PRELOAD_PACKAGES = ("plclab.io", "plclab.trace", "plclab.sim")
+"""Packages whose every module (but the CLI's ``commands``) the forkserver imports: the I/O
+modules, trace and simulation parts a lab's wiring and criteria may use."""
+
+
+def _preload_modules() -> list[str]:
+    import importlib
+    import pkgutil
+
+    names = list(PRELOAD)
+    for pkg in PRELOAD_PACKAGES:
+        try:
+            path = importlib.import_module(pkg).__path__
+        except Exception:  # noqa: BLE001, S112 - optional speed-up only
+            continue
+        names += [m.name for m in pkgutil.walk_packages(path, pkg + ".")
+                  if not m.name.endswith(".commands")]
+    return names
 
 
 def preload() -> None:
     """Import what every grading needs (run once in the forkserver; errors are ignored)."""
     import importlib
 
-    for mod in PRELOAD + ("pymunk",):
+    for mod in _preload_modules() + ["pymunk"]:
         try:
             importlib.import_module(mod)
         except Exception:  # noqa: BLE001, S112 - optional speed-up only
@@ -55,37 +82,38 @@ def preload() -> None:
     except Exception:  # noqa: BLE001 - only a warm-up of the compiler's caches
         pass
     try:
-        import matplotlib
-
-        matplotlib.use("Agg", force=True)
-        import matplotlib.pyplot as plt
-
-        fig = plt.figure(figsize=(2, 1))  # load the fonts once
-        fig.text(0.5, 0.5, "x")
-        fig.canvas.draw()
-        plt.close(fig)
         _warm_timing_diagram()
-    except Exception:  # noqa: BLE001 - no matplotlib: no diagrams
+    except Exception:  # noqa: BLE001 - no Pillow: no diagrams
         pass
+    settle_heap()
+
+
+def settle_heap() -> None:
+    """Collect the garbage the imports and warm-ups left, then freeze what is left (``gc``'s
+    advice for a process that forks workers): otherwise each child's first collections
+    free and traverse the forkserver's objects, and every page they write is copied into
+    that child (a page fault costs 5-9 us here; a failing tank child took ~3000 fewer faults
+    and 40 ms less CPU with this, ADR 0033)."""
+    import gc
+
+    gc.collect()
+    gc.freeze()
 
 
 def _warm_timing_diagram() -> None:
     """Draw one small failure diagram (every row kind, a limit, a marker) into memory: the
-    first diagram of a process costs several times the next one (font sizes, glyphs, tick
-    formatters, the PNG encoder), and every child forked after this gets them ready."""
-    import io
-
+    first diagram of a process costs several times the next one (fonts, the PNG encoder),
+    and every child forked after this gets them ready. The diagrams are drawn with Pillow
+    (ADR 0033): the forkserver no longer imports matplotlib (about 1 s of its start-up)."""
     from plclab.viz.series import Series
-    from plclab.viz.timing import timing_diagram
+    from plclab.viz.timing import failure_png
 
     ts = [0.0, 1.0, 2.0, 3.0]
     rows = [Series("RUN", ts, [False, True, True, False], "bool"),
             Series("STEP", ts, [0, 1, 2, 1], "int"),
             Series("LEVEL [m]", ts, [0.5, 1.0, 1.5, 1.2], "real")]
-    fig = timing_diagram(rows, None, 0.0, 3.0, title="warm-up: x", markers=[(1.5, "fails")],
-                         width=9.0, thresholds={"LEVEL [m]": [(1.4, "limit")]},
-                         fixed_layout=True)
-    fig.savefig(io.BytesIO(), format="png", dpi=72)
+    failure_png(rows, None, 0.0, 3.0, title="warm-up: x", markers=[(1.5, "fails")],
+                thresholds={"LEVEL [m]": [(1.4, "limit")]})
 
 
 def _vm_bytes() -> int:

@@ -21,7 +21,7 @@ PAD = 0.15
 """Empty fraction of a row's band above and below its drawing."""
 
 
-def _band_scale(s: Series, limits: Sequence[tuple[float, str]]) -> tuple[float, float]:
+def band_scale(s: Series, limits: Sequence[tuple[float, str]]) -> tuple[float, float]:
     """The value range an analog row shows: its values and its thresholds."""
     vals = [float(v) for v in s.values] + [float(v) for v, _ in limits]
     if not vals:
@@ -99,7 +99,7 @@ def _row(ax: Any, s: Series, lo: float, hi: float, y0: float, y1: float,
             ax.fill_between(times, ys, y0, step="post", alpha=0.15, color="tab:green",
                             lw=0)
     elif s.kind == "real":
-        vlo, vhi = _band_scale(s, limits)
+        vlo, vhi = band_scale(s, limits)
         k = (y1 - y0) / (vhi - vlo)
         ax.plot(times, [y0 + (float(v) - vlo) * k for v in s.values], color="tab:blue",
                 lw=1.0)

@@ -295,19 +295,35 @@ class RrdWriter:
         rr, st = self.rr, self.stream
         levels = {"INFO": rr.TextLogLevel.INFO, "WARN": rr.TextLogLevel.WARN,
                   "ERROR": rr.TextLogLevel.ERROR}
-        for ev in sorted(self._new(rec.events), key=lambda e: e.time):
-            st.set_time("sim_time", duration=ev.time)
-            st.log("/events", rr.TextLog(f"{ev.source}: {ev.message}" if ev.source
-                                         else ev.message,
-                                         level=levels.get(ev.level, rr.TextLogLevel.INFO)))
+        # one send_columns per entity, not one log per event (a chattering relay has
+        # hundreds of operations in /details): the same rows on sim_time (ADR 0033)
+        evs = sorted(self._new(rec.events), key=lambda e: e.time)
+        if evs:
+            self._texts("/events", [ev.time for ev in evs],
+                        [f"{ev.source}: {ev.message}" if ev.source else ev.message
+                         for ev in evs],
+                        [str(levels.get(ev.level, rr.TextLogLevel.INFO)) for ev in evs])
+        details: dict[str, list[Event]] = {}
         for ev in self._new(rec.details):
-            st.set_time("sim_time", duration=ev.time)
-            st.log(f"/details/{slug(ev.kind)}", rr.TextLog(f"{ev.source}: {ev.message}"))
+            details.setdefault(f"/details/{slug(ev.kind)}", []).append(ev)
+        for entity, group in details.items():
+            self._texts(entity, [ev.time for ev in group],
+                        [f"{ev.source}: {ev.message}" for ev in group])
         for m in self._new(rec.markers):
             self._marker(m)
         if rec.summary:
             st.log("/summary", rr.TextDocument(rec.summary, media_type="text/markdown"),
                    static=True)
+
+    def _texts(self, entity: str, times: list[float], texts: list[str],
+               levels: list[str] | None = None) -> None:
+        """Rows of a ``TextLog`` (with their levels, if given) at their times."""
+        rr = self.rr
+        kw: dict[str, Any] = {"text": texts}
+        if levels is not None:
+            kw["level"] = levels
+        rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=times)],
+                        columns=rr.TextLog.columns(**kw), recording=self.stream)
 
     def _new(self, items: list[Any]) -> list[Any]:
         """The items not sent yet (a live run sends a growing recording chunk by chunk)."""
@@ -338,26 +354,90 @@ class RrdWriter:
             st.log(path, rr.StateChange(state="0"))
 
     def _plant_frames(self, rec: Recording) -> None:
+        """The plant's moving shapes at each frame time, an entity logged only when what it
+        shows changed, and sent column-wise: one ``send_columns`` per entity (and kind) for
+        all its frames, instead of one ``log`` per entity and frame (most of a recording's
+        cost when it was logged row by row, ADR 0033)."""
         pic = rec.picture
         if pic is None:
             return
         shown, last = self._shown, self._drawn
+        rows: dict[tuple[str, str], list[tuple[float, list[Shape]]]] = {}
+        clears: dict[str, list[float]] = {}
         for t, i in zip(rec.frame_times, rec.frame_rows, strict=True):
-            self.stream.set_time("sim_time", duration=float(t))
             groups: dict[str, list[Shape]] = {}
             for shp in pic.frame(int(i)):
                 groups.setdefault(shp.name, []).append(shp)
             for name, shapes in groups.items():
-                key = repr([(s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
-                             round(s.h, 4), round(s.angle, 3), s.label) for s in shapes])
+                key = tuple((s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
+                             round(s.h, 4), round(s.angle, 3), s.label) for s in shapes)
                 if last.get(name) != key:
-                    self._shapes(f"/plant/{name}", shapes)
+                    rows.setdefault((name, shapes[0].kind), []).append((float(t), shapes))
                     last[name] = key
             for name in shown - set(groups):
                 if last.get(name) != "":
-                    self.stream.log(f"/plant/{name}", self.rr.Clear(recursive=False))
+                    clears.setdefault(name, []).append(float(t))
                     last[name] = ""
             shown |= set(groups)
+        for (name, _kind), items in rows.items():
+            self._shape_columns(f"/plant/{name}", items)
+        import numpy as np
+
+        rr = self.rr
+        for name, ts in clears.items():
+            rr.send_columns(f"/plant/{name}", indexes=[rr.TimeColumn(
+                "sim_time", duration=np.asarray(ts, dtype=np.float64))],
+                            columns=rr.Clear.columns(is_recursive=[False] * len(ts)),
+                            recording=self.stream)
+
+    def _shape_columns(self, entity: str, items: list[tuple[float, list[Shape]]]) -> None:
+        """Rows of shapes of one kind (``(time, shapes)``), as :meth:`_shapes` would log each
+        of them, in one ``send_columns``."""
+        import numpy as np
+
+        rr = self.rr
+        kind = items[0][1][0].kind
+        times = [t for t, _ in items]
+        lengths: list[int] = []
+        if kind in ("box", "outline"):
+            strips: list[Any] = []
+            radii: list[float] = []
+            colors: list[Any] = []
+            for _, shapes in items:
+                n0 = len(strips)
+                for s in shapes:
+                    if kind == "box":
+                        for strip, r in _box_slices(s):
+                            strips.append(strip)
+                            radii.append(1.2 * r)
+                            colors.append(s.color)
+                    else:
+                        strips.append([(x, -y) for x, y in s.points])
+                        radii.append(float(rr.Radius.ui_points(2.0)))
+                        colors.append(s.color)
+                lengths.append(len(strips) - n0)
+            if kind == "box":  # equal strips of two points: one (N, 2, 2) array converts fast
+                strips = np.asarray(strips, dtype=np.float32).reshape(-1, 2, 2)
+            cols = list(rr.LineStrips2D.columns(strips=strips, radii=radii, colors=colors)
+                        .partition(lengths))
+        elif kind in ("dot", "text"):
+            pos: list[tuple[float, float]] = []
+            radii, colors, labels = [], [], []
+            for _, shapes in items:
+                for s in shapes:
+                    pos.append((s.x, -s.y))
+                    radii.append(s.r if kind == "dot" else 1e-6)
+                    colors.append(s.color)
+                    labels.append(s.label)
+                lengths.append(len(shapes))
+            cols = list(rr.Points2D.columns(positions=pos, radii=radii, colors=colors,
+                                            labels=labels).partition(lengths))
+            cols += list(rr.Points2D.columns(show_labels=[True] * len(items)))
+        else:
+            return
+        rr.send_columns(entity, indexes=[rr.TimeColumn(
+            "sim_time", duration=np.asarray(times, dtype=np.float64))],
+                        columns=cols, recording=self.stream)
 
     def _shapes(self, entity: str, shapes: list[Shape], static: bool = False) -> None:
         rr, st = self.rr, self.stream

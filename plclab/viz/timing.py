@@ -40,11 +40,8 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     the feedback diagrams drawn for every failure. Returns the matplotlib figure.
     """
     plt = _mpl()
-    series = [_as_analog(s.window(t0, t1)) for s in series]
+    series, heights, lo, hi = _rows(series, t0, t1)
     rows = len(series)
-    heights = [0.6 if s.kind in ("bool",) else 0.7 if s.kind != "real" else 1.6 for s in series]
-    lo = t0 if t0 is not None else min((s.times[0] for s in series if len(s.times)), default=0)
-    hi = t1 if t1 is not None else max((s.times[-1] for s in series if len(s.times)), default=1)
     if fixed_layout:  # the feedback's diagram: one Axes, a fraction of the cost
         from .failure_diagram import failure_figure
 
@@ -77,6 +74,31 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
         fig.savefig(str(path), dpi=dpi)
         plt.close(fig)
     return fig
+
+
+def _rows(series: Sequence[Series], t0: float | None, t1: float | None
+          ) -> tuple[list[Series], list[float], float, float]:
+    """The rows of a diagram (windowed, many-valued integers as lines), their heights in
+    inches and the time span shown."""
+    rows = [_as_analog(s.window(t0, t1)) for s in series]
+    heights = [0.6 if s.kind in ("bool",) else 0.7 if s.kind != "real" else 1.6 for s in rows]
+    lo = t0 if t0 is not None else min((s.times[0] for s in rows if len(s.times)), default=0)
+    hi = t1 if t1 is not None else max((s.times[-1] for s in rows if len(s.times)), default=1)
+    return rows, heights, lo, hi
+
+
+def failure_png(series: Sequence[Series], path: str | Path | None, t0: float | None = None,
+                t1: float | None = None, title: str = "",
+                markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
+                thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None) -> bytes:
+    """``timing_diagram(..., fixed_layout=True)`` saved at 72 dpi, drawn with Pillow instead
+    of matplotlib (:mod:`plclab.viz.failure_png`, a tenth of the cost): the feedback's
+    failure diagrams. Writes ``path`` when given; returns the PNG's bytes."""
+    from .failure_png import failure_png as draw
+
+    rows, heights, lo, hi = _rows(series, t0, t1)
+    return draw(rows, path, lo, hi, heights, title, markers, width, thresholds,
+                marker_labels(markers, lo, hi))
 
 
 ANALOG_VALUES = 12

@@ -46,3 +46,75 @@ def test_a_failure_diagram_is_a_png_of_the_signals(tmp_path):
 
     tall, short = Image.open(path).size, Image.open(fig_path).size
     assert tall[0] == short[0] and tall[1] > short[1]  # one band per signal
+
+
+def _rows():
+    from plclab.viz.series import Series
+
+    ts = [0.0, 5.0, 10.0, 15.0, 20.0]
+    return [Series("LEVEL", ts, [0.2, 0.8, 1.4, 1.8, 1.9], "real", "m"),
+            Series("STEP", ts, [0, 1, 2, 2, 3], "int"),
+            Series("PUMP", ts, [True, True, False, True, False], "bool")]
+
+
+def test_the_pillow_diagram_has_the_matplotlib_diagrams_size():
+    """The feedback's PNG (Pillow) keeps the geometry of the matplotlib drawing at 72 dpi."""
+    import io
+
+    from PIL import Image
+
+    from plclab.viz.timing import failure_png, timing_diagram
+
+    kw = {"title": "normal: no overflow", "markers": [(12.0, "no overflow fails")],
+          "thresholds": {"LEVEL": [(1.75, "limit")]}}
+    png = failure_png(_rows(), None, 0.0, 20.0, **kw)
+    fig = timing_diagram(_rows(), None, 0.0, 20.0, width=9.0, fixed_layout=True, **kw)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=72)
+    assert png.startswith(b"\x89PNG")
+    assert Image.open(io.BytesIO(png)).size == Image.open(buf).size
+
+
+def test_the_pillow_diagram_draws_the_failure_mark_the_limit_and_the_rows(tmp_path):
+    """Red for the failure's dashed line, orange for the limit, the rows' colours."""
+    from PIL import Image
+
+    from plclab.viz import failure_png as fp
+    from plclab.viz.timing import failure_png
+
+    path = tmp_path / "f.png"
+    failure_png(_rows(), path, 0.0, 20.0, title="t", markers=[(12.0, "fails")],
+                thresholds={"LEVEL": [(1.75, "limit")]})
+    def tints(p):  # the colours drawn, lightened towards white as a thin line is
+        img = Image.open(p).convert("RGB")
+        return {c for _, c in img.getcolors(1 << 16)}
+
+    def has(colours, ref) -> bool:  # a pixel on the way from white to ref
+        k = max(range(3), key=lambda i: 255 - ref[i])
+        for c in colours:
+            alpha = (255 - c[k]) / (255 - ref[k])
+            if alpha > 0.4 and all(abs(255 - alpha * (255 - r) - x) < 20
+                                   for x, r in zip(c, ref, strict=True)):
+                return True
+        return False
+
+    colours = tints(path)
+    for ref in (fp.RED, fp.ORANGE, fp.BLUE, fp.GREEN, fp.PURPLE):
+        assert has(colours, ref), ref
+    no_limit = tmp_path / "g.png"
+    failure_png(_rows(), no_limit, 0.0, 20.0, title="t")
+    assert not has(tints(no_limit), fp.ORANGE)
+
+
+def test_time_ticks_are_matplotlibs():
+    from matplotlib.ticker import MaxNLocator
+
+    from plclab.viz.failure_png import nice_ticks, tick_labels
+
+    for lo, hi in [(106.3, 166.3), (6.5, 26.5), (0.0, 240.0), (0.0, 180.0), (1.234, 3.4),
+                   (0.0, 3600.0), (226.5, 256.5)]:
+        want = [t for t in MaxNLocator(nbins=8).tick_values(lo, hi) if lo <= t <= hi]
+        assert nice_ticks(lo, hi) == [round(t, 9) for t in want] or \
+            all(abs(a - b) < 1e-9 for a, b in zip(nice_ticks(lo, hi), want, strict=True))
+    assert tick_labels([7.5, 10.0, 12.5]) == ["7.5", "10.0", "12.5"]
+    assert tick_labels([112.0, 120.0]) == ["112", "120"]

@@ -100,6 +100,29 @@ def test_recording_reads_back_with_names_lanes_limits_and_markers(recs, tmp_path
     assert "/scan/duration_us" not in paths  # only on request
 
 
+def test_plant_frames_read_back_as_drawn(recs, tmp_path):
+    """The plant's moving shapes (sent column-wise) read back frame by frame: the level
+    written beside the water at every frame where it changed."""
+    from plclab.viz.recording import write_rrd
+
+    rec = recs[0]
+    want: list[str] = []
+    last = None
+    for i in rec.frame_rows:  # a frame is logged where the text or its place changed
+        shp = next(s for s in rec.picture.frame(int(i)) if s.name == "level_value")
+        key = (shp.label, round(shp.x, 4), round(shp.y, 4))
+        if key != last:
+            want.append(shp.label)
+            last = key
+    path = write_rrd(rec, tmp_path / "one.rrd")
+    rid = rec.layout.info.recording_id()
+    got = [v for row in _columns(path, rid, "/plant/level_value", "Points2D:labels")
+           for v in (row or [])]
+    assert len(want) > 10 and got == want
+    pumps = _columns(path, rid, "/plant/PUMP", "Points2D:labels")
+    assert {"PUMP ON", "PUMP off"} <= {v for row in pumps for v in (row or [])}
+
+
 def test_summary_puts_failures_first_and_counts_relays(recs):
     text = recs[0].summary
     lines = [ln for ln in text.splitlines() if ln.startswith("- ")]
