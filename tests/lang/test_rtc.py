@@ -61,3 +61,11 @@ def test_a_users_own_rtc_wins_without_a_warning() -> None:
 def test_a_project_without_rtc_compiles_no_rtc() -> None:
     assert "RTC" not in library_blocks("{dialect 'matiec'}\nPROGRAM Main END_PROGRAM")
     assert "RTC" in library_blocks("{dialect 'matiec'}\n" + USES_RTC)
+
+
+def test_sub_of_two_dates_is_the_time_between_them_and_date_minus_date_is_refused() -> None:
+    ok = "PROGRAM Main VAR a, b : DT; t : TIME; END_VAR t := SUB(a, b); END_PROGRAM"
+    assert not [d for d in check_sources([(ok, "m.st")])[1] if d.severity == "error"]
+    bad = "PROGRAM Main VAR a, b : DATE; t : TIME; END_VAR t := SUB(a, b); END_PROGRAM"
+    errors = [d for d in check_sources([(bad, "m.st")])[1] if d.severity == "error"]
+    assert errors[0].code == "PLC0107" and "SUB_DATE_DATE" in errors[0].message
