@@ -407,7 +407,7 @@ class Codegen(FastPaths):
         return cls
 
     def programs_class(self) -> None:
-        connected = {i.name: i.call.target for c in self.p.symbols.configs for i in c.instances
+        connected = {i.key: i.call.target for c in self.p.symbols.configs for i in c.instances
                      if i.call is not None and isinstance(i.call.target, CallInfo)}
         classes = {n: self.connected_program(n, pou, connected[n])
                    for n, pou, _ in self.p.programs if n in connected}

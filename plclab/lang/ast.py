@@ -362,6 +362,12 @@ class ProgramInstance:
     call: Call | None = None
     resource: str | None = None  # upper-case; set where a configuration has two or more
 
+    @property
+    def key(self) -> str:
+        """How the project names the instance: ``RESOURCE.NAME`` in a configuration of two or
+        more resources (ADR 0037), else its name."""
+        return f"{self.resource}.{self.name}" if self.resource else self.name
+
 
 @dataclass(eq=False)
 class ConfigVar:

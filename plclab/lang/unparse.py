@@ -302,19 +302,28 @@ class _Writer:
         self.depth += 1
         if c.globals:
             self.decls(c.globals, "VAR_GLOBAL")
-        self.line("RESOURCE Cpu ON PLC")
-        self.depth += 1
-        for t in c.tasks:
-            props = [(k, v) for k, v in (("SINGLE", t.single), ("INTERVAL", t.interval),
-                                         ("PRIORITY", t.priority)) if v is not None]
-            self.line(f"TASK {t.name} ({', '.join(f'{k} := {expr(v)}' for k, v in props)});")
-        for i in c.instances:
-            task = f" WITH {i.task}" if i.task else ""
-            prog = expr(i.call) if i.call is not None else i.program
-            self.line(f"PROGRAM {i.name}{task} : {prog};")
-        self.depth -= 1
-        self.line("END_RESOURCE")
-        self.config_vars(c.config_vars, set(c.resources))
+        # one resource (as Cpu), or each of two or more with its own globals (ADR 0037)
+        scoped = any(x.resource for x in [*c.tasks, *c.instances]) or c.resource_globals
+        for r in (c.resources if scoped else [None]):
+            self.line(f"RESOURCE {r or 'Cpu'} ON PLC")
+            self.depth += 1
+            if c.resource_globals.get(r or ""):
+                self.decls(c.resource_globals[r or ""], "VAR_GLOBAL")
+            for t in c.tasks:
+                if t.resource != r:
+                    continue
+                props = [(k, v) for k, v in (("SINGLE", t.single), ("INTERVAL", t.interval),
+                                             ("PRIORITY", t.priority)) if v is not None]
+                self.line(f"TASK {t.name} ({', '.join(f'{k} := {expr(v)}' for k, v in props)});")
+            for i in c.instances:
+                if i.resource != r:
+                    continue
+                task = f" WITH {i.task}" if i.task else ""
+                prog = expr(i.call) if i.call is not None else i.program
+                self.line(f"PROGRAM {i.name}{task} : {prog};")
+            self.depth -= 1
+            self.line("END_RESOURCE")
+        self.config_vars(c.config_vars, set() if scoped else set(c.resources))
         if c.access_paths:
             self.line("VAR_ACCESS")
             self.depth += 1

@@ -37,7 +37,7 @@ class ProgramChecks(Pass):
 
     def check_resource_externals(self, programs: list[tuple[str, A.Pou, str | None]]) -> None:
         """Each VAR_EXTERNAL naming a resource's global (ADR 0037) must find it, of its type, in
-        every resource whose programs reach the POU declaring it (PLC0285, PLC0103)."""
+        every resource whose programs reach the POU declaring it (PLC0132, PLC0103)."""
         done: set[tuple[int, str | None]] = set()
         for inst, pou, _ in programs:
             res = self.table.resource_of(inst)
@@ -50,7 +50,7 @@ class ProgramChecks(Pass):
                     g = own.get(d.name)
                     if g is None:
                         where = [r for r, gs in self.table.resource_globals.items() if d.name in gs]
-                        self.err("PLC0285", f"VAR_EXTERNAL {d.name} of {q.spelling or q.name} "
+                        self.err("PLC0132", f"VAR_EXTERNAL {d.name} of {q.spelling or q.name} "
                                  f"names a global of resource {', '.join(where)}, but program "
                                  f"instance {inst} runs in " + (f"resource {res}" if res else
                                  "no resource") + ", which cannot see it; declare it in the "

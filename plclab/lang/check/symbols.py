@@ -420,8 +420,7 @@ class SymbolTable:
                 say("PLC0100", f"task {inst.task} is not declared in the configuration" +
                     close_hint(inst.task, tnames), inst.loc, "error")
             # with two or more resources an instance is named RESOURCE.INSTANCE (ADR 0037)
-            name = f"{inst.resource}.{inst.name}" if inst.resource else inst.name
-            out.append((name, p, inst.task))
+            out.append((inst.key, p, inst.task))
         return out
 
     def programs_declaring(self, name: str) -> list[tuple[str, A.Pou]]:
