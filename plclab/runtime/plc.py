@@ -243,7 +243,8 @@ class Plc:
                 if isinstance(v, int):
                     iv = v  # ns, range-checked by the checker (PLC0129)
             prio = getattr(td.priority, "value", 0) if td.priority is not None else 0
-            tasks[td.name] = Task(td.name, iv, int(prio or 0), [])
+            name = f"{td.resource}.{td.name}" if td.resource else td.name  # ADR 0037
+            tasks[name] = Task(name, iv, int(prio or 0), [])
         default = Task("__default__", self.cycle_ns, 0, [])
         for inst, _, task in self.project.programs:
             (tasks[task] if task in tasks else default).programs.append(inst)
@@ -273,7 +274,8 @@ class Plc:
         """All variables back to their initial values, clock to zero (a cold restart)."""
         old = getattr(self, "ns", None)
         if old is not None and "_P" in old:  # the old instances go: FB_exit (ADR 0021)
-            self._guard(lambda: fb_exit_all([old["_G"], old["_P"]]))
+            self._guard(lambda: fb_exit_all([old["_G"], *(
+                old[f"_RG_{r}"] for r in self.project.symbols.resource_globals), old["_P"]]))
         self.ns = self._guard(self._new_namespace)
         self._bind()
         self.state = "RUN"
@@ -302,6 +304,10 @@ class Plc:
         for d in self.project.globals.values():
             if d.retain:
                 yield d.name, self.var(d.name)
+        for r, gs in self.project.symbols.resource_globals.items():  # ADR 0037
+            for d in gs.values():
+                if d.retain:
+                    yield f"{r}.{d.name}", self.var(f"{r}.{d.name}")
         symbols = self.project.symbols
         for inst, pou, _ in symbols.programs():
             for d in symbols.members(pou).values():
@@ -955,6 +961,8 @@ class Plc:
         """Every top-level variable path (program variables and globals)."""
         out = [d.spelling or d.name for d in self.project.globals.values()]
         symbols = self.project.symbols
+        out += [f"{r}.{d.spelling or d.name}" for r, gs in symbols.resource_globals.items()
+                for d in gs.values()]
         for inst, pou, _ in symbols.programs():
             label = instance_label(inst, pou)
             out += [f"{label}.{d.spelling or d.name}" for d in symbols.members(pou).values()

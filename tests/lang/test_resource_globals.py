@@ -118,3 +118,16 @@ END_VAR
 END_CONFIGURATION""")
     plc = plclab.loads(src)
     assert plc["ResB.main.seen"] == 7 and plc["ResA.main.seen"] == 0
+
+
+def test_two_resources_may_each_have_a_task_of_one_name_and_retain_their_globals() -> None:
+    src = TWO.replace("TASK slow (INTERVAL := T#20ms", "TASK fast (INTERVAL := T#20ms").replace(
+        "WITH slow", "WITH fast").replace("VAR_GLOBAL level : DINT := 200;",
+                                          "VAR_GLOBAL RETAIN level : DINT := 200;")
+    assert errors(src) == []
+    plc = plclab.loads(src)
+    assert sorted(t.name for t in plc.tasks) == ["RESA.FAST", "RESB.FAST"]
+    check_two(plc)
+    assert "RESB.level" in plc.variables()
+    plc.warm_restart()
+    assert plc["ResB.level"] == 1 and plc["ResA.level"] == 100  # RETAIN kept, the other not

@@ -408,8 +408,9 @@ class SymbolTable:
         program (left out) or task is reported (PLC0100)."""
         say = report or (lambda *_: None)
         out = []
-        tnames = {t.name for t in config.tasks}
         for inst in config.instances:
+            # a task of the instance's own resource (ADR 0037: two may have tasks of one name)
+            tnames = {t.name for t in config.tasks if t.resource == inst.resource}
             p = self.pous.get(inst.program)
             if p is None or p.kind != "PROGRAM":
                 say("PLC0100", f"PROGRAM {inst.program} is not declared" + close_hint(
@@ -420,7 +421,8 @@ class SymbolTable:
                 say("PLC0100", f"task {inst.task} is not declared in the configuration" +
                     close_hint(inst.task, tnames), inst.loc, "error")
             # with two or more resources an instance is named RESOURCE.INSTANCE (ADR 0037)
-            out.append((inst.key, p, inst.task))
+            task = f"{inst.resource}.{inst.task}" if inst.resource and inst.task else inst.task
+            out.append((inst.key, p, task))
         return out
 
     def programs_declaring(self, name: str) -> list[tuple[str, A.Pou]]:
