@@ -118,6 +118,9 @@ END_VAR
 END_CONFIGURATION""")
     plc = plclab.loads(src)
     assert plc["ResB.main.seen"] == 7 and plc["ResA.main.seen"] == 0
+    files, _ = parse_sources([(src, "plant.st")])
+    again = plclab.loads(unparse(next(f for f in files if f.file == "plant.st")))
+    assert again["ResB.main.seen"] == 7 and again["ResA.main.seen"] == 0
 
 
 def test_two_resources_may_each_have_a_task_of_one_name_and_retain_their_globals() -> None:
