@@ -51,7 +51,9 @@ def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
         diags.extend(d)
     if any(b.kind == "SFC" for f in files for p in f.pous for b in p.pending):
         files[len(STDLIB_FILES):len(STDLIB_FILES)] = parse_library((SFC_LIBRARY,))
-    add_annex_f(files, files[-len(sources):] if sources else [])
+    own = files[-len(sources):] if sources else []
+    add_annex_f(files, own)
+    keep_rtc(files, own)
     diags.extend(lower_pending(files))
     return files, diags
 
@@ -69,6 +71,24 @@ def add_annex_f(files: list[A.SourceFile], own: list[A.SourceFile]) -> None:
     for f in files[:len(STDLIB_FILES)]:  # the Annex's PID and RAMP replace plclab's
         f.pous = [p for p in f.pous if p.name not in wanted]
     files.insert(len(STDLIB_FILES), annex)
+
+
+RTC_DIALECTS = frozenset({"iec", "matiec"})
+"""The dialects with the real-time clock block RTC (IEC 61131-3 ed.1 Table 35, MATIEC's
+``lib/rtc.txt``); ed.2 dropped it and CODESYS and TIA Portal have none of that name (ADR 0037)."""
+
+
+def keep_rtc(files: list[A.SourceFile], own: list[A.SourceFile]) -> None:
+    """Keep the library's RTC only in a project with a file in an :data:`RTC_DIALECTS` dialect
+    that names RTC and has no POU of that name: a user's own RTC wins, without a warning, and a
+    CODESYS or S7 program meets RTC as an unknown type, as it would in its editor."""
+    keep = (any(f.dialect in RTC_DIALECTS for f in own)
+            and not any(p.name == "RTC" for f in own for p in f.pous)
+            and any(isinstance(n, A.NamedTypeRef) and n.name == "RTC"
+                    for f in own for n in walk(f)))
+    if not keep:
+        for f in files[:len(STDLIB_FILES)]:
+            f.pous = [p for p in f.pous if p.name != "RTC"]
 
 
 def check_sources(sources: list[tuple[str, str]], dialect: str | None = None, *,

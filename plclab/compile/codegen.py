@@ -53,6 +53,12 @@ def ident(name: str) -> str:
     return up
 
 
+def program_attr(instance: str) -> str:
+    """The attribute of ``_P`` holding a program instance: its name, ``RESA.MAIN`` (a program
+    of one of two or more resources, ADR 0037) as ``RESA__MAIN``."""
+    return ident(instance.replace(".", "__"))
+
+
 def member_path(owner: str, via: tuple[str, ...], decl: A.VarDecl) -> str:
     """``owner.fb1.x``: the Python path of ``decl`` reached through the members ``via``."""
     return owner + "".join(f".{ident(m)}" for m in via) + f".{ident(decl.name)}"
@@ -366,14 +372,31 @@ class Codegen(FastPaths):
         for d in gl:
             self.where_now = self.where(d.loc)
             self.emit_init(f"self.{ident(d.name)}", d)
+        for r in self.p.symbols.resource_globals:  # after the configuration's (ADR 0037)
+            self.emit(f"global _RG_{ident(r)}")
+            self.emit(f"_RG_{ident(r)} = _Res_{ident(r)}()")
         self.emit("pass")
         self.ind -= 2
         self.emit("")
+        for r, gs in self.p.symbols.resource_globals.items():
+            self.emit(f"class _Res_{ident(r)}:")
+            self.ind += 1
+            self.emit("__slots__ = (" + "".join(f"{ident(n)!r}, " for n in gs) + ")")
+            self.emit("def __init__(self):")
+            self.ind += 1
+            for d in gs.values():
+                self.where_now = self.where(d.loc)
+                self.emit_init(f"self.{ident(d.name)}", d)
+            self.emit("pass")
+            self.ind -= 2
+            self.emit("")
+        if self.p.symbols.resource_globals:
+            self.emit("_R = None")
 
     def connected_program(self, name: str, pou: A.Pou, info: CallInfo) -> str:
         """``PROGRAM P1 : Prog(x := %IX1.1, y => %QX0.0)``: a class of the instance whose body
         takes its inputs, runs the program, then hands its outputs on; its name."""
-        cls = f"C_{ident(name)}"
+        cls = f"C_{program_attr(name)}"
         base = f"P_{ident(pou.name)}"
         self.emit(f"class {cls}({base}):")
         self.ind += 1
@@ -398,22 +421,37 @@ class Codegen(FastPaths):
         return cls
 
     def programs_class(self) -> None:
-        connected = {i.name: i.call.target for c in self.p.symbols.configs for i in c.instances
+        connected = {i.key: i.call.target for c in self.p.symbols.configs for i in c.instances
                      if i.call is not None and isinstance(i.call.target, CallInfo)}
         classes = {n: self.connected_program(n, pou, connected[n])
                    for n, pou, _ in self.p.programs if n in connected}
+        for n, pou, _ in self.p.programs:  # a resource's instance sets its globals first
+            res = self.p.symbols.resource_of(n)
+            if res is not None and self.p.symbols.resource_globals:
+                base = classes.get(n, f"P_{ident(pou.name)}")
+                classes[n] = cls = f"R_{program_attr(n)}"
+                self.emit(f"class {cls}({base}):")
+                self.ind += 1
+                self.emit("__slots__ = ()")
+                self.emit("def _body(self):")
+                self.ind += 1
+                self.emit("global _R")
+                self.emit(f"_R = {f'_RG_{ident(res)}' if res in self.p.symbols.resource_globals else 'None'}")
+                self.emit(f"{base}._body(self)")
+                self.ind -= 2
+                self.emit("")
         self.emit("class _Programs:")
         self.ind += 1
         names = [n for n, _, _ in self.p.programs]
-        self.emit("__slots__ = (" + "".join(f"{ident(n)!r}, " for n in names) + ")")
+        self.emit("__slots__ = (" + "".join(f"{program_attr(n)!r}, " for n in names) + ")")
         self.emit("def __init__(self):")
         self.ind += 1
         for n, pou, _ in self.p.programs:
-            self.emit(f"self.{ident(n)} = {classes.get(n, f'P_{ident(pou.name)}')}()")
+            self.emit(f"self.{program_attr(n)} = {classes.get(n, f'P_{ident(pou.name)}')}()")
         for b in self.p.symbols.config_bindings:  # VAR_CONFIG initial values, after the POUs'
             if b.init is not None:
-                self.emit_init(member_path(f"self.{ident(b.instance)}", b.via, b.decl), b.decl,
-                               b.init)
+                self.emit_init(member_path(f"self.{program_attr(b.instance)}", b.via, b.decl),
+                               b.decl, b.init)
         self.emit("pass")
         self.ind -= 2
         self.emit("")
@@ -442,7 +480,8 @@ class Codegen(FastPaths):
         """(declaration, Python path) of every located variable with a concrete address."""
         for v in self.p.symbols.located_vars():
             if not v.wildcard:
-                owner = "_G" if v.instance is None else f"_P.{ident(v.instance)}"
+                owner = (f"_RG_{ident(v.resource)}" if v.resource else "_G") \
+                    if v.instance is None else f"_P.{program_attr(v.instance)}"
                 yield v, member_path(owner, v.via, v.decl)
 
     # -- process image access -----------------------------------------------------------------
@@ -1227,6 +1266,8 @@ class Codegen(FastPaths):
         if isinstance(sym, VarSym):
             if sym.storage == "global":
                 return f"_G.{ident(sym.decl.name)}"
+            if sym.storage == "resource":  # the resource running this instance's (ADR 0037)
+                return f"_R.{ident(sym.decl.name)}"
             if sym.storage == "self":
                 code = f"self.{ident(sym.decl.name)}"
                 return self.local_names.get(code, code)  # a local in a fast loop

@@ -350,6 +350,7 @@ class TaskDecl:
     interval: Expr | None
     priority: Expr | None
     single: Expr | None = None
+    resource: str | None = None  # upper-case; set where a configuration has two or more
 
 
 @dataclass(eq=False, slots=True, repr=False)
@@ -360,6 +361,13 @@ class ProgramInstance:
     program: str
     # PROGRAM P1 : Prog(x := %IX1.1, y => g): the connections, as a call of the program
     call: Call | None = None
+    resource: str | None = None  # upper-case; set where a configuration has two or more
+
+    @property
+    def key(self) -> str:
+        """How the project names the instance: ``RESOURCE.NAME`` in a configuration of two or
+        more resources (ADR 0037), else its name."""
+        return f"{self.resource}.{self.name}" if self.resource else self.name
 
 
 @dataclass(eq=False, slots=True, repr=False)
@@ -401,6 +409,20 @@ class Configuration:
     resources: list[str] = field(default_factory=list)  # upper-case resource names
     config_vars: list[ConfigVar] = field(default_factory=list)
     access_paths: list[AccessPath] = field(default_factory=list)
+    # the VAR_GLOBAL of each resource (upper-case name), where there are two or more resources
+    # (IEC 61131-3 ed.3 6.8: visible to that resource's programs only; ADR 0037)
+    resource_globals: dict[str, list[VarDecl]] = field(default_factory=dict)
+
+    def settle_resources(self) -> None:
+        """After parsing: with one resource (or none) its globals are the configuration's and
+        its instances and tasks are named as before; with two or more, each keeps its own."""
+        if len(self.resources) > 1:
+            return
+        for decls in self.resource_globals.values():
+            self.globals.extend(decls)
+        self.resource_globals = {}
+        for x in [*self.tasks, *self.instances]:
+            x.resource = None
 
 
 @dataclass(eq=False, slots=True, repr=False)

@@ -189,6 +189,9 @@ BLOCKS: dict[str, Block] = {b.name: b for b in (
         ("CTU", ("CU", "Q"), ("CU", "R", "PV")), ("CTD", ("CD", "Q"), ("CD", "LD", "PV")),
         ("CTUD", ("CU", "QU"), ("CU", "CD", "R", "LD", "PV")))
       for t in ("INT", "DINT", "LINT", "UDINT", "ULINT")),
+    # the real-time clock of IEC 61131-3 ed.1 Table 35 (MATIEC lib/rtc.txt; ADR 0037: only in
+    # the iec and matiec dialects, see plclab.project.keep_rtc)
+    Block("RTC", _STD, ("IN", "Q"), ("IN",)),
     # control blocks (a ladder box takes its first BOOL input and output)
     *(Block(n, _CTRL) for n in ("PID", "PID_INC", "HYST", "AI_SCALE", "AO_SCALE", "DEBOUNCE",
                                 "BLINKER", "RAMP", "PT1", "MOVING_AVG", "LIMIT_ALARM")),

@@ -63,6 +63,10 @@ class Dialect:
     # ``REFERENCE TO T`` with ``r REF= x`` (CODESYS online help, "Reference";
     # :mod:`plclab.lang.lower.reference_to`); elsewhere PLC0239
     reference_to: bool = False
+    # ``%IX0.0 := TRUE`` or an assignment to a variable AT %I: MATIEC compiles it (a located
+    # input is a variable of the process image to its C code) and the next input read
+    # overwrites the value: the warning PLC0284; elsewhere the error PLC0105 (ADR 0037)
+    input_writes: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
@@ -73,7 +77,7 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
             sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
-            hierarchical_words=True),
+            hierarchical_words=True, input_writes=True),
 )}
 DEFAULT = "codesys"
 

@@ -102,18 +102,29 @@ class _Exporter:
     def configuration(self, parent: ET.Element, c: A.Configuration,
                       extra: list[A.VarDecl]) -> None:
         cel = sub(parent, "configuration", name=c.name)
-        res = sub(cel, "resource", name="resource1")
-        for t in c.tasks:
-            attrs = {"name": t.name, "priority": st_expr(t.priority) if t.priority else "0"}
-            if t.interval is not None:
-                attrs["interval"] = st_expr(t.interval)
-            task = sub(res, "task", **attrs)
+        # one resource (resource1), or each of two or more with its own globals (ADR 0037)
+        scoped = any(x.resource for x in [*c.tasks, *c.instances]) or c.resource_globals
+        for r in (c.resources if scoped else [None]):
+            res = sub(cel, "resource", name=r or "resource1")
+            for t in c.tasks:
+                if t.resource != r:
+                    continue
+                attrs = {"name": t.name, "priority": st_expr(t.priority) if t.priority else "0"}
+                if t.interval is not None:
+                    attrs["interval"] = st_expr(t.interval)
+                task = sub(res, "task", **attrs)
+                for pi in c.instances:
+                    if pi.task == t.name and pi.resource == r:
+                        sub(task, "pouInstance", name=pi.name, typeName=pi.program)
             for pi in c.instances:
-                if pi.task == t.name:
-                    sub(task, "pouInstance", name=pi.name, typeName=pi.program)
-        for pi in c.instances:
-            if pi.task is None:
-                sub(res, "pouInstance", name=pi.name, typeName=pi.program)
+                if pi.task is None and pi.resource == r:
+                    sub(res, "pouInstance", name=pi.name, typeName=pi.program)
+            for constant in (False, True):
+                group = [d for d in c.resource_globals.get(r or "", []) if d.constant == constant]
+                if group:
+                    gv = sub(res, "globalVars", **({"constant": "true"} if constant else {}))
+                    for d in group:
+                        self.variable(gv, d)
         decls = list(c.globals) + extra
         for constant in (False, True):
             group = [d for d in decls if d.constant == constant]

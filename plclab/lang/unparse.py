@@ -173,9 +173,12 @@ def duration(ns: int) -> str:
 # -- declarations and statements -------------------------------------------------------------
 
 
-def _path(spelled: str, resources: set[str] | list[str]) -> str:
+def _path(spelled: str, resources: set[str] | list[str] | None) -> str:
     """A configuration path with its resource renamed to the printer's one resource, Cpu
-    (a direct address keeps a resource in front: ``Cpu.%IX1.1``)."""
+    (a direct address keeps a resource in front: ``Cpu.%IX1.1``); ``None``: the configuration
+    has two or more resources, printed by their names, and the path stays as written."""
+    if resources is None:
+        return spelled
     head, _, rest = spelled.partition(".")
     if rest and head.upper() in {r.upper() for r in resources}:
         return f"Cpu.{rest}"
@@ -302,32 +305,41 @@ class _Writer:
         self.depth += 1
         if c.globals:
             self.decls(c.globals, "VAR_GLOBAL")
-        self.line("RESOURCE Cpu ON PLC")
-        self.depth += 1
-        for t in c.tasks:
-            props = [(k, v) for k, v in (("SINGLE", t.single), ("INTERVAL", t.interval),
-                                         ("PRIORITY", t.priority)) if v is not None]
-            self.line(f"TASK {t.name} ({', '.join(f'{k} := {expr(v)}' for k, v in props)});")
-        for i in c.instances:
-            task = f" WITH {i.task}" if i.task else ""
-            prog = expr(i.call) if i.call is not None else i.program
-            self.line(f"PROGRAM {i.name}{task} : {prog};")
-        self.depth -= 1
-        self.line("END_RESOURCE")
-        self.config_vars(c.config_vars, set(c.resources))
+        # one resource (as Cpu), or each of two or more with its own globals (ADR 0037)
+        scoped = any(x.resource for x in [*c.tasks, *c.instances]) or c.resource_globals
+        for r in (c.resources if scoped else [None]):
+            self.line(f"RESOURCE {r or 'Cpu'} ON PLC")
+            self.depth += 1
+            if c.resource_globals.get(r or ""):
+                self.decls(c.resource_globals[r or ""], "VAR_GLOBAL")
+            for t in c.tasks:
+                if t.resource != r:
+                    continue
+                props = [(k, v) for k, v in (("SINGLE", t.single), ("INTERVAL", t.interval),
+                                             ("PRIORITY", t.priority)) if v is not None]
+                self.line(f"TASK {t.name} ({', '.join(f'{k} := {expr(v)}' for k, v in props)});")
+            for i in c.instances:
+                if i.resource != r:
+                    continue
+                task = f" WITH {i.task}" if i.task else ""
+                prog = expr(i.call) if i.call is not None else i.program
+                self.line(f"PROGRAM {i.name}{task} : {prog};")
+            self.depth -= 1
+            self.line("END_RESOURCE")
+        self.config_vars(c.config_vars, None if scoped else set(c.resources))
         if c.access_paths:
             self.line("VAR_ACCESS")
             self.depth += 1
             for a in c.access_paths:
                 mode = "READ_ONLY" if a.read_only else "READ_WRITE"
-                self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, c.resources)} : "
+                self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, None if scoped else c.resources)} : "
                           f"{type_ref(a.type)} {mode};")
             self.depth -= 1
             self.line("END_VAR")
         self.depth -= 1
         self.line("END_CONFIGURATION")
 
-    def config_vars(self, lines: list[A.ConfigVar], resources: set[str]) -> None:
+    def config_vars(self, lines: list[A.ConfigVar], resources: set[str] | None) -> None:
         """VAR_CONFIG, its paths written from the one resource this printer names (Cpu)."""
         if not lines:
             return

@@ -245,7 +245,8 @@ class Plc:
                 if isinstance(v, int):
                     iv = v  # ns, range-checked by the checker (PLC0129)
             prio = getattr(td.priority, "value", 0) if td.priority is not None else 0
-            tasks[td.name] = Task(td.name, iv, int(prio or 0), [])
+            name = f"{td.resource}.{td.name}" if td.resource else td.name  # ADR 0037
+            tasks[name] = Task(name, iv, int(prio or 0), [])
         default = Task("__default__", self.cycle_ns, 0, [])
         for inst, _, task in self.project.programs:
             (tasks[task] if task in tasks else default).programs.append(inst)
@@ -276,7 +277,8 @@ class Plc:
         """All variables back to their initial values, clock to zero (a cold restart)."""
         old = getattr(self, "ns", None)
         if old is not None and "_P" in old:  # the old instances go: FB_exit (ADR 0021)
-            self._guard(lambda: fb_exit_all([old["_G"], old["_P"]]))
+            self._guard(lambda: fb_exit_all([old["_G"], *(
+                old[f"_RG_{r}"] for r in self.project.symbols.resource_globals), old["_P"]]))
         self.ns = self._guard(self._new_namespace)
         self._bind()
         self.state = "RUN"
@@ -305,6 +307,10 @@ class Plc:
         for d in self.project.globals.values():
             if d.retain:
                 yield d.name, self.var(d.name)
+        for r, gs in self.project.symbols.resource_globals.items():  # ADR 0037
+            for d in gs.values():
+                if d.retain:
+                    yield f"{r}.{d.name}", self.var(f"{r}.{d.name}")
         symbols = self.project.symbols
         for inst, pou, _ in symbols.programs():
             for d in symbols.members(pou).values():
@@ -321,7 +327,8 @@ class Plc:
         self._images = located or _IMAGE_USE.search(self.compiled.source) is not None
         progs = ns["_P"]
         self._task_bodies = [
-            (t.interval_ns, [getattr(progs, n.upper())._body for n in t.programs])
+            (t.interval_ns, [getattr(progs, n.upper().replace(".", "__"))._body
+                             for n in t.programs])
             for t in self.tasks
         ]
         # one task running at the base tick: no need to check which tasks are due
@@ -722,7 +729,24 @@ class Plc:
         progs = {n.upper(): pou for n, pou, _ in self.project.programs}
 
         def program(name: str):
-            return lambda: getattr(self.ns["_P"], name)
+            attr = name.replace(".", "__")  # RESA.MAIN: a resource's instance (ADR 0037)
+            return lambda: getattr(self.ns["_P"], attr)
+
+        res_globals = self.project.symbols.resource_globals
+        if len(parts) > 1 and not idx and (head_u in res_globals or any(
+                n.startswith(head_u + ".") for n in progs)):
+            # RESA.MAIN.x (a program of resource RESA) or RESA.g (a global of RESA)
+            second = parts[1][0].upper()
+            key = f"{head_u}.{second}"
+            if key in progs and (len(parts) > 2 or parts[1][1]):
+                if parts[1][1]:
+                    raise PlcError("PLC3001", f"{parts[1][0]} is a program, not an array")
+                pou = progs[key]
+                return self._walk(path, program(key), T.FBType(pou.name, pou), parts[2:],
+                                  head_u)
+            if second in res_globals.get(head_u, {}):
+                return self._walk(path, lambda: self.ns[f"_RG_{head_u}"],
+                                  _GlobalsType(self.project, head_u), parts[1:], head_u)
 
         access = self.project.symbols.access_paths.get(head_u)
         if access is not None and len(parts) == 1 and not idx:  # VAR_ACCESS of the configuration
@@ -752,8 +776,9 @@ class Plc:
         hint = f"; did you mean {close[0]}?" if close else ""
         raise PlcError("PLC3001", f"no variable named {path}{hint}")
 
-    def _walk(self, path: str, get_obj, ty: T.Type, parts) -> Var:
-        """Build getter/setter closures walking members and indices from a root object."""
+    def _walk(self, path: str, get_obj, ty: T.Type, parts, resource: str | None = None) -> Var:
+        """Build getter/setter closures walking members and indices from a root object;
+        ``resource``: the resource of the program instance walked (ADR 0037)."""
         steps: list[tuple[str, Any]] = []
         cur = ty
         address = None
@@ -761,15 +786,20 @@ class Plc:
             cur = T.resolve(cur)
             nu = name.upper()
             if isinstance(cur, _GlobalsType):
-                d = cur.project.globals.get(nu)
+                d = cur.globals().get(nu)
                 address = d.address if d is not None else None
             elif isinstance(cur, T.FBType) and cur.pou is not None:
                 d = self.project.symbols.members(cur.pou).get(nu)
                 if d is not None and d.section == "VAR_TEMP":
                     d = None
                 if d is not None and d.section == "VAR_EXTERNAL":
+                    rest = [(name, idx)] + parts[parts.index((name, idx)) + 1:]
+                    if resource and nu not in self.project.globals and nu in \
+                            self.project.symbols.resource_globals.get(resource, {}):
+                        return self._walk(path, lambda: self.ns[f"_RG_{resource}"],
+                                          _GlobalsType(self.project, resource), rest)
                     return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project),
-                                      [(name, idx)] + parts[parts.index((name, idx)) + 1:])
+                                      rest)
                 address = d.address if d is not None else None
             elif isinstance(cur, T.StructType):
                 d = cur.fields.get(nu)
@@ -974,6 +1004,8 @@ class Plc:
         """Every top-level variable path (program variables and globals)."""
         out = [d.spelling or d.name for d in self.project.globals.values()]
         symbols = self.project.symbols
+        out += [f"{r}.{d.spelling or d.name}" for r, gs in symbols.resource_globals.items()
+                for d in gs.values()]
         for inst, pou, _ in symbols.programs():
             label = instance_label(inst, pou)
             out += [f"{label}.{d.spelling or d.name}" for d in symbols.members(pou).values()
@@ -1020,8 +1052,14 @@ class _GlobalsType(T.Type):
     kind = "globals"
     name = "globals"
 
-    def __init__(self, project) -> None:
+    def __init__(self, project, resource: str | None = None) -> None:
         self.project = project
+        self.resource = resource  # the globals of this resource (ADR 0037)
+
+    def globals(self) -> dict:
+        if self.resource is not None:
+            return self.project.symbols.resource_globals.get(self.resource, {})
+        return self.project.globals
 
 
 def _split_path(path: str) -> list[tuple[str, list[list[int]]]]:

@@ -274,6 +274,37 @@ class CTUD(NativeBlock):
         self.QD = self.CV <= 0
 
 
+class RTC(NativeBlock):
+    """Real-time clock, IEC 61131-3 ed.1 Table 35, as MATIEC's ``lib/rtc.txt`` defines it: Q is a
+    copy of IN; on a rising IN the clock is set to PDT and, while IN stays TRUE, CDT is PDT plus
+    the time since; with IN FALSE, CDT is the PLC's current date and time. plclab's current date
+    and time is the virtual clock (ADR 0006) read as DT: DT#1970-01-01-00:00:00 plus the time
+    since the PLC started, never the wall clock (ADR 0037). DT values are milliseconds."""
+
+    __slots__ = ("IN", "PDT", "Q", "CDT", "_prev", "_offset")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.IN = False
+        self.PDT = 0
+        self.Q = False
+        self.CDT = 0
+        self._prev = False
+        self._offset = 0
+
+    def _body(self) -> None:
+        now = self._ctx.now
+        inp = self.IN
+        if inp:
+            if not self._prev:
+                self._offset = self.PDT - now
+            self.CDT = now + self._offset
+        else:
+            self.CDT = now
+        self.Q = inp
+        self._prev = inp
+
+
 class R_TRIG(NativeBlock):
     """Rising edge: Q is TRUE for one call when CLK goes from FALSE to TRUE."""
 

@@ -90,6 +90,11 @@ def test_library_blocks_bind_only_through_the_registry():
     project, diags = check_sources([])
     assert not diags
     bound = {p.name: p.native for p in project.pous.values() if p.native}
+    # RTC is kept only in an iec or matiec project that names it (ADR 0037)
+    rtc, _ = check_sources([("{dialect 'matiec'}\nPROGRAM P VAR c : RTC; END_VAR END_PROGRAM",
+                             "p.st")])
+    assert rtc is not None and rtc.pous["RTC"].native == "RTC"
+    bound["RTC"] = rtc.pous["RTC"].native
     assert set(bound.values()) == natives.names()
     assert all(name == key for name, key in bound.items())
     for key in bound.values():

@@ -43,8 +43,8 @@ class ConfigVars(Pass):
             self.table.config_bindings.append(b)
         for c in self.table.configs:
             for inst in c.instances:
-                if inst.call is not None and inst.name in self.instances:
-                    self.connections(inst, self.instances[inst.name])
+                if inst.call is not None and inst.key in self.instances:
+                    self.connections(inst, self.instances[inst.key])
             for ap in c.access_paths:
                 self.access_path(ap)
 
@@ -60,6 +60,8 @@ class ConfigVars(Pass):
         self.cx.scope = old
     # -- paths ----------------------------------------------------------------------------
     def strip_resource(self, parts: list[str]) -> list[str]:
+        if len(parts) > 1 and f"{parts[0]}.{parts[1]}" in self.instances:  # ADR 0037
+            return [f"{parts[0]}.{parts[1]}"] + parts[2:]
         return parts[1:] if len(parts) > 1 and parts[0] in self.table.resources else parts
 
     def walk(self, owner: A.Pou | T.Type, parts: list[str], spelled: str,

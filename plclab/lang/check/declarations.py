@@ -41,9 +41,15 @@ class Declarations(Pass):
         for p in table.pous.values():
             if p.kind != "FUNCTION":
                 table.types.setdefault(p.name, T.block_type(p.name, p))
+        per_resource = {id(d) for c in table.configs for ds in c.resource_globals.values()
+                        for d in ds}
         for d in table.global_decls:
             self.decl_type(d)
-            table.declare_global(d, self.cx.report)
+            if id(d) not in per_resource:
+                table.declare_global(d, self.cx.report)
+        for c in table.configs:  # after the configuration's: a name in both is reported
+            for r, decls in c.resource_globals.items():
+                table.declare_resource_globals(r, decls, self.cx.report)
         for d in table.global_decls:
             self.check_init(d, Scope())
         for p in table.pous.values():
@@ -230,6 +236,8 @@ class Declarations(Pass):
             if d.section != "VAR_EXTERNAL":
                 continue
             g = self.table.globals.get(d.name)
+            if g is None and any(d.name in r for r in self.table.resource_globals.values()):
+                continue  # a resource's global: checked per resource (ProgramChecks, ADR 0037)
             if g is None:
                 self.err("PLC0100", f"VAR_EXTERNAL {d.name} has no matching VAR_GLOBAL"
                          + close_hint(d.name, self.table.globals), d.loc)

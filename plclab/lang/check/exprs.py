@@ -124,8 +124,8 @@ class Expressions(Pass, NodeVisitor):
                              "changed" + (" (it is declared VAR_EXTERNAL CONSTANT here)"
                                           if sym.read_only and not d.constant else ""), e.loc)
                 elif d.address and d.address.startswith("%I"):
-                    self.err("PLC0105", f"{d.spelling or d.name} is a physical input ({d.address}); "
-                             "a program can read an input but not write it", e.loc)
+                    self.input_write(f"{d.spelling or d.name} is a physical input ({d.address})",
+                                     e.loc)
                 elif d.section == "VAR_INPUT" and self.cx.pou is not None and \
                         self.cx.pou.kind == "FUNCTION_BLOCK":
                     self.warn("PLC0203", f"{d.name} is an input of {self.cx.pou.name}: the caller "
@@ -137,12 +137,21 @@ class Expressions(Pass, NodeVisitor):
                          e.loc)
         elif isinstance(e, A.DirectAddr):
             if e.address.startswith("%I"):
-                self.err("PLC0105", f"{e.address} is a physical input; a program cannot write it",
-                         e.loc)
+                self.input_write(f"{e.address} is a physical input", e.loc)
         elif not isinstance(e, A.Name | A.Member | A.Index):
             self.err("PLC0105", "the left side of ':=' must be a variable, an element or a "
                      "member", e.loc)
         return t
+
+    def input_write(self, what: str, loc: Location) -> None:
+        """A write to a physical input: PLC0105, or in a dialect with ``input_writes``
+        (matiec) the warning PLC0284, the next input read overwriting the value (ADR 0037)."""
+        if self.cx.dialect(loc).input_writes:
+            self.warn("PLC0284", f"{what}: MATIEC lets a program write it, but the next scan's "
+                      "input read overwrites the value; write a memory variable (%M or "
+                      "unlocated) unless an extension publishes the input", loc)
+        else:
+            self.err("PLC0105", f"{what}; a program can read an input but not write it", loc)
 
     def expr(self, e: A.Expr, expected: T.Type | None, write: bool = False) -> T.Type:
         t = self.visit(e, expected, write)

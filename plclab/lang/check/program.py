@@ -31,7 +31,57 @@ class ProgramChecks(Pass):
         else:
             programs = self.table.programs()
         self.table.set_programs(programs)
+        if self.table.resource_externals:
+            self.check_resource_externals(programs)
         return programs, tasks
+
+    def check_resource_externals(self, programs: list[tuple[str, A.Pou, str | None]]) -> None:
+        """Each VAR_EXTERNAL naming a resource's global (ADR 0037) must find it, of its type, in
+        every resource whose programs reach the POU declaring it (PLC0132, PLC0103)."""
+        done: set[tuple[int, str | None]] = set()
+        for inst, pou, _ in programs:
+            res = self.table.resource_of(inst)
+            own = self.table.resource_globals.get(res or "", {})
+            for q in self.reachable(pou):
+                for d in self.table.resource_externals.get(q.name, []):
+                    if (id(d), res) in done:
+                        continue
+                    done.add((id(d), res))
+                    g = own.get(d.name)
+                    if g is None:
+                        where = [r for r, gs in self.table.resource_globals.items() if d.name in gs]
+                        self.err("PLC0132", f"VAR_EXTERNAL {d.name} of {q.spelling or q.name} "
+                                 f"names a global of resource {', '.join(where)}, but program "
+                                 f"instance {inst} runs in " + (f"resource {res}" if res else
+                                 "no resource") + ", which cannot see it; declare it in the "
+                                 "configuration's VAR_GLOBAL or in that resource's", d.loc)
+                    elif d.ty is not None and g.ty is not T.ANY and \
+                            not T.same_type(d.ty, g.ty):
+                        self.err("PLC0103", f"VAR_EXTERNAL {d.name} is {d.ty} but the global of "
+                                 f"resource {res} is {g.ty}", d.loc)
+                    else:
+                        g.used = True
+
+    def reachable(self, root: A.Pou) -> list[A.Pou]:
+        """``root`` and every POU its instances run: block instances it declares (through
+        arrays), their bases and methods, the POUs it calls."""
+        seen: dict[str, A.Pou] = {}
+        stack = [root]
+        while stack:
+            p = stack.pop()
+            if p.name in seen:
+                continue
+            seen[p.name] = p
+            stack += self.table.bases(p) + list(getattr(p, "methods", []) or [])
+            for d in self.table.members(p).values():
+                t = T.resolve(d.ty) if d.ty is not None else None
+                while isinstance(t, T.ArrayType):
+                    t = T.resolve(t.elem)
+                if isinstance(t, T.FBType) and isinstance(t.pou, A.Pou):
+                    stack.append(t.pou)
+            stack += [c for n in self.cx.call_graph.get(p.name, ()) if
+                      (c := self.table.pous.get(n)) is not None]
+        return list(seen.values())
 
     def check_task(self, t: A.TaskDecl) -> None:
         """INTERVAL a TIME constant > 0, PRIORITY an integer constant 0..31 (PLC0129); both are

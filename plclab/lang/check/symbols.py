@@ -40,7 +40,7 @@ class VarSym:
     """A variable a name refers to."""
 
     decl: A.VarDecl
-    storage: str  # "self" (member of the POU instance), "local", "global"
+    storage: str  # "self" (member of the POU instance), "local", "global", "resource"
     owner: A.Pou | None = None
     read_only: bool = False  # VAR_EXTERNAL CONSTANT: a global this POU may read, not write
 
@@ -76,6 +76,7 @@ class LocatedVar:
     pou: A.Pou | None = None  # the program, None for a global
     instance: str | None = None  # the program instance's name, None for a global
     via: tuple[str, ...] = ()  # the block instances between the program and the variable
+    resource: str | None = None  # a global of this resource (ADR 0037)
 
     @property
     def wildcard(self) -> bool:
@@ -180,6 +181,11 @@ class SymbolTable:
     resources: set[str] = field(default_factory=set)  # the configurations' resource names
     config_bindings: list[ConfigBinding] = field(default_factory=list)  # by the checker
     access_paths: dict[str, AccessBinding] = field(default_factory=dict)  # by the checker
+    # the VAR_GLOBAL of each resource of a configuration with two or more (ADR 0037), by
+    # resource and name; their declarations are in global_decls too (for their types)
+    resource_globals: dict[str, dict[str, A.VarDecl]] = field(default_factory=dict)
+    # the VAR_EXTERNALs that name a resource's global, by POU: checked per resource
+    resource_externals: dict[str, list[A.VarDecl]] = field(default_factory=dict)
     _scopes: dict[int, Scope] = field(default_factory=dict)
     _programs: list[tuple[str, A.Pou, str | None]] | None = None
 
@@ -218,7 +224,40 @@ class SymbolTable:
             d.section = "VAR_GLOBAL"
             if with_globals:
                 table.declare_global(d, say)
+        for c in table.configs:
+            for r, decls in c.resource_globals.items():
+                for d in decls:
+                    d.section = "VAR_GLOBAL"
+                table.global_decls += decls
+                if with_globals:
+                    table.declare_resource_globals(r, decls, say)
         return table
+
+    def declare_resource_globals(self, resource: str, decls: list[A.VarDecl],
+                                 report: Report | None = None) -> None:
+        """Enter the VAR_GLOBAL of one resource (ADR 0037): a name twice in the resource, or
+        also a global of the configuration, is reported (PLC0101); two resources may each have
+        one of a name."""
+        say = report or (lambda *_: None)
+        own = self.resource_globals.setdefault(resource, {})
+        for d in decls:
+            g = self.globals.get(d.name)
+            if g is not None:
+                say("PLC0101", f"global variable {d.name} of resource {resource} is also a global "
+                    f"of the configuration (at {g.loc}); rename one of them", d.loc, "error")
+                continue
+            self._declare("global variable", d.name, d.loc, own, d, say)
+
+    def is_resource_global(self, d: A.VarDecl) -> bool:
+        """Whether ``d`` is a VAR_GLOBAL of a resource (not of the configuration)."""
+        return any(r.get(d.name) is d for r in self.resource_globals.values())
+
+    @staticmethod
+    def resource_of(instance: str) -> str | None:
+        """The resource a program instance runs in, ``RESOURCEA.INSTANCE0`` -> ``RESOURCEA``
+        (ADR 0037); None where its configuration has one resource or none."""
+        head, dot, _ = instance.partition(".")
+        return head.upper() if dot else None
 
     def declare_global(self, d: A.VarDecl, report: Report | None = None) -> None:
         """Enter global variable ``d``; a second one of the same name is reported, not entered."""
@@ -297,6 +336,15 @@ class SymbolTable:
         for d in [d for b in reversed(self.bases(p)) for d in b.decls] + p.decls:
             if d.section == "VAR_EXTERNAL":
                 g = self.globals.get(d.name)
+                if g is None and any(d.name in r for r in self.resource_globals.values()):
+                    # a resource's global: which one depends on the resource the instance runs
+                    # in (ADR 0037); typed by this declaration, checked per resource
+                    if d.ty is None:
+                        d.ty = next(r[d.name].ty for r in self.resource_globals.values()
+                                    if d.name in r)
+                    names[d.name] = VarSym(d, "resource", p, read_only=d.constant)
+                    self.resource_externals.setdefault(p.name, []).append(d)
+                    continue
                 names[d.name] = VarSym(g if g is not None else d, "global", p,
                                        read_only=d.constant)
                 continue
@@ -360,8 +408,9 @@ class SymbolTable:
         program (left out) or task is reported (PLC0100)."""
         say = report or (lambda *_: None)
         out = []
-        tnames = {t.name for t in config.tasks}
         for inst in config.instances:
+            # a task of the instance's own resource (ADR 0037: two may have tasks of one name)
+            tnames = {t.name for t in config.tasks if t.resource == inst.resource}
             p = self.pous.get(inst.program)
             if p is None or p.kind != "PROGRAM":
                 say("PLC0100", f"PROGRAM {inst.program} is not declared" + close_hint(
@@ -371,7 +420,9 @@ class SymbolTable:
             if inst.task and inst.task not in tnames:
                 say("PLC0100", f"task {inst.task} is not declared in the configuration" +
                     close_hint(inst.task, tnames), inst.loc, "error")
-            out.append((inst.name, p, inst.task))
+            # with two or more resources an instance is named RESOURCE.INSTANCE (ADR 0037)
+            task = f"{inst.resource}.{inst.task}" if inst.resource and inst.task else inst.task
+            out.append((inst.key, p, task))
         return out
 
     def programs_declaring(self, name: str) -> list[tuple[str, A.Pou]]:
@@ -384,6 +435,8 @@ class SymbolTable:
         variables (its VAR_EXTERNALs are the globals already listed), wildcards included."""
         out = [LocatedVar(d.spelling or d.name, d.address.upper(), d)
                for d in self.globals.values() if d.address]
+        out += [LocatedVar(f"{r}.{d.spelling or d.name}", d.address.upper(), d, resource=r)
+                for r, gs in self.resource_globals.items() for d in gs.values() if d.address]
         configured = {(b.instance, b.via, b.decl.name): b for b in self.config_bindings
                       if b.address}
         for inst, pou, _ in self.programs():

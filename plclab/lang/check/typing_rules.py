@@ -82,9 +82,25 @@ def _expt(t: Typing) -> T.Type:
 
 
 def _arithmetic(t: Typing) -> T.Type:  # ADD, MUL, SUB, DIV, MOD
+    if len(t.bs) == 2 and any(b.kind in ("tod", "dt", "date") for b in t.bs):
+        return _clock_arithmetic(t)
     r = t.common(t.bs)
     t.need(r is T.ANY or r.kind in ("int", "real", "time"), "numbers")
     return r
+
+
+def _clock_arithmetic(t: Typing) -> T.Type:
+    """ADD and SUB on dates and times of day, as the operators '+' and '-' (IEC 61131-3 ed.2
+    Table 30 overloads them: TOD/DT + TIME, TOD/DT - TIME, TOD - TOD and DT - DT, which MATIEC
+    accepts as SUB(DT, DT) in a Beremiz FBD; ADR 0037). DATE - DATE: SUB_DATE_DATE."""
+    (a, b), name = t.bs, t.spec.name
+    if name in ("ADD", "SUB") and a.kind in ("tod", "dt") and b.kind == "time":
+        return t.ts[0]
+    if name == "SUB" and a.kind == b.kind and a.kind in ("tod", "dt"):
+        return T.TIME
+    t.need(False, "TOD or DT and a TIME (ADD, SUB), or two TODs or two DTs (SUB); for DATE "
+           "- DATE, SUB_DATE_DATE")
+    return T.ANY
 
 
 def _extremum(t: Typing) -> T.Type:  # MIN, MAX, LIMIT

@@ -797,8 +797,14 @@ class _Importer:
         for gv in self.kids(c, "globalVars"):
             cfg.globals.extend(self.var_sections(_Wrap(gv), {"VAR_GLOBAL"}))
         for res in self.kids(c, "resource"):
+            try:
+                rname = self.ident(res.get("name"), res, "resource name").upper()
+            except _Bad:
+                rname = f"RESOURCE{len(cfg.resources) + 1}"
+            cfg.resources.append(rname)
             for gv in self.kids(res, "globalVars"):
-                cfg.globals.extend(self.var_sections(_Wrap(gv), {"VAR_GLOBAL"}))
+                cfg.resource_globals.setdefault(rname, []).extend(
+                    self.var_sections(_Wrap(gv), {"VAR_GLOBAL"}))
             for t in self.kids(res, "task"):
                 try:
                     tname = self.ident(t.get("name"), t, "task name").upper()
@@ -808,16 +814,19 @@ class _Importer:
                         iv = self.expr(_iso_duration(interval), t, "task interval")
                     pr = t.get("priority")
                     pe = self.expr(pr, t, "task priority") if pr else None
-                    cfg.tasks.append(A.TaskDecl(self.loc(t), tname, iv, pe))
+                    cfg.tasks.append(A.TaskDecl(self.loc(t), tname, iv, pe, resource=rname))
                     for pi in self.kids(t, "pouInstance"):
                         cfg.instances.append(self.instance(pi, tname))
+                        cfg.instances[-1].resource = rname
                 except _Bad:
                     pass
             for pi in self.kids(res, "pouInstance"):
                 try:
                     cfg.instances.append(self.instance(pi, None))
+                    cfg.instances[-1].resource = rname
                 except _Bad:
                     pass
+        cfg.settle_resources()
         self.out.configs.append(cfg)
 
     def instance(self, pi: ET.Element, task: str | None) -> A.ProgramInstance:

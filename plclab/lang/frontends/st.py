@@ -364,16 +364,19 @@ class Parser:
             elif self.at("VAR_ACCESS"):
                 cfg.access_paths.extend(self.access_section())
             elif self.accept("RESOURCE"):
-                cfg.resources.append(self.expect("IDENT", "a resource name").value)
+                res = str(self.expect("IDENT", "a resource name").value)
+                cfg.resources.append(res)
                 if self.accept("ON"):
                     self.expect("IDENT", "a processor type")
                 while not self.at("END_RESOURCE", "EOF"):
                     if self.at("VAR_GLOBAL"):
-                        cfg.globals.extend(self.var_section())
+                        cfg.resource_globals.setdefault(res, []).extend(self.var_section())
                     elif self.at("TASK"):
                         cfg.tasks.append(self.task_decl())
+                        cfg.tasks[-1].resource = res
                     elif self.at("PROGRAM"):
                         cfg.instances.append(self.program_instance())
+                        cfg.instances[-1].resource = res
                     else:
                         self.fail_expected("TASK, PROGRAM or END_RESOURCE")
                 self.expect("END_RESOURCE")
@@ -386,6 +389,7 @@ class Parser:
                 self.fail_expected("RESOURCE, TASK, PROGRAM, VAR_GLOBAL, VAR_CONFIG, VAR_ACCESS "
                                    "or END_CONFIGURATION")
         self.expect("END_CONFIGURATION")
+        cfg.settle_resources()
         return cfg
 
     def instance_path(self, what: str) -> tuple[list[Token], Token | None]:
