@@ -462,7 +462,7 @@ class Plc:
         def ready() -> bool:
             """True while ``unchecked`` may stand for ``scan_one``."""
             return not (plc._single is not bodies or plc.state != "RUN" or plc.forced
-                        or plc._system_bytes or any(plc._watch_parts))
+                        or plc._system_bytes or plc._hooked)
 
         def scan_one() -> None:
             if (plc._single is not bodies or plc.state != "RUN" or plc.forced

@@ -13,7 +13,7 @@ failure markers dashed across all rows with labels that never overlap.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 from .series import Series
 
@@ -32,6 +32,30 @@ def band_scale(s: Series, limits: Sequence[tuple[float, str]]) -> tuple[float, f
     return lo, hi
 
 
+class Frame(NamedTuple):
+    """Where the one Axes of a failure diagram sits, in inches and figure fractions; shared
+    by the matplotlib figure and the Pillow PNG (:mod:`plclab.viz.failure_png`)."""
+
+    h_in: float   # the figure's height (inches)
+    left: float   # the Axes' left edge (fraction of the width), room for the row names
+    right_in: float  # room right of the Axes (inches), for threshold values
+    frac: float   # the Axes' height (fraction of the figure's height); its bottom is 0.45 in
+
+
+def frame(series: Sequence[Series], heights: Sequence[float], width: float, title: str,
+          thresholds: Mapping[str, Sequence[tuple[float, str]]] | None,
+          labels: Sequence[tuple[float, str, int]]) -> Frame:
+    """The geometry of a failure diagram: arguments as :func:`failure_figure`."""
+    h_in = 0.5 + sum(heights)
+    label_chars = max((len(s.name) + (len(s.unit) + 3 if s.unit else 0) for s in series),
+                      default=4)
+    levels = max((lv for _, _, lv in labels), default=-1) + 1
+    top_in = 0.3 + (0.2 if title else 0) + 0.16 * levels
+    right_in = 0.75 if thresholds else 0.25
+    left = min(0.45, (0.15 + 0.065 * label_chars + 0.3) / width)
+    return Frame(h_in, left, right_in, max(0.2, 1 - (top_in + 0.45) / h_in))
+
+
 def failure_figure(series: Sequence[Series], lo: float, hi: float, heights: Sequence[float],
                    title: str = "", markers: Sequence[tuple[float, str]] = (),
                    width: float = 9.0,
@@ -44,16 +68,9 @@ def failure_figure(series: Sequence[Series], lo: float, hi: float, heights: Sequ
     from matplotlib.figure import Figure
     from matplotlib.ticker import MaxNLocator
 
-    h_in = 0.5 + sum(heights)
+    h_in, left, right_in, frac = frame(series, heights, width, title, thresholds, labels)
     fig = Figure(figsize=(width, h_in))
     FigureCanvasAgg(fig)
-    label_chars = max((len(s.name) + (len(s.unit) + 3 if s.unit else 0) for s in series),
-                      default=4)
-    levels = max((lv for _, _, lv in labels), default=-1) + 1
-    top_in = 0.3 + (0.2 if title else 0) + 0.16 * levels
-    right_in = 0.75 if thresholds else 0.25
-    left = min(0.45, (0.15 + 0.065 * label_chars + 0.3) / width)
-    frac = max(0.2, 1 - (top_in + 0.45) / h_in)
     ax = fig.add_axes((left, 0.45 / h_in, 1 - right_in / width - left, frac))
     ax.xaxis.set_major_locator(MaxNLocator(nbins=8))
     ax.set_yticks([])

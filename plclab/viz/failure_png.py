@@ -152,15 +152,10 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
     ``path`` when given; returns the PNG's bytes."""
     import io
 
-    h_in = 0.5 + sum(heights)
+    from .failure_diagram import frame
+
+    h_in, left, right_in, frac = frame(series, heights, width, title, thresholds, labels)
     cv = _Canvas(width, h_in)
-    label_chars = max((len(s.name) + (len(s.unit) + 3 if s.unit else 0) for s in series),
-                      default=4)
-    levels = max((lv for _, _, lv in labels), default=-1) + 1
-    top_in = 0.3 + (0.2 if title else 0) + 0.16 * levels
-    right_in = 0.75 if thresholds else 0.25
-    left = min(0.45, (0.15 + 0.065 * label_chars + 0.3) / width)
-    frac = max(0.2, 1 - (top_in + 0.45) / h_in)
     ax_l = left * cv.w
     ax_r = (1 - right_in / width) * cv.w
     ax_b = cv.h - 0.45 / h_in * cv.h  # pixel y of the axes' bottom (y grows down)
