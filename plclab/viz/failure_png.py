@@ -23,13 +23,12 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from .failure_diagram import PAD, band_scale, frame
 from .series import Series
 
 DPI = 72
 SCALE = 2
 """Drawn at twice the size, then reduced: smooth lines and text."""
-PAD = 0.15
-"""Empty fraction of a row's band above and below its drawing (as failure_diagram.PAD)."""
 
 GREEN = (44, 160, 44)
 GREEN_FILL = (223, 241, 223)  # tab:green at alpha 0.15 on white
@@ -152,8 +151,6 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
     ``path`` when given; returns the PNG's bytes."""
     import io
 
-    from .failure_diagram import frame
-
     h_in, left, right_in, frac = frame(series, heights, width, title, thresholds, labels)
     cv = _Canvas(width, h_in)
     ax_l = left * cv.w
@@ -232,7 +229,6 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
             d.polygon(area.astype(np.float32), fill=GREEN_FILL)
         d.line(step, fill=GREEN, width=cv.px(1.2))
     elif s.kind == "real":
-        from .failure_diagram import band_scale
 
         vlo, vhi = band_scale(s, limits)
         vals = np.asarray(s.values, dtype=float)
