@@ -44,6 +44,7 @@ class TestResult:
     hint: str = ""
     diagram: str | None = None
     number: str = ""
+    critical: bool = False  # a failure caps the whole result (Result.critical_cap)
 
     def to_json(self) -> dict[str, Any]:
         return asdict(self)
@@ -101,11 +102,32 @@ class Result:
     lab_title: str = ""
     submission_hash: str = ""
     lab_hash: str = ""
+    critical_cap: float = 0.5
     traces: dict[str, Any] = field(default_factory=dict, repr=False)
 
     @property
-    def score(self) -> float:
+    def points(self) -> float:
+        """The sum of the tests' points, before the cap of a failed critical criterion."""
         return float(sum(t.score for t in self.tests))
+
+    @property
+    def critical_failures(self) -> list[TestResult]:
+        """The failed tests of critical criteria (safety or the lab's core function)."""
+        return [t for t in self.tests if t.critical and not t.passed]
+
+    @property
+    def capped(self) -> bool:
+        """True when a failed critical criterion lowered the score below :attr:`points`."""
+        return bool(self.critical_failures) and self.points > self.critical_cap * self.max_score
+
+    @property
+    def score(self) -> float:
+        """The grade: the tests' points, at most ``critical_cap`` of the maximum when a
+        critical criterion failed."""
+        pts = self.points
+        if self.critical_failures:
+            return min(pts, float(self.critical_cap * self.max_score))
+        return pts
 
     @property
     def max_score(self) -> float:
@@ -226,7 +248,7 @@ def _tests_failed(lab: Lab, sc: ScenarioSpec, message: str, first: int) -> list[
     for j, c in enumerate(lab.criteria_for(sc.name)):
         out.append(TestResult(f"{sc.name}: {c.name}", sc.name, c.name, 0.0, c.points, False,
                               message, message, None, sc.visible, c.hint,
-                              number=f"{first}.{j + 1}"))
+                              number=f"{first}.{j + 1}", critical=c.critical))
     return out
 
 
@@ -311,7 +333,7 @@ def grade_sources(lab: Lab, sources: list[tuple[str, str]], *, student: str = ""
                 on_scenario(sc, [t for t in res.tests if t.scenario == sc.name])
         return res
     res = Result(lab.id, student, diagnostics=diags, files=[n for _, n in sources],
-                 lab_title=lab.title, lab_hash=lab.hash)
+                 lab_title=lab.title, lab_hash=lab.hash, critical_cap=lab.critical_cap)
     numbers = {s.name: i for i, s in enumerate(lab.scenarios, 1)}
     for sc in specs:
         # one recording per submission: the first scenario with a failure
@@ -380,7 +402,8 @@ def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
                 msg += f" (the PLC was in STOP after its fault at t = {faults[0].time:.2f} s)"
         tests.append(TestResult(f"{sc.name}: {c.name}", sc.name, c.name,
                                 c.points if v.passed else 0.0, c.points, v.passed, msg,
-                                v.message, v.t_fail, sc.visible, c.hint, number=f"{number}.{j}"))
+                                v.message, v.t_fail, sc.visible, c.hint, number=f"{number}.{j}",
+                                critical=c.critical))
     void = next((c for c in lab.criteria_for(sc.name) if c.critical and not passed[c.name]),
                 None)
     if void is not None:

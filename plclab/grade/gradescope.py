@@ -86,6 +86,11 @@ def results_json(result: Any) -> dict[str, Any]:
             "visibility": "visible" if t.visible else "after_published",
         })
     head = [f"Score {result.score:g} / {result.max_score:g}"]
+    if result.capped:
+        names = sorted({t.criterion for t in result.critical_failures})
+        head.append(f"Capped at {result.critical_cap:.0%} of the points (the tests add up to "
+                    f"{result.points:g}): a critical requirement failed: "
+                    + "; ".join(clean_text(n, 200) for n in names))
     if result.status != "ok":
         head.append(f"status: {result.status}")
     if result.message:
@@ -149,9 +154,9 @@ def validate_results(data: Any) -> list[str]:
     check(data, SCHEMA, "results")
     if isinstance(data, dict) and isinstance(data.get("tests"), list) and "score" in data:
         total = sum(t.get("score", 0) for t in data["tests"] if isinstance(t, dict))
-        if abs(total - data["score"]) > 1e-6:
-            problems.append(f"results.score {data['score']} differs from the sum of the tests "
-                            f"{total}")
+        if data["score"] > total + 1e-6:  # lower only when a critical criterion capped it
+            problems.append(f"results.score {data['score']} is more than the sum of the "
+                            f"tests {total}")
     return problems
 
 

@@ -40,14 +40,14 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion", "mistake", "level", "chapters", "alarms", "recipes")
+            "criterion", "mistake", "level", "chapters", "alarms", "recipes", "critical_cap")
 LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
 """``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
                  "action", "actions", "until", "watch", "recipe")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
                   "message", "hint", "hint_fix", "signals", "window", "description", "requires",
-                  "critical")
+                  "critical", "requirements")
 MISTAKE_KEYS = ("file", "max_score", "violates", "description")
 IO_KEYS = ("name", "address", "type", "unit", "description")
 DIAGRAM_KEYS = ("signals", "window")
@@ -181,7 +181,8 @@ class CriterionSpec:
     function: Callable[..., Any] | None = None
     python: str = ""
     requires: list[str] = field(default_factory=list)
-    critical: bool = False  # failing it voids every point of its scenario (safety)
+    critical: bool = False  # safety or core function: failing it caps the lab (critical_cap)
+    requirements: list[str] = field(default_factory=list)  # README requirement ids, "R1"
     hint_fix: str = ""  # tier 2 of the hint: the literal fix (lab check --hint 2 only)
 
     def evaluate(self, trace: Any) -> Verdict:
@@ -287,6 +288,7 @@ class Lab:
     chapters: list[int] = field(default_factory=list)  # course chapters that teach it
     alarms: dict[str, Any] | None = None  # the lab's alarm configuration (plclab.scada)
     recipes: dict[str, Any] | None = None  # the lab's recipe and its records (plclab.scada)
+    critical_cap: float = 0.5  # a failed critical criterion caps the score at this share
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -584,7 +586,18 @@ class _Builder:
         lab.level, lab.chapters = self.course_place(d)
         lab.alarms = self.alarms(d)
         lab.recipes = self.recipes(d, scenarios)
+        lab.critical_cap = self.critical_cap(d)
         return lab
+
+    def critical_cap(self, d: Mapping[str, Any]) -> float:
+        """``critical_cap = 0.5``: the most a submission earns, as a share of the lab's points,
+        when a critical criterion fails (at most half; a lab may set it lower)."""
+        cap = d.get("critical_cap", 0.5)
+        if isinstance(cap, bool) or not isinstance(cap, int | float) or not 0 <= cap <= 0.5:
+            raise self.err("PLC5004", f"critical_cap = {cap!r}: the share of the points a "
+                           "submission keeps at most when a critical criterion fails, between 0 "
+                           "and 0.5 (e.g. critical_cap = 0.4)", key="critical_cap")
+        return float(cap)
 
     def course_place(self, d: Mapping[str, Any]) -> tuple[int, list[int]]:
         """``level = 1..3`` and ``chapters = [N, ...]``: where the lab sits in the course."""
@@ -1009,6 +1022,7 @@ class _Builder:
                 raise self.err("PLC5004", f"{what}: critical is true or false", "criterion", i,
                                "critical")
             spec.critical = crit
+            spec.requirements = self.strings(c, "requirements", what, "criterion", i)
             for r in spec.requires:
                 prev = next((o for o in out if o.name == r), None)
                 if prev is None:

@@ -242,7 +242,7 @@ class Inbox:
         for t in all_tests:
             tests_by.setdefault(str(_obj(t, "test").get("scenario"))[:200], []).append(t)
         res = Result(self.lab.id, status=status, lab_title=self.lab.title,
-                     message=_text(d.get("message", ""), "message"),
+                     critical_cap=self.lab.critical_cap, message=_text(d.get("message", ""), "message"),
                      diagnostics=_texts(d.get("diagnostics", []), "diagnostics",
                                         LIMITS["diagnostics"]))
         seen: set[str] = set()
@@ -304,5 +304,6 @@ class Inbox:
             out.append(TestResult(f"{scenario}: {c.name}", scenario, c.name, score, c.points,
                                   passed, _text(t.get("message", ""), f"{what}.message"),
                                   _text(t.get("detail", ""), f"{what}.detail"), t_fail,
-                                  spec.visible, c.hint, diagram, f"{number}.{j}"))
+                                  spec.visible, c.hint, diagram, f"{number}.{j}",
+                                  critical=c.critical))
         return out
