@@ -814,7 +814,7 @@ class Codegen(FastPaths):
             self.ind -= 1
 
     def s_Case(self, s: A.Case) -> None:
-        sel = self.ex(s.selector)
+        sel = self.own_value(self.ex(s.selector), s.selector)
         self.flush_pre()
         tmp = self.new_tmp("_c")
         self.emit(f"{tmp} = {sel}")
@@ -955,7 +955,7 @@ class Codegen(FastPaths):
         # a known range for the loop variable lets array indexing skip its bounds check
         r_start, r_end = self.interval(s.start), self.interval(s.end)
         saved = self.safe.get(var)
-        if proven and r_start is not None and r_end is not None:
+        if proven and r_start is not None and r_end is not None and self.loop_var_guarded(s):
             # inside the body the variable lies between start and end, whatever the step
             self.safe[var] = (min(r_start[0], r_end[0]), max(r_start[1], r_end[1]))
         else:
@@ -1190,6 +1190,30 @@ class Codegen(FastPaths):
             return f"{code}[:{d.length}]"
         return code
 
+    def own_value(self, code: str, e: A.Expr) -> str:
+        """The value of ``e`` as its own type holds it, where it is used without a store: a
+        conversion's argument, a CASE selector, an array index. Operators compute exactly (in
+        a register), so ``s * s * s`` of SINTs may lie outside SINT; ``SINT_TO_INT`` then sees
+        the SINT the hardware would hold, wrapped, and a REAL sum is rounded to single
+        precision first (``REAL_TO_DINT(r + 1.0)``). A stored value, a literal, a call of a
+        function or conversion and a value proven in range need nothing (ADR 0038)."""
+        if e.ty is None:
+            return code
+        t = T.base_of(e.ty)
+        if not isinstance(t, T.Elementary) or t is T.ANY_INT_LIT:
+            return code
+        if t.kind in _WRAPPED_KINDS and t.bits:
+            if isinstance(e, A.Literal) or (_stored_value(e) and t.kind != "real"):
+                return code
+            r = self.interval(e)
+            if r is not None and t.lo <= r[0] and r[1] <= t.hi:
+                return code
+            return self.wrap(code, t)
+        if t is T.REAL and not (_stored_value(e) and not _from_native(e)) and \
+                not isinstance(e, A.Literal):
+            return f"_f32({code})"
+        return code
+
     @staticmethod
     def wrap(code: str, t: T.Elementary) -> str:
         bits = t.bits
@@ -1313,7 +1337,7 @@ class Codegen(FastPaths):
         return f"{obj}[{flat}]"
 
     def index_code(self, ix: A.Expr, lo: int, hi: int) -> str:
-        code = self.ex(ix)
+        code = self.own_value(self.ex(ix), ix)
         c = const_int(ix)
         off = f" - {lo}" if lo > 0 else (f" + {-lo}" if lo < 0 else "")
         if c is not None:
@@ -1520,7 +1544,7 @@ class Codegen(FastPaths):
     def conversion(self, info: CallInfo, e: A.Call) -> str:
         src_name, dst = info.callee
         x = info.inputs[0][1]
-        code = self.ex(x)
+        code = self.own_value(self.ex(x), x)
         s = T.base_of(x.ty)
         d = T.resolve(dst)
         if src_name == "__TRUNC__":
@@ -1668,6 +1692,16 @@ def _from_native(e: A.Expr | None) -> bool:
     if isinstance(e, A.Call) and e.target is not None and e.target.kind == "function":
         return e.target.callee.native is not None
     return False
+
+
+_WRAPPED_KINDS = ("int", "bits", "time", "date", "tod", "dt")
+
+
+def _stored_value(e: A.Expr) -> bool:
+    """An expression whose value already lies in its type: a variable, a member, an element,
+    a call of a function or a conversion, or a builtin that cannot leave its range."""
+    return isinstance(e, _SIMPLE) or (isinstance(e, A.Call) and e.target is not None and (
+        e.target.kind in ("function", "conv") or _in_range_builtin(e)))
 
 
 def _in_range_builtin(e: A.Call) -> bool:

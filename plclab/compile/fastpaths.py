@@ -184,6 +184,60 @@ class FastPaths:
                     return False
         return True
 
+    def loop_var_guarded(self, s: A.For) -> bool:
+        """Whether nothing can change the FOR variable behind the loop's back, so its range
+        is a fact: the body never assigns it, never hands it to a call that could write it
+        (VAR_IN_OUT, an output, REF/ADR) and, for a member of the instance, calls no user code
+        and reaches no property or dereference at all (an action, a method, ``THIS^`` or a
+        pointer may write a member). A local of a function or method must also never have
+        its address taken anywhere in the POU. Only then may indexing and the MOD and ``/``
+        fast paths trust the loop's bounds (ADR 0038)."""
+        v = s.var
+        if not (isinstance(v, A.Name) and isinstance(v.sym, VarSym)):
+            return False
+        decl = v.sym.decl
+        local = v.sym.storage == "local"
+
+        def is_var(x: A.Expr | None) -> bool:
+            return isinstance(x, A.Name) and isinstance(x.sym, VarSym) and x.sym.decl is decl
+
+        def mentions(x: A.Expr | None) -> bool:
+            return x is not None and any(is_var(n) for n in walk(x))
+
+        for st in s.body:
+            for n in walk(st):
+                if isinstance(n, A.Assign) and is_var(_stored_root(n.target)):
+                    return False
+                if isinstance(n, A.For) and is_var(n.var):
+                    return False
+                if isinstance(n, A.Arg) and n.output and is_var(_stored_root(n.value)):
+                    return False
+                if isinstance(n, A.Call):
+                    kind = n.target.kind if n.target is not None else None
+                    user = kind not in ("builtin", "conv")
+                    if user and not local:
+                        return False
+                    if (user or _callee_name(n) in _ADDRESS_OF) and \
+                            any(mentions(a.value) for a in n.args):
+                        return False
+                if not local and isinstance(n, A.Member) and (
+                        n.field_name == "^" or isinstance(n.sym, A.Pou)):
+                    return False
+                if not local and isinstance(n, A.Name) and isinstance(n.sym, VarSym) and \
+                        n.sym.storage in ("this", "super"):
+                    return False
+        if local and self.pou is not None:
+            bodies = [self.pou.body, *(m.body for m in self.pou.methods)]
+            for body in bodies:
+                for st in body or []:
+                    for n in walk(st):
+                        if isinstance(n, A.Call) and _callee_name(n) in _ADDRESS_OF and \
+                                any(mentions(a.value) for a in n.args):
+                            return False
+                        if isinstance(n, A.Assign) and n.op == "REF=" and mentions(n.value):
+                            return False
+        return True
+
     def local_for(self, s: A.For, plain) -> bool:
         """A call-free FOR in a method with its variable, the elementary variables and the
         arrays its body only indexes as Python locals; ``plain(s)`` emits the loop itself.
@@ -314,6 +368,21 @@ def _loop_members(s: A.For) -> tuple[list[A.Name] | None, set[int]]:
         elif isinstance(t, T.Elementary | T.Subrange | T.StringType | T.EnumType):
             out.append(n)
     return out, stored
+
+
+_ADDRESS_OF = ("REF", "ADR")
+
+
+def _callee_name(c: A.Call) -> str:
+    """The upper-case name a call is written with (``REF`` in ``REF(x)``), or ``""``."""
+    return c.func.name.upper() if isinstance(c.func, A.Name) else ""
+
+
+def _stored_root(e: A.Expr | None) -> A.Expr | None:
+    """The variable a store into ``e`` changes: ``x`` of ``x``, ``x.m`` and ``x[i]``."""
+    while isinstance(e, A.Member | A.Index):
+        e = e.obj
+    return e
 
 
 def _root(e: A.Expr) -> A.Expr:

@@ -6,7 +6,10 @@ document. Nothing here imports plclab's code generator or run-time helpers.
 The rules the reference follows:
 
 * integers: intermediate results are exact; a value wraps to its type (two's complement) when it
-  is stored or converted to a type it does not widen to; ``/`` truncates toward zero and MOD has
+  is stored or converted to a type it does not widen to; a conversion's argument is first the
+  value its own type holds (``SINT_TO_INT(s * s * s)`` converts the SINT the hardware's register
+  would hand over, and ``REAL_TO_DINT(r + 1.0)`` a sum rounded to single precision), as the
+  value of a CASE selector and an array index (ADR 0038); ``/`` truncates toward zero and MOD has
   the sign of the dividend; dividing by zero (integer or REAL) is the run-time fault PLC2001;
 * REAL is IEEE single: every store into a REAL (and every conversion or math function with a
   REAL result) rounds to nearest, ties to even; the operators keep intermediates in double;
@@ -525,13 +528,14 @@ class Gen:
         if s == t:
             return None
         a = self.expr(s, d)
-        return Node(f"{s}_TO_{t}({a.text})", t, lambda: convert(a.ev(), s, t))
+        return Node(f"{s}_TO_{t}({a.text})", t, lambda: convert(store(a.ev(), s), s, t))
 
     def trunc_(self, t: str, d: int) -> Node:
-        a = self.expr(self.rng.choice(REALS), d)
+        at = self.rng.choice(REALS)
+        a = self.expr(at, d)  # a conversion: the argument is first a value of its own type
         if t == "DINT" and self.rng.random() < 0.5:
-            return Node(f"TRUNC({a.text})", t, lambda: wrap(trunc(a.ev()), t))
-        return Node(f"TRUNC_{t}({a.text})", t, lambda: wrap(trunc(a.ev()), t))
+            return Node(f"TRUNC({a.text})", t, lambda: wrap(trunc(store(a.ev(), at)), t))
+        return Node(f"TRUNC_{t}({a.text})", t, lambda: wrap(trunc(store(a.ev(), at)), t))
 
     def power(self, t: str, d: int) -> Node:
         # '**' on a REAL base has the base's type; an integer base gives REAL (<= 16 bit) or

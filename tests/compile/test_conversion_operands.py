@@ -1,0 +1,169 @@
+"""A conversion's argument, a CASE selector and an array index are values of their own type
+(ADR 0038): operators compute exactly, as in a register, but what a conversion receives is the
+value the operand's type holds. Each reproduction of issue 30 gives the hardware's answer; a
+FOR variable that a call or a reference can change is never trusted to stay in its bounds."""
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import plclab
+from plclab.compile import fastpaths
+from plclab.errors import PlcRuntimeFault
+from plclab.runtime.plc import Plc
+
+
+def scan(src: str) -> Plc:
+    plc = Plc(plclab.compile_sources([(src, "p.st")]))
+    plc.scan()
+    return plc
+
+
+def main(decls: str, body: str) -> Plc:
+    return scan(f"PROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n")
+
+
+@pytest.mark.parametrize("decls,body,name,want", [
+    # the SINT product wraps to 0 in a SINT, so SINT_TO_INT sees 0 (not -2097152)
+    ("s : SINT := -128; i : INT;", "i := SINT_TO_INT(s * s * s);", "i", 0),
+    # UINT 3 - 4 is 65535 in a UINT; widening keeps 65535 (d >= 0 holds)
+    ("u : UINT := 3; d : UDINT;", "d := UINT_TO_UDINT(u - 4);", "d", 65535),
+    ("dw : DWORD := 0; r : LREAL;", "r := DWORD_TO_LREAL(dw - 217);", "r", 4294967079.0),
+    # a REAL sum is a REAL: 16777216.0 + 1.0 is 16777216.0 in single precision
+    ("r : REAL := 16777216.0; k : DINT;", "k := REAL_TO_DINT(r + 1.0);", "k", 16777216),
+    ("r : REAL := 16777216.0; k : DINT;", "k := TRUNC_DINT(r + 1.0);", "k", 16777216),
+    ("r : REAL := 16777216.0; x : LREAL;", "x := REAL_TO_LREAL(r + 1.0);", "x", 16777216.0),
+    # a stored value needs nothing: the same conversions of variables
+    ("s : SINT := -128; i : INT;", "i := SINT_TO_INT(s);", "i", -128),
+    ("u : UINT := 65535; d : UDINT;", "d := UINT_TO_UDINT(u);", "d", 65535),
+    # without a conversion a store wraps the exact value to the target (ADR 0002)
+    ("u : UINT := 3; d : UDINT;", "d := u - 4;", "d", 4294967295),
+    # a CASE selector of type UINT: 3 - 4 is 65535
+    ("u : UINT := 3; c : INT;", "CASE u - 4 OF 65535: c := 1; ELSE c := 2; END_CASE;", "c", 1),
+    # an index of type USINT: 250 + 10 is 4
+    ("a : ARRAY[0..9] OF INT := [0, 1, 2, 3, 44, 5, 6, 7, 8, 9]; b : USINT := 250; x : INT;",
+     "x := a[b + 10];", "x", 44),
+])
+def test_a_converted_operand_is_a_value_of_its_type(decls, body, name, want):
+    assert main(decls, body)[name] == want
+
+
+def test_a_widened_value_never_leaves_the_target_type():
+    plc = main("s : SINT := -128; i : INT; u : UINT := 3; d : UDINT; ok : BOOL;",
+               "i := SINT_TO_INT(s * s * s); d := UINT_TO_UDINT(u - 4); ok := d >= 0;")
+    assert -32768 <= plc["i"] <= 32767 and 0 <= plc["d"] <= 4294967295 and plc["ok"] is True
+
+
+def test_a_function_input_holds_a_value_of_its_type():
+    plc = scan("""
+FUNCTION Id : INT
+VAR_INPUT x : INT; END_VAR
+Id := x;
+END_FUNCTION
+PROGRAM Main
+VAR s : SINT := -128; i : INT; END_VAR
+i := Id(SINT_TO_INT(s * s * s));
+END_PROGRAM
+""")
+    assert plc["i"] == 0
+
+
+BACK = """
+FUNCTION Back : BOOL
+VAR_IN_OUT v : INT; END_VAR
+v := v - {k};
+Back := TRUE;
+END_FUNCTION
+"""
+
+
+@pytest.mark.parametrize("where", ["program", "function"])
+def test_a_for_variable_changed_by_a_call_is_still_bounds_checked(where):
+    body = "FOR i := 0 TO 9 DO Back(i); r := a[i]; a[i] := 1; END_FOR;"
+    decl = "a : ARRAY[0..9] OF INT; i : INT; r : INT;"
+    if where == "program":
+        src = BACK.format(k=3) + f"PROGRAM Main\nVAR {decl} END_VAR\n{body}\nEND_PROGRAM\n"
+    else:
+        src = BACK.format(k=3) + (f"FUNCTION F : INT\nVAR {decl} END_VAR\n{body}\nF := r;\n"
+                                  "END_FUNCTION\nPROGRAM Main\nVAR x : INT; END_VAR\nx := F();\n"
+                                  "END_PROGRAM\n")
+    with pytest.raises(PlcRuntimeFault) as e:
+        scan(src)
+    assert e.value.code == "PLC2002" and "-3" in e.value.message
+
+
+def test_a_for_variable_changed_through_a_reference_is_still_bounds_checked():
+    src = """
+PROGRAM Main
+VAR a : ARRAY[0..9] OF INT; i : INT; r : INT; p : REF_TO INT; END_VAR
+p := REF(i);
+FOR i := 0 TO 9 DO p^ := p^ - 3; r := a[i]; END_FOR;
+END_PROGRAM
+"""
+    with pytest.raises(PlcRuntimeFault) as e:
+        scan(src)
+    assert e.value.code == "PLC2002"
+
+
+def _both(src: str):
+    fast = plclab.compile_sources([(src, "p.st")])
+    fastpaths.ENABLED = False
+    try:
+        plain = plclab.compile_sources([(src, "p.st")])
+    finally:
+        fastpaths.ENABLED = True
+    return fast, plain
+
+
+def _outcome(compiled, n: int):
+    plc = Plc(compiled)
+    plc["Main.n"] = n
+    try:
+        plc.scan()
+    except PlcRuntimeFault as e:
+        return ("fault", e.code)
+    return ("ok", plc["Main.r"], plc["Main.x"], list(plc["Main.a"]))
+
+
+ALIASING = [
+    "Back(i);",                       # VAR_IN_OUT of a function
+    "fb(io := i);",                   # VAR_IN_OUT of a block
+    "p^ := p^ - n;",                  # a reference taken before the loop
+    "Shift();",                       # an action writes the member
+    "fb(v := i, io := x2, o => i);",  # an output argument
+]
+
+
+@settings(max_examples=60, deadline=None, database=None)
+@given(k=st.integers(-4, 4), n=st.integers(0, 5), which=st.integers(0, len(ALIASING) - 1),
+       d=st.integers(-12, 12))
+def test_fast_and_plain_code_agree_when_the_loop_variable_is_aliased(k, n, which, d):
+    """A FOR with literal bounds whose variable the body changes behind its back: with and
+    without the fast paths the PLC ends in the same state or the same fault (an index, a
+    MOD and a division by the loop variable included)."""
+    src = BACK.format(k=k) + f"""
+FUNCTION_BLOCK FB
+VAR_INPUT v : INT; END_VAR
+VAR_IN_OUT io : INT; END_VAR
+VAR_OUTPUT o : INT; END_VAR
+io := io - {k};
+o := v + {k};
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR a : ARRAY[0..9] OF INT; i : INT; r : INT; x : DINT; n : INT; fb : FB;
+    p : REF_TO INT; x2 : INT; END_VAR
+p := REF(i);
+FOR i := 0 TO 9 DO
+    {ALIASING[which]}
+    r := a[i];
+    a[i] := a[i] + 1;
+    x := x + i MOD 3 + 100 / (i + 11);
+    IF i > 20 OR i < -20 THEN EXIT; END_IF
+END_FOR;
+END_PROGRAM
+ACTION Main.Shift
+i := i + {d};
+END_ACTION
+"""
+    fast, plain = _both(src)
+    assert _outcome(fast, n) == _outcome(plain, n)
