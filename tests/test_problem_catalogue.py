@@ -130,4 +130,4 @@ def test_unknown_code_is_plc3002_with_close_codes(capsys):
     assert "error PLC3002: PLC0l13 is not a plclab diagnostic code" in err
     assert close_codes("PLC0l13")[0] in err
     assert close_codes("113") == ["PLC0113"]
-    assert close_codes("PLC9998") == ["PLC9999"]
+    assert close_codes("PLC9998")[0] == "PLC9999"

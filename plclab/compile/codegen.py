@@ -164,6 +164,14 @@ class Codegen(FastPaths):
             line = getattr(exc, "lineno", None) or 0
             loc = self.locations[self.line_where[line - 1]] if 0 < line <= len(
                 self.line_where) else None
+            if not isinstance(exc, MemoryError):
+                # the generator wrote code Python refuses (the checker's limits keep programs
+                # within Python's): plclab's bug, never the student's size limit
+                what = exc.msg if isinstance(exc, SyntaxError) else type(exc).__name__
+                raise PlcError("PLC9990", "internal compiler error: plclab generated code that "
+                               f"Python cannot compile ({what}). This is a bug in plclab, "
+                               "not in your program; please report it with the program. Writing "
+                               "this statement another way may avoid it", loc) from None
             raise PlcError("PLC0191", "this part of the program is too large or too deeply "
                            f"nested to compile ({type(exc).__name__}: {exc}); split it into "
                            "smaller parts (FUNCTIONs, intermediate variables)", loc) from None

@@ -327,8 +327,11 @@ def _pure(e: A.Expr, code: str) -> bool:
 
 
 def _plain_target(e: A.Expr) -> bool:
-    """A variable or a member chain of variables (its code needs no temporaries)."""
+    """A variable or a member chain of variables (its code needs no temporaries); never a
+    property (its SET is a call) nor a dereference."""
     while isinstance(e, A.Member) and not e.field_name.startswith("%"):
+        if isinstance(e.sym, A.Pou) or e.field_name == "^":
+            return False
         e = e.obj
     return isinstance(e, A.Name) and isinstance(e.sym, VarSym)
 

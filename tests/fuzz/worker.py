@@ -22,6 +22,7 @@ import sys
 import traceback
 
 MEMORY_LIMIT = 2 * 1024**3
+INTERNAL_CODES = ("PLC9999", "PLC9990")  # plclab's own failures: each one is a finding
 
 
 class Hang(KeyboardInterrupt):
@@ -92,7 +93,7 @@ def run_case(text: str, name: str, seed: int, scans: int) -> dict:
             try:
                 plc.scan()
             except PlcError as fault:  # a run-time fault stops the PLC, as designed
-                if fault.code == "PLC9999":
+                if fault.code in INTERNAL_CODES:
                     raise
                 stage = "restart"
                 plc.cold_restart()
@@ -102,9 +103,9 @@ def run_case(text: str, name: str, seed: int, scans: int) -> dict:
         where = _where(e.__traceback__, function=False)
         return {"outcome": "hang", "stage": stage, "sig": f"hang:{stage}:{where}", "msg": ""}
     except PlcError as e:
-        if e.code == "PLC9999":  # an internal error dressed as a PlcError is still a bug
+        if e.code in INTERNAL_CODES:  # an internal error dressed as a PlcError is still a bug
             kind = e.message.partition("(")[2].partition(":")[0] or "?"
-            return {"outcome": "crash", "stage": stage, "sig": f"crash:{stage}:PLC9999:{kind}",
+            return {"outcome": "crash", "stage": stage, "sig": f"crash:{stage}:{e.code}:{kind}",
                     "msg": str(e)[:500]}
         return {"outcome": "plcerror", "stage": stage, "code": e.code}
     except RecursionError as e:
