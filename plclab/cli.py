@@ -16,7 +16,7 @@ import sys
 
 from . import __version__
 from .cli_registry import COMMAND_TABLE, REGISTRY, Registered, arg, command
-from .errors import PlcError
+from .errors import PlcError, printable
 from .names import split_names
 
 DIALECTS = ("iec", "codesys", "s7", "matiec")  # plclab.lang.dialect.PROFILES (not imported here)
@@ -128,7 +128,7 @@ def cmd_run(ns: argparse.Namespace) -> int:
     for n in names:
         n = n.strip()
         if n:
-            print(f"{n} = {plc.format(n)}")
+            print(f"{printable(n)} = {printable(plc.format(n))}")
     return 0
 
 

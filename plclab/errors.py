@@ -10,7 +10,33 @@ a message that says what to do, and a location where there is one.
 
 from __future__ import annotations
 
+import unicodedata
 from dataclasses import dataclass
+
+_UNPRINTABLE = ("Cc", "Cf", "Cs", "Zl", "Zp", "Co", "Cn")
+
+
+def printable(text: str) -> str:
+    """``text`` safe to show on a terminal or in a one-line report: control characters
+    (newline, carriage return, escape sequences), bidi and other format characters, line
+    separators and lone surrogates become visible escapes, so a student's string cannot erase
+    a line, colour the terminal or fake a test summary. The one function every such text
+    goes through (messages, ASSERT texts, printed values; the grader's names too).
+
+    >>> printable("ok\x1b[2K\rPASS\n2 passed")
+    'ok\\x1b[2K\\rPASS\\n2 passed'
+    >>> printable("caf\u00e9 \ud800")
+    'café \\ud800'
+    """
+    if text.isprintable():
+        return text
+    out = []
+    for ch in text:
+        if unicodedata.category(ch) in _UNPRINTABLE:
+            out.append(ch.encode("unicode_escape", "backslashreplace").decode("ascii"))
+        else:
+            out.append(ch)
+    return "".join(out)
 
 
 @dataclass(slots=True, unsafe_hash=True)
@@ -40,7 +66,7 @@ class Diagnostic:
 
     def __str__(self) -> str:
         where = f"{self.location}: " if self.location else ""
-        return f"{where}{self.severity} {self.code}: {self.message}"
+        return f"{where}{self.severity} {self.code}: {printable(self.message)}"
 
 
 class PlcError(Exception):
@@ -67,7 +93,7 @@ class PlcError(Exception):
         if len(self.diagnostics) > 1:
             return "\n".join(str(d) for d in self.diagnostics)
         where = f"{self.location}: " if self.location else ""
-        return f"{where}error {self.code}: {self.message}"
+        return f"{where}error {self.code}: {printable(self.message)}"
 
 
 class PlcRuntimeFault(PlcError):

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .errors import Diagnostic, Location, PlcError
+from .errors import Diagnostic, Location, PlcError, printable
 from .project import compile_sources, read_sources
 
 
@@ -23,9 +23,9 @@ class TestResult:
 
     def __str__(self) -> str:
         if self.passed:
-            return f"PASS {self.title}"
+            return f"PASS {printable(self.title)}"
         where = self.failure_location or self.location
-        return f"{where}: FAIL {self.title}: {self.message}"
+        return f"{where}: FAIL {printable(self.title)}: {printable(self.message)}"
 
 
 def run_compiled_tests(compiled) -> list[TestResult]:

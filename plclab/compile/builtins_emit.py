@@ -63,7 +63,8 @@ def _atan2(m: Emission) -> str:
 
 
 def _to_dint(m: Emission) -> str:  # TRUNC, ROUND: a conversion to DINT, wraps like TRUNC_DINT
-    return m.cg.wrap(f"{m.native}({m.codes[0]})", T.DINT)
+    arg = m.cg.own_value(m.codes[0], m.args[0])  # a REAL argument is a REAL (ADR 0038)
+    return m.cg.wrap(f"{m.native}({arg})", T.DINT)
 
 
 def _operator(m: Emission) -> str:  # ADD, MUL, SUB; AND, OR, XOR

@@ -25,7 +25,7 @@ from ..lang.builtins import BUILTINS
 from ..lang.check import CallInfo, EnumSym, ProgSym, Project, VarSym
 from ..lang.dialect import profile as dialect_profile
 from ..lang.limits import compiler_guard
-from ..lang.walk import UnhandledNode
+from ..lang.walk import UnhandledNode, walk
 from . import oop_emit
 from .builtins_emit import EMITTERS, Emission, const_int
 from .fastpaths import FastPaths
@@ -138,6 +138,24 @@ class Codegen(FastPaths):
     def new_tmp(self, stem: str = "_t") -> str:
         self.tmp += 1
         return f"{stem}{self.tmp}"
+
+    def forward_defaults(self, decls: list[A.VarDecl], lhs) -> None:
+        """Before the initial values of ``decls`` (in order): the default value of every
+        variable that an initial value reads before its own declaration gives it one
+        (``a : INT := b; b : INT := 7;`` reads b's default 0, as the PLC's zeroed memory
+        would); ``lhs(d)`` is the code of a variable."""
+        index = {id(d): i for i, d in enumerate(decls)}
+        early: list[A.VarDecl] = []
+        for i, d in enumerate(decls):
+            if d.init is None:
+                continue
+            for n in walk(d.init):
+                if isinstance(n, A.Name) and isinstance(n.sym, VarSym):
+                    j = index.get(id(n.sym.decl))
+                    if j is not None and j >= i and n.sym.decl not in early:
+                        early.append(n.sym.decl)
+        for d in early:
+            self.emit(f"{lhs(d)} = {self.default_code(d.ty)}")
 
     def emit_init(self, lhs: str, d: A.VarDecl, init: A.Expr | None = None) -> None:
         """``lhs = <initial value of d>`` (or of ``init`` when given), after the temporaries
@@ -318,6 +336,7 @@ class Codegen(FastPaths):
         oop_emit.interfaces_line(self, pou)
         self.emit("def __init__(self):")
         self.ind += 1
+        self.forward_defaults(members, lambda d: f"self.{ident(d.name)}")
         for d in members:
             self.where_now = self.where(d.loc)
             self.emit_init(f"self.{ident(d.name)}", d)
@@ -328,9 +347,10 @@ class Codegen(FastPaths):
         self.emit("def _body(self):")
         self.ind += 1
         self.where_now = self.where(pou.loc)
-        for d in pou.decls:
-            if d.section == "VAR_TEMP":
-                self.emit_init(f"v_{ident(d.name)}", d)
+        temps = [d for d in pou.decls if d.section == "VAR_TEMP"]
+        self.forward_defaults(temps, lambda d: f"v_{ident(d.name)}")
+        for d in temps:
+            self.emit_init(f"v_{ident(d.name)}", d)
         self.function_body(pou.body, [d.name for d in pou.decls if d.section == "VAR_TEMP"], True)
         self.emit("return")
         self.ind -= 1
@@ -349,10 +369,11 @@ class Codegen(FastPaths):
         rd = pou.return_decl
         if rd.ty is not T.VOID:
             self.emit(f"v_{ident(pou.name)} = {self.default_code(rd.ty)}")
-        for d in pou.decls:
-            if d.section in ("VAR", "VAR_TEMP", "VAR_OUTPUT"):
-                self.where_now = self.where(d.loc)
-                self.emit_init(f"v_{ident(d.name)}", d)
+        own = [d for d in pou.decls if d.section in ("VAR", "VAR_TEMP", "VAR_OUTPUT")]
+        self.forward_defaults(own, lambda d: f"v_{ident(d.name)}")
+        for d in own:
+            self.where_now = self.where(d.loc)
+            self.emit_init(f"v_{ident(d.name)}", d)
         self.function_body(pou.body, [pou.name] + [d.name for d in pou.decls
                                                     if d.section != "VAR_EXTERNAL"], False)
         self.emit(self.function_return(pou))
@@ -377,6 +398,7 @@ class Codegen(FastPaths):
         self.ind += 1
         self.emit("global _G")  # a global's initial value may name the globals above it
         self.emit("_G = self")
+        self.forward_defaults(gl, lambda d: f"self.{ident(d.name)}")
         for d in gl:
             self.where_now = self.where(d.loc)
             self.emit_init(f"self.{ident(d.name)}", d)

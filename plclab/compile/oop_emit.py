@@ -3,13 +3,14 @@
 A METHOD of block ``B`` is a Python method ``M_NAME(self, inputs..., in_outs...)`` of the
 block's class ``P_B``; it returns like a FUNCTION (the result, then the outputs). A derived
 block's class gets its base's variables (the symbol table's ``members``) and, after every
-class is defined, each inherited method it does not override (``P_D.M_X = P_B.M_X``): a call
-``obj.M_X(...)`` then dispatches on the instance's class, which is what a call through an
-interface or ``THIS^`` needs. ``SUPER^.M()`` is the static call ``P_BASE.M_M(self, ...)``.
+class is defined, each inherited method it does not override (``P_D.m_X = P_B.m_X``): a call
+``obj.m_X(...)`` then dispatches on the instance's class, which is what a call through an
+interface or ``THIS^`` needs. ``SUPER^.M()`` is the static call ``P_BASE.m_M(self, ...)``.
 An interface variable holds the instance itself (a Python reference) or None; a call through
 None is the runtime fault PLC9110 (:func:`plclab.runtime.rt._iref`).
 
-Only upper-cased ST identifiers reach the generated code (``M_`` + the method's name).
+Only upper-cased ST identifiers reach the generated code; a method is ``m_`` + its upper-cased
+name, in a namespace no variable can enter (a variable is always all upper case).
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ def ident(name: str) -> str:
 
 
 def method_name(m: A.Pou) -> str:
-    return f"M_{ident(m.name)}"
+    return f"m_{ident(m.name)}"
 
 
 def emit_methods(cg: Codegen, pou: A.Pou) -> None:
@@ -67,8 +68,8 @@ def init_calls(cg: Codegen, pou: A.Pou) -> None:
     bInitRetains TRUE except in a warm restart (``_INIT_RETAINS``) and bInCopyCode FALSE."""
     chain = [*reversed(cg.p.symbols.bases(pou)), pou]
     for b in chain:
-        if any(m.name == "FB_INIT" for m in b.methods):
-            cg.emit(f"P_{ident(b.name)}.M_FB_INIT(self, _INIT_RETAINS, False)")
+        if any(m.name == "FB_INIT" and not m.action for m in b.methods):  # not an ACTION
+            cg.emit(f"P_{ident(b.name)}.m_FB_INIT(self, _INIT_RETAINS, False)")
 
 
 def inherit_methods(cg: Codegen) -> None:
@@ -83,7 +84,7 @@ def inherit_methods(cg: Codegen) -> None:
         own = {m.name for m in p.methods}
         base = bases[0]
         for name in sorted({m.name for b in bases for m in b.methods} - own):
-            cg.emit(f"P_{ident(p.name)}.M_{ident(name)} = P_{ident(base.name)}.M_{ident(name)}")
+            cg.emit(f"P_{ident(p.name)}.m_{ident(name)} = P_{ident(base.name)}.m_{ident(name)}")
 
 
 def interfaces_line(cg: Codegen, pou: A.Pou) -> None:
@@ -91,7 +92,7 @@ def interfaces_line(cg: Codegen, pou: A.Pou) -> None:
     ``__QUERYINTERFACE``); none for a block without interfaces."""
     names = sorted(ident(i.name) for i in cg.p.symbols.interfaces(pou))
     if names:
-        cg.emit(f"_ITF = {tuple(names)!r}")
+        cg.emit(f"_itf = {tuple(names)!r}")
 
 
 def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:

@@ -25,10 +25,10 @@ import hashlib
 import os
 import re
 import stat
-import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..errors import printable
 from .errors import grade_error
 
 MAX_FILE_BYTES = 4 * 2**20
@@ -63,15 +63,20 @@ class SourceFile:
 def clean_text(text: str, limit: int = MAX_NAME) -> str:
     """A printable, single-line form of an untrusted name: control, format (bidi) and
     unpaired surrogate characters become escapes, and it is cut to ``limit`` characters."""
-    out = []
-    for ch in str(text):
-        cat = unicodedata.category(ch)
-        if cat in ("Cc", "Cf", "Cs", "Zl", "Zp", "Co", "Cn"):
-            out.append(ch.encode("unicode_escape", "backslashreplace").decode("ascii"))
-        else:
-            out.append(ch)
-    s = "".join(out)
+    s = printable(str(text))
     return s if len(s) <= limit else s[:limit - 1] + "…"
+
+
+def clean_file_name(name: str, limit: int = MAX_NAME) -> str:
+    """:func:`clean_text` of a file name that keeps its extension when it is cut (the front
+    end is chosen by the extension: ``very_long_name….st`` is still ST)."""
+    s = clean_text(name, 10 * limit)
+    if len(s) <= limit:
+        return s
+    stem, dot, ext = s.rpartition(".")
+    if not dot or not stem or len(ext) > 8:
+        return clean_text(name, limit)
+    return s[:limit - len(ext) - 2] + "…." + ext
 
 
 def output_dirname(student: str, taken: set[str]) -> str:
@@ -161,7 +166,7 @@ def walk_submission(path: str | os.PathLike, exts: dict[str, str]) -> tuple[list
     if stat.S_ISLNK(st.st_mode):
         raise _link_error(root.name)
     if stat.S_ISREG(st.st_mode):
-        return [SourceFile(root, clean_text(root.name))], []
+        return [SourceFile(root, clean_file_name(root.name))], []
     if not stat.S_ISDIR(st.st_mode):
         raise _special_error(root.name)
     sources: list[SourceFile] = []
@@ -182,7 +187,7 @@ def walk_submission(path: str | os.PathLike, exts: dict[str, str]) -> tuple[list
                                   "folders; submit only your source files")
             if e.name.startswith(".") or e.name in _SKIP:
                 continue
-            rel = clean_text(Path(e.path).relative_to(base).as_posix(), 4 * MAX_NAME)
+            rel = clean_file_name(Path(e.path).relative_to(base).as_posix(), 4 * MAX_NAME)
             if e.is_symlink():
                 raise _link_error(rel)
             if e.is_dir(follow_symlinks=False):

@@ -83,7 +83,7 @@ def _iref(obj, method: str, where: int):
 
 def _qi(obj, interface: str):
     """``obj`` if its block implements ``interface`` (``__QUERYINTERFACE``), else None."""
-    return obj if obj is not None and interface in getattr(obj, "_ITF", ()) else None
+    return obj if obj is not None and interface in getattr(obj, "_itf", ()) else None
 
 
 _INIT_RETAINS = True  # FB_init's bInitRetains: the runtime sets FALSE for a warm restart
@@ -102,7 +102,7 @@ def fb_exit_all(roots) -> None:
         if isinstance(obj, list):
             stack.extend(reversed(obj))
             continue
-        exit_ = getattr(obj, "M_FB_EXIT", None)
+        exit_ = getattr(obj, "m_FB_EXIT", None)
         if exit_ is not None:
             exit_(False)
         slots = getattr(type(obj), "__slots__", ())
@@ -651,14 +651,39 @@ def format_value(v, kind: str) -> str:
     if kind == "real" or isinstance(v, float):
         return fmt_real(v, False)
     if isinstance(v, str):
-        return "'" + v.replace("$", "$$").replace("'", "$'").replace("\n", "$N") + "'"
+        return _string_literal(v)
     if kind in ("interface", "ref"):  # ADR 0021: what it refers to, not a Python repr
         if v is None:
             return "NULL"
         if isinstance(v, _RefAttr):
             return f"REF(.{v.key})" if isinstance(v.key, str) else f"REF([{v.key}])"
         return f"REF({type(v).__name__[2:]} instance)"
+    if isinstance(v, int | float | list):
+        return str(v)
+    if hasattr(type(v), "__slots__"):  # a block instance: its type, never a Python repr
+        name = type(v).__name__
+        return f"({name[2:] if name.startswith('P_') else name} instance)"
     return str(v)
+
+
+def _string_literal(v: str) -> str:
+    """An IEC string literal of ``v``: ``$$``, ``$'``, ``$N`` and ``$hh`` (``$hhhh`` beyond
+    one byte) for every character a terminal would act on, so a value never reaches the
+    screen raw (a lone surrogate of a WSTRING included)."""
+    out = []
+    for ch in v:
+        if ch == "$":
+            out.append("$$")
+        elif ch == "'":
+            out.append("$'")
+        elif ch == "\n":
+            out.append("$N")
+        elif ch.isprintable():
+            out.append(ch)
+        else:
+            n = ord(ch)
+            out.append(f"${n:02X}" if n < 256 else f"${n:04X}")
+    return "'" + "".join(out) + "'"
 
 
 _unpack_from = struct.unpack_from

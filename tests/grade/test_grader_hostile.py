@@ -496,3 +496,17 @@ def test_the_watchdog_ends_a_child_whose_grader_is_gone():
         for p in (grader, child):
             if p.poll() is None:
                 p.kill()
+
+
+def test_a_long_file_name_keeps_its_language(tmp_path):
+    """LMS exports prefix names (``name_id_subid_...``): a name far over the display limit is
+    cut in the middle, so the front end is still chosen by its real extension."""
+    from plclab.grade.engine import grade_sources
+
+    long = tmp_path / ("doe_jane_123456_7890123_" + "motor_start_stop_final_v2_" * 8 + ".st")
+    long.write_text(GOOD, encoding="utf-8")
+    sources, _ = read_submission(long)
+    (text, name), = sources
+    assert len(name) <= safety.MAX_NAME and name.endswith(".st") and "…" in name
+    res = grade_sources(LAB, sources, scenarios=[LAB.scenarios[0].name])
+    assert res.status == "ok" and res.score == res.max_score > 0

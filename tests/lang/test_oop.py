@@ -237,7 +237,7 @@ VAR o : Obj; END_VAR
 ASSERT_EQ(o.self() + o.import() + o._copy(), 6);
 END_TEST"""
     plc = plclab.loads(src, "o.st")
-    for name in ("M_SELF", "M_IMPORT", "M__COPY"):
+    for name in ("m_SELF", "m_IMPORT", "m__COPY"):
         assert f"def {name}(self)" in plc.compiled.source
     assert [str(r) for r in run_test_sources([(src, "o.st")]) if not r.passed] == []
 

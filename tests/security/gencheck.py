@@ -24,7 +24,7 @@ import tokenize
 
 from plclab.runtime.rt import HELPERS
 
-MANGLED = re.compile(r"^(?:[FPSEM]|v)_[A-Z0-9_]+$")  # M_: methods (ADR 0021)
+MANGLED = re.compile(r"^(?:[FPSE]|v|m)_[A-Z0-9_]+$")  # m_: methods (ADR 0021, 0039)
 UPPER = re.compile(r"^[A-Z0-9_]+$")
 TEMPS = re.compile(r"^_(?:r|c|f|t|test_)\d+$")
 RUNTIME_NAMES = {"_B", "_CTX", "_F32", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc", "n", "self",
@@ -40,7 +40,7 @@ FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "
 
 
 # hidden variables of the IL, LD, SFC and edge lowerings (``__CR_INT``, ``__LD_M3``, ``__SFC_TR0``,
-# ``__EDGE_M_X``):
+# ``__EDGE_MEM__X``):
 # private names, which work only because nothing outside their class reads them
 HIDDEN = re.compile(r"^__(?:CR|LD|SFC|EDGE)_[A-Z0-9_]+$")
 

@@ -34,7 +34,8 @@ def lower_edges(pou: A.Pou, payload: list, types: LoweringTypes) -> list[Diagnos
                 for name, _, loc in payload]
     head: list[A.Stmt] = []
     for name, rising, loc in payload:
-        memory, pulse = f"__EDGE_M_{name}", f"__EDGE_{name}"
+        # "__" is never in an ST name: MEM__ keeps every memory apart from every pulse
+        memory, pulse = f"__EDGE_MEM__{name}", f"__EDGE_{name}"
         pou.decls += [_bool(loc, memory, "VAR", f"edge memory of {name}"),
                       _bool(loc, pulse, "VAR_TEMP", f"edge of {name}")]
         for stmt in pou.body:

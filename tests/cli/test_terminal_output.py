@@ -1,0 +1,53 @@
+"""What a student's program says never reaches the terminal raw (issue 30): ASSERT messages,
+string tokens quoted in diagnostics and printed values go through one escaping function
+(``plclab.errors.printable``), so no text can erase a line, colour the screen or fake the
+test summary; a lone surrogate in a WSTRING prints; a block instance prints as its type."""
+
+from plclab.cli import main
+from plclab.errors import Diagnostic, printable
+
+SPOOF = """
+PROGRAM Main
+VAR t : TON; w : WSTRING := "$D800"; s : STRING := 'a$1B[2Kb'; END_VAR
+t(IN := TRUE, PT := T#1s);
+END_PROGRAM
+TEST 'controller works'
+ASSERT_TRUE(FALSE, '$0D$1B[2KPASS controller works$0A2 passed, 0 failed$1B[8m');
+END_TEST
+TEST 'wide'
+VAR w : WSTRING := "$D800"; END_VAR
+ASSERT_EQ(w, "x");
+END_TEST
+"""
+
+
+def _raw(text: str) -> list[str]:
+    return [ch for ch in text if not ch.isprintable() and ch != "\n"]
+
+
+def test_assert_messages_cannot_fake_the_summary(tmp_path, capsys):
+    f = tmp_path / "spoof.st"
+    f.write_text(SPOOF, encoding="utf-8")
+    assert main(["test", str(f)]) == 1
+    out = capsys.readouterr().out
+    assert _raw(out) == []
+    lines = out.strip().splitlines()
+    assert lines[-1] == "0 passed, 2 failed"
+    assert not any(line.startswith("2 passed") for line in lines)
+    assert "FAIL controller works" in out and "\\x1b[2K" in out
+
+
+def test_run_print_shows_iec_values(tmp_path, capsys):
+    f = tmp_path / "spoof.st"
+    f.write_text(SPOOF, encoding="utf-8")
+    assert main(["run", str(f), "--cycles", "1"]) == 0
+    out = capsys.readouterr().out
+    assert _raw(out) == [] and " object at 0x" not in out
+    assert "Main.t = (TON instance)" in out
+    assert "Main.w = '$D800'" in out and "Main.s = 'a$1B[2Kb'" in out
+
+
+def test_diagnostics_escape_what_they_quote():
+    d = Diagnostic("PLC0001", "unexpected character '\x1b'\r")
+    assert _raw(str(d)) == [] and "\\x1b" in str(d)
+    assert printable("plain text") == "plain text"
