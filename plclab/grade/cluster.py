@@ -15,7 +15,10 @@ the files. A cluster only replaces *where the child runs*:
   ``results.json`` is byte for byte the local executor's apart from timings, and an
   interrupted run resumes where it stopped;
 * a worker that dies takes its children with it (they die with their parent); the scheduler
-  runs its tasks again on another worker.
+  runs its tasks again on another worker, and a task lost for good (or a child killed from
+  outside) is submitted again by the client, then reported as "infrastructure", never as the
+  student's crash (ADR 0040). The lab travels with each task: data scattered to a worker would
+  die with it.
 
 Dask (not Ray): see docs/adr/0026-grading-on-dask.md.
 """
@@ -26,6 +29,7 @@ import contextlib
 import multiprocessing
 import os
 import shutil
+import signal
 import tempfile
 import time
 from collections import deque
@@ -193,9 +197,12 @@ class Replayed:
 
 
 def lost(sub: Any, media: Path, inbox: Inbox, why: str) -> Replayed:
-    """A task the cluster could not run (every try's worker died, the task failed): graded
-    as a crash with the reason in the log."""
-    return Replayed(sub, media, inbox, {"exitcode": None, "log": why, "messages": []})
+    """A task the cluster could not run (its worker died every time the scheduler tried, the
+    future was lost): the machine's failure, as if the child had been killed from outside, so
+    the grader tries again and finally reports "infrastructure", never the student's crash
+    (ADR 0040)."""
+    return Replayed(sub, media, inbox, {"exitcode": -signal.SIGKILL, "log": why,
+                                        "messages": []})
 
 
 def connect(address: str) -> Any:
@@ -219,11 +226,22 @@ def run_on_cluster(grader: Any, address: str, todo: deque[Any], total: int,
     completes (the order of completion, like the local pool)."""
     from distributed import as_completed
 
+    from .grader import INFRA_RETRIES
+
     client = connect(address)
     finished: list[Any] = []
     try:
-        payload = client.scatter([grader._lab_payload()], broadcast=True)[0]  # noqa: SLF001
-        futures: dict[Any, tuple[Any, Path]] = {}
+        # the lab goes with every task, not scattered: data held by a worker dies with it
+        payload = grader._lab_payload()  # noqa: SLF001
+        futures: dict[Any, tuple[Any, Path, dict[str, Any]]] = {}
+
+        def submit(sub: Any, d: Path, job: dict[str, Any]) -> Any:
+            fut = client.submit(run_on_worker, payload, job, grader.timeout, pure=False,
+                                key=f"plclab-grade-{grader.lab.id}-{sub.dirname}-"
+                                f"{time.time_ns()}")
+            futures[fut] = (sub, d, job)
+            return fut
+
         for sub in todo:
             d = grader.prepare(sub)
             if not isinstance(d, Path):  # changed since discover: rejected now (an Outcome)
@@ -232,24 +250,29 @@ def run_on_cluster(grader: Any, address: str, todo: deque[Any], total: int,
                 continue
             job = grader.job_of(sub)
             sub.sources = []
-            fut = client.submit(run_on_worker, payload, job, grader.timeout, pure=False,
-                                key=f"plclab-grade-{grader.lab.id}-{sub.dirname}-"
-                                f"{time.time_ns()}")
-            futures[fut] = (sub, d)
-        for fut in as_completed(list(futures), loop=client.loop):
-            sub, d = futures.pop(fut)
+            submit(sub, d, job)
+        pending = as_completed(list(futures), loop=client.loop)
+        for fut in pending:
+            sub, d, job = futures.pop(fut)
             inbox = Inbox(grader.lab, d if grader.media else None)
             try:
                 r = Replayed(sub, d, inbox, fut.result())
-            except Exception as e:  # noqa: BLE001 - a lost task is that student's crash
+            except Exception as e:  # noqa: BLE001 - a lost task: the cluster's failure
                 r = lost(sub, d, inbox, f"the cluster could not run this submission: "
                          f"{type(e).__name__}: {e}")
+            fut.release()
+            if grader._killed_from_outside(r, r.timed_out) and \
+                    grader._tries.get(sub.dirname, 0) < INFRA_RETRIES:  # noqa: SLF001
+                grader._tries[sub.dirname] = grader._tries.get(sub.dirname, 0) + 1  # noqa: SLF001
+                for p in list(d.glob("*.png")) + list(d.glob("*.rrd")):
+                    p.unlink()  # nothing of the lost try is kept
+                pending.add(submit(sub, d, grader.job_of(sub) | {"sources": job["sources"]}))
+                continue
             oc = grader._finish(r, r.timed_out)  # noqa: SLF001
             finished.append(oc)
             done_n += 1
             if grader.progress:
                 grader.progress(done_n, total, sub.student, oc)
-            fut.release()
     finally:
         with contextlib.suppress(Exception):
             client.close()

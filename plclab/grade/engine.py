@@ -24,7 +24,12 @@ from .criteria import Verdict
 from .lab import SOURCE_EXTS, Lab, ScenarioSpec
 
 STATUSES = ("ok", "compile_error", "no_source", "language", "timeout", "memory", "crash",
-            "rejected")
+            "rejected", "infrastructure")
+STUDENT_STATUSES = ("ok", "compile_error", "no_source", "language", "timeout", "memory",
+                    "rejected")
+"""Outcomes caused by the submission itself: the only ones a later run may reuse. A ``crash``
+(plclab's bug) and ``infrastructure`` (a grading process or cluster worker killed from outside:
+the OOM killer, a lost worker) are graded again on the next run (ADR 0040)."""
 
 
 @dataclass
@@ -238,6 +243,7 @@ NOT_RUN = {
     "memory": "not run: the program needs too much memory",
     "crash": "not run: the grading process crashed",
     "rejected": "not run: the submission or its results were rejected",
+    "infrastructure": "not run: the grading machine failed (not the program); grade again",
     "setup": "not run: the scenario could not start with this program",
 }
 """Short test messages for scenarios that did not run (the reason is given once above)."""

@@ -35,7 +35,7 @@ from typing import Any
 
 from plclab.errors import PlcError
 
-from .engine import Result, failed_result, read_submission, source_hash
+from .engine import STUDENT_STATUSES, Result, failed_result, read_submission, source_hash
 from .errors import grade_error
 from .feedback import render_feedback
 from .gradescope import gradebook_csv, results_json, write_atomic, write_json
@@ -45,6 +45,10 @@ from .safety import clean_text, output_dirname
 from .spawn import child_context, read_child_log
 
 GRADER_VERSION = "2"
+INFRA_RETRIES = 2
+"""Times a submission is graded again when its process was killed from outside (ADR 0040)."""
+_OUTSIDE_SIGNALS = {int(getattr(signal, n)) for n in ("SIGKILL", "SIGTERM", "SIGHUP", "SIGINT")
+                    if hasattr(signal, n)}
 SIDECAR = ".plclab-result.json"
 LOG = ".plclab-grade.log"
 CPU_MARGIN = 5.0
@@ -245,6 +249,7 @@ class Grader:
         self.progress = progress
         self.scenarios = None if scenarios is None else list(scenarios)
         self.selftest_crash = os.environ.get("PLCLAB_GRADE_SELFTEST_CRASH", "")
+        self._tries: dict[str, int] = {}  # submissions graded again after an outside kill
         self._payload: tuple[Any, dict[str, str]] | None = None
 
     # ------------------------------------------------------------------ the run
@@ -299,8 +304,9 @@ class Grader:
                 return None
             data = json.loads(side.read_text(encoding="utf-8"))
             if (data.get("submission_hash") != s.hash or data.get("lab_hash") != self.lab.hash
-                    or data.get("grader") != GRADER_VERSION):
-                return None
+                    or data.get("grader") != GRADER_VERSION
+                    or data["result"].get("status") not in STUDENT_STATUSES):
+                return None  # changed, or not the student's outcome: grade it again
             inbox = Inbox(self.lab, None)
             inbox.media = {p.name for p in d.iterdir() if MEDIA_NAME.match(p.name)}
             inbox.receive(json.dumps(["done", data["result"]]).encode())
@@ -354,6 +360,15 @@ class Grader:
                         r.proc.kill()
                         r.proc.join(timeout=5)
                     r.drain()
+                    if self._killed_from_outside(r, timed_out) and \
+                            self._tries.get(r.sub.dirname, 0) < INFRA_RETRIES:
+                        # not the student's doing: grade it again, nothing is written
+                        self._tries[r.sub.dirname] = self._tries.get(r.sub.dirname, 0) + 1
+                        r.close()
+                        shutil.rmtree(r.workdir, ignore_errors=True)
+                        closing.remove(r)
+                        todo.append(r.sub)
+                        continue
                     oc = self._finish(r, timed_out)
                     closing.remove(r)
                     finished.append(oc)
@@ -369,6 +384,16 @@ class Grader:
             raise
         return finished
 
+    @staticmethod
+    def _killed_from_outside(r: Any, timed_out: bool) -> bool:
+        """A child that ended by a signal the grader did not send, with no result: the OOM
+        killer, an administrator, a lost machine; never something the program did inside its
+        limits (those end as a result, a timeout, SIGXCPU or a memory failure)."""
+        code = r.exitcode
+        return (not timed_out and not r.rejected and r.inbox.done is None
+                and r.inbox.failure is None and code is not None
+                and -code in _OUTSIDE_SIGNALS)
+
     def _lab_payload(self) -> tuple[Any, dict[str, str]]:
         if self._payload is None:
             from .worker import lab_payload
@@ -383,7 +408,16 @@ class Grader:
                 "memory_mb": self.memory_mb, "scenarios": self.scenarios,
                 "cpu_seconds": self.timeout + CPU_MARGIN,
                 "selftest_crash": bool(self.selftest_crash)
-                and self.selftest_crash == sub.student}
+                and self.selftest_crash == sub.student,
+                "selftest_kill": self._selftest_kill(sub)}
+
+    def _selftest_kill(self, sub: Submission) -> bool:
+        """``PLCLAB_GRADE_SELFTEST_KILL=student:N``: the first N processes grading that
+        student SIGKILL themselves after one scenario, as the OOM killer would (the grader's
+        own tests of ADR 0040; the parent cannot tell it from a kill from outside)."""
+        who, _, n = os.environ.get("PLCLAB_GRADE_SELFTEST_KILL", "").rpartition(":")
+        return bool(who) and who == sub.student and n.isdigit() and \
+            self._tries.get(sub.dirname, 0) < int(n)
 
     def prepare(self, sub: Submission) -> Path | Outcome:
         """Read a submission again (it may have changed since :func:`discover`) and empty the
@@ -470,6 +504,12 @@ class Grader:
                 status = "crash"
                 msg = (f"The grading process failed: {box.failure[1]} (PLC5025). Scenarios that "
                        "finished count; please tell your instructor.")
+            elif self._killed_from_outside(r, timed_out):
+                status = "infrastructure"
+                msg = (f"The grading process was stopped from outside ({_signame(code)}) "
+                       f"{INFRA_RETRIES + 1} times: the grading machine, not the program "
+                       "(PLC5070). Nothing is kept: grade again, with fewer --jobs or more "
+                       "memory.")
             else:
                 status = "crash"
                 msg = (f"The grading process crashed ({_signame(code)}, PLC5025). "

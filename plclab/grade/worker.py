@@ -283,13 +283,18 @@ def child_main(job: dict[str, Any], conn: Any) -> None:
     media = Path(job["workdir"]) / "media" if job.get("media") else None
     out = _Outbox(conn, media)
     failure: tuple[str, ...] | None = None
+    on_scenario = out.scenario
+    if job.get("selftest_kill"):  # the grader's own test: killed mid-run from "outside"
+        def on_scenario(run: Any, tests: Any) -> None:
+            out.scenario(run, tests)
+            os.kill(os.getpid(), signal.SIGKILL)
     try:
         from .engine import grade_sources
 
         lab = lab_from_payload(job["lab"], job.get("checks", {}))
         res = grade_sources(lab, [tuple(s) for s in job["sources"]], student=job["student"],
                             scenarios=job.get("scenarios"), media_dir=media, rrd=bool(job.get("media")),
-                            on_scenario=out.scenario,
+                            on_scenario=on_scenario,
                             on_compiled=lambda diags: out.send("compiled", diags),
                             guard=lambda: memory_limit(job.get("memory_mb")))
         if job.get("selftest_crash"):

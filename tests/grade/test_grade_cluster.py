@@ -202,3 +202,26 @@ def test_a_worker_killed_mid_run_loses_no_submission(cluster, lab, tmp_path):
     assert [status[f"spin{k}"] for k in range(6)] == ["timeout"] * 6
     assert status["tank"] in ("ok", "timeout")  # timeout only on a very loaded machine
     assert all((tmp_path / "out" / s / "results.json").is_file() for s in status)
+
+
+def test_a_child_killed_on_a_worker_is_graded_again(cluster, lab, tmp_path, monkeypatch):
+    """A child killed from outside on a worker (as the OOM killer does): the client submits
+    the task again, and the gradebook equals a clean local run's (ADR 0040)."""
+    import csv
+
+    from plclab.grade.grader import INFRA_RETRIES, Grader
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    shutil.copy(LAB / "solution" / "tank.st", subs / "alice.st")
+    shutil.copy(LAB / "solution" / "tank.st", subs / "bob.st")
+    Grader(lab, tmp_path / "clean", timeout=120, media=False).grade_folder(subs)
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_KILL", f"alice:{INFRA_RETRIES}")
+    outs = Grader(lab, tmp_path / "dask", timeout=120, media=False,
+                  executor=cluster).grade_folder(subs)
+    assert {o.result.student: o.result.status for o in outs} == {"alice": "ok", "bob": "ok"}
+
+    def grades(out):
+        with open(out / "grades.csv", encoding="utf-8") as f:
+            return {r["student"]: (r["score"], r["status"]) for r in csv.DictReader(f)}
+    assert grades(tmp_path / "dask") == grades(tmp_path / "clean")

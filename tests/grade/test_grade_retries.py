@@ -1,0 +1,58 @@
+"""A grading process killed from outside (the OOM killer, an administrator) is the machine's
+failure, not the student's (issue 30, ADR 0040): the submission is graded again and the
+gradebook equals a clean run's; killed every time it is "infrastructure", never cached, and the
+next run grades it afresh. A crash is never reused either; a student's own outcome is."""
+
+import csv
+
+import pytest
+
+from plclab.grade.grader import INFRA_RETRIES, Grader
+from plclab.grade.lab import load_lab
+
+LAB = load_lab("motor-start-stop")
+SCENARIOS = ["start-stop", "stop-wins"]
+
+
+@pytest.fixture
+def subs(tmp_path):
+    folder = tmp_path / "subs"
+    folder.mkdir()
+    (folder / "alice.st").write_text((LAB.path / "solution" / "motor.st").read_text(),
+                                     encoding="utf-8")
+    (folder / "bob.st").write_text((LAB.path / "mistakes" / "set_dominant.st").read_text(),
+                                   encoding="utf-8")
+    return folder
+
+
+def _grades(out):
+    with open(out / "grades.csv", encoding="utf-8") as f:
+        return {r["student"]: (r["score"], r["max"], r["status"]) for r in csv.DictReader(f)}
+
+
+def _grade(folder, out, **kw):
+    return Grader(LAB, out, jobs=2, timeout=60, scenarios=SCENARIOS, media=False,
+                  **kw).grade_folder(folder)
+
+
+def test_a_child_killed_from_outside_is_graded_again(subs, tmp_path, monkeypatch):
+    _grade(subs, tmp_path / "clean")
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_KILL", f"alice:{INFRA_RETRIES}")
+    outcomes = _grade(subs, tmp_path / "killed")
+    assert _grades(tmp_path / "killed") == _grades(tmp_path / "clean")
+    alice = next(o.result for o in outcomes if o.result.student == "alice")
+    assert alice.status == "ok" and alice.score == alice.max_score
+
+
+def test_killed_every_time_is_infrastructure_and_never_reused(subs, tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_KILL", f"alice:{INFRA_RETRIES + 1}")
+    first = {o.result.student: o for o in _grade(subs, out)}
+    assert first["alice"].result.status == "infrastructure"
+    assert "PLC5070" in first["alice"].result.message
+    assert first["bob"].result.status == "ok"
+    monkeypatch.delenv("PLCLAB_GRADE_SELFTEST_KILL")
+    again = {o.result.student: o for o in _grade(subs, out)}
+    assert not again["alice"].skipped and again["alice"].result.status == "ok"
+    assert again["alice"].result.score == again["alice"].result.max_score
+    assert again["bob"].skipped  # the student's own outcome is kept
