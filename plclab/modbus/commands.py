@@ -37,7 +37,7 @@ def _params(items: list[str], what: str) -> dict:
     return out
 
 
-def _check_endpoint(host: str, port: int) -> None:
+def _check_endpoint(host: str, port: int, writable: str = "") -> None:
     if not 1 <= port <= 65535:
         raise PlcError("PLC9203", f"--port {port}: give a TCP port 1..65535 (5020 is usual; "
                        "502 needs root)")
@@ -46,8 +46,9 @@ def _check_endpoint(host: str, port: int) -> None:
     except ValueError:
         loopback = host == "localhost"
     if not loopback:
-        print(f"warning: serving on {host}: every computer that can reach this one can read "
-              "the PLC over Modbus (there is no authentication); use the default 127.0.0.1 "
+        what = f"read the PLC and write {writable}" if writable else "read it"
+        print(f"warning: serving on {host}: every computer that can reach this one can "
+              f"{what} over Modbus (there is no authentication); use the default 127.0.0.1 "
               "unless you mean it", file=sys.stderr, flush=True)
 
 
@@ -129,7 +130,12 @@ def cmd_serve(ns: argparse.Namespace) -> int:
     from .server import PlcServer
 
     need_pymodbus()
-    _check_endpoint(ns.host, ns.port)
+    writable = ["%MW (memory words)"]
+    if not ns.read_only_inputs:
+        writable.insert(0, "its inputs %I and %IW")
+    if ns.allow_coil_writes:
+        writable.append("its outputs %Q (forcing)")
+    _check_endpoint(ns.host, ns.port, ", ".join(writable))
     check_limits(ns.max_clients, ns.idle_timeout)
     if ns.duration is not None and not ns.duration > 0:
         raise PlcError("PLC3002", "--duration must be positive (seconds)")
@@ -205,7 +211,7 @@ def cmd_plant_serve(ns: argparse.Namespace) -> int:
     from .plantmap import format_plant_map
 
     need_pymodbus()
-    _check_endpoint(ns.host, ns.port)
+    _check_endpoint(ns.host, ns.port, "the plant's actuators")
     check_limits(ns.max_clients, ns.idle_timeout)
     if ns.duration is not None and not ns.duration > 0:
         raise PlcError("PLC3002", "--duration must be positive (seconds)")

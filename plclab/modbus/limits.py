@@ -5,7 +5,9 @@ one open for ever. :func:`bounded_server` returns a subclass that
 
 * closes a new connection at once when ``max_clients`` are already open (the client sees the
   connection accepted and then closed: a reset or EOF on its first read), and
-* closes a connection that has sent nothing for ``idle_timeout`` wall-clock seconds.
+* closes a connection that has sent no complete request for ``idle_timeout`` wall-clock
+  seconds (a client trickling one byte at a time does not keep a slot: only whole MBAP
+  frames count, ADR 0041).
 
 Request sizes are bounded by pymodbus itself: a frame longer than 260 bytes (MBAP length over
 254) is dropped, and counts beyond the Modbus limits (2000 bits, 125 registers) are answered
@@ -41,6 +43,38 @@ def check_limits(max_clients: Any, idle_timeout: Any) -> tuple[int, float]:
     return max_clients, float(idle_timeout)
 
 
+MAX_FRAME = 260  # MBAP header (6 bytes before the length's count) + at most 254
+
+
+def take_frames(conn: Any, data: bytes) -> list[bytes]:
+    """The Modbus TCP frames ``data`` completes on ``conn`` (the partial frame waits in
+    ``conn.partial``, bounded). A header with an impossible length is handed on as it is
+    (pymodbus discards such a frame) and the partial frame is dropped."""
+    buf = getattr(conn, "partial", b"") + data
+    out: list[bytes] = []
+    while len(buf) >= 6:
+        length = int.from_bytes(buf[4:6], "big")
+        if not 2 <= length <= MAX_FRAME - 6:
+            out.append(buf)
+            buf = b""
+            break
+        if len(buf) < 6 + length:
+            break
+        out.append(buf[:6 + length])
+        buf = buf[6 + length:]
+    conn.partial = buf[-MAX_FRAME:]
+    return out
+
+
+def invalid_coil_value(frame: bytes) -> bytes | None:
+    """The exception response (03, ILLEGAL DATA VALUE) to a Write Single Coil (FC5) whose
+    value is neither 0xFF00 (ON) nor 0x0000 (OFF), as the Modbus specification requires
+    (pymodbus would take any non-zero value as ON); None for any other frame."""
+    if len(frame) != 12 or frame[7] != 5 or frame[10:12] in (b"\xff\x00", b"\x00\x00"):
+        return None
+    return frame[:4] + b"\x00\x03" + frame[6:7] + bytes([0x85, 0x03])
+
+
 class _Refuse(asyncio.Protocol):
     """Accepts a connection only to close it (the server is full)."""
 
@@ -72,8 +106,15 @@ def _classes() -> tuple[type, type]:
                 self._arm()
 
             def data_received(self, data: bytes) -> None:
-                self.last_data = self.loop.time()
-                super().data_received(data)
+                frames = take_frames(self, data)
+                if frames:  # whole requests keep a connection alive, not bytes
+                    self.last_data = self.loop.time()
+                for frame in frames:
+                    refusal = invalid_coil_value(frame)
+                    if refusal is None:
+                        super().data_received(frame)
+                    elif self.transport is not None:
+                        self.transport.write(refusal)
 
             def _arm(self) -> None:
                 due = self.last_data + self.owner.idle_timeout

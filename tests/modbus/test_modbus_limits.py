@@ -214,3 +214,44 @@ def test_a_plant_that_does_not_fit_a_small_image_is_plc3010():
     with pytest.raises(PlcError) as exc:
         PlantCoupling(get_plant("tank"), plc)
     assert exc.value.code == "PLC3010" and "image_size" in exc.value.message
+
+
+def test_a_client_trickling_bytes_does_not_keep_its_slot():
+    """Only whole requests keep a connection alive: one byte every 0.15 s of a 12-byte frame
+    never completes a request within the 0.5 s idle timeout, so the server drops it."""
+    plc = plclab.loads(PROG)
+    port = free_port()
+    with BackgroundServer(plc, port=port, speed=2.0, idle_timeout=0.5):
+        s = connect(port)
+        try:
+            frame = request(1)
+            sent = 0
+            for byte in frame[:-1]:  # never the last byte: the request stays incomplete
+                try:
+                    s.sendall(bytes([byte]))
+                except OSError:
+                    break
+                sent += 1
+                if closed_by_server(s, within=0.15):
+                    break
+            else:
+                raise AssertionError("the trickling client kept its connection")
+            assert sent < len(frame) - 1
+        finally:
+            s.close()
+
+
+def test_write_single_coil_accepts_only_on_and_off():
+    """FC5's value is 0xFF00 (ON) or 0x0000 (OFF); anything else is the exception 03."""
+    plc = plclab.loads(PROG)
+    port = free_port()
+    with BackgroundServer(plc, port=port, speed=2.0):
+        s = connect(port)
+        try:
+            bad = answer(s, request(7, b"\x05\x00\x00\x12\x34"))
+            assert bad[:2] == b"\x00\x07" and bad[7:9] == b"\x85\x03"
+            good = answer(s, request(8, b"\x05\x00\x00\xff\x00"))
+            assert good[:2] == b"\x00\x08" and good[7:9] != b"\x85\x03"
+            assert answer(s, request(9))[7] == 3  # the connection stays usable
+        finally:
+            s.close()

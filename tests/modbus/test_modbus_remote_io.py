@@ -92,28 +92,29 @@ def test_remote_io_loses_and_regains_the_plant(tmp_path):
             try:
                 # connected: IO_OK TRUE, inputs from the plant (level 1 m: LS1 on, LS2 off)
                 assert wait_until(lambda: status(c)[5] == 1 and c.read_coils(1).bits[0],
-                                  timeout=5)
+                                  timeout=30)
                 assert c.read_discrete_inputs(0, count=2).bits[:2] == [True, False]
                 assert c.read_discrete_inputs(80).bits[0] is True  # --io-status %IX10.0
                 level = c.read_input_registers(32).registers[0]  # %IW64
                 assert abs(A.from_register(level, 0, 2) - 1.0) < 0.05
                 # the plant goes away
                 assert plant.stop(signal.SIGTERM) == 0
-                assert wait_until(lambda: status(c)[5] == 0, timeout=3)
-                assert wait_until(lambda: not c.read_coils(1).bits[0], timeout=2)  # IO_OK
+                assert wait_until(lambda: status(c)[5] == 0, timeout=30)
+                assert wait_until(lambda: not c.read_coils(1).bits[0], timeout=30)  # IO_OK
                 assert c.read_discrete_inputs(80).bits[0] is False
                 n_lost = counter(c)
                 held = c.read_input_registers(32).registers[0]
-                assert abs(held - level) < 300  # the level fell a little meanwhile
+                # the level fell meanwhile, by how much depends on the machine's load
+                assert 0 < A.from_register(held, 0, 2) <= A.from_register(level, 0, 2) + 0.05
                 # the PLC keeps scanning; the inputs keep their last values
-                assert wait_until(lambda: counter(c) > n_lost + 20, timeout=3)
+                assert wait_until(lambda: counter(c) > n_lost + 20, timeout=30)
                 assert c.read_discrete_inputs(0, count=2).bits[:2] == [True, False]
                 assert c.read_input_registers(32).registers[0] == held
                 assert status(c)[0] == 1
                 # the plant comes back on the same port
                 plant = PlclabProcess(plant_args, port=plant_port).start()
-                assert wait_until(lambda: status(c)[5] == 1, timeout=5)
-                assert wait_until(lambda: c.read_coils(1).bits[0], timeout=2)
+                assert wait_until(lambda: status(c)[5] == 1, timeout=30)
+                assert wait_until(lambda: c.read_coils(1).bits[0], timeout=30)
                 assert counter(c) > n_lost + 20  # no restart: the counter went on
             finally:
                 c.close()

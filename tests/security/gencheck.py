@@ -24,6 +24,7 @@ import tokenize
 
 from plclab.runtime.rt import HELPERS
 
+METHOD_NAME = re.compile(r"^m_[A-Z0-9_]+$")  # a METHOD of a block (ADR 0021, 0039)
 MANGLED = re.compile(r"^(?:[FPSE]|v|m)_[A-Z0-9_]+$")  # m_: methods (ADR 0021, 0039)
 UPPER = re.compile(r"^[A-Z0-9_]+$")
 TEMPS = re.compile(r"^_(?:r|c|f|t|test_)\d+$")
@@ -70,7 +71,8 @@ def problems(source: str, words: tuple[str, ...] = ("pwned_sentinel",)) -> list[
             a = node.attr
             if _private(a):
                 out.append(f"line {node.lineno}: attribute {a!r} is a private name")
-            elif not (UPPER.match(a) or a in METHODS or a in RUNTIME_NAMES):
+            elif not (UPPER.match(a) or a in METHODS or a in RUNTIME_NAMES
+                      or METHOD_NAME.match(a)):
                 out.append(f"line {node.lineno}: attribute {a!r} is not mangled")
         elif isinstance(node, (ast.FunctionDef, ast.ClassDef)):
             if not name_ok(node.name):
