@@ -19,6 +19,8 @@ value}``, ``/ack {id}`` (no id: every pending alarm), ``/recipe {record}``.
 from __future__ import annotations
 
 import json
+import math
+import secrets
 import threading
 import time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
@@ -132,9 +134,22 @@ class Panel:
         sig = self._panel_signal(signal)
         with self.lock:
             try:
-                self.sim.plant.write(sig.name, value if sig.type == "bool" else float(value))
-            except (TypeError, ValueError):
-                raise PlcError("PLC6050", f"{sig.name}: {value!r} is not a value for it") from None
+                if sig.type == "bool":
+                    if not isinstance(value, bool):
+                        raise TypeError
+                    v: Any = value
+                else:
+                    if isinstance(value, bool) or not isinstance(value, int | float | str):
+                        raise TypeError
+                    v = float(value)
+                    if not math.isfinite(v):
+                        raise ValueError
+            except (TypeError, ValueError, OverflowError):
+                shown = repr(value)[:40]
+                raise PlcError("PLC6051", f"{sig.name}: {shown} is not a value for it ("
+                               f"{'TRUE or FALSE' if sig.type == 'bool' else 'a finite number'})"
+                               ) from None
+            self.sim.plant.write(sig.name, v)
 
     def acknowledge(self, alarm_id: str | None = None) -> bool:
         self._need("ack")
@@ -200,13 +215,51 @@ def page() -> str:
     return PAGE
 
 
+MAX_BODY = 10_000
+"""Bytes a POST body may have (a panel action is a small JSON object)."""
+MAX_NUMBER_DIGITS = 30
+"""Digits a JSON number may have."""
+REQUEST_TIMEOUT = 5.0
+"""Seconds a connection may take to send its request (a short body does not hold a thread)."""
+TOKEN_HEADER = "X-Plclab-Token"
+
+
+def _loads(body: bytes) -> dict[str, Any]:
+    """The JSON object of a request body: ValueError for anything else, for NaN and
+    infinities, numbers of more than MAX_NUMBER_DIGITS digits and nesting that deep."""
+    def number(text: str) -> Any:
+        if len(text) > MAX_NUMBER_DIGITS:
+            raise ValueError("number too long")
+        return float(text) if any(c in text for c in ".eE") else int(text)
+
+    def constant(text: str) -> Any:
+        raise ValueError(f"{text} is not a number here")
+
+    try:
+        data = json.loads(body or b"{}", parse_int=number, parse_float=number,
+                          parse_constant=constant)
+    except RecursionError:
+        raise ValueError("nested too deeply") from None
+    if not isinstance(data, dict):
+        raise ValueError("not an object")
+    return data
+
+
 def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> ThreadingHTTPServer:
-    """An HTTP server for ``panel`` on the loopback interface (``port=0``: any free port)."""
+    """An HTTP server for ``panel`` on the loopback interface (``port=0``: any free port).
+
+    It answers only requests addressed to this machine by name (the Host header: no DNS
+    rebinding), takes actions only from its own page (a POST needs the page's secret token
+    and, when the browser sends one, this server's Origin: no cross-site requests), bounds
+    bodies and the time to send them, and refuses numbers that are not finite (ADR 0041)."""
     if host not in ("127.0.0.1", "localhost", "::1"):
         raise PlcError("PLC6050", f"the panel serves only this machine (127.0.0.1), not {host}")
-    html = page().encode("utf-8")
+    token = secrets.token_urlsafe(24)
+    html = page().replace("__PLCLAB_TOKEN__", token).encode("utf-8")
 
     class Handler(BaseHTTPRequestHandler):
+        timeout = REQUEST_TIMEOUT
+
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the alarms
             return
 
@@ -215,13 +268,32 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
             self.send_header("Content-Type", kind)
             self.send_header("Content-Length", str(len(body)))
             self.send_header("Cache-Control", "no-store")
+            self.send_header("X-Content-Type-Options", "nosniff")
+            self.send_header("X-Frame-Options", "DENY")
             self.end_headers()
             self.wfile.write(body)
 
         def _json(self, code: int, data: Any) -> None:
             self._send(code, json.dumps(data).encode("utf-8"), "application/json")
 
+        def _ours(self) -> bool:
+            """The request names this server (Host) and, if it says, comes from its page."""
+            port_ = self.server.server_address[1]
+            names = {f"{h}:{port_}" for h in ("127.0.0.1", "localhost", "[::1]")}
+            if (self.headers.get("Host") or "").strip().lower() not in names:
+                self._json(403, {"error": "this panel answers only http://127.0.0.1:"
+                                 f"{port_}/ (Host header)"})
+                return False
+            origin = self.headers.get("Origin")
+            if origin is not None and origin.strip().lower() not in {
+                    f"http://{n}" for n in names}:
+                self._json(403, {"error": "cross-site requests are refused (Origin)"})
+                return False
+            return True
+
         def do_GET(self) -> None:  # noqa: N802 - the http.server API
+            if not self._ours():
+                return
             if self.path in ("/", "/index.html"):
                 self._send(200, html, "text/html; charset=utf-8")
             elif self.path == "/state":
@@ -230,13 +302,26 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                 self._json(404, {"error": f"no page {self.path}"})
 
         def do_POST(self) -> None:  # noqa: N802
+            if not self._ours():
+                return
+            if not secrets.compare_digest(self.headers.get(TOKEN_HEADER) or "", token):
+                self._json(403, {"error": "actions come only from the panel's own page "
+                                 f"({TOKEN_HEADER} missing or wrong): reload the page"})
+                return
+            length = (self.headers.get("Content-Length") or "0").strip()
+            if not length.isdigit() or int(length) > MAX_BODY:
+                self._json(413 if length.isdigit() else 400,
+                           {"error": f"a body of 0 to {MAX_BODY} bytes with its "
+                            "Content-Length is expected"})
+                self.close_connection = True
+                return
             try:
-                n = min(int(self.headers.get("Content-Length") or 0), 10_000)
-                data = json.loads(self.rfile.read(n) or b"{}")
-                if not isinstance(data, dict):
-                    raise ValueError
-            except ValueError:
-                self._json(400, {"error": "send a JSON object"})
+                data = _loads(self.rfile.read(int(length)))
+            except (ValueError, UnicodeDecodeError):
+                self._json(400, {"error": "send a JSON object of short, finite values"})
+                return
+            except OSError:  # the body did not arrive in time
+                self.close_connection = True
                 return
             actions = {
                 "/login": lambda: panel.login(str(data.get("user", ""))),
@@ -258,7 +343,9 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
             panel.message = ""
             self._json(200, {"ok": True})
 
-    return ThreadingHTTPServer((host, port), Handler)
+    server = ThreadingHTTPServer((host, port), Handler)
+    server.daemon_threads = True
+    return server
 
 
 def serve(panel: Panel, port: int = 8765) -> None:

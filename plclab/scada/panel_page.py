@@ -63,7 +63,8 @@ function el(tag, text, cls) {
   return e;
 }
 async function post(path, body) {
-  const r = await fetch(path, {method: "POST", headers: {"Content-Type": "application/json"},
+  const r = await fetch(path, {method: "POST", headers: {"Content-Type": "application/json",
+                               "X-Plclab-Token": "__PLCLAB_TOKEN__"},
                                body: JSON.stringify(body)});
   const data = await r.json();
   document.getElementById("message").textContent = data.error || "";

@@ -15,8 +15,15 @@ EXTRA_TYPES = {".wasm": "application/wasm", ".mjs": "text/javascript", ".zip": "
 class _Handler(http.server.SimpleHTTPRequestHandler):
     extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map, **EXTRA_TYPES}
 
+    timeout = 30  # a client that stops sending does not hold a thread
+
     def log_message(self, format: str, *args: object) -> None:  # noqa: A002 - the base's name
         pass
+
+    def list_directory(self, path: str):  # noqa: ANN201 - the base's signature
+        """No directory listings: a folder without index.html is 404 (ADR 0041)."""
+        self.send_error(404, "No such page")
+        return None
 
 
 def make_server(root: Path, port: int = 0) -> http.server.ThreadingHTTPServer:

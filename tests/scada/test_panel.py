@@ -4,8 +4,11 @@ Panel API and over HTTP, and the page itself in headless Chromium (playwright)."
 from __future__ import annotations
 
 import json
+import re
 import shutil
+import socket
 import threading
+import time
 import urllib.error
 import urllib.request
 from pathlib import Path
@@ -99,9 +102,16 @@ def served():
     server.server_close()
 
 
-def _post(url: str, body: dict) -> tuple[int, dict]:
-    req = urllib.request.Request(url, json.dumps(body).encode(), {"Content-Type":
-                                                                 "application/json"})
+def _token(url: str) -> str:
+    """The secret the panel's page sends with every action."""
+    base = url.split("/", 3)[:3]
+    with urllib.request.urlopen("/".join(base) + "/", timeout=5) as r:
+        return re.search(r'"X-Plclab-Token": "([^"]+)"', r.read().decode()).group(1)
+
+
+def _post(url: str, body: dict, headers: dict | None = None) -> tuple[int, dict]:
+    h = {"Content-Type": "application/json", "X-Plclab-Token": _token(url), **(headers or {})}
+    req = urllib.request.Request(url, json.dumps(body).encode(), h)
     try:
         with urllib.request.urlopen(req, timeout=5) as r:
             return r.status, json.loads(r.read())
@@ -187,3 +197,80 @@ def test_the_notebook_panel_acts_through_the_same_rights():
     nb.records["orange_nectar"].click()
     assert p.sim.plc["Mix.Orange"] == 70.0 and nb.message.value == ""
     assert "t = 1.0 s" in nb.signals.value
+
+
+def _raw(url: str, request: bytes, timeout: float = 10.0) -> bytes:
+    """Send raw bytes to the panel's port and return what it answers (b"" on close)."""
+    port = int(url.rsplit(":", 1)[1])
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as s:
+        s.sendall(request)
+        out = b""
+        while True:
+            try:
+                chunk = s.recv(65536)
+            except (TimeoutError, OSError):
+                break
+            if not chunk:
+                break
+            out += chunk
+        return out
+
+
+def test_cross_site_and_rebinding_requests_are_refused(served):
+    panel, url = served
+    port = url.rsplit(":", 1)[1]
+    # another web page in the student's browser: no token, a foreign Origin
+    evil = {"Origin": "http://evil.example"}
+    assert _post(url + "/login", {"user": "operator"}, evil)[0] == 403
+    req = urllib.request.Request(url + "/login", b'{"user": "operator"}',
+                                 {"Content-Type": "application/json"})
+    with pytest.raises(urllib.error.HTTPError) as e:
+        urllib.request.urlopen(req, timeout=5)
+    assert e.value.code == 403
+    assert panel.user == "viewer"
+    # DNS rebinding: the right address under a foreign name
+    got = _raw(url, f"GET /state HTTP/1.1\r\nHost: evil.example:{port}\r\n"
+                    "Connection: close\r\n\r\n".encode())
+    assert got.startswith(b"HTTP/1.0 403") and b'"plant"' not in got
+    # the panel's own page still works
+    assert _post(url + "/login", {"user": "operator"}) == (200, {"ok": True})
+
+
+@pytest.mark.parametrize("value", [1e400, "inf", "NaN", "1e999", True, [1], None])
+def test_set_points_must_be_finite_numbers(served, value):
+    panel, url = served
+    assert _post(url + "/login", {"user": "engineer"})[0] == 200
+    sig = next(s["name"] for s in panel.state()["signals"]
+               if s["kind"] == "panel" and s["type"] != "bool")
+    assert _post(url + "/set", {"signal": sig, "value": 0.5}) == (200, {"ok": True})
+    body = json.dumps({"signal": sig, "value": value}) if value != 1e400 else \
+        '{"signal": "' + sig + '", "value": 1e400}'
+    req = urllib.request.Request(url + "/set", body.encode(), {
+        "Content-Type": "application/json", "X-Plclab-Token": _token(url)})
+    with pytest.raises(urllib.error.HTTPError) as e:
+        urllib.request.urlopen(req, timeout=5)
+    assert e.value.code == 400
+
+
+def test_hostile_bodies_get_an_answer_and_hold_nothing(served):
+    panel, url = served
+    port = url.rsplit(":", 1)[1]
+    token = _token(url)
+
+    def post(body: bytes, length: str) -> bytes:
+        return _raw(url, (f"POST /set HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+                          f"X-Plclab-Token: {token}\r\nContent-Length: {length}\r\n"
+                          "Connection: close\r\n\r\n").encode() + body)
+
+    assert post(b"", "-1").startswith(b"HTTP/1.0 400")
+    assert post(b"x" * 100, "99999999").startswith(b"HTTP/1.0 413")
+    digits = b'{"signal": "X", "value": ' + b"9" * 400 + b"}"
+    assert post(digits, str(len(digits))).startswith(b"HTTP/1.0 400")
+    deep = b"[" * 4900 + b"]" * 4900
+    assert post(deep, str(len(deep))).startswith(b"HTTP/1.0 400")
+    # a body shorter than announced: the connection is dropped after the timeout
+    t0 = time.monotonic()
+    post(b"{", "50")
+    assert time.monotonic() - t0 < 60
+    with urllib.request.urlopen(url + "/state", timeout=5) as r:  # still serving
+        assert r.status == 200
