@@ -185,3 +185,27 @@ def test_the_ladder_drawing_refuses_a_doctype_too():
     with pytest.raises(PlcError) as exc:
         render_xml(LAUGHS)
     assert exc.value.code == "PLC0180"
+
+
+@pytest.mark.parametrize("kind,depth", [("struct", 329), ("array", 983), ("struct", 40),
+                                        ("array", 33)])
+def test_deeply_nested_types_are_plc0124_not_a_recursion_error(kind, depth):
+    """PLCopen XML nests types as elements; beyond 32 levels it stops with PLC0124 like ST."""
+    inner = "<INT/>"
+    for _ in range(depth):
+        if kind == "struct":
+            inner = f'<struct><variable name="f"><type>{inner}</type></variable></struct>'
+        else:
+            inner = (f'<array><dimension lower="0" upper="1"/><baseType>{inner}</baseType>'
+                     '</array>')
+    text = pou([f'<variable name="x"><type>{inner}</type></variable>'], "ST",
+               ["<xhtml xmlns=\"http://www.w3.org/1999/xhtml\">x := x;</xhtml>"])
+    with pytest.raises(PlcError) as e:
+        _compile(text)
+    assert e.value.code == "PLC0124" or any(d.code == "PLC0124" for d in e.value.diagnostics)
+
+
+def _compile(text: str):
+    import plclab
+
+    return plclab.compile_sources([(text, "deep.xml")])

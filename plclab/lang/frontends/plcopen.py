@@ -40,6 +40,7 @@ import xml.parsers.expat as expat
 from ...errors import Diagnostic, Location, PlcError
 from .. import ast as A
 from ..addresses import canonical
+from ..datasize import NESTING_LIMIT
 from ..dialect import current as current_dialect
 from ..lexer import identifier_problem
 from ..lower.network import Elem
@@ -291,7 +292,19 @@ class _Importer:
         self.out.types.append(A.TypeDecl(self.loc(dt), name.upper(), tref, init, name))
 
     def type_ref(self, holder: ET.Element) -> A.TypeRef:
-        """The type inside ``<type>`` / ``<baseType>``."""
+        """The type inside ``<type>`` / ``<baseType>``; nested at most NESTING_LIMIT levels
+        (arrays, structures, subranges in each other), like ST (PLC0124)."""
+        depth = getattr(self, "_type_depth", 0)
+        if depth >= NESTING_LIMIT:
+            self.fail("PLC0124", f"this type is nested more than {NESTING_LIMIT} levels deep; "
+                      "declare the inner levels as named data types with fewer levels", holder)
+        self._type_depth = depth + 1
+        try:
+            return self._type_ref(holder)
+        finally:
+            self._type_depth = depth
+
+    def _type_ref(self, holder: ET.Element) -> A.TypeRef:
         kids = [k for k in self.kids(holder) if _local(k.tag) not in _IGNORED]
         if not kids:
             self.fail("PLC0183", f"<{_local(holder.tag)}> names no type", holder)
