@@ -72,6 +72,29 @@ def deep_index() -> str:
     return program(f"s := {nested};\n{path} := s;\ny := {path} + 1;", ARRAY + " q : S29;", types)
 
 
+def extends_chain(n: int) -> str:
+    """A block that EXTENDS a block that EXTENDS ... ``n`` levels (PLC0310 beyond 64)."""
+    parts = ["FUNCTION_BLOCK B0\nVAR x0 : INT; END_VAR\nx0 := 1;\nEND_FUNCTION_BLOCK\n"]
+    parts += [f"FUNCTION_BLOCK B{i} EXTENDS B{i - 1}\nVAR x{i} : INT; END_VAR\n"
+              f"x{i} := x{i - 1} + 1;\nEND_FUNCTION_BLOCK\n" for i in range(1, n + 1)]
+    return "".join(parts) + f"PROGRAM P\nVAR b : B{n}; END_VAR\nb();\nEND_PROGRAM\n"
+
+
+def actions(n: int) -> str:
+    """A PROGRAM with ``n`` ACTIONs, each called once."""
+    calls = "".join(f"A{i}();\n" for i in range(n))
+    return (f"PROGRAM P\nVAR k : DINT; END_VAR\n{calls}END_PROGRAM\n" +
+            "".join(f"ACTION P.A{i}\nk := k + 1;\nEND_ACTION\n" for i in range(n)))
+
+
+def sfc_steps(n: int) -> str:
+    """A chart of ``n`` steps in a ring (PLC0311 beyond 1,000)."""
+    steps = ["INITIAL_STEP S0: END_STEP"] + [f"STEP S{i}: END_STEP" for i in range(1, n)]
+    trans = [f"TRANSITION FROM S{i} TO S{(i + 1) % n} := go; END_TRANSITION" for i in range(n)]
+    return ("PROGRAM P\nVAR go : BOOL; END_VAR\n" + "\n".join(steps + trans) +
+            "\nEND_PROGRAM\n")
+
+
 PROGRAMS = {
     "10,000-term sum": sum_10000,
     "500 nested parentheses": parens_500,
@@ -80,6 +103,9 @@ PROGRAMS = {
     "CASE with 50,000 labels": case_50000,
     "AND/OR chains (5,000 + 2,000)": and_or_chains,
     "index chain 300 deep, members 60": deep_index,
+    "EXTENDS chain 64 deep": lambda: extends_chain(64),
+    "4,000 ACTIONs": lambda: actions(4000),
+    "SFC chart of 1,000 steps": lambda: sfc_steps(1000),
 }
 
 

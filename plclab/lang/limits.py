@@ -33,6 +33,14 @@ MAX_BLOCK_NESTING = 2_000
 MAX_EXPR_NESTING = 2_000
 """Parentheses, calls, array indices and unary operators nested inside each other."""
 
+MAX_EXTENDS_DEPTH = 64
+"""Levels of EXTENDS above a FUNCTION_BLOCK (PLC0310 beyond): every level's variables are
+initialised in each derived block, so a chain costs its length squared to compile."""
+
+MAX_SFC_STEPS = 1_000
+"""Steps of one SFC chart (PLC0311 beyond); checking and lowering are linear in the chart, but
+Python compiles a chart of 1,000 steps in about a second and real charts have tens."""
+
 MIN_INTERVAL_NS = 100_000
 """The shortest cycle time or task interval, 0.1 ms (PLC0129 in a TASK, PLC3011 in the API)."""
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 from .. import ast as A
 from .. import types as T
 from ..ast import expr_text
+from ..limits import MAX_EXTENDS_DEPTH
 from ..walk import walk
 from .calls import CallInfo
 from .context import Pass, close_hint
@@ -43,13 +44,20 @@ class ObjectChecks(Pass):
 
     def methods(self, p: A.Pou) -> dict[str, A.Pou]:
         """The methods callable on ``p`` by name: its own, then inherited (a block's bases, an
-        interface's bases); the nearest definition wins."""
-        out: dict[str, A.Pou] = {}
+        interface's bases); the nearest definition wins. Built once per block (a call looks
+        its method up here: 4,000 ACTIONs must not rebuild the table 4,000 times); the dict
+        is shared, never change it."""
         chain = [p, *self.table.bases(p)] if p.kind == "FUNCTION_BLOCK" else (
             [p] if p.kind == "PROGRAM" else self.interfaces_of(p))  # a PROGRAM's actions
-        for q in chain:
-            for m in q.methods:
-                out.setdefault(m.name, m)
+        key = tuple((id(q), len(q.methods)) for q in chain)
+        cache = self.__dict__.setdefault("_methods_cache", {})
+        out = cache.get(key)
+        if out is None:
+            out = {}
+            for q in chain:
+                for m in q.methods:
+                    out.setdefault(m.name, m)
+            cache[key] = out
         return out
 
     def _block_of(self, p: A.Pou | None) -> A.Pou | None:
@@ -90,9 +98,14 @@ class ObjectChecks(Pass):
         if p.kind == "FUNCTION_BLOCK" and p.extends and p.extends[0] in self.table.pous:
             chain = self.table.bases(p)
             last = chain[-1] if chain else p
-            if last.extends and self.table.pous.get(last.extends[0]) in (p, *chain):
+            after = self.table.pous.get(last.extends[0]) if last.extends else None
+            if after is not None and any(after is q for q in (p, *chain)):
                 self.err("PLC0232", f"{_label(p)} inherits from itself (EXTENDS goes round in a "
                          "circle); remove one EXTENDS", p.loc)
+            elif len(chain) > MAX_EXTENDS_DEPTH:
+                self.err("PLC0310", f"{_label(p)} has {len(chain)} levels of EXTENDS above it; "
+                         f"plclab allows {MAX_EXTENDS_DEPTH}: merge some of the blocks, or use "
+                         "an instance of a block instead of inheriting from it", p.loc)
         for n in p.implements:
             i = self.table.pous.get(n)
             if i is None or i.kind != "INTERFACE":

@@ -281,14 +281,22 @@ class SymbolTable:
     def bases(self, pou: A.Pou) -> list[A.Pou]:
         """The blocks ``pou`` inherits from (FUNCTION_BLOCK ... EXTENDS, ADR 0021), nearest
         first; an unknown base or a cycle ends the chain (:mod:`.oop` reports them)."""
+        key = (id(pou), len(self.pous))
+        cache = self.__dict__.setdefault("_bases_cache", {})
+        hit = cache.get(key)
+        if hit is not None:
+            return list(hit)
         out: list[A.Pou] = []
+        seen = {id(pou)}  # identity, not equality: linear in the chain (issue 30)
         p = pou
         while p.kind == "FUNCTION_BLOCK" and p.extends:
             b = self.pous.get(p.extends[0])
-            if b is None or b.kind != "FUNCTION_BLOCK" or b is pou or b in out:
+            if b is None or b.kind != "FUNCTION_BLOCK" or id(b) in seen:
                 break
             out.append(b)
+            seen.add(id(b))
             p = b
+        cache[key] = tuple(out)
         return out
 
     def interfaces(self, p: A.Pou) -> list[A.Pou]:

@@ -218,11 +218,19 @@ class _Lowering:
             self.decls.append(_decl(t.name, "BOOL", loc, spelling=t.text))
 
     def earlier_rivals(self, k: int) -> list[int]:
-        """Transitions of higher precedence that share a preceding step with transition k."""
-        order = transition_order(self.chart)
+        """Transitions of higher precedence that share a preceding step with transition k
+        (found through an index of the steps: linear in the chart, issue 30)."""
+        if getattr(self, "_rival_index", None) is None:
+            order = transition_order(self.chart)
+            by_step: dict[str, list[int]] = {}
+            for j in order:
+                for n, _ in self.chart.transitions[j].sources:
+                    by_step.setdefault(n, []).append(j)
+            self._rival_index = ({j: i for i, j in enumerate(order)}, by_step)
+        pos, by_step = self._rival_index
         mine = {n for n, _ in self.chart.transitions[k].sources}
-        return [j for j in order[:order.index(k)]
-                if mine & {n for n, _ in self.chart.transitions[j].sources}]
+        rivals = {j for n in mine for j in by_step.get(n, ()) if pos[j] < pos[k]}
+        return sorted(rivals, key=pos.__getitem__)
 
     # 2. evolution -------------------------------------------------------------------------
     def evolution(self, order: list[int]) -> None:

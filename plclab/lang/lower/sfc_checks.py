@@ -18,6 +18,7 @@ from ...errors import Diagnostic, Location
 from ...suggest import suggest
 from .. import ast as A
 from .. import types as T
+from ..limits import MAX_SFC_STEPS
 from .types import LoweringTypes
 
 if TYPE_CHECKING:
@@ -36,6 +37,11 @@ def check_chart(chart: Chart, pou: A.Pou, types: LoweringTypes) -> list[Diagnost
     def err(code: str, msg: str, loc: Location, severity: str = "error") -> None:
         out.append(Diagnostic(code, msg, loc, severity))
 
+    if len(chart.steps) > MAX_SFC_STEPS:
+        err("PLC0311", f"the chart of {pou.spelling or pou.name} has {len(chart.steps)} steps; "
+            f"plclab allows {MAX_SFC_STEPS} in one chart: split the sequence into several "
+            "POUs (a chart per machine part) that hand over through variables", chart.loc)
+        return out
     _names(chart, pou, err)
     steps = {s.name: s for s in chart.steps}
     initial = [s for s in chart.steps if s.initial]
@@ -156,9 +162,14 @@ def _structure(chart: Chart, err) -> None:
     active: set[str] = set(start)
     fired: set[int] = set()
     unsafe: dict[int, str] = {}
+    by_step: dict[str, list[int]] = {}  # a transition is found through its source steps
+    for k, (src, _dst, _t) in enumerate(trans):
+        for n in src:
+            by_step.setdefault(n, []).append(k)
     while todo:
         m = todo.pop()
-        for k, (src, dst, _) in enumerate(trans):
+        for k in sorted({k for n in m for k in by_step.get(n, ())}):
+            src, dst, _ = trans[k]
             if not src <= m:
                 continue
             fired.add(k)
