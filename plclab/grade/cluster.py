@@ -150,7 +150,7 @@ def run_on_worker(payload: tuple[Any, dict[str, str]], job: dict[str, Any],
                   timeout: float) -> dict[str, Any]:
     """The Dask task: one submission graded in a sandboxed child on this worker."""
     lab, checks = payload
-    workdir = Path(tempfile.mkdtemp(prefix="plclab-grade-"))
+    workdir = Path(tempfile.mkdtemp(prefix=f"plclab-grade-{os.getpid()}-"))
     try:
         full = {**job, "lab": lab, "checks": checks, "workdir": str(workdir),
                 "grader_pid": os.getpid()}

@@ -173,8 +173,10 @@ class Result:
 
 
 def language_of(filename: str) -> str | None:
-    """``st``/``il``/``ld``/``xml`` by extension (None for other files)."""
-    return SOURCE_EXTS.get(os.path.splitext(filename)[1].lower())
+    """``st``/``il``/``ld``/``xml`` by extension (None for other files); the text after the
+    last dot of the name, so ``..st`` and ``.x.st`` are ST too."""
+    base = filename.replace("\\", "/").rsplit("/", 1)[-1]
+    return SOURCE_EXTS.get("." + base.rsplit(".", 1)[1].lower()) if "." in base else None
 
 
 def guess_language(text: str) -> str:

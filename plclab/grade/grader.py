@@ -92,9 +92,7 @@ def _group_key(p: Path) -> str | None:
     suffix = p.suffix.lower()
     if stat.S_ISDIR(mode) or (stat.S_ISLNK(mode) and not suffix):
         return p.name
-    if suffix in SOURCE_EXTS:
-        return p.stem
-    return None
+    return p.stem or p.name  # a source file, or another file: it gets a row too
 
 
 def discover(folder: str | os.PathLike, exclude: Path | None = None) -> list[Submission]:
@@ -106,7 +104,7 @@ def discover(folder: str | os.PathLike, exclude: Path | None = None) -> list[Sub
                           "holding one file or one folder per student")
     groups: dict[str, list[Path]] = {}
     for p in sorted(root.iterdir()):
-        if p.name.startswith(".") or p.name == "__MACOSX":
+        if p.name in JUNK:  # what file managers and archivers leave, not a student's
             continue
         if exclude is not None and p.resolve() == exclude.resolve():
             continue
@@ -122,9 +120,56 @@ def discover(folder: str | os.PathLike, exclude: Path | None = None) -> list[Sub
             student += "~"
         shown.add(student)
         sub = Submission(student, paths, dirname=output_dirname(student, dirs))
-        _read(sub)
+        if not any(_is_program(p) for p in paths):
+            names = ", ".join(clean_text(p.name) for p in paths)
+            sub.error = grade_error("PLC5071", f"{names}: not a program (a .st, .il, .ld or "
+                                    ".xml file, or a folder holding them); nothing to grade")
+            sub.hash = "rejected"
+        else:
+            _read(sub)
         subs.append(sub)
     return subs
+
+
+JUNK = frozenset({".DS_Store", "Thumbs.db", "desktop.ini", "__MACOSX", ".git", ".svn",
+                  ".ipynb_checkpoints"})
+"""Entries of a submissions folder that are never a student's (every other entry, a hidden
+file or a stray PDF included, gets a gradebook row)."""
+
+
+def _is_program(p: Path) -> bool:
+    """A folder, a link (reported when read) or a source file: something to grade."""
+    try:
+        mode = os.lstat(p).st_mode
+    except OSError:
+        return False
+    return stat.S_ISDIR(mode) or stat.S_ISLNK(mode) or p.suffix.lower() in SOURCE_EXTS
+
+
+def work_prefix() -> str:
+    """The prefix of a grading child's temporary folder: it names the grader's process, so a
+    later run can remove what a grader killed with SIGKILL left behind."""
+    return f"plclab-grade-{os.getpid()}-"
+
+
+def remove_stale_workdirs(tmp: str | os.PathLike | None = None) -> int:
+    """Remove the temporary folders of graders that no longer run (``kill -9`` leaves them);
+    the number removed. A folder of a running grader (this one included) is kept."""
+    removed = 0
+    for d in Path(tmp or tempfile.gettempdir()).glob("plclab-grade-*-*"):
+        pid = d.name.split("-")[2]
+        if not pid.isdigit() or int(pid) == os.getpid() or not d.is_dir() or d.is_symlink():
+            continue
+        try:
+            os.kill(int(pid), 0)
+            continue  # its grader still runs
+        except ProcessLookupError:
+            pass
+        except OSError:
+            continue  # another user's process: not ours to judge
+        shutil.rmtree(d, ignore_errors=True)
+        removed += 1
+    return removed
 
 
 def _read(sub: Submission) -> None:
@@ -254,6 +299,7 @@ class Grader:
 
     # ------------------------------------------------------------------ the run
     def grade_folder(self, folder: str | os.PathLike) -> list[Outcome]:
+        remove_stale_workdirs()
         subs = discover(folder, exclude=self.out)
         self.out.mkdir(parents=True, exist_ok=True)
         outcomes: dict[str, Outcome] = {}
@@ -436,7 +482,7 @@ class Grader:
         d = self.prepare(sub)
         if isinstance(d, Outcome):
             return d
-        workdir = Path(tempfile.mkdtemp(prefix="plclab-grade-"))
+        workdir = Path(tempfile.mkdtemp(prefix=work_prefix()))
         lab, checks = self._lab_payload()
         job = {"lab": lab, "checks": checks, **self.job_of(sub), "workdir": str(workdir),
                "grader_pid": os.getpid()}

@@ -197,7 +197,7 @@ def walk_submission(path: str | os.PathLike, exts: dict[str, str]) -> tuple[list
                 stack.append((Path(e.path), depth + 1))
             elif not e.is_file(follow_symlinks=False):
                 raise _special_error(rel)
-            elif os.path.splitext(e.name)[1].lower() in exts:
+            elif Path(e.name).suffix.lower() in exts:  # "..st" too (splitext: no extension)
                 sources.append(SourceFile(Path(e.path), rel))
                 if len(sources) > MAX_SOURCE_FILES:
                     raise grade_error("PLC5032", f"{root.name}: more than {MAX_SOURCE_FILES} "

@@ -4,6 +4,7 @@ gradebook equals a clean run's; killed every time it is "infrastructure", never 
 next run grades it afresh. A crash is never reused either; a student's own outcome is."""
 
 import csv
+import os
 
 import pytest
 
@@ -56,3 +57,39 @@ def test_killed_every_time_is_infrastructure_and_never_reused(subs, tmp_path, mo
     assert not again["alice"].skipped and again["alice"].result.status == "ok"
     assert again["alice"].result.score == again["alice"].result.max_score
     assert again["bob"].skipped  # the student's own outcome is kept
+
+
+def test_every_entry_gets_a_gradebook_row(subs, tmp_path):
+    """Hidden-looking names and stray documents are rows too (PLC5071: not a program); only
+    what file managers leave (.DS_Store, __MACOSX) is skipped."""
+    good = (LAB.path / "solution" / "motor.st").read_text()
+    (subs / ".x.st").write_text(good, encoding="utf-8")
+    (subs / "..st").write_text(good, encoding="utf-8")
+    (subs / "report.pdf").write_bytes(b"%PDF-1.4\n")
+    (subs / "essay.docx").write_bytes(b"PK\x03\x04")
+    (subs / ".DS_Store").write_bytes(b"\0\0")
+    out = tmp_path / "out"
+    results = {o.result.student: o.result for o in _grade(subs, out)}
+    assert set(results) == {"alice", "bob", ".x", ".", "report", "essay"}
+    assert results[".x"].status == "ok" and results[".x"].score == results[".x"].max_score
+    assert results["."].status == "ok"
+    for who in ("report", "essay"):
+        assert results[who].status == "rejected" and "PLC5071" in results[who].message
+    assert set(_grades(out)) == set(results)
+
+
+def test_a_killed_graders_temporary_folders_are_removed(tmp_path):
+    import subprocess
+    import sys
+
+    from plclab.grade.grader import remove_stale_workdirs
+
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    stale = tmp_path / f"plclab-grade-{dead.pid}-abc"
+    live = tmp_path / f"plclab-grade-{os.getpid()}-def"
+    other = tmp_path / "plclab-grade-notapid-x"
+    for d in (stale, live, other):
+        (d / "media").mkdir(parents=True)
+    assert remove_stale_workdirs(tmp_path) == 1
+    assert not stale.exists() and live.exists() and other.exists()
