@@ -54,6 +54,8 @@ def _labs_arg(p: argparse.ArgumentParser) -> None:
 @arg("--no-media", action="store_true", help="no timing diagrams and recordings (faster)")
 @arg("--labs", action="append", default=[], metavar="DIR", help="also look for labs in DIR")
 @arg("--quiet", "-q", action="store_true", help="no table of students")
+@arg("--visible-only", action="store_true", help="grade with a lab that has no hidden "
+     "scenarios (the student copy installed with plclab); refused otherwise")
 def cmd_grade(ns: argparse.Namespace) -> int:
     from plclab.sim import parse_seconds
 
@@ -104,6 +106,14 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
     from .lab import load_lab
 
     lab = load_lab(lab_name, ns.labs, deep=True)
+    if lab.student_copy and not ns.visible_only:
+        raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id} that ships "
+                          "with plclab: its hidden scenarios are not in it. Grade with the "
+                          f"instructor's lab folder (labs/{lab.id} of the plclab repository, or "
+                          f"your own: plclab grade path/to/labs/{lab.id} SUBMISSIONS, or --labs "
+                          "DIR), or pass --visible-only to grade on the visible scenarios alone")
+    if lab.student_copy:
+        print(f"note: grading {lab.id} on its visible scenarios only (--visible-only)")
     if multi:
         print(f"== {lab.id}: {subs} -> {out}")
     bar = ProgressBar() if sys.stdout.isatty() else None

@@ -19,7 +19,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-PRIVATE_DIRS = ("solution", "mistakes", "private")
+PRIVATE_DIRS = ("solution", "mistakes", "variants", "private")
 """Sub-folders of a lab that are the instructor's: never shipped, never copied to students."""
 STUDENT_FILES = ("README.md", "lab.toml", "checks.py", "alarms.toml", "recipes.toml")
 """Files of a lab folder that ship (with ``starter.*``)."""
@@ -43,6 +43,8 @@ def student_lab_data(data: dict[str, Any]) -> dict[str, Any]:
     only they use (and ``requires`` naming those), ``[[mistake]]`` tables."""
     out = {k: v for k, v in data.items() if k != "mistake"}
     scen = [s for s in data.get("scenario", []) if s.get("visible", True) is not False]
+    # a grader that loads this copy knows the hidden scenarios are not in it (ADR 0040)
+    out["student_copy"] = True
     names = {s.get("name") for s in scen}
     out["scenario"] = scen
     crits: list[dict[str, Any]] = []

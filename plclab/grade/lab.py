@@ -40,7 +40,8 @@ SOURCE_EXTS = {ext: lang for lang, exts in LANGUAGES.items() for ext in exts}
 TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", "languages",
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
-            "criterion", "mistake", "level", "chapters", "alarms", "recipes", "critical_cap")
+            "criterion", "mistake", "level", "chapters", "alarms", "recipes", "critical_cap",
+            "student_copy")
 LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
 """``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
@@ -289,6 +290,7 @@ class Lab:
     alarms: dict[str, Any] | None = None  # the lab's alarm configuration (plclab.scada)
     recipes: dict[str, Any] | None = None  # the lab's recipe and its records (plclab.scada)
     critical_cap: float = 0.5  # a failed critical criterion caps the score at this share
+    student_copy: bool = False  # the copy shipped to students: no hidden scenarios in it
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -587,6 +589,7 @@ class _Builder:
         lab.alarms = self.alarms(d)
         lab.recipes = self.recipes(d, scenarios)
         lab.critical_cap = self.critical_cap(d)
+        lab.student_copy = d.get("student_copy") is True
         return lab
 
     def critical_cap(self, d: Mapping[str, Any]) -> float:

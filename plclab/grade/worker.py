@@ -331,8 +331,15 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--memory", type=int, default=1536, help="memory limit, MB")
     p.add_argument("--gradescope", action="store_true",
                    help="print Gradescope's results.json instead of the full result")
+    p.add_argument("--visible-only", action="store_true",
+                   help="accept a lab without its hidden scenarios (the student copy)")
     ns = p.parse_args(argv)
     lab = load_lab(ns.lab)
+    if lab.student_copy and not ns.visible_only:
+        print(f"error PLC5072: {lab.path} is the student copy of {lab.id}: its hidden "
+              "scenarios are not in it; give the instructor's lab folder (a path) or pass "
+              "--visible-only", file=sys.stderr)
+        return 2
     sources, _ = read_submission(ns.submission)
     res = grade_sources(lab, sources, student=os.path.basename(ns.submission.rstrip("/")),
                         media_dir=ns.media, guard=lambda: memory_limit(ns.memory))

@@ -148,3 +148,27 @@ def test_a_wheel_in_a_fresh_venv_has_the_labs(tmp_path):
                work, env).stdout
     assert "score: " in out.splitlines()[-1]
     assert sorted(p.name for p in work.iterdir()) == ["tank-two-position"]
+
+
+def test_grading_with_the_student_copy_is_refused_unless_asked(student_copy, tmp_path, capsys):
+    """An instructor grading from a pip install would grade without the hidden scenarios:
+    refused (PLC5072) with where the instructor's lab folder is, unless --visible-only;
+    grade-bundle never builds an autograder from the student copy."""
+    from plclab.cli import main
+
+    lab = student_copy / "labs" / "tank-two-position"
+    assert load_lab(lab).student_copy and not load_lab("tank-two-position").student_copy
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "ann.st").write_text((ROOT / "labs" / "tank-two-position" / "solution" /
+                                  "tank.st").read_text(encoding="utf-8"), encoding="utf-8")
+    args = ["grade", str(lab), str(subs), "--out", str(tmp_path / "out"), "--no-media",
+            "--jobs", "1"]
+    assert main(args) == 1
+    err = capsys.readouterr().err
+    assert "PLC5072" in err and "labs/tank-two-position" in err and "--visible-only" in err
+    assert not (tmp_path / "out" / "grades.csv").exists()
+    assert main(args + ["--visible-only"]) == 0
+    assert "visible scenarios only" in capsys.readouterr().out
+    assert main(["grade-bundle", str(lab), "-o", str(tmp_path / "b.zip")]) == 1
+    assert "PLC5072" in capsys.readouterr().err and not (tmp_path / "b.zip").exists()
