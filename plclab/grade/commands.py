@@ -185,6 +185,20 @@ def _lab_args(p: argparse.ArgumentParser) -> None:
                     help="working folder (default: ./LAB)")
     sp.add_argument("--force", action="store_true", help="overwrite files that are there")
     _labs_arg(sp)
+    sp = sub.add_parser("audit", help="test the lab's rubric (instructors): its mistakes, "
+                        "its correct variants and mutants of its solution")
+    sp.add_argument("lab", metavar="LAB", help="lab id or lab folder")
+    sp.add_argument("--mutants", type=int, default=60, metavar="N",
+                    help="mutants of each solution at most (a seeded sample; default 60)")
+    sp.add_argument("--seed", type=int, default=0, help="the sample's seed (default 0)")
+    sp.add_argument("--jobs", "-j", type=int, default=None, help="mutants graded in parallel "
+                    "(default: the number of cores)")
+    sp.add_argument("--json", default=None, metavar="FILE", help="also write the report as "
+                    "JSON")
+    sp.add_argument("--min-score", type=float, default=None, metavar="X",
+                    help="exit 1 when the mutation score is below X (e.g. 0.9), a mistake "
+                    "exceeds its bound or a variant scores under 95 %%")
+    _labs_arg(sp)
     sp = sub.add_parser("new", help="create a lab folder with a working example (instructors)")
     sp.add_argument("id", metavar="ID", help="lab id: lower-case words with dashes")
     sp.add_argument("--dir", default=None, help="parent folder (default: ./labs if it exists, "
@@ -205,8 +219,35 @@ def cmd_lab(ns: argparse.Namespace) -> int:
         return lab_get(ns)
     if action == "new":
         return lab_new(ns)
+    if action == "audit":
+        return lab_audit(ns)
     ns._lab_parser.print_help()
     return 2
+
+
+def lab_audit(ns: argparse.Namespace) -> int:
+    import json
+
+    from .audit import audit
+    from .lab import load_lab
+
+    if ns.mutants < 0:
+        raise grade_error("PLC5026", "--mutants must be 0 or more")
+    lab = load_lab(ns.lab, ns.labs, deep=True)
+    if lab.student_copy:
+        raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id}: it has no "
+                          "solution, mistakes or hidden scenarios to audit; give the "
+                          "instructor's lab folder")
+    jobs = ns.jobs if ns.jobs is not None else (os.cpu_count() or 1)
+    report = audit(lab, limit=ns.mutants, seed=ns.seed, jobs=max(1, jobs))
+    print(report.text())
+    if ns.json:
+        Path(ns.json).write_text(json.dumps(report.to_json(), indent=2) + "\n",
+                                 encoding="utf-8")
+    if ns.min_score is not None and (report.mutation_score < ns.min_score
+                                     or not report.mistakes_ok or not report.variants_ok):
+        return 1
+    return 0
 
 
 def lab_list(ns: argparse.Namespace) -> int:
@@ -351,7 +392,9 @@ def lab_check(ns: argparse.Namespace) -> int:
         # within the limits above, so running it again here is bounded
         again = grade_sources(lab, sources, scenarios=names, keep_traces=True)
         if again.traces:
-            name = ns.scenario or next(iter(again.traces))
+            failing = [t.scenario for t in res.tests if not t.passed
+                       and t.scenario in again.traces]  # the picture opens on a failure
+            name = ns.scenario or (failing[0] if failing else next(iter(again.traces)))
             student_picture(lab, again, name, ns)
             if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file, score
                 from plclab.viz.from_trace import write_lab_rrd

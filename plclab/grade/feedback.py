@@ -225,6 +225,18 @@ def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
     lines.append(f"# {title}{who}")
     lines.append("")
     lines.append(f"**Score: {_pts(result.score)} / {_pts(result.max_score)}**")
+    failed_critical = [t for t in getattr(result, "critical_failures", [])
+                       if t.visible or instructor]
+    if failed_critical:  # first: a safety requirement or the lab's core function failed
+        names = list(dict.fromkeys(t.criterion for t in failed_critical))
+        capped = getattr(result, "capped", False)
+        lines += ["", "**A critical requirement failed:** " + "; ".join(
+            md_text(n) for n in names) + ". " + md_line(failed_critical[0].message) + (
+            f" The score is capped at {result.critical_cap:.0%} of the points until it "
+            "passes." if capped else "")]
+    elif getattr(result, "capped", False):  # a hidden scenario's critical check failed
+        lines += ["", f"**A critical requirement failed in a hidden scenario:** the score is "
+                  f"capped at {result.critical_cap:.0%} of the points."]
     status_words = {
         "compile_error": "The program does not compile, so no scenario could run.",
         "no_source": "No source file was found in the submission.",
@@ -233,6 +245,8 @@ def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
         "memory": "The program needed more memory than allowed.",
         "crash": "The grading process crashed.",
         "rejected": "The submission was not graded (see below).",
+        "infrastructure": "The grading machine failed (not your program): it will be "
+                          "graded again.",
     }
     if result.status in status_words:
         lines += ["", status_words[result.status]]

@@ -1,0 +1,369 @@
+"""``plclab lab audit LAB``: a lab's rubric tested by the wrong programs it must catch.
+
+A rubric is only as good as the wrong programs it fails. The audit grades, with the hidden
+scenarios,
+
+* every program in ``mistakes/`` against its ``[[mistake]]`` bound,
+* every program in ``variants/`` (correct, written another way): at least 95 %,
+* *mutants* of each reference solution written in ST: one small change each, made on the
+  AST and printed back as ST (:mod:`plclab.lang.unparse`): a condition negated, AND and OR
+  swapped, a term of an AND/OR dropped (a seal-in or an interlock), a comparison moved by one
+  (``>=`` for ``>``), a NOT removed, a constant or time preset halved or doubled, a statement
+  deleted, SR for RS (and back), an edge detector's ``.Q`` replaced by its level.
+
+A mutant whose plant signals equal the solution's in every scenario is *equivalent* (the
+change does not change behaviour) and is not counted; one that does not compile is *invalid*.
+The **mutation score** is the share of behaviour-changing mutants that score at most
+:data:`CAUGHT` of the lab's points. See docs/adr/0042-critical-criteria-and-mutation-audit.md.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import random
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..lang import ast as A
+
+CAUGHT = 0.7
+"""A mutant scoring at most this share of the lab's points is caught."""
+VARIANT_MIN = 0.95
+"""A correct variant must score at least this share."""
+
+_SWAP_CMP = {">": ">=", ">=": ">", "<": "<=", "<=": "<", "=": "<>", "<>": "="}
+_LATCHES = {"SR": "RS", "RS": "SR"}
+_LATCH_PINS = {"SR": {"S1": "S", "R": "R1"}, "RS": {"S": "S1", "R1": "R"}}
+_EDGES = {"R_TRIG", "F_TRIG"}
+
+
+@dataclass
+class Mutant:
+    """One change of a solution: what it is, where, and its ST text."""
+
+    operator: str
+    description: str
+    line: int
+    text: str
+    score: float | None = None
+    max_score: float = 0.0
+    status: str = ""  # caught, survived, equivalent, invalid
+
+    @property
+    def share(self) -> float:
+        return (self.score or 0.0) / self.max_score if self.max_score else 0.0
+
+
+@dataclass
+class AuditReport:
+    """What ``lab audit`` found for one lab."""
+
+    lab_id: str
+    max_score: float
+    mutants: list[Mutant] = field(default_factory=list)
+    mistakes: list[tuple[str, float, float]] = field(default_factory=list)  # file, score, bound
+    variants: list[tuple[str, float]] = field(default_factory=list)  # file, score
+
+    def counted(self) -> list[Mutant]:
+        return [m for m in self.mutants if m.status in ("caught", "survived")]
+
+    @property
+    def mutation_score(self) -> float:
+        """The share of behaviour-changing mutants the rubric catches (1.0 when none)."""
+        n = self.counted()
+        return sum(m.status == "caught" for m in n) / len(n) if n else 1.0
+
+    @property
+    def mistakes_ok(self) -> bool:
+        return all(score <= bound + 1e-9 for _, score, bound in self.mistakes)
+
+    @property
+    def variants_ok(self) -> bool:
+        return all(score >= VARIANT_MIN * self.max_score - 1e-9 for _, score in self.variants)
+
+    def text(self) -> str:
+        lines = [f"audit of {self.lab_id} ({self.max_score:g} points)"]
+        for f, score, bound in self.mistakes:
+            mark = "ok " if score <= bound + 1e-9 else "TOO HIGH"
+            lines.append(f"  mistake  {f}: {score:g} (bound {bound:g}) {mark}")
+        for f, score in self.variants:
+            mark = "ok " if score >= VARIANT_MIN * self.max_score - 1e-9 else "TOO LOW"
+            lines.append(f"  variant  {f}: {score:g} {mark}")
+        by = {s: [m for m in self.mutants if m.status == s]
+              for s in ("caught", "survived", "equivalent", "invalid")}
+        lines.append(f"  mutants: {len(self.mutants)} ({len(by['caught'])} caught, "
+                     f"{len(by['survived'])} survived, {len(by['equivalent'])} equivalent, "
+                     f"{len(by['invalid'])} invalid)")
+        for m in by["survived"]:
+            lines.append(f"  SURVIVED {m.score:g}/{m.max_score:g} line {m.line}: "
+                         f"[{m.operator}] {m.description}")
+        lines.append(f"mutation score: {self.mutation_score:.0%} "
+                     f"({len(by['caught'])} of {len(self.counted())} behaviour-changing "
+                     f"mutants score at most {CAUGHT:.0%})")
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"lab": self.lab_id, "max_score": self.max_score,
+                "mutation_score": self.mutation_score, "mistakes_ok": self.mistakes_ok,
+                "variants_ok": self.variants_ok,
+                "mistakes": [{"file": f, "score": s, "bound": b} for f, s, b in self.mistakes],
+                "variants": [{"file": f, "score": s} for f, s in self.variants],
+                "mutants": [dataclasses.asdict(m) | {"text": None} for m in self.mutants]}
+
+
+# ---------------------------------------------------------------------------- mutation sites
+
+
+def _children(node: Any) -> Iterator[tuple[Any, str, int | None, Any]]:
+    """(parent, field, index or None, child) for each AST child of ``node`` (lists and the
+    (condition, body) pairs of IF and CASE included), in field order."""
+    if not dataclasses.is_dataclass(node):
+        return
+    for f in dataclasses.fields(node):
+        if f.name in ("loc", "ty", "sym", "target") and not isinstance(node, A.Assign):
+            continue
+        v = getattr(node, f.name, None)
+        if isinstance(v, list):
+            for i, x in enumerate(v):
+                if isinstance(x, tuple):
+                    for y in x:
+                        if isinstance(y, list):
+                            for j, z in enumerate(y):
+                                yield y, "", j, z
+                        elif dataclasses.is_dataclass(y):
+                            yield None, "", None, y  # read-only (a label, a condition)
+                else:
+                    yield v, "", i, x
+        elif dataclasses.is_dataclass(v) and not isinstance(v, A.Location):
+            yield node, f.name, None, v
+
+
+def _walk(root: Any) -> Iterator[tuple[Any, str, int | None, Any]]:
+    stack = [(None, "", None, root)]
+    while stack:
+        item = stack.pop()
+        yield item
+        stack.extend(reversed(list(_children(item[3]))))
+
+
+def _replace(parent: Any, fld: str, idx: int | None, new: Any) -> bool:
+    if parent is None:
+        return False
+    if idx is not None:
+        parent[idx] = new
+    else:
+        setattr(parent, fld, new)
+    return True
+
+
+def _conditions(root: Any) -> Iterator[tuple[Any, int, A.Expr]]:
+    """(holder list, index, condition) of IF/ELSIF branches: a mutable slot for each."""
+    for _p, _f, _i, n in _walk(root):
+        if isinstance(n, A.If):
+            for k, (cond, _body) in enumerate(n.branches):
+                yield n.branches, k, cond
+
+
+def sites(root: Any) -> list[tuple[str, str, int, Callable[[], bool]]]:
+    """Every mutation of ``root`` (mutated in place when its function is called):
+    ``(operator, description, line, apply)``, in a deterministic order."""
+    from ..lang.unparse import expr as st
+
+    out: list[tuple[str, str, int, Callable[[], bool]]] = []
+    for holder, k, cond in _conditions(root):
+        def neg(h=holder, k=k, c=cond) -> bool:
+            h[k] = (A.Unary(c.loc, "NOT", c), h[k][1])
+            return True
+        out.append(("negate", f"IF {st(cond)} -> IF NOT ({st(cond)})", cond.loc.line, neg))
+    for parent, fld, idx, n in list(_walk(root)):
+        line = getattr(getattr(n, "loc", None), "line", 0)
+        if isinstance(n, A.Binary) and n.op in ("AND", "OR"):
+            other = "OR" if n.op == "AND" else "AND"
+
+            def swap(n=n, other=other) -> bool:
+                n.op = other
+                return True
+            out.append(("and-or", f"{st(n)} -> {n.op} as {other}", line, swap))
+            for keep, name in ((n.left, "left"), (n.right, "right")):
+                def drop(p=parent, f=fld, i=idx, keep=keep) -> bool:
+                    return _replace(p, f, i, keep)
+                out.append(("drop-term", f"{st(n)} -> only the {name} term {st(keep)}",
+                            line, drop))
+        elif isinstance(n, A.Binary) and n.op in _SWAP_CMP:
+            def cmp_(n=n) -> bool:
+                n.op = _SWAP_CMP[n.op]
+                return True
+            out.append(("comparison", f"{st(n)} -> {n.op} as {_SWAP_CMP[n.op]}", line, cmp_))
+        elif isinstance(n, A.Unary) and n.op == "NOT":
+            def unnot(p=parent, f=fld, i=idx, x=n.operand) -> bool:
+                return _replace(p, f, i, x)
+            out.append(("remove-not", f"{st(n)} -> {st(n.operand)}", line, unnot))
+        elif isinstance(n, A.Literal) and isinstance(n.value, int | float) and \
+                not isinstance(n.value, bool) and n.value not in (0, 1):
+            for factor, word in ((2, "doubled"), (0.5, "halved")):
+                def scale(n=n, factor=factor) -> bool:
+                    v = n.value * factor
+                    n.value = int(v) if isinstance(n.value, int) else v
+                    n.text = ""
+                    return True
+                out.append(("constant", f"{n.text or n.value} {word}", line, scale))
+        elif isinstance(n, A.Assign | A.CallStmt) and idx is not None and \
+                isinstance(parent, list):
+            def delete(p=parent, i=idx) -> bool:
+                p[i] = A.Empty(p[i].loc)
+                return True
+            what = st(n.target) + " := ..." if isinstance(n, A.Assign) else st(n.call)
+            out.append(("delete", f"statement deleted: {what}", line, delete))
+        elif isinstance(n, A.VarDecl) and isinstance(n.type, A.NamedTypeRef) and \
+                n.type.name.upper() in _LATCHES:
+            def latch(n=n, root=root) -> bool:
+                old = n.type.name.upper()
+                n.type.name = _LATCHES[old]
+                pins = _LATCH_PINS[old]
+                for _p, _f, _i, c in _walk(root):  # the calls name the other block's pins
+                    if isinstance(c, A.Call) and isinstance(c.func, A.Name) and \
+                            c.func.name.upper() == n.name.upper():
+                        for a in c.args:
+                            if a.name and a.name.upper() in pins:
+                                a.name = pins[a.name.upper()]
+                return True
+            out.append(("latch", f"{n.name} : {n.type.name} -> "
+                        f"{_LATCHES[n.type.name.upper()]}", line, latch))
+    out += _edge_sites(root)
+    return out
+
+
+def _edge_sites(root: Any) -> list[tuple[str, str, int, Callable[[], bool]]]:
+    """``trig.Q`` of an R_TRIG/F_TRIG replaced by the level it detects (CLK): the edge
+    detector removed."""
+    trigs = {n.name.upper() for _p, _f, _i, n in _walk(root)
+             if isinstance(n, A.VarDecl) and isinstance(n.type, A.NamedTypeRef)
+             and n.type.name.upper() in _EDGES}
+    clk: dict[str, A.Expr] = {}
+    for _p, _f, _i, n in _walk(root):
+        if isinstance(n, A.Call) and isinstance(n.func, A.Name) and n.func.name.upper() in trigs:
+            for a in n.args:
+                if (a.name or "").upper() == "CLK" and a.value is not None:
+                    clk[n.func.name.upper()] = a.value
+    out = []
+    for parent, fld, idx, n in list(_walk(root)):
+        if isinstance(n, A.Member) and isinstance(n.obj, A.Name) and \
+                n.obj.name.upper() in clk and n.field_name.upper() == "Q":
+            level = clk[n.obj.name.upper()]
+
+            def edge(p=parent, f=fld, i=idx, lv=level) -> bool:
+                return _replace(p, f, i, copy.deepcopy(lv))
+            out.append(("edge", f"{n.obj.name}.Q -> the level itself (no edge detector)",
+                        n.loc.line, edge))
+    return out
+
+
+def mutants(text: str, filename: str = "solution.st", limit: int | None = None,
+            seed: int = 0) -> list[Mutant]:
+    """The mutants of an ST program: one per site (at most ``limit``, a seeded sample that
+    keeps every operator represented)."""
+    from ..lang.frontends.st import parse_st
+    from ..lang.unparse import unparse
+
+    base = parse_st(text, filename)
+    found = sites(base)
+    order = list(range(len(found)))
+    if limit is not None and len(order) > limit:
+        rng = random.Random(seed)
+        by_op: dict[str, list[int]] = {}
+        for k in order:
+            by_op.setdefault(found[k][0], []).append(k)
+        for ks in by_op.values():
+            rng.shuffle(ks)
+        order = []
+        while len(order) < limit:  # round robin over the operators
+            for ks in by_op.values():
+                if ks and len(order) < limit:
+                    order.append(ks.pop())
+        order.sort()
+    out = []
+    for k in order:
+        tree = copy.deepcopy(base)
+        op, desc, line, apply = sites(tree)[k]
+        if not apply():
+            continue
+        try:
+            src = unparse(tree)
+        except Exception:  # noqa: BLE001 - a mutant that cannot be printed is skipped
+            continue
+        out.append(Mutant(op, desc, line, src))
+    return out
+
+
+# ---------------------------------------------------------------------------- the audit
+
+
+def _signals(trace: Any) -> dict[str, Any]:
+    return {n: trace[n] for n in trace.signals}
+
+
+def _same(a: dict[str, Any], b: dict[str, Any]) -> bool:
+    import numpy as np
+
+    if a.keys() != b.keys():
+        return False
+    return all(len(a[k]) == len(b[k]) and np.array_equal(a[k], b[k]) for k in a)
+
+
+_JOB: dict[str, Any] = {}
+
+
+def _grade_mutant(k: int) -> tuple[int, str, float, float]:
+    """In a worker: grade mutant k of ``_JOB`` (caught, survived, equivalent or invalid)."""
+    from .engine import grade_sources
+
+    lab, m, base = _JOB["lab"], _JOB["mutants"][k], _JOB["base"]
+    res = grade_sources(lab, [(m.text, "mutant.st")], media_dir=None, rrd=False,
+                        keep_traces=True)
+    if res.status != "ok":
+        return k, "invalid", 0.0, res.max_score
+    if all(name in base and _same(_signals(tr), base[name]) for name, tr in res.traces.items()):
+        return k, "equivalent", res.score, res.max_score
+    caught = res.score <= CAUGHT * res.max_score + 1e-9
+    return k, "caught" if caught else "survived", res.score, res.max_score
+
+
+def audit(lab: Any, *, limit: int | None = 60, seed: int = 0, jobs: int = 1,
+          solutions: list[Path] | None = None) -> AuditReport:
+    """Audit ``lab`` (see the module text). ``limit`` caps the mutants of each solution."""
+    from .engine import grade_sources
+
+    report = AuditReport(lab.id, lab.max_score)
+    for spec in lab.mistakes:
+        path = lab.path / "mistakes" / spec.file
+        res = grade_sources(lab, [(path.read_text(encoding="utf-8"), spec.file)],
+                            media_dir=None, rrd=False)
+        report.mistakes.append((spec.file, res.score, spec.max_score))
+    for path in lab.files("variants") if (lab.path / "variants").is_dir() else []:
+        res = grade_sources(lab, [(path.read_text(encoding="utf-8"), path.name)],
+                            media_dir=None, rrd=False)
+        report.variants.append((path.name, res.score))
+    for sol in solutions or [p for p in lab.files("solution") if p.suffix.lower() == ".st"]:
+        text = sol.read_text(encoding="utf-8")
+        base_res = grade_sources(lab, [(text, sol.name)], media_dir=None, rrd=False,
+                                 keep_traces=True)
+        base = {n: _signals(t) for n, t in base_res.traces.items()}
+        ms = mutants(text, sol.name, limit, seed)
+        _JOB.update(lab=lab, mutants=ms, base=base)
+        try:
+            if jobs > 1 and len(ms) > 1:
+                import multiprocessing
+
+                with multiprocessing.get_context("fork").Pool(jobs) as pool:
+                    results = pool.map(_grade_mutant, range(len(ms)), chunksize=1)
+            else:
+                results = [_grade_mutant(k) for k in range(len(ms))]
+        finally:
+            _JOB.clear()
+        for k, status, score, top in results:
+            ms[k].status, ms[k].score, ms[k].max_score = status, score, top
+        report.mutants += ms
+    return report

@@ -1,0 +1,68 @@
+"""``plclab lab audit``: mutants of a solution, and a rubric measured by the mutants it catches
+(issue 31 item 2). The audit must be able to fail: a rubric with its criteria removed catches
+fewer behaviour-changing mutants than the lab's own."""
+
+import copy
+
+import pytest
+
+from plclab.grade.audit import CAUGHT, audit, mutants, sites
+from plclab.grade.lab import load_lab
+from plclab.lang.frontends.st import parse_st
+
+PROGRAM = """PROGRAM Main
+VAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL; K1 AT %QX0.0 : BOOL; t : TON;
+    trig : R_TRIG; latch : RS; n : INT; END_VAR
+trig(CLK := START);
+IF trig.Q AND n < 10 THEN n := n + 1; END_IF;
+latch(S := START, R1 := NOT STOP);
+t(IN := K1, PT := T#5s);
+K1 := (START OR K1) AND STOP AND NOT t.Q;
+END_PROGRAM
+"""
+
+
+def test_every_operator_of_the_issue_has_sites():
+    ops = {op for op, *_ in sites(parse_st(PROGRAM, "p.st"))}
+    assert {"negate", "and-or", "drop-term", "comparison", "remove-not", "constant",
+            "delete", "latch", "edge"} <= ops
+
+
+def test_mutants_are_valid_st_that_differ_from_the_solution():
+    import plclab
+
+    ms = mutants(PROGRAM, "p.st")
+    assert len(ms) > 20
+    texts = {m.text for m in ms}
+    assert len(texts) == len(ms)  # each mutant is its own change
+    compiled = 0
+    for m in ms:
+        assert m.text != PROGRAM and m.line > 0 and m.description
+        try:
+            plclab.compile_sources([(m.text, "m.st")])
+            compiled += 1
+        except plclab.PlcError:
+            pass
+    assert compiled >= 0.8 * len(ms)
+    sample = mutants(PROGRAM, "p.st", limit=8, seed=1)
+    assert len(sample) == 8 and len({m.operator for m in sample}) >= 6
+
+
+@pytest.fixture(scope="module")
+def motor():
+    return load_lab("motor-start-stop")
+
+
+def test_a_weak_rubric_catches_fewer_mutants(motor):
+    full = audit(motor, limit=24, jobs=1)
+    weak = copy.copy(motor)
+    weak.criteria = [c for c in motor.criteria if c.name == "starts"]
+    weak.mistakes = []
+    weaker = audit(weak, limit=24, jobs=1)
+    assert full.counted() and weaker.counted()
+    assert weaker.mutation_score < full.mutation_score
+    assert weaker.mutation_score <= 0.5
+    for m in full.counted():
+        assert (m.status == "caught") == (m.score <= CAUGHT * m.max_score + 1e-9)
+    assert full.mistakes and full.mistakes_ok
+    assert "mutation score" in full.text()
