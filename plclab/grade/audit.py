@@ -123,7 +123,8 @@ def _children(node: Any) -> Iterator[tuple[Any, str, int | None, Any]]:
     if not dataclasses.is_dataclass(node):
         return
     for f in dataclasses.fields(node):
-        if f.name in ("loc", "ty", "sym", "target") and not isinstance(node, A.Assign):
+        if f.name in ("loc", "ty", "sym", "target", "owner") and \
+                not isinstance(node, A.Assign):
             continue
         v = getattr(node, f.name, None)
         if isinstance(v, list):
@@ -142,9 +143,14 @@ def _children(node: Any) -> Iterator[tuple[Any, str, int | None, Any]]:
 
 
 def _walk(root: Any) -> Iterator[tuple[Any, str, int | None, Any]]:
+    """Every node under ``root`` once (a METHOD's ``owner`` points back up: no cycles)."""
     stack = [(None, "", None, root)]
+    seen: set[int] = set()
     while stack:
         item = stack.pop()
+        if id(item[3]) in seen:
+            continue
+        seen.add(id(item[3]))
         yield item
         stack.extend(reversed(list(_children(item[3]))))
 

@@ -412,14 +412,6 @@ def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
                                 c.points if v.passed else 0.0, c.points, v.passed, msg,
                                 v.message, v.t_fail, sc.visible, c.hint, number=f"{number}.{j}",
                                 critical=c.critical))
-    void = next((c for c in lab.criteria_for(sc.name) if c.critical and not passed[c.name]),
-                None)
-    if void is not None:
-        # a failed safety criterion: the scenario earns nothing, whatever else worked
-        for t in tests:
-            if t.passed and t.score:
-                t.score = 0.0
-                t.message += f" (voided: the critical criterion '{void.name}' failed)"
     if any(not t.passed for t in tests):  # an SFC: where the chart stands, and why
         run.notes.extend(f"At the end: {line}" for line in trace.meta.get("sfc_end", []))
     if media_dir is not None and any(not t.passed for t in tests):

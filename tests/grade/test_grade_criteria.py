@@ -260,9 +260,9 @@ def test_doctests(name):
     assert result.failed == 0
 
 
-def test_critical_criterion_voids_its_scenario():
+def test_a_failed_critical_criterion_caps_the_lab():
     """press-safety marks its safety checks critical: a press that ignores the light curtain
-    loses every point of that scenario, not just the curtain criterion's."""
+    keeps at most half the lab's points, however well it doses (ADR 0042)."""
     from pathlib import Path
 
     import plclab.grade as grade
@@ -271,8 +271,6 @@ def test_critical_criterion_voids_its_scenario():
     good = grade.check(str(lab), [str(lab / "solution" / "press.st")])
     bad = grade.check(str(lab), [str(lab / "mistakes" / "ignores_curtain.st")])
     assert good.score == good.max_score
-    curtain = [t for t in bad.tests if t.scenario == "light-curtain"]
-    assert curtain and all(t.score == 0 for t in curtain)
-    assert any("voided" in t.message for t in curtain if t.passed)
-    other = [t for t in bad.tests if t.scenario != "light-curtain"]
-    assert sum(t.score for t in other) > 0
+    assert bad.critical_failures and bad.capped
+    assert bad.score == bad.critical_cap * bad.max_score < bad.points
+    assert "A critical requirement failed" in bad.feedback_markdown.split("## ")[0]
