@@ -38,7 +38,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import grade_error
-from .protocol import LIMITS, Inbox, Rejected
+from .protocol import INFRA_RETRIES, LIMITS, Inbox, Rejected
 
 SCHEME = "dask://"
 FINAL_KINDS = (b'["done"', b'["memory"', b'["error"')
@@ -225,8 +225,6 @@ def run_on_cluster(grader: Any, address: str, todo: deque[Any], total: int,
     """Grade ``todo`` on the cluster; each outcome is written and reported as its task
     completes (the order of completion, like the local pool)."""
     from distributed import as_completed
-
-    from .grader import INFRA_RETRIES
 
     client = connect(address)
     finished: list[Any] = []

@@ -40,13 +40,11 @@ from .errors import grade_error
 from .feedback import render_feedback
 from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
-from .protocol import LIMITS, MEDIA_NAME, Inbox, Rejected
+from .protocol import INFRA_RETRIES, LIMITS, MEDIA_NAME, Inbox, Rejected
 from .safety import clean_text, output_dirname
 from .spawn import child_context, read_child_log
 
 GRADER_VERSION = "2"
-INFRA_RETRIES = 2
-"""Times a submission is graded again when its process was killed from outside (ADR 0040)."""
 _OUTSIDE_SIGNALS = {int(getattr(signal, n)) for n in ("SIGKILL", "SIGTERM", "SIGHUP", "SIGINT")
                     if hasattr(signal, n)}
 SIDECAR = ".plclab-result.json"

@@ -44,6 +44,9 @@ LIMITS = {
 """Caps on what one child may send; beyond them the child's results are rejected."""
 
 MAGIC = {".png": (b"\x89PNG\r\n\x1a\n",), ".rrd": (b"RRF",)}
+INFRA_RETRIES = 2
+"""Times a submission is graded again when its process was killed from outside (ADR 0040)."""
+
 MEDIA_NAME = re.compile(r"^[a-z0-9][a-z0-9-]{0,120}\.(png|rrd)$")
 _CODE = re.compile(r"^(PLC\d{4})?$")
 

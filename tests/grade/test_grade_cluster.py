@@ -209,7 +209,8 @@ def test_a_child_killed_on_a_worker_is_graded_again(cluster, lab, tmp_path, monk
     the task again, and the gradebook equals a clean local run's (ADR 0040)."""
     import csv
 
-    from plclab.grade.grader import INFRA_RETRIES, Grader
+    from plclab.grade.grader import Grader
+    from plclab.grade.protocol import INFRA_RETRIES
 
     subs = tmp_path / "subs"
     subs.mkdir()

@@ -8,8 +8,9 @@ import os
 
 import pytest
 
-from plclab.grade.grader import INFRA_RETRIES, Grader
+from plclab.grade.grader import Grader
 from plclab.grade.lab import load_lab
+from plclab.grade.protocol import INFRA_RETRIES
 
 LAB = load_lab("motor-start-stop")
 SCENARIOS = ["start-stop", "stop-wins"]
