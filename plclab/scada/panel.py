@@ -21,6 +21,7 @@ from __future__ import annotations
 import json
 import math
 import secrets
+import socket
 import threading
 import time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
@@ -222,6 +223,8 @@ MAX_NUMBER_DIGITS = 30
 REQUEST_TIMEOUT = 5.0
 """Seconds a connection may take to send its request (a short body does not hold a thread)."""
 TOKEN_HEADER = "X-Plclab-Token"
+MAX_CONNECTIONS = 32
+"""Connections served at once; a further one is closed at once (no thread per attacker)."""
 
 
 def _loads(body: bytes) -> dict[str, Any]:
@@ -258,7 +261,26 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
     html = page().replace("__PLCLAB_TOKEN__", token).encode("utf-8")
 
     class Handler(BaseHTTPRequestHandler):
-        timeout = REQUEST_TIMEOUT
+        timeout = REQUEST_TIMEOUT  # each read; the whole request is bounded by _deadline
+
+        def handle_one_request(self) -> None:
+            """One request, cut off REQUEST_TIMEOUT seconds after it began: a client
+            trickling its header or body a byte at a time loses the connection (a socket
+            timeout alone bounds only each read)."""
+            self._deadline = threading.Timer(REQUEST_TIMEOUT, self._expire)
+            self._deadline.daemon = True
+            self._deadline.start()
+            try:
+                super().handle_one_request()
+            finally:
+                self._deadline.cancel()
+
+        def _expire(self) -> None:
+            self.close_connection = True
+            try:
+                self.connection.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
 
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the alarms
             return
@@ -292,6 +314,7 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
             return True
 
         def do_GET(self) -> None:  # noqa: N802 - the http.server API
+            self._deadline.cancel()  # the request has arrived
             if not self._ours():
                 return
             if self.path in ("/", "/index.html"):
@@ -309,14 +332,19 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                                  f"({TOKEN_HEADER} missing or wrong): reload the page"})
                 return
             length = (self.headers.get("Content-Length") or "0").strip()
-            if not length.isdigit() or int(length) > MAX_BODY:
-                self._json(413 if length.isdigit() else 400,
+            digits = length.isascii() and length.isdigit()  # not '\xb2', not a full-width 5
+            if not digits or len(length) > 9 or int(length) > MAX_BODY:
+                self._json(413 if digits else 400,
                            {"error": f"a body of 0 to {MAX_BODY} bytes with its "
                             "Content-Length is expected"})
                 self.close_connection = True
                 return
             try:
-                data = _loads(self.rfile.read(int(length)))
+                body = self.rfile.read(int(length))
+                if len(body) < int(length):  # cut off at the deadline
+                    raise OSError("short body")
+                self._deadline.cancel()
+                data = _loads(body)
             except (ValueError, UnicodeDecodeError):
                 self._json(400, {"error": "send a JSON object of short, finite values"})
                 return
@@ -343,9 +371,41 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
             panel.message = ""
             self._json(200, {"ok": True})
 
-    server = ThreadingHTTPServer((host, port), Handler)
+    server = _BoundedServer((host, port), Handler)
     server.daemon_threads = True
     return server
+
+
+class _BoundedServer(ThreadingHTTPServer):
+    """At most MAX_CONNECTIONS connections at once; quiet about clients that hang up."""
+
+    request_queue_size = 2 * MAX_CONNECTIONS  # the listen backlog: accept them, then count
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self._slots = threading.BoundedSemaphore(MAX_CONNECTIONS)
+        super().__init__(*args, **kwargs)
+
+    def process_request(self, request: Any, client_address: Any) -> None:
+        if not self._slots.acquire(blocking=False):
+            self.shutdown_request(request)
+            return
+        try:
+            super().process_request(request, client_address)
+        except BaseException:
+            self._slots.release()
+            raise
+
+    def process_request_thread(self, request: Any, client_address: Any) -> None:
+        try:
+            super().process_request_thread(request, client_address)
+        finally:
+            self._slots.release()
+
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        import sys
+
+        if not isinstance(sys.exc_info()[1], OSError):  # a hang-up is no news
+            super().handle_error(request, client_address)
 
 
 def serve(panel: Panel, port: int = 8765) -> None:
