@@ -216,29 +216,51 @@ def test_a_plant_that_does_not_fit_a_small_image_is_plc3010():
     assert exc.value.code == "PLC3010" and "image_size" in exc.value.message
 
 
+def _held_by(s: socket.socket, chunks: list[bytes]) -> bool:
+    """Send ``chunks`` one by one while the server keeps ``s`` open; False once it closes."""
+    for chunk in chunks:
+        try:
+            s.sendall(chunk)
+        except OSError:
+            return False
+        if closed_by_server(s, within=0.1):
+            return False
+    return True
+
+
 def test_a_client_trickling_bytes_does_not_keep_its_slot():
-    """Only whole requests keep a connection alive: one byte every 0.15 s of a 12-byte frame
-    never completes a request within the 0.5 s idle timeout, so the server drops it."""
+    """Only whole requests keep a connection alive: a 259-byte frame (FC16, 123 registers)
+    sent one byte every 0.1 s (26 s, far beyond the 0.5 s idle timeout however loaded the machine) is dropped
+    before its last byte."""
     plc = plclab.loads(PROG)
     port = free_port()
     with BackgroundServer(plc, port=port, speed=2.0, idle_timeout=0.5):
         s = connect(port)
         try:
-            frame = request(1)
-            sent = 0
-            for byte in frame[:-1]:  # never the last byte: the request stays incomplete
-                try:
-                    s.sendall(bytes([byte]))
-                except OSError:
-                    break
-                sent += 1
-                if closed_by_server(s, within=0.15):
-                    break
-            else:
-                raise AssertionError("the trickling client kept its connection")
-            assert sent < len(frame) - 1
+            frame = request(1, b"\x10\x00\x01\x00\x7b\xf6" + bytes(246))[:-1]  # never whole
+            assert len(frame) == 258
+            assert not _held_by(s, [bytes([b]) for b in frame])
         finally:
             s.close()
+
+
+@pytest.mark.parametrize("header", [b"\x00\x01\x00\x00\x00\x00",  # length 0
+                                    b"\x00\x01\x00\x00\x00\x01\x01",  # a unit id, no PDU
+                                    b"\x00\x01\x00\x00\xff\xff"])  # beyond 254
+def test_malformed_frames_do_not_keep_a_slot(header):
+    """A header announcing an impossible length is no request: sent again and again it does
+    not keep the connection alive."""
+    plc = plclab.loads(PROG)
+    port = free_port()
+    with BackgroundServer(plc, port=port, speed=2.0, idle_timeout=0.5):
+        s = connect(port)
+        try:
+            assert not _held_by(s, [header] * 300)  # 30 s of them at most
+        finally:
+            s.close()
+    from plclab.modbus.limits import whole_request
+
+    assert whole_request(request(1)) and not whole_request(header)
 
 
 def test_write_single_coil_accepts_only_on_and_off():
