@@ -51,3 +51,26 @@ def test_diagnostics_escape_what_they_quote():
     d = Diagnostic("PLC0001", "unexpected character '\x1b'\r")
     assert _raw(str(d)) == [] and "\\x1b" in str(d)
     assert printable("plain text") == "plain text"
+
+
+def test_watch_tables_print_iec_values(tmp_path, capsys):
+    """run --watch goes through the same escaping: a STRING with an escape sequence prints
+    as an IEC literal, a block instance as its type."""
+    f = tmp_path / "spoof.st"
+    f.write_text(SPOOF, encoding="utf-8")
+    w = tmp_path / "w.toml"
+    w.write_text('name = "w"\n[[row]]\nname = "Main.s"\n[[row]]\nname = "Main.t"\n'
+                 '[[row]]\nname = "Main.w"\n', encoding="utf-8")
+    assert main(["run", str(f), "--cycles", "2", "--watch", str(w)]) == 0
+    out = capsys.readouterr().out
+    assert _raw(out) == [] and " object at 0x" not in out
+    assert "'a$1B[2Kb'" in out and "(TON instance)" in out and "'$D800'" in out
+
+
+def test_a_file_name_cannot_rewrite_the_line(tmp_path, capsys):
+    f = tmp_path / "x\x1b[2K\rok.st"
+    f.write_text("PROGRAM Main\nVAR x : INT; END_VAR\nx := ;\nEND_PROGRAM\n", encoding="utf-8")
+    assert main(["check", str(f)]) != 0
+    captured = capsys.readouterr()
+    text = captured.out + captured.err
+    assert _raw(text) == [] and "x\\x1b[2K\\rok.st" in text
