@@ -21,13 +21,13 @@ from __future__ import annotations
 import json
 import math
 import secrets
-import socket
 import threading
 import time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.scada.http_limits import BoundedHTTPServer, DeadlineMixin
 
 USERS: dict[str, frozenset[str]] = {
     "viewer": frozenset(),
@@ -260,27 +260,11 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
     token = secrets.token_urlsafe(24)
     html = page().replace("__PLCLAB_TOKEN__", token).encode("utf-8")
 
-    class Handler(BaseHTTPRequestHandler):
-        timeout = REQUEST_TIMEOUT  # each read; the whole request is bounded by _deadline
+    class Handler(DeadlineMixin, BaseHTTPRequestHandler):
+        timeout = REQUEST_TIMEOUT  # each read; the whole request: request_deadline
 
-        def handle_one_request(self) -> None:
-            """One request, cut off REQUEST_TIMEOUT seconds after it began: a client
-            trickling its header or body a byte at a time loses the connection (a socket
-            timeout alone bounds only each read)."""
-            self._deadline = threading.Timer(REQUEST_TIMEOUT, self._expire)
-            self._deadline.daemon = True
-            self._deadline.start()
-            try:
-                super().handle_one_request()
-            finally:
-                self._deadline.cancel()
-
-        def _expire(self) -> None:
-            self.close_connection = True
-            try:
-                self.connection.shutdown(socket.SHUT_RDWR)
-            except OSError:
-                pass
+        def request_deadline(self) -> float:
+            return REQUEST_TIMEOUT
 
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the alarms
             return
@@ -314,7 +298,6 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
             return True
 
         def do_GET(self) -> None:  # noqa: N802 - the http.server API
-            self._deadline.cancel()  # the request has arrived
             if not self._ours():
                 return
             if self.path in ("/", "/index.html"):
@@ -343,7 +326,7 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                 body = self.rfile.read(int(length))
                 if len(body) < int(length):  # cut off at the deadline
                     raise OSError("short body")
-                self._deadline.cancel()
+                self.request_arrived()
                 data = _loads(body)
             except (ValueError, UnicodeDecodeError):
                 self._json(400, {"error": "send a JSON object of short, finite values"})
@@ -371,41 +354,8 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
             panel.message = ""
             self._json(200, {"ok": True})
 
-    server = _BoundedServer((host, port), Handler)
-    server.daemon_threads = True
+    server = BoundedHTTPServer((host, port), Handler, max_connections=MAX_CONNECTIONS)
     return server
-
-
-class _BoundedServer(ThreadingHTTPServer):
-    """At most MAX_CONNECTIONS connections at once; quiet about clients that hang up."""
-
-    request_queue_size = 2 * MAX_CONNECTIONS  # the listen backlog: accept them, then count
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        self._slots = threading.BoundedSemaphore(MAX_CONNECTIONS)
-        super().__init__(*args, **kwargs)
-
-    def process_request(self, request: Any, client_address: Any) -> None:
-        if not self._slots.acquire(blocking=False):
-            self.shutdown_request(request)
-            return
-        try:
-            super().process_request(request, client_address)
-        except BaseException:
-            self._slots.release()
-            raise
-
-    def process_request_thread(self, request: Any, client_address: Any) -> None:
-        try:
-            super().process_request_thread(request, client_address)
-        finally:
-            self._slots.release()
-
-    def handle_error(self, request: Any, client_address: Any) -> None:
-        import sys
-
-        if not isinstance(sys.exc_info()[1], OSError):  # a hang-up is no news
-            super().handle_error(request, client_address)
 
 
 def serve(panel: Panel, port: int = 8765) -> None:
