@@ -338,7 +338,7 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                 "/login": lambda: panel.login(str(data.get("user", ""))),
                 "/press": lambda: panel.press(str(data.get("signal", ""))),
                 "/set": lambda: panel.set(str(data.get("signal", "")), data.get("value")),
-                "/ack": lambda: panel.acknowledge(data.get("id") or None),
+                "/ack": lambda: panel.acknowledge(str(data["id"]) if data.get("id") else None),
                 "/recipe": lambda: panel.load_recipe(str(data.get("record", ""))),
             }
             if self.path not in actions:
@@ -350,6 +350,10 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                 panel.message = f"{e.code}: {e.message}"
                 self._json(403 if e.code == "PLC6050" else 400,
                            {"error": e.message, "code": e.code})
+                return
+            except Exception as e:  # noqa: BLE001 - a bug of ours: an answer, not a dead thread
+                self._json(500, {"error": f"the panel failed ({type(e).__name__}); please "
+                                 "report it with the request that caused it"})
                 return
             panel.message = ""
             self._json(200, {"ok": True})

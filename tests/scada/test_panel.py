@@ -355,3 +355,19 @@ def test_connections_beyond_the_limit_are_closed(served, monkeypatch):
             break
         time.sleep(0.1)
     assert got.startswith(b"HTTP/1.0 200")
+
+
+@pytest.mark.parametrize("path", ["/login", "/press", "/set", "/ack", "/recipe"])
+@pytest.mark.parametrize("value", [[1], {"a": 1}, 5, None, True, "\ud800", "x" * 5000])
+def test_every_action_answers_any_json_shape(served, path, value):
+    """A list, an object, a number or a lone surrogate where a name is expected: a 4xx
+    answer with a message (an /ack with a list once killed the handler)."""
+    panel, url = served
+    assert _post(url + "/login", {"user": "engineer"})[0] == 200
+    field = {"/login": "user", "/press": "signal", "/set": "signal", "/ack": "id",
+             "/recipe": "record"}[path]
+    status, data = _post(url + path, {field: value, "value": value})
+    if path == "/ack" and value is None:
+        assert status == 200  # no id: every pending alarm
+    else:
+        assert 400 <= status < 500 and data["error"], (status, data)
