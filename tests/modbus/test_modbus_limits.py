@@ -283,3 +283,16 @@ def test_write_single_coil_accepts_only_on_and_off():
             assert answer(s, request(9))[7] == 3  # the connection stays usable
         finally:
             s.close()
+
+
+def test_the_host_warning_names_what_a_remote_client_may_write(capsys):
+    """Serving beyond loopback warns, and names the writable areas (not only "read")."""
+    from plclab.modbus.commands import _check_endpoint
+
+    _check_endpoint("127.0.0.1", 5020, "its inputs %I and %IW, %MW (memory words)")
+    _check_endpoint("::1", 5020, "x")
+    assert capsys.readouterr().err == ""
+    _check_endpoint("0.0.0.0", 5020, "its inputs %I and %IW, %MW (memory words)")
+    err = capsys.readouterr().err
+    assert err.startswith("warning: serving on 0.0.0.0") and "write its inputs %I and %IW" in err
+    assert "%MW" in err
