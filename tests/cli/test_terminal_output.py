@@ -74,3 +74,26 @@ def test_a_file_name_cannot_rewrite_the_line(tmp_path, capsys):
     captured = capsys.readouterr()
     text = captured.out + captured.err
     assert _raw(text) == [] and "x\\x1b[2K\\rok.st" in text
+
+
+def test_a_terminal_that_cannot_show_a_character_gets_an_escape(tmp_path):
+    """On an ASCII console (PYTHONIOENCODING=ascii) 'café' prints as caf\\xe9: no
+    UnicodeEncodeError traceback from run --print or test."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import plclab
+
+    f = tmp_path / "cafe.st"
+    f.write_text("PROGRAM Main\nVAR s : STRING := 'caf$E9'; END_VAR\nEND_PROGRAM\n"
+                 "TEST 'caf\u00e9'\nASSERT_TRUE(FALSE, 'caf\u00e9');\nEND_TEST\n",
+                 encoding="utf-8")
+    env = {**os.environ, "PYTHONIOENCODING": "ascii",
+           "PYTHONPATH": str(Path(plclab.__file__).resolve().parent.parent)}
+    for args, status in ((["run", str(f), "--cycles", "1"], 0), (["test", str(f)], 1)):
+        r = subprocess.run([sys.executable, "-m", "plclab", *args], capture_output=True,
+                           text=True, encoding="ascii", errors="strict", env=env, timeout=120)
+        assert r.returncode == status, r.stderr
+        assert "Traceback" not in r.stderr and "caf\\xe9" in r.stdout
