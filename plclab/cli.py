@@ -189,8 +189,21 @@ def build_parser(load: str | list[str] | tuple[str, ...] = (),
     return p
 
 
+def _tolerant_streams() -> None:
+    """A terminal that cannot show a character (an ASCII or cp1252 console, PYTHONIOENCODING)
+    gets it as a backslash escape, never a UnicodeEncodeError (ADR 0041)."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None and getattr(stream, "errors", "") == "strict":
+            try:
+                reconfigure(errors="backslashreplace")
+            except (ValueError, OSError):  # pragma: no cover - a closed or odd stream
+                pass
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
+    _tolerant_streams()
     try:
         name = chosen_command(argv)
         known = name in COMMAND_TABLE

@@ -17,7 +17,7 @@ _UNPRINTABLE = ("Cc", "Cf", "Cs", "Zl", "Zp", "Co", "Cn")
 
 
 def printable(text: str) -> str:
-    """``text`` safe to show on a terminal or in a one-line report: control characters
+    r"""``text`` safe to show on a terminal or in a one-line report: control characters
     (newline, carriage return, escape sequences), bidi and other format characters, line
     separators and lone surrogates become visible escapes, so a student's string cannot erase
     a line, colour the terminal or fake a test summary. The one function every such text
@@ -50,9 +50,10 @@ class Location:
     col: int = 0
 
     def __str__(self) -> str:
+        file = printable(self.file)  # a file name is the user's text too
         if self.line <= 0:
-            return self.file
-        return f"{self.file}:{self.line}:{self.col}"
+            return file
+        return f"{file}:{self.line}:{self.col}"
 
 
 @dataclass(frozen=True, slots=True)

@@ -66,6 +66,15 @@ def take_frames(conn: Any, data: bytes) -> list[bytes]:
     return out
 
 
+def whole_request(frame: bytes) -> bool:
+    """``frame`` is one complete MBAP frame of a possible length (what keeps a connection
+    alive; a header announcing 0, 1 or more than 254 bytes does not, ADR 0041)."""
+    if len(frame) < 8:
+        return False
+    length = int.from_bytes(frame[4:6], "big")
+    return 2 <= length <= MAX_FRAME - 6 and len(frame) == 6 + length
+
+
 def invalid_coil_value(frame: bytes) -> bytes | None:
     """The exception response (03, ILLEGAL DATA VALUE) to a Write Single Coil (FC5) whose
     value is neither 0xFF00 (ON) nor 0x0000 (OFF), as the Modbus specification requires
@@ -107,7 +116,7 @@ def _classes() -> tuple[type, type]:
 
             def data_received(self, data: bytes) -> None:
                 frames = take_frames(self, data)
-                if frames:  # whole requests keep a connection alive, not bytes
+                if any(whole_request(f) for f in frames):  # requests keep it alive, not bytes
                     self.last_data = self.loop.time()
                 for frame in frames:
                     refusal = invalid_coil_value(frame)

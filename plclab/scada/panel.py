@@ -27,6 +27,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.scada.http_limits import BoundedHTTPServer, DeadlineMixin
 
 USERS: dict[str, frozenset[str]] = {
     "viewer": frozenset(),
@@ -222,6 +223,8 @@ MAX_NUMBER_DIGITS = 30
 REQUEST_TIMEOUT = 5.0
 """Seconds a connection may take to send its request (a short body does not hold a thread)."""
 TOKEN_HEADER = "X-Plclab-Token"
+MAX_CONNECTIONS = 32
+"""Connections served at once; a further one is closed at once (no thread per attacker)."""
 
 
 def _loads(body: bytes) -> dict[str, Any]:
@@ -257,8 +260,11 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
     token = secrets.token_urlsafe(24)
     html = page().replace("__PLCLAB_TOKEN__", token).encode("utf-8")
 
-    class Handler(BaseHTTPRequestHandler):
-        timeout = REQUEST_TIMEOUT
+    class Handler(DeadlineMixin, BaseHTTPRequestHandler):
+        timeout = REQUEST_TIMEOUT  # each read; the whole request: request_deadline
+
+        def request_deadline(self) -> float:
+            return REQUEST_TIMEOUT
 
         def log_message(self, *args: Any) -> None:  # quiet: the terminal shows the alarms
             return
@@ -309,14 +315,19 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                                  f"({TOKEN_HEADER} missing or wrong): reload the page"})
                 return
             length = (self.headers.get("Content-Length") or "0").strip()
-            if not length.isdigit() or int(length) > MAX_BODY:
-                self._json(413 if length.isdigit() else 400,
+            digits = length.isascii() and length.isdigit()  # not '\xb2', not a full-width 5
+            if not digits or len(length) > 9 or int(length) > MAX_BODY:
+                self._json(413 if digits else 400,
                            {"error": f"a body of 0 to {MAX_BODY} bytes with its "
                             "Content-Length is expected"})
                 self.close_connection = True
                 return
             try:
-                data = _loads(self.rfile.read(int(length)))
+                body = self.rfile.read(int(length))
+                if len(body) < int(length):  # cut off at the deadline
+                    raise OSError("short body")
+                self.request_arrived()
+                data = _loads(body)
             except (ValueError, UnicodeDecodeError):
                 self._json(400, {"error": "send a JSON object of short, finite values"})
                 return
@@ -327,7 +338,7 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                 "/login": lambda: panel.login(str(data.get("user", ""))),
                 "/press": lambda: panel.press(str(data.get("signal", ""))),
                 "/set": lambda: panel.set(str(data.get("signal", "")), data.get("value")),
-                "/ack": lambda: panel.acknowledge(data.get("id") or None),
+                "/ack": lambda: panel.acknowledge(str(data["id"]) if data.get("id") else None),
                 "/recipe": lambda: panel.load_recipe(str(data.get("record", ""))),
             }
             if self.path not in actions:
@@ -340,11 +351,14 @@ def make_server(panel: Panel, port: int = 8765, host: str = "127.0.0.1") -> Thre
                 self._json(403 if e.code == "PLC6050" else 400,
                            {"error": e.message, "code": e.code})
                 return
+            except Exception as e:  # noqa: BLE001 - a bug of ours: an answer, not a dead thread
+                self._json(500, {"error": f"the panel failed ({type(e).__name__}); please "
+                                 "report it with the request that caused it"})
+                return
             panel.message = ""
             self._json(200, {"ok": True})
 
-    server = ThreadingHTTPServer((host, port), Handler)
-    server.daemon_threads = True
+    server = BoundedHTTPServer((host, port), Handler, max_connections=MAX_CONNECTIONS)
     return server
 
 

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plclab.errors import PlcError
+from plclab.errors import PlcError, printable
 from plclab.scada.files import read_toml
 
 TRIGGERS = ("scan_start", "scan_end", "stop")
@@ -136,13 +136,13 @@ class WatchTable:
         if values is None:
             values = self.samples[-1].values if self.samples else self.monitor_now()
         width = max((len(r.name) for r in self.rows), default=0)
-        return "\n".join(f"{r.name:<{width}}  {format_value(v, r.format)}"
+        return "\n".join(f"{printable(r.name):<{width}}  {format_value(v, r.format)}"
                          for r, v in zip(self.rows, values, strict=True))
 
     def report(self, last: int = 10) -> str:
         """The last ``last`` samples as a table: time, scan, then one column a row."""
         rows = list(self.samples)[-last:]
-        head = ["t (s)", "scan"] + [r.name for r in self.rows]
+        head = ["t (s)", "scan"] + [printable(r.name) for r in self.rows]
         body = [[f"{s.time:g}", str(s.scan)] + [format_value(v, r.format)
                                                for r, v in zip(self.rows, s.values, strict=True)]
                 for s in rows]
@@ -281,6 +281,8 @@ def format_value(value: Any, fmt: str = "auto") -> str:
         if fmt in ("auto", "bool"):
             return "TRUE" if value else "FALSE"
         value = int(value)
+    if not isinstance(value, int | float):  # a string or a block: an IEC form, never raw
+        return _iec_text(value)
     if fmt == "auto":
         return f"{value:g}" if isinstance(value, float) else str(value)
     if fmt == "float":
@@ -289,8 +291,6 @@ def format_value(value: Any, fmt: str = "auto") -> str:
         if not math.isfinite(value):
             return str(value)
         value = int(value)
-    if not isinstance(value, int):
-        return str(value)
     if fmt == "dec":
         return str(value)
     if fmt == "bool":
@@ -309,6 +309,14 @@ def format_value(value: Any, fmt: str = "auto") -> str:
     if fmt == "time":
         return _time_text(value)
     return str(value)
+
+
+def _iec_text(value: Any) -> str:
+    """A string as an IEC literal (``$1B`` for an escape: nothing a terminal acts on), a
+    block instance as its type, never a Python repr (ADR 0041)."""
+    from plclab.runtime.rt import format_value as iec_format
+
+    return printable(iec_format(value, ""))
 
 
 def _time_text(ms: int) -> str:

@@ -8,14 +8,17 @@ import http.server
 import threading
 from pathlib import Path
 
+from ..scada.http_limits import BoundedHTTPServer, DeadlineMixin
+
 EXTRA_TYPES = {".wasm": "application/wasm", ".mjs": "text/javascript", ".zip": "application/zip",
                ".json": "application/json", ".svg": "image/svg+xml"}
 
 
-class _Handler(http.server.SimpleHTTPRequestHandler):
+class _Handler(DeadlineMixin, http.server.SimpleHTTPRequestHandler):
     extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map, **EXTRA_TYPES}
 
-    timeout = 30  # a client that stops sending does not hold a thread
+    timeout = 30  # a client that stops sending does not hold a thread: each read, and the
+    # whole request (DeadlineMixin: a client sending a byte now and then is cut off too)
 
     def log_message(self, format: str, *args: object) -> None:  # noqa: A002 - the base's name
         pass
@@ -29,7 +32,7 @@ class _Handler(http.server.SimpleHTTPRequestHandler):
 def make_server(root: Path, port: int = 0) -> http.server.ThreadingHTTPServer:
     """An HTTP server for ``root`` on 127.0.0.1 (``port`` 0: a free one)."""
     handler = functools.partial(_Handler, directory=str(root))
-    return http.server.ThreadingHTTPServer(("127.0.0.1", port), handler)
+    return BoundedHTTPServer(("127.0.0.1", port), handler)
 
 
 def serve_in_thread(root: Path, port: int = 0) -> tuple[http.server.ThreadingHTTPServer, str]:

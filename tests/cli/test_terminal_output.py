@@ -51,3 +51,49 @@ def test_diagnostics_escape_what_they_quote():
     d = Diagnostic("PLC0001", "unexpected character '\x1b'\r")
     assert _raw(str(d)) == [] and "\\x1b" in str(d)
     assert printable("plain text") == "plain text"
+
+
+def test_watch_tables_print_iec_values(tmp_path, capsys):
+    """run --watch goes through the same escaping: a STRING with an escape sequence prints
+    as an IEC literal, a block instance as its type."""
+    f = tmp_path / "spoof.st"
+    f.write_text(SPOOF, encoding="utf-8")
+    w = tmp_path / "w.toml"
+    w.write_text('name = "w"\n[[row]]\nname = "Main.s"\n[[row]]\nname = "Main.t"\n'
+                 '[[row]]\nname = "Main.w"\n', encoding="utf-8")
+    assert main(["run", str(f), "--cycles", "2", "--watch", str(w)]) == 0
+    out = capsys.readouterr().out
+    assert _raw(out) == [] and " object at 0x" not in out
+    assert "'a$1B[2Kb'" in out and "(TON instance)" in out and "'$D800'" in out
+
+
+def test_a_file_name_cannot_rewrite_the_line(tmp_path, capsys):
+    f = tmp_path / "x\x1b[2K\rok.st"
+    f.write_text("PROGRAM Main\nVAR x : INT; END_VAR\nx := ;\nEND_PROGRAM\n", encoding="utf-8")
+    assert main(["check", str(f)]) != 0
+    captured = capsys.readouterr()
+    text = captured.out + captured.err
+    assert _raw(text) == [] and "x\\x1b[2K\\rok.st" in text
+
+
+def test_a_terminal_that_cannot_show_a_character_gets_an_escape(tmp_path):
+    """On an ASCII console (PYTHONIOENCODING=ascii) 'café' prints as caf\\xe9: no
+    UnicodeEncodeError traceback from run --print or test."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import plclab
+
+    f = tmp_path / "cafe.st"
+    f.write_text("PROGRAM Main\nVAR s : STRING := 'caf$E9'; END_VAR\nEND_PROGRAM\n"
+                 "TEST 'caf\u00e9'\nASSERT_TRUE(FALSE, 'caf\u00e9');\nEND_TEST\n",
+                 encoding="utf-8")
+    env = {**os.environ, "PYTHONIOENCODING": "ascii",
+           "PYTHONPATH": str(Path(plclab.__file__).resolve().parent.parent)}
+    for args, status in ((["run", str(f), "--cycles", "1"], 0), (["test", str(f)], 1)):
+        r = subprocess.run([sys.executable, "-m", "plclab", *args], capture_output=True,
+                           text=True, encoding="ascii", errors="strict", env=env, timeout=120)
+        assert r.returncode == status, r.stderr
+        assert "Traceback" not in r.stderr and "caf\\xe9" in r.stdout

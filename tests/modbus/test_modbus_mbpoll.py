@@ -66,7 +66,7 @@ def test_mbpoll_reads_and_writes_a_running_plc(tmp_path):
         assert w.returncode == 0, w.stdout + w.stderr
         # the program uses it at its next scan: out = %QW2 = holding register 1025
         assert wait_until(lambda: mbpoll(port, "-t", "4", "-r", "1026", "-c", "1") == [42],
-                          timeout=5)
+                          timeout=30)
         assert mbpoll(port, "-t", "0", "-r", "1", "-c", "1") == [1]
         regs = mbpoll(port, "-t", "4", "-r", "1", "-c", "3")
         assert regs[0] == 21 and regs[2] > 0  # sp, (unused), cnt counting scans

@@ -84,7 +84,9 @@ def test_remote_io_loses_and_regains_the_plant(tmp_path):
     messages: list[str] = []
     srv = BackgroundServer(plc, port=plc_port, speed=1.0,
                            io=f"modbus://127.0.0.1:{plant_port}", io_period=0.02,
-                           io_timeout=0.3, io_status="%IX10.0", on_message=messages.append)
+                           # 2 s: a loaded machine's slow answer is not a lost plant (a
+                           # stopped plant refuses the connection at once)
+                           io_timeout=2.0, io_status="%IX10.0", on_message=messages.append)
     plant = PlclabProcess(plant_args, port=plant_port).start()
     try:
         with srv:

@@ -274,3 +274,100 @@ def test_hostile_bodies_get_an_answer_and_hold_nothing(served):
     assert time.monotonic() - t0 < 60
     with urllib.request.urlopen(url + "/state", timeout=5) as r:  # still serving
         assert r.status == 200
+
+
+@pytest.mark.parametrize("length", ["\xb2", "\uff15", "9" * 5000, "+5", "5 5", "0x10"])
+def test_odd_content_lengths_get_an_answer(served, length):
+    """Digits Python's int() reads but HTTP does not (a superscript two, a full-width five),
+    more digits than int() converts: a 400 or 413, never a dead handler."""
+    panel, url = served
+    port = url.rsplit(":", 1)[1]
+    head = (f"POST /login HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+            f"X-Plclab-Token: {_token(url)}\r\nContent-Length: ").encode()
+    got = _raw(url, head + length.encode("latin-1", "replace") + b"\r\n\r\n", timeout=10)
+    assert got.startswith((b"HTTP/1.0 400", b"HTTP/1.0 413")), got[:40]
+    assert panel.user == "viewer"
+
+
+def _held_open(url: str, drip: bytes, rounds: int = 100) -> bool:
+    """Send ``drip`` every 0.1 s after a request line; False once the panel hangs up."""
+    port = int(url.rsplit(":", 1)[1])
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as s:
+        s.sendall(f"POST /set HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n".encode())
+        for _ in range(rounds):
+            time.sleep(0.1)
+            try:
+                s.sendall(drip)
+            except OSError:
+                return False
+        return True
+
+
+def test_a_trickled_request_loses_its_connection(served, monkeypatch):
+    """A per-read socket timeout does not bound a client sending a byte now and then: the
+    whole request has REQUEST_TIMEOUT seconds, then the panel hangs up."""
+    from plclab.scada import panel as panel_mod
+
+    monkeypatch.setattr(panel_mod, "REQUEST_TIMEOUT", 0.5)
+    _, url = served
+    assert _held_open(url, b"X-Slow: 1\r\n") is False  # the header, one line at a time
+    port = int(url.rsplit(":", 1)[1])
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as s:  # the body
+        s.sendall(f"POST /set HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nX-Plclab-Token: "
+                  f"{_token(url)}\r\nContent-Length: 9000\r\n\r\n".encode())
+        closed = False
+        for _ in range(100):
+            time.sleep(0.1)
+            try:
+                s.sendall(b" ")
+            except OSError:
+                closed = True
+                break
+        assert closed
+    with urllib.request.urlopen(url + "/state", timeout=5) as r:  # still serving
+        assert r.status == 200
+
+
+def test_connections_beyond_the_limit_are_closed(served, monkeypatch):
+    from plclab.scada import panel as panel_mod
+
+    _, url = served
+    port = int(url.rsplit(":", 1)[1])
+    idle = []
+    try:
+        for _ in range(panel_mod.MAX_CONNECTIONS):
+            idle.append(socket.create_connection(("127.0.0.1", port), timeout=5))
+        got = b"x"
+        for _ in range(50):  # until the server has taken every idle connection
+            got = _raw(url, f"GET /state HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+                            "Connection: close\r\n\r\n".encode(), timeout=5)
+            if got == b"":
+                break
+            time.sleep(0.1)
+        assert got == b""
+    finally:
+        for s in idle:
+            s.close()
+    for _ in range(50):  # the slots come back when the clients hang up
+        got = _raw(url, f"GET /state HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+                        "Connection: close\r\n\r\n".encode(), timeout=5)
+        if got.startswith(b"HTTP/1.0 200"):
+            break
+        time.sleep(0.1)
+    assert got.startswith(b"HTTP/1.0 200")
+
+
+@pytest.mark.parametrize("path", ["/login", "/press", "/set", "/ack", "/recipe"])
+@pytest.mark.parametrize("value", [[1], {"a": 1}, 5, None, True, "\ud800", "x" * 5000])
+def test_every_action_answers_any_json_shape(served, path, value):
+    """A list, an object, a number or a lone surrogate where a name is expected: a 4xx
+    answer with a message (an /ack with a list once killed the handler)."""
+    panel, url = served
+    assert _post(url + "/login", {"user": "engineer"})[0] == 200
+    field = {"/login": "user", "/press": "signal", "/set": "signal", "/ack": "id",
+             "/recipe": "record"}[path]
+    status, data = _post(url + path, {field: value, "value": value})
+    if path == "/ack" and value is None:
+        assert status == 200  # no id: every pending alarm
+    else:
+        assert 400 <= status < 500 and data["error"], (status, data)

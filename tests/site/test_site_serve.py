@@ -28,3 +28,34 @@ def test_a_folder_without_index_is_not_listed(tmp_path):
     finally:
         server.shutdown()
         server.server_close()
+
+
+def test_a_trickled_request_loses_its_connection(tmp_path, monkeypatch):
+    """The per-read timeout does not bound a client sending a header line now and then; the
+    whole request does (DeadlineMixin), and the server goes on serving others."""
+    import socket
+    import time
+
+    from plclab.site import serve
+
+    monkeypatch.setattr(serve._Handler, "timeout", 0.5)
+    (tmp_path / "index.html").write_text("<p>hi</p>", encoding="utf-8")
+    server, url = serve_in_thread(tmp_path)
+    try:
+        port = server.server_address[1]
+        with socket.create_connection(("127.0.0.1", port), timeout=5) as s:
+            s.sendall(b"GET / HTTP/1.1\r\n")
+            cut = False
+            for _ in range(100):  # 10 s of header lines at most
+                time.sleep(0.1)
+                try:
+                    s.sendall(b"X-Slow: 1\r\n")
+                except OSError:
+                    cut = True
+                    break
+            assert cut
+        with urllib.request.urlopen(url, timeout=5) as r:
+            assert r.read() == b"<p>hi</p>"
+    finally:
+        server.shutdown()
+        server.server_close()
