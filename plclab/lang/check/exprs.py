@@ -121,6 +121,17 @@ class Expressions(Pass, NodeVisitor):
         e.sym = m.sym
         return pt
 
+    @staticmethod
+    def property_in(e: A.Expr) -> A.Expr | None:
+        """The PROPERTY access in the path ``e`` (``m.Speed``, ``Speed``, ``m.Pos.x``), or
+        None: a property is a pair of calls, not a variable, so nothing can point at it."""
+        while True:
+            if isinstance(e, A.Name | A.Member) and isinstance(e.sym, A.Pou):
+                return e
+            if not isinstance(e, A.Member | A.Index):
+                return None
+            e = e.obj
+
     def lvalue(self, e: A.Expr) -> T.Type:
         t = self.expr(e, None, write=True)
         e.is_target = True  # never moved into a temporary

@@ -376,6 +376,11 @@ class ObjectChecks(Pass):
     def ref_of(self, c: A.Call, name: str, x: A.Expr) -> T.Type:
         t = self.cx.exprs.expr(x, None)
         x.is_target = True  # a variable, never a temporary
+        if self.cx.exprs.property_in(x) is not None:
+            self.err("PLC0240", f"{name}({expr_text(x)}): a PROPERTY is a GET and a SET, not a "
+                     f"variable, so nothing can point at it; point at the variable it reads",
+                     x.loc)
+            return T.ANY
         root = x
         while isinstance(root, A.Member | A.Index):
             if isinstance(root, A.Member) and root.field_name.startswith("%"):
