@@ -671,6 +671,9 @@ class Codegen(FastPaths):
             self.flush_pre()
             self.emit(code)
             return
+        if isinstance(target, A.Name) and isinstance(target.sym, A.Pou):  # bare PROPERTY: SET
+            self.emit(f"self.{oop_emit.method_name(target.sym)}({val})")
+            return
         if isinstance(target, A.Member) and target.field_name == "^":  # r^ := v (ADR 0021)
             code = oop_emit.deref(self, target)
             self.flush_pre()
@@ -1332,6 +1335,8 @@ class Codegen(FastPaths):
             return repr(sym.value)
         if isinstance(sym, ProgSym):
             return f"_P.{ident(sym.instance)}"
+        if isinstance(sym, A.Pou):  # a bare PROPERTY name in its own block: its GET
+            return f"self.{oop_emit.method_name(sym)}()"
         return "None"
 
     def e_DirectAddr(self, e: A.DirectAddr) -> str:

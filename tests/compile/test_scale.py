@@ -32,6 +32,32 @@ def test_an_extends_chain_at_the_limit_compiles_and_beyond_is_plc0310():
     assert "PLC0310" in _codes(size_bench.extends_chain(1000))
 
 
+def _diags(src: str) -> list:
+    with pytest.raises(PlcError) as e:
+        plclab.compile_sources([(src, "big.st")])
+    return list(e.value.diagnostics) or [e.value]
+
+
+def test_a_long_chain_is_reported_once_where_it_crosses_the_limit():
+    """The chain is cut one block beyond the limit (a chain of 1,500 must not cost 1,500
+    squared): one PLC0310, at the first block too deep, naming the limit."""
+    deep = [d for d in _diags(size_bench.extends_chain(1500)) if d.code == "PLC0310"]
+    assert len(deep) == 1
+    assert f"B{MAX_EXTENDS_DEPTH + 1} " in deep[0].message
+    assert f"more than {MAX_EXTENDS_DEPTH} levels" in deep[0].message
+
+
+@pytest.mark.parametrize("n, code", [(10, "PLC0232"), (MAX_EXTENDS_DEPTH + 2, "PLC0232"),
+                                     (MAX_EXTENDS_DEPTH + 3, "PLC0310"), (300, "PLC0310")])
+def test_an_extends_ring_stops_with_a_code(n, code):
+    """A ring of blocks inheriting from each other: a circle (PLC0232) while the whole ring
+    fits under the limit, else the depth limit (the cut chain hides the circle); never a
+    crash and never silence."""
+    ring = "".join(f"FUNCTION_BLOCK B{i} EXTENDS B{(i + 1) % n}\nVAR x{i} : INT; END_VAR\n"
+                   "END_FUNCTION_BLOCK\n" for i in range(n))
+    assert code in _codes(ring + "PROGRAM P VAR b : B0; END_VAR b(); END_PROGRAM\n")
+
+
 def test_four_thousand_actions_compile_and_run():
     plc = Plc(plclab.compile_sources([(size_bench.actions(4000), "a.st")]))
     plc.scan()

@@ -520,4 +520,48 @@ def gen_sfc(rng: random.Random) -> tuple[str, str]:
     return xml_project(_xml_library() + [("Main", "program", iface, body)]), "gen_sfc.xml"
 
 
-GENERATORS = {"st": gen_st, "il": gen_il, "ld": gen_ld, "xml": gen_xml, "sfc": gen_sfc}
+# -- OOP with names that look generated (issue 30) ------------------------------------------
+LOOKALIKES = ["X", "M_X", "M_M_X", "GO", "M_GO", "_ITF", "ITF", "_BODY", "BODY", "_COPY", "COPY",
+              "SELF", "V_X", "F_X", "P_X", "P_FB", "EDGE_X", "EDGE_M_X", "EDGE_MEM", "CR_INT",
+              "LD_M3", "SFC_TR0", "THIS_X", "_G", "_B", "_X_", "Q", "G_X", "_R", "_P", "MAIN_",
+              "M_GO_", "_M_X"]
+
+
+def gen_oop(rng: random.Random) -> tuple[str, str]:
+    """A valid program of blocks, an interface, a PROPERTY, methods overriding through SUPER^,
+    a FUNCTION, ACTIONs, an edge input and a global, every name drawn from names that look
+    like plclab's generated ones (M_X beside METHOD X, _ITF, EDGE_..., FB_init as an action);
+    initial values read variables declared after them."""
+    (base, der, fn, itf, prop, glob, edge, bv0, bv1, dv0, bm, dm, l0, l1, l2, inst, ref, n,
+     act) = rng.sample(LOOKALIKES, 19)
+    if rng.random() < 0.3:
+        act = "FB_init"
+    bare = rng.random() < 0.5  # a bare property name inside its block, or THIS^.name
+    p = prop if bare else f"THIS^.{prop}"
+    text = (
+        f"VAR_GLOBAL {glob} : INT; END_VAR\n"
+        f"INTERFACE {itf}\nMETHOD {bm} : INT\nEND_METHOD\nEND_INTERFACE\n"
+        f"FUNCTION_BLOCK {base} IMPLEMENTS {itf}\nVAR_INPUT {edge} : BOOL R_EDGE; END_VAR\n"
+        f"VAR {bv0} : INT := {bv1}; {bv1} : INT := {rng.randint(0, 9)}; END_VAR\n"
+        f"METHOD {bm} : INT\n{p} := ({p} + {rng.randint(1, 5)}) MOD 100;\n"
+        f"{bm} := {bv0} + {bv1};\nEND_METHOD\n"
+        f"PROPERTY {prop} : INT\nGET\n{prop} := {bv1};\nEND_GET\n"
+        f"SET\n{bv1} := {prop};\nEND_SET\nEND_PROPERTY\n"
+        f"IF {edge} THEN {bv0} := ({bv0} + 1) MOD 1000; END_IF;\nEND_FUNCTION_BLOCK\n"
+        f"FUNCTION_BLOCK {der} EXTENDS {base}\nVAR {dv0} : INT; END_VAR\n"
+        f"METHOD {bm} : INT\n{bm} := SUPER^.{bm}() + {dv0};\nEND_METHOD\n"
+        f"METHOD {dm} : INT\n{dm} := {p} + 1;\nEND_METHOD\n"
+        f"{dv0} := ({dv0} + 1) MOD 7;\nEND_FUNCTION_BLOCK\n"
+        f"FUNCTION {fn} : INT\nVAR_INPUT {l0} : INT; END_VAR\n"
+        f"VAR {l1} : INT := {l2}; {l2} : INT := 3; END_VAR\n"
+        f"{fn} := {l0} MOD 100 + {l1} + {l2};\nEND_FUNCTION\n"
+        f"PROGRAM Main\nVAR {inst} : {der}; {ref} : {itf}; {n} : INT; END_VAR\n"
+        f"{inst}({edge} := {rng.choice(['TRUE', 'FALSE', f'{n} > 3'])});\n{ref} := {inst};\n"
+        f"{n} := {ref}.{bm}() + {inst}.{dm}() + {inst}.{prop};\n{n} := {fn}({n});\n"
+        f"{glob} := {n};\n{act}();\nEND_PROGRAM\n"
+        f"ACTION Main.{act}\n{n} := {n} MOD 1000;\nEND_ACTION\n")
+    return text, "gen_oop.st"
+
+
+GENERATORS = {"st": gen_st, "il": gen_il, "ld": gen_ld, "xml": gen_xml, "sfc": gen_sfc,
+              "oop": gen_oop}

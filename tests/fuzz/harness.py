@@ -4,7 +4,7 @@
 ``campaign(seed, seconds=...)`` runs generated programs and mutated repository files through
 :mod:`worker` and returns :class:`Stats`: cases per language, outcomes, failures by signature
 (each with its smallest reproducer). Only ``crash`` (an exception that is not a ``PlcError``, or
-the internal error PLC9999) and ``hang`` are failures.
+the internal errors PLC9999 and PLC9990) and ``hang`` are failures.
 """
 
 from __future__ import annotations

@@ -197,7 +197,12 @@ class Calls(Pass):
                     inouts.append((d, a.value))
                     continue
                 tt = self.cx.exprs.lvalue(a.value)
-                if not T.same_type(tt, d.ty) and tt is not T.ANY and d.ty is not T.ANY and not (
+                if self.cx.exprs.property_in(a.value) is not None:
+                    self.err("PLC0107", f"VAR_IN_OUT {d.name} needs a variable, and "
+                             f"{expr_text(a.value)} is a PROPERTY (a GET and a SET, not a "
+                             "variable); copy it to a variable, pass that, and assign it back",
+                             a.loc)
+                elif not T.same_type(tt, d.ty) and tt is not T.ANY and d.ty is not T.ANY and not (
                     isinstance(T.resolve(tt), T.StringType) and
                     isinstance(T.resolve(d.ty), T.StringType)
                 ):

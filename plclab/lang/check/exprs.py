@@ -103,6 +103,35 @@ class Expressions(Pass, NodeVisitor):
             return VarSym(g, "global", None)
         return None
 
+    def own_property(self, e: A.Name, write: bool) -> T.Type | None:
+        """A bare PROPERTY name inside its own block (its body, methods and accessors), as
+        CODESYS allows: ``Speed := Speed + 1.0`` means ``THIS^.Speed := THIS^.Speed + 1.0``.
+        ``e.sym`` := the accessor; None when ``e`` names no property of the block."""
+        this = self.cx.scope.local("THIS")
+        if not isinstance(this, VarSym) or this.storage != "this":
+            return None
+        block = self.cx.oop._block_of(self.cx.pou)
+        if block is None or block.kind != "FUNCTION_BLOCK":
+            return None
+        m = A.Member(e.loc, A.Name(e.loc, "THIS"), e.name, e.text)
+        m.obj.sym = this
+        pt = self.cx.oop.property_access(m, block, write)
+        if pt is None:
+            return None
+        e.sym = m.sym
+        return pt
+
+    @staticmethod
+    def property_in(e: A.Expr) -> A.Expr | None:
+        """The PROPERTY access in the path ``e`` (``m.Speed``, ``Speed``, ``m.Pos.x``), or
+        None: a property is a pair of calls, not a variable, so nothing can point at it."""
+        while True:
+            if isinstance(e, A.Name | A.Member) and isinstance(e.sym, A.Pou):
+                return e
+            if not isinstance(e, A.Member | A.Index):
+                return None
+            e = e.obj
+
     def lvalue(self, e: A.Expr) -> T.Type:
         t = self.expr(e, None, write=True)
         e.is_target = True  # never moved into a temporary
@@ -163,7 +192,7 @@ class Expressions(Pass, NodeVisitor):
         return self.literal(e, expected)
 
     def visit_Name(self, e: A.Name, expected: T.Type | None, write: bool) -> T.Type:
-        return self.name(e, expected)
+        return self.name(e, expected, write)
 
     def visit_DirectAddr(self, e: A.DirectAddr, expected: T.Type | None, write: bool) -> T.Type:
         return self.direct(e)
@@ -248,8 +277,12 @@ class Expressions(Pass, NodeVisitor):
             return T.ANY
         return T.ANY
 
-    def name(self, e: A.Name, expected: T.Type | None) -> T.Type:
+    def name(self, e: A.Name, expected: T.Type | None, write: bool = False) -> T.Type:
         sym = self.lookup(e.name)
+        if sym is None or (isinstance(sym, VarSym) and sym.storage == "global"):
+            pt = self.own_property(e, write)  # a member shadows a global, as a variable does
+            if pt is not None:
+                return pt
         if sym is not None:
             e.sym = sym
             sym.decl.used = True

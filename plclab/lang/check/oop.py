@@ -102,8 +102,12 @@ class ObjectChecks(Pass):
             if after is not None and any(after is q for q in (p, *chain)):
                 self.err("PLC0232", f"{_label(p)} inherits from itself (EXTENDS goes round in a "
                          "circle); remove one EXTENDS", p.loc)
-            elif len(chain) > MAX_EXTENDS_DEPTH:
-                self.err("PLC0310", f"{_label(p)} has {len(chain)} levels of EXTENDS above it; "
+            elif len(chain) > MAX_EXTENDS_DEPTH and (
+                    len(self.table.bases(chain[0])) <= MAX_EXTENDS_DEPTH  # where it crosses
+                    or not self.__dict__.get("_deep_reported")):  # (a long ring: once)
+                self.__dict__["_deep_reported"] = True
+                self.err("PLC0310", f"{_label(p)} has more than {MAX_EXTENDS_DEPTH} levels of "
+                         f"EXTENDS above it (through {_label(chain[-1])}); "
                          f"plclab allows {MAX_EXTENDS_DEPTH}: merge some of the blocks, or use "
                          "an instance of a block instead of inheriting from it", p.loc)
         for n in p.implements:
@@ -372,6 +376,11 @@ class ObjectChecks(Pass):
     def ref_of(self, c: A.Call, name: str, x: A.Expr) -> T.Type:
         t = self.cx.exprs.expr(x, None)
         x.is_target = True  # a variable, never a temporary
+        if self.cx.exprs.property_in(x) is not None:
+            self.err("PLC0240", f"{name}({expr_text(x)}): a PROPERTY is a GET and a SET, not a "
+                     f"variable, so nothing can point at it; point at the variable it reads",
+                     x.loc)
+            return T.ANY
         root = x
         while isinstance(root, A.Member | A.Index):
             if isinstance(root, A.Member) and root.field_name.startswith("%"):

@@ -217,7 +217,11 @@ class Statements(Pass, NodeVisitor):
     def for_stmt(self, s: A.For) -> None:
         vt = self.cx.exprs.lvalue(s.var)
         sym = s.var.sym
-        if T.resolve(vt).kind not in ("int", "any") and not self.cx.exprs.bits_accepted(
+        if isinstance(sym, A.Pou):  # a bare PROPERTY name (ADR 0039): a GET and a SET
+            self.err("PLC0113", f"the FOR variable must be a variable, and "
+                     f"{s.var.text or s.var.name} is a PROPERTY; count with a local variable",
+                     s.var.loc)
+        elif T.resolve(vt).kind not in ("int", "any") and not self.cx.exprs.bits_accepted(
                 vt, "a FOR counter", s.var.loc):
             self.err("PLC0113", f"the FOR variable must be an integer, not {vt}", s.var.loc)
         for e in (s.start, s.end) + ((s.step,) if s.step else ()):

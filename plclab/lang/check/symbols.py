@@ -31,6 +31,7 @@ from ...errors import Location
 from ...suggest import suggest
 from .. import ast as A
 from .. import types as T
+from ..limits import MAX_EXTENDS_DEPTH
 
 Report = Callable[[str, str, Location | None, str], None]  # (code, message, where, severity)
 
@@ -280,7 +281,9 @@ class SymbolTable:
 
     def bases(self, pou: A.Pou) -> list[A.Pou]:
         """The blocks ``pou`` inherits from (FUNCTION_BLOCK ... EXTENDS, ADR 0021), nearest
-        first; an unknown base or a cycle ends the chain (:mod:`.oop` reports them)."""
+        first; an unknown base or a cycle ends the chain (:mod:`.oop` reports them). A chain
+        longer than ``MAX_EXTENDS_DEPTH`` is cut one block beyond it (PLC0310 is reported):
+        a chain of 1,500 blocks must not cost 1,500 squared."""
         key = (id(pou), len(self.pous))
         cache = self.__dict__.setdefault("_bases_cache", {})
         hit = cache.get(key)
@@ -289,7 +292,7 @@ class SymbolTable:
         out: list[A.Pou] = []
         seen = {id(pou)}  # identity, not equality: linear in the chain (issue 30)
         p = pou
-        while p.kind == "FUNCTION_BLOCK" and p.extends:
+        while p.kind == "FUNCTION_BLOCK" and p.extends and len(out) <= MAX_EXTENDS_DEPTH:
             b = self.pous.get(p.extends[0])
             if b is None or b.kind != "FUNCTION_BLOCK" or id(b) in seen:
                 break
