@@ -185,3 +185,71 @@ def refused(trace, windows=()):
             return (False, f"bit 2 of STATUS is not set at t = {t:.1f} s although the set point "
                     "was refused", t, [STATUS, SP])
     return True, "the bad set points were refused and reported", None, [STATUS]
+
+
+def refused_level(trace, windows=(), above=0.2):
+    """In every window the level stays below the last accepted set point plus ``above`` m (and
+    below 1.8 m): the refused set point was not used."""
+    import numpy as np
+
+    sp = writes(trace, SP)
+    tt = trace.time
+    level = trace["LEVEL"]
+    for a, b in windows:
+        sel = np.nonzero((tt >= float(a)) & (tt <= float(b)))[0]
+        for i in sel:
+            t = float(tt[i])
+            limit = min(_target_at(sp, t) / 1000.0 + float(above), 1.8)
+            if float(level[i]) >= limit:
+                return (False, f"the level reached {float(level[i]):.2f} m at t = {t:.1f} s, "
+                        f"above the last good set point {_target_at(sp, t) / 1000.0:.2f} m: the "
+                        "refused set point was used", t, ["LEVEL", SP])
+    return True, "the bad set points were not used", None, ["LEVEL", SP]
+
+
+def refused_bit(trace, windows=()):
+    """In every window bit 2 of STATUS is set (the station sees the refusal)."""
+    import numpy as np
+
+    tt = trace.time
+    word = trace[STATUS].astype(np.int64)
+    for a, b in windows:
+        sel = (tt >= float(a)) & (tt <= float(b))
+        unset = np.nonzero(sel & (((word >> 2) & 1) == 0))[0]
+        if len(unset):
+            t = float(tt[unset[0]])
+            return (False, f"bit 2 of STATUS is not set at t = {t:.1f} s although the set point "
+                    "was refused", t, [STATUS, SP])
+    return True, "the refusals were reported in bit 2 of STATUS", None, [STATUS]
+
+
+def switch_points(trace, margin=0.04, settle=0.5):
+    """While running, the pump goes on only with the level at least ``margin`` m below the
+    accepted set point and off only at least ``margin`` m above it (a two-position control
+    that uses its band). Switchings within ``settle`` s of a command or a set-point write are
+    not judged (START and STOP switch the pump at any level)."""
+    import numpy as np
+
+    sp = writes(trace, SP)
+    events = [t for t, _ in writes(trace, CMD)] + [t for t, _ in sp]
+    periods = running_periods(trace)
+    tt = trace.time
+    on = trace[OUT].astype(bool)
+    level = trace["LEVEL"]
+    for i in np.nonzero(on[1:] != on[:-1])[0] + 1:
+        t = float(tt[i])
+        if not any(a <= t <= b for a, b in periods):
+            continue
+        if any(0.0 <= t - e <= float(settle) for e in events):
+            continue
+        target = _target_at(sp, t) / 1000.0
+        h = float(level[i])
+        if on[i] and h > target - float(margin):
+            return (False, f"the pump started at t = {t:.1f} s with the level at {h:.3f} m, the "
+                    f"set point {target:.2f} m: it must start only at the bottom of the band",
+                    t, ["LEVEL", OUT])
+        if not on[i] and h < target + float(margin):
+            return (False, f"the pump stopped at t = {t:.1f} s with the level at {h:.3f} m, the "
+                    f"set point {target:.2f} m: it must run on to the top of the band",
+                    t, ["LEVEL", OUT])
+    return True, "the pump switched at the edges of the band", None, ["LEVEL", OUT]

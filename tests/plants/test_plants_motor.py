@@ -121,3 +121,24 @@ def test_welded_contactor_keeps_running() -> None:
     m.clear("contactor_stuck")
     _run(m, 0.1)
     assert m["RUN"] is False
+
+
+def test_overload_relay_resets_after_cooling_to_the_reset_fraction() -> None:
+    """The motor-start-stop lab lets the relay be reset at 95 % of its trip level: with the motor
+    off the thermal image decays as exp(-t / ol_tau), so the reset works ol_tau * ln(1 / 0.95)
+    = 300 s * 0.0513 = 15.4 s after the trip (the lab's "15 s"), not before."""
+    import math
+
+    m = Motor(ol_reset_fraction=0.95)
+    m["STOP"] = True
+    m.inject("overload")
+    _run(m, 1.0)
+    m.clear("overload")
+    m["OL_RESET"] = True
+    expected = 300.0 * math.log(1.0 / 0.95)
+    dt, t = 0.005, 1.0  # counted from the trip (the injection), not from the clear
+    while m["OVERLOAD"] and t < 60.0:
+        m.step(dt)
+        t += dt
+    assert m["OVERLOAD"] is False
+    assert t == pytest.approx(expected, abs=0.1), (t, expected)
