@@ -349,6 +349,7 @@ class Grader:
             data = json.loads(side.read_text(encoding="utf-8"))
             if (data.get("submission_hash") != s.hash or data.get("lab_hash") != self.lab.hash
                     or data.get("grader") != GRADER_VERSION
+                    or data.get("scenarios") != self.scenarios  # the same selection only
                     or data["result"].get("status") not in STUDENT_STATUSES):
                 return None  # changed, or not the student's outcome: grade it again
             inbox = Inbox(self.lab, None)
@@ -603,7 +604,8 @@ class Grader:
         write_atomic(d / "feedback.md", render_feedback(res))
         write_json(d / SIDECAR, {"grader": GRADER_VERSION, "lab": self.lab.id,
                                  "submission_hash": res.submission_hash,
-                                 "lab_hash": self.lab.hash, "result": res.to_json()})
+                                 "lab_hash": self.lab.hash, "scenarios": self.scenarios,
+                                 "result": res.to_json()})
 
     def test_names(self) -> list[str]:
         return [f"{s.name}: {c.name}" for s in self.lab.scenarios
