@@ -46,7 +46,7 @@ from plclab.errors import PlcRuntimeFault
 from plclab.runtime.plc import Plc
 from plclab.testing import run_compiled_tests
 
-N_DEFAULT = 20_000  # codesys in the normal suite; PLCLAB_ORACLE_N=200000 for the long run
+N_DEFAULT = 10_000  # codesys in the normal suite; PLCLAB_ORACLE_N=200000 for the long run
 N_OTHER = 3_000  # per other dialect in the normal suite
 BATCH = 500
 SEED = 20240611
