@@ -39,7 +39,7 @@ def test_the_labs_exist():
 def test_lab_is_valid_and_complete(lab_id):
     lab = load_lab(lab_id, deep=True)  # binds every scenario to the plant and the wiring
     assert lab.files("solution"), "a reference solution"
-    assert len(lab.files("mistakes")) >= 3, "at least three typical mistakes"
+    assert len(lab.files("mistakes")) >= 6, "at least six typical mistakes (issue 31)"
     files = sorted(p.name for p in lab.files("mistakes"))
     assert sorted(m.file for m in lab.mistakes) == files, "one [[mistake]] per mistakes/ file"
     for m in lab.mistakes:
@@ -71,6 +71,22 @@ def test_solution_scores_full_marks(lab_id, name):
     failed = [f"{t.name}: {t.message}" for t in res.tests if not t.passed]
     assert res.status == "ok" and not failed, failed
     assert res.score == res.max_score == lab.max_score
+
+
+@pytest.mark.parametrize("lab_id", LABS)
+def test_lab_has_two_correct_variants(lab_id):
+    assert len(load_lab(lab_id).files("variants")) >= 2, (
+        f"{lab_id}: at least two correct programs written differently in variants/")
+
+
+@pytest.mark.parametrize("lab_id,name", _files("variants"))
+def test_variant_scores_at_least_95_percent(lab_id, name):
+    """A correct program written another way (structure, language, tuning) is not punished."""
+    lab, res = _grade(lab_id, lab_path(lab_id) / "variants" / name)
+    failed = [f"{t.name}: {t.message}" for t in res.tests if not t.passed]
+    assert res.status == "ok", res.status
+    assert res.score >= 0.95 * lab.max_score - 1e-9, (
+        f"{name}: {res.score:g}/{lab.max_score:g} (< 95 %): {failed}")
 
 
 @pytest.mark.parametrize("lab_id,name", _files("mistakes"))
