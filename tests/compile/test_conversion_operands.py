@@ -167,3 +167,13 @@ END_ACTION
 """
     fast, plain = _both(src)
     assert _outcome(fast, n) == _outcome(plain, n)
+
+
+@pytest.mark.xfail(strict=True, reason="s7 constant folding of an operand-width sum: found by "
+                   "the 200,000-expression oracle run, not fixed yet (ADR 0038)")
+def test_s7_folds_a_constant_sum_in_the_operands_width():
+    src = ("PROGRAM Main\nVAR x : INT; END_VAR\nx := (INT#24584 + INT#32766) / INT#32767;\n"
+           "END_PROGRAM\n")
+    plc = Plc(plclab.compile_sources([(src, "p.st")], dialect="s7"))
+    plc.scan()
+    assert plc["x"] == 0  # 24584 + 32766 is -8186 in an INT; -8186 / 32767 truncates to 0
