@@ -279,10 +279,12 @@ def mutants(text: str, filename: str = "solution.st", limit: int | None = None,
     from ..lang.unparse import unparse
 
     base = parse_st(text, filename)
-    found = sites(base)
     sfc = sfc_mutants(text)
+    # an SFC is lowered to ST with internal names that a program may not write: its mutants
+    # come from the SFC text (steps, transitions and their conditions) instead
+    found = [] if sfc else sites(base)
     if limit is not None and len(sfc) + len(found) > limit:
-        keep = min(len(sfc), max(2, limit // 6))
+        keep = min(len(sfc), limit if not found else max(2, limit // 6))
         sfc = sorted(random.Random(seed).sample(sfc, keep), key=lambda m: (m.line, m.description))
         limit = max(0, limit - keep)
     order = list(range(len(found)))
@@ -343,7 +345,43 @@ def sfc_mutants(text: str) -> list[Mutant]:
                 continue
             out.append(Mutant("sfc-transition", f"{head} {cond} -> {new.strip()} ({word})",
                               line_of(s), text[:s] + new + text[e:]))
+        for op, changed in _expr_mutants(cond):
+            out.append(Mutant(op, f"{head} {cond} -> {changed}", line_of(s),
+                              text[:s] + " " + changed + text[e:]))
     return out
+
+
+def _expr_mutants(cond: str) -> list[tuple[str, str]]:
+    """The AST operators (AND/OR, a dropped term, comparisons, NOT, constants) applied to one
+    expression given as text: ``(operator, mutated expression)``."""
+    from ..lang.frontends.st import parse_st
+    from ..lang.unparse import expr as st
+
+    wrap = f"PROGRAM _M\nVAR _x : BOOL; END_VAR\n_x := {cond};\nEND_PROGRAM\n"
+    try:
+        base = parse_st(wrap, "_m.st")
+    except Exception:  # noqa: BLE001 - a condition the parser cannot take alone: no mutants
+        return []
+    out: list[tuple[str, str]] = []
+    seen = {st(_the_value(base))}
+    for k, (op, _d, _l, _a) in enumerate(sites(base)):
+        if op in ("negate", "delete", "latch", "edge"):
+            continue
+        tree = copy.deepcopy(base)
+        if not sites(tree)[k][3]():
+            continue
+        text = st(_the_value(tree))
+        if text not in seen:
+            seen.add(text)
+            out.append((op, text))
+    return out
+
+
+def _the_value(tree: Any) -> Any:
+    for _p, _f, _i, n in _walk(tree):
+        if isinstance(n, A.Assign):
+            return n.value
+    raise LookupError("no assignment")
 
 
 # ---------------------------------------------------------------------------- the audit

@@ -116,3 +116,15 @@ def test_a_survivor_shows_the_mutated_expression():
                                                                                "comparison")}
     assert "START OR K1 -> START AND K1" in descs
     assert "n < 10 -> n <= 10" in descs
+
+
+def test_an_sfc_solution_gets_valid_mutants_of_its_conditions():
+    import plclab
+
+    ms = mutants(SFC, "s.st")
+    assert ms and all(m.operator.startswith("sfc") or "TRANSITION" in m.description for m in ms)
+    assert any(m.description.endswith("-> Lit.T > T#2s") for m in ms)
+    assert any(m.description.endswith("-> Lit.T >= T#4s") for m in ms)
+    for m in ms:
+        plclab.compile_sources([(m.text, "m.st")])
+    assert len(mutants(SFC, "s.st", limit=3, seed=2)) == 3
