@@ -317,7 +317,8 @@ def mutants(text: str, filename: str = "solution.st", limit: int | None = None,
 
 _STEP = re.compile(r"^(\s*(?:INITIAL_)?STEP\s+\w+\s*:)(.*?)(END_STEP)", re.I | re.M)
 _ASSOC = re.compile(r"\w+\s*\([^()]*\)\s*;")
-_TRANS = re.compile(r"^(\s*TRANSITION\b[^\n]*?:=)(.*?)(;\s*END_TRANSITION)", re.I | re.M)
+_TRANS = re.compile(r"^(\s*TRANSITION\b(?:\s*\w+)?(?:\s*\(\s*PRIORITY\s*:=\s*\d+\s*\))?"
+                    r"[^\n:]*:=)(.*?)(;\s*END_TRANSITION)", re.I | re.M)
 
 
 def sfc_mutants(text: str) -> list[Mutant]:
