@@ -22,6 +22,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import random
+import re
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -192,7 +193,8 @@ def sites(root: Any) -> list[tuple[str, str, int, Callable[[], bool]]]:
             def swap(n=n, other=other) -> bool:
                 n.op = other
                 return True
-            out.append(("and-or", f"{st(n)} -> {n.op} as {other}", line, swap))
+            out.append(("and-or", f"{st(n)} -> {st(dataclasses.replace(n, op=other))}",
+                        line, swap))
             for keep, name in ((n.left, "left"), (n.right, "right")):
                 def drop(p=parent, f=fld, i=idx, keep=keep) -> bool:
                     return _replace(p, f, i, keep)
@@ -202,7 +204,9 @@ def sites(root: Any) -> list[tuple[str, str, int, Callable[[], bool]]]:
             def cmp_(n=n) -> bool:
                 n.op = _SWAP_CMP[n.op]
                 return True
-            out.append(("comparison", f"{st(n)} -> {n.op} as {_SWAP_CMP[n.op]}", line, cmp_))
+            out.append(("comparison",
+                        f"{st(n)} -> {st(dataclasses.replace(n, op=_SWAP_CMP[n.op]))}",
+                        line, cmp_))
         elif isinstance(n, A.Unary) and n.op == "NOT":
             def unnot(p=parent, f=fld, i=idx, x=n.operand) -> bool:
                 return _replace(p, f, i, x)
@@ -275,7 +279,14 @@ def mutants(text: str, filename: str = "solution.st", limit: int | None = None,
     from ..lang.unparse import unparse
 
     base = parse_st(text, filename)
-    found = sites(base)
+    sfc = sfc_mutants(text)
+    # an SFC is lowered to ST with internal names that a program may not write: its mutants
+    # come from the SFC text (steps, transitions and their conditions) instead
+    found = [] if sfc else sites(base)
+    if limit is not None and len(sfc) + len(found) > limit:
+        keep = min(len(sfc), limit if not found else max(2, limit // 6))
+        sfc = sorted(random.Random(seed).sample(sfc, keep), key=lambda m: (m.line, m.description))
+        limit = max(0, limit - keep)
     order = list(range(len(found)))
     if limit is not None and len(order) > limit:
         rng = random.Random(seed)
@@ -301,7 +312,77 @@ def mutants(text: str, filename: str = "solution.st", limit: int | None = None,
         except Exception:  # noqa: BLE001 - a mutant that cannot be printed is skipped
             continue
         out.append(Mutant(op, desc, line, src))
+    return out + sfc
+
+
+_STEP = re.compile(r"^(\s*(?:INITIAL_)?STEP\s+\w+\s*:)(.*?)(END_STEP)", re.I | re.M)
+_ASSOC = re.compile(r"\w+\s*\([^()]*\)\s*;")
+_TRANS = re.compile(r"^(\s*TRANSITION\b(?:\s*\w+)?(?:\s*\(\s*PRIORITY\s*:=\s*\d+\s*\))?"
+                    r"[^\n:]*:=)(.*?)(;\s*END_TRANSITION)", re.I | re.M)
+
+
+def sfc_mutants(text: str) -> list[Mutant]:
+    """Mutants of an SFC written in ST text (steps and transitions are kept as text in the
+    tree): a step loses one of its actions; a transition's condition is negated or always
+    TRUE (the step is left at once)."""
+    out: list[Mutant] = []
+
+    def line_of(pos: int) -> int:
+        return text.count("\n", 0, pos) + 1
+
+    for m in _STEP.finditer(text):
+        for a in _ASSOC.finditer(m.group(2)):
+            start, end = m.start(2) + a.start(), m.start(2) + a.end()
+            out.append(Mutant("sfc-action", f"{m.group(1).strip()} {a.group(0)} -> action removed",
+                              line_of(start), text[:start] + text[end:]))
+    for m in _TRANS.finditer(text):
+        cond = m.group(2).strip()
+        if not cond or "\n" in cond:
+            continue
+        s, e = m.start(2), m.end(2)
+        head = m.group(1).strip()
+        for new, word in ((f" NOT ({cond})", "negated"), (" TRUE", "always TRUE")):
+            if new.strip().upper() == cond.upper():
+                continue
+            out.append(Mutant("sfc-transition", f"{head} {cond} -> {new.strip()} ({word})",
+                              line_of(s), text[:s] + new + text[e:]))
+        for op, changed in _expr_mutants(cond):
+            out.append(Mutant(op, f"{head} {cond} -> {changed}", line_of(s),
+                              text[:s] + " " + changed + text[e:]))
     return out
+
+
+def _expr_mutants(cond: str) -> list[tuple[str, str]]:
+    """The AST operators (AND/OR, a dropped term, comparisons, NOT, constants) applied to one
+    expression given as text: ``(operator, mutated expression)``."""
+    from ..lang.frontends.st import parse_st
+    from ..lang.unparse import expr as st
+
+    wrap = f"PROGRAM _M\nVAR _x : BOOL; END_VAR\n_x := {cond};\nEND_PROGRAM\n"
+    try:
+        base = parse_st(wrap, "_m.st")
+    except Exception:  # noqa: BLE001 - a condition the parser cannot take alone: no mutants
+        return []
+    out: list[tuple[str, str]] = []
+    seen = {st(_the_value(base))}
+    for k, (op, _d, _l, _a) in enumerate(sites(base)):
+        if op in ("negate", "delete", "latch", "edge"):
+            continue
+        tree = copy.deepcopy(base)
+        if not sites(tree)[k][3]():
+            continue
+        text = st(_the_value(tree))
+        if text not in seen:
+            seen.add(text)
+            out.append((op, text))
+    return out
+
+
+def _the_value(tree: Any) -> Any:
+    for _p, _f, _i, n in _walk(tree):
+        if isinstance(n, A.Assign):
+            return n.value
+    raise LookupError("no assignment")
 
 
 # ---------------------------------------------------------------------------- the audit

@@ -86,3 +86,45 @@ def test_every_lab_passes_its_audit(lab_id):
     """Issue 31's target: mutation score >= 90 %, every mistake within bound, variants >= 95 %."""
     rep = audit(load_lab(lab_id), limit=60, seed=0, jobs=2)
     assert rep.mutation_score >= 0.9 and rep.mistakes_ok and rep.variants_ok, rep.text()
+
+
+SFC = """PROGRAM Main
+VAR START AT %IX0.0 : BOOL; LAMP AT %QX0.0 : BOOL; END_VAR
+    INITIAL_STEP Idle: END_STEP
+    TRANSITION FROM Idle TO Lit := START; END_TRANSITION
+    STEP Lit: LAMP(N); END_STEP
+    TRANSITION (PRIORITY := 0) FROM Lit TO Idle := Lit.T >= T#2s; END_TRANSITION
+END_PROGRAM
+"""
+
+
+def test_sfc_steps_and_transitions_are_mutated():
+    import plclab
+
+    ms = [m for m in mutants(SFC, "s.st") if m.operator.startswith("sfc")]
+    ops = {m.operator for m in ms}
+    assert ops == {"sfc-action", "sfc-transition"}
+    assert any("LAMP(N)" in m.description and "LAMP(N)" not in m.text for m in ms)
+    assert any(m.line == 4 and ":= NOT (START);" in m.text for m in ms)
+    assert any(m.line == 6 and ":= TRUE;" in m.text for m in ms)
+    for m in ms:
+        plclab.compile_sources([(m.text, "m.st")])
+
+
+def test_a_survivor_shows_the_mutated_expression():
+    descs = {m.description for m in mutants(PROGRAM, "p.st") if m.operator in ("and-or",
+                                                                               "comparison")}
+    assert "START OR K1 -> START AND K1" in descs
+    assert "n < 10 -> n <= 10" in descs
+
+
+def test_an_sfc_solution_gets_valid_mutants_of_its_conditions():
+    import plclab
+
+    ms = mutants(SFC, "s.st")
+    assert ms and all(m.operator.startswith("sfc") or "TRANSITION" in m.description for m in ms)
+    assert any(m.description.endswith("-> Lit.T > T#2s") for m in ms)
+    assert any(m.description.endswith("-> Lit.T >= T#4s") for m in ms)
+    for m in ms:
+        plclab.compile_sources([(m.text, "m.st")])
+    assert len(mutants(SFC, "s.st", limit=3, seed=2)) == 3
