@@ -1401,9 +1401,12 @@ class Codegen(FastPaths):
             a, b = self.interval(e.left), self.interval(e.right)
             if a is None or b is None:
                 return None
-            if e.op == "+":
-                return (a[0] + b[0], a[1] + b[1])
-            return (a[0] - b[1], a[1] - b[0])
+            r = (a[0] + b[0], a[1] + b[1]) if e.op == "+" else (a[0] - b[1], a[1] - b[0])
+            t = T.base_of(e.ty) if e.ty is not None else None
+            if self.operand_width(e.loc) and isinstance(t, T.Elementary) and t.bits and \
+                    t.kind in ("int", "bits") and not t.lo <= r[0] <= r[1] <= t.hi:
+                return None  # S7 wraps the sum in the operands' width: no interval known
+            return r
         return None
 
     def e_Unary(self, e: A.Unary) -> str:

@@ -169,8 +169,6 @@ END_ACTION
     assert _outcome(fast, n) == _outcome(plain, n)
 
 
-@pytest.mark.xfail(strict=True, reason="s7 constant folding of an operand-width sum: found by "
-                   "the 200,000-expression oracle run, not fixed yet (ADR 0038)")
 def test_s7_folds_a_constant_sum_in_the_operands_width():
     src = ("PROGRAM Main\nVAR x : INT; END_VAR\nx := (INT#24584 + INT#32766) / INT#32767;\n"
            "END_PROGRAM\n")
