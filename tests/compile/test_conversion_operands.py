@@ -8,9 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import plclab
-from plclab.compile import fastpaths
 from plclab.errors import PlcRuntimeFault
 from plclab.runtime.plc import Plc
+
+from .test_fast_paths import compile_both
 
 
 def scan(src: str) -> Plc:
@@ -105,16 +106,6 @@ END_PROGRAM
     assert e.value.code == "PLC2002"
 
 
-def _both(src: str):
-    fast = plclab.compile_sources([(src, "p.st")])
-    fastpaths.ENABLED = False
-    try:
-        plain = plclab.compile_sources([(src, "p.st")])
-    finally:
-        fastpaths.ENABLED = True
-    return fast, plain
-
-
 def _outcome(compiled, n: int):
     plc = Plc(compiled)
     plc["Main.n"] = n
@@ -165,7 +156,7 @@ ACTION Main.Shift
 i := i + {d};
 END_ACTION
 """
-    fast, plain = _both(src)
+    fast, plain = compile_both(src)
     assert _outcome(fast, n) == _outcome(plain, n)
 
 
