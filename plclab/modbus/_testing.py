@@ -94,7 +94,7 @@ class PlclabProcess:
         self._out.seek(0)
         return self._out.read()
 
-    def stop(self, sig: int = signal.SIGINT, timeout: float = 10.0) -> int:
+    def stop(self, sig: int = signal.SIGINT, timeout: float = 30.0) -> int:
         """Send ``sig`` (SIGINT = Ctrl-C), wait for the exit; kill after ``timeout``."""
         if self.proc is None:
             return self.returncode if self.returncode is not None else -1
