@@ -230,10 +230,10 @@ def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
     if failed_critical:  # first: a safety requirement or the lab's core function failed
         names = list(dict.fromkeys(t.criterion for t in failed_critical))
         capped = getattr(result, "capped", False)
-        lines += ["", "**A critical requirement failed:** " + "; ".join(
-            md_text(n) for n in names) + ". " + md_line(failed_critical[0].message) + (
-            f" The score is capped at {result.critical_cap:.0%} of the points until it "
-            "passes." if capped else "")]
+        cap = (f" (the score is capped at {result.critical_cap:.0%} of the points until it "
+               "passes)" if capped else "")
+        lines += ["", f"**A critical requirement failed**{cap}: " + "; ".join(
+            md_text(n) for n in names) + ". First failure: " + md_line(failed_critical[0].message)]
     elif getattr(result, "capped", False):  # a hidden scenario's critical check failed
         lines += ["", f"**A critical requirement failed in a hidden scenario:** the score is "
                   f"capped at {result.critical_cap:.0%} of the points."]
