@@ -123,7 +123,9 @@ def test_remote_io_loses_and_regains_the_plant(tmp_path):
     finally:
         plant.stop()
     assert plc.state == "RUN" and plc["n"] > 40
-    assert any("lost" in m for m in messages) and messages[-1].endswith("OK")
+    # lost, then regained (a loaded machine may log another loss after that; never none)
+    first_loss = next(i for i, m in enumerate(messages) if "lost" in m)
+    assert any(m.endswith("OK") for m in messages[first_loss + 1:]), messages
 
 
 def test_closed_loop_over_modbus(tmp_path):

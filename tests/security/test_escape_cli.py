@@ -187,7 +187,7 @@ def _evil_lab(box, **edits: str) -> Path:
 
 S = payloads.S
 LAB_EDITS = {
-    "expression": {'trigger = "START and STOP"': f'trigger = "__import__(\'{S}\')"'},
+    "expression": {'trigger = "START and STOP and not OVERLOAD"': f'trigger = "__import__(\'{S}\')"'},
     "dunder": {'condition = "RUN"': 'condition = "().__class__.__bases__[0].__subclasses__()"'},
     "python-check": {'check = "within"': f'python = "{S}:main"\ncheck = "within"'},
     "python-path": {'check = "within"': 'python = "../../hook/pwned_sentinel:main"\n'
