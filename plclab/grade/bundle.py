@@ -87,20 +87,14 @@ def lab_files(lab_path: Path) -> list[tuple[Path, str]]:
 def build_bundle(lab_id: str, out: str | os.PathLike, extra_labs: list[str] | None = None,
                  wheel: str | os.PathLike | None = None) -> Path:
     """Write the autograder zip of *lab_id* to *out* (see the module docstring)."""
-    from .lab import load_lab
+    from .lab import load_lab, require_hidden
 
     out = Path(out)
     if out.suffix != ".zip" or out.is_dir():
         raise grade_error("PLC5056", f"-o {out}: give a file name ending in .zip, e.g. "
                           f"-o {lab_id}-autograder.zip")
     lab = load_lab(lab_id, extra_labs or [], deep=True)  # a broken lab fails here, not later
-    if lab.student_copy:
-        raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id} that ships "
-                          "with plclab: its hidden scenarios are not in it, so an autograder "
-                          "built from it would grade only what students can try themselves. "
-                          "Build it from the instructor's lab folder (labs/"
-                          f"{lab.id} of the plclab repository, or your own): plclab "
-                          f"grade-bundle path/to/labs/{lab.id}")
+    require_hidden(lab, use="grade-bundle")
     with tempfile.TemporaryDirectory(prefix="plclab-bundle-") as tmp:
         whl = Path(wheel) if wheel else build_wheel(Path(tmp))
         if not whl.is_file() or not whl.name.startswith("plclab-") or whl.suffix != ".whl":

@@ -103,15 +103,10 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
                    multi: bool) -> None:
     from .batch import Unpacked, run_summary
     from .grader import Grader, ProgressBar, summary_table
-    from .lab import load_lab
+    from .lab import load_lab, require_hidden
 
     lab = load_lab(lab_name, ns.labs, deep=True)
-    if lab.student_copy and not ns.visible_only:
-        raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id} that ships "
-                          "with plclab: its hidden scenarios are not in it. Grade with the "
-                          f"instructor's lab folder (labs/{lab.id} of the plclab repository, or "
-                          f"your own: plclab grade path/to/labs/{lab.id} SUBMISSIONS, or --labs "
-                          "DIR), or pass --visible-only to grade on the visible scenarios alone")
+    require_hidden(lab, ns.visible_only)
     if lab.student_copy:
         print(f"note: grading {lab.id} on its visible scenarios only (--visible-only)")
     if multi:
@@ -229,15 +224,12 @@ def lab_audit(ns: argparse.Namespace) -> int:
     import json
 
     from .audit import audit
-    from .lab import load_lab
+    from .lab import load_lab, require_hidden
 
     if ns.mutants < 0:
         raise grade_error("PLC5026", "--mutants must be 0 or more")
     lab = load_lab(ns.lab, ns.labs, deep=True)
-    if lab.student_copy:
-        raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id}: it has no "
-                          "solution, mistakes or hidden scenarios to audit; give the "
-                          "instructor's lab folder")
+    require_hidden(lab, use="lab audit")
     jobs = ns.jobs if ns.jobs is not None else (os.cpu_count() or 1)
     report = audit(lab, limit=ns.mutants, seed=ns.seed, jobs=max(1, jobs))
     print(report.text())

@@ -444,6 +444,22 @@ def get_lab_files(lab: str | os.PathLike, dest: Path, extra: Iterable[str | os.P
         raise grade_error("PLC5050", f"cannot write into {dest}: {e.strerror or e}") from None
 
 
+def require_hidden(lab: Lab, visible_only: bool = False, use: str = "grade") -> None:
+    """PLC5072 when ``lab`` is the student copy shipped with plclab (no hidden scenarios) and
+    ``use`` needs them: ``grade`` and the worker (unless ``visible_only``), ``grade-bundle``
+    and ``lab audit`` (always). The one place this check and its message live (ADR 0040)."""
+    if not lab.student_copy or visible_only:
+        return
+    how = {"grade": f"plclab grade path/to/labs/{lab.id} SUBMISSIONS (or --labs DIR), or pass "
+                    "--visible-only to grade on the visible scenarios alone",
+           "grade-bundle": f"plclab grade-bundle path/to/labs/{lab.id}",
+           "lab audit": f"plclab lab audit path/to/labs/{lab.id}"}[use]
+    raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id} that ships with "
+                      "plclab: its hidden scenarios, solutions and mistakes are not in it. Use "
+                      f"the instructor's lab folder (labs/{lab.id} of the plclab repository, or "
+                      f"your own): {how}")
+
+
 # ---------------------------------------------------------------------------- loading
 
 

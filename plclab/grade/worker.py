@@ -320,8 +320,10 @@ LOG_NAME = "child.log"
 def main(argv: list[str] | None = None) -> int:
     import argparse
 
+    from plclab.errors import PlcError
+
     from .engine import grade_sources, read_submission
-    from .lab import load_lab
+    from .lab import load_lab, require_hidden
 
     p = argparse.ArgumentParser(prog="python -m plclab.grade.worker",
                                 description="grade one submission; print the result as JSON")
@@ -335,10 +337,10 @@ def main(argv: list[str] | None = None) -> int:
                    help="accept a lab without its hidden scenarios (the student copy)")
     ns = p.parse_args(argv)
     lab = load_lab(ns.lab)
-    if lab.student_copy and not ns.visible_only:
-        print(f"error PLC5072: {lab.path} is the student copy of {lab.id}: its hidden "
-              "scenarios are not in it; give the instructor's lab folder (a path) or pass "
-              "--visible-only", file=sys.stderr)
+    try:
+        require_hidden(lab, ns.visible_only)
+    except PlcError as e:
+        print(str(e), file=sys.stderr)
         return 2
     sources, _ = read_submission(ns.submission)
     res = grade_sources(lab, sources, student=os.path.basename(ns.submission.rstrip("/")),
