@@ -38,7 +38,8 @@ from pathlib import Path
 from typing import Any
 
 from .errors import grade_error
-from .protocol import INFRA_RETRIES, LIMITS, Inbox, Rejected
+from .protocol import LIMITS, Inbox, Rejected
+from .spawn import work_prefix
 
 SCHEME = "dask://"
 FINAL_KINDS = (b'["done"', b'["memory"', b'["error"')
@@ -150,7 +151,7 @@ def run_on_worker(payload: tuple[Any, dict[str, str]], job: dict[str, Any],
                   timeout: float) -> dict[str, Any]:
     """The Dask task: one submission graded in a sandboxed child on this worker."""
     lab, checks = payload
-    workdir = Path(tempfile.mkdtemp(prefix=f"plclab-grade-{os.getpid()}-"))
+    workdir = Path(tempfile.mkdtemp(prefix=work_prefix()))
     try:
         full = {**job, "lab": lab, "checks": checks, "workdir": str(workdir),
                 "grader_pid": os.getpid()}
@@ -259,9 +260,7 @@ def run_on_cluster(grader: Any, address: str, todo: deque[Any], total: int,
                 r = lost(sub, d, inbox, f"the cluster could not run this submission: "
                          f"{type(e).__name__}: {e}")
             fut.release()
-            if grader._killed_from_outside(r, r.timed_out) and \
-                    grader._tries.get(sub.dirname, 0) < INFRA_RETRIES:  # noqa: SLF001
-                grader._tries[sub.dirname] = grader._tries.get(sub.dirname, 0) + 1  # noqa: SLF001
+            if grader._grade_again(r, r.timed_out):  # noqa: SLF001
                 for p in list(d.glob("*.png")) + list(d.glob("*.rrd")):
                     p.unlink()  # nothing of the lost try is kept
                 pending.add(submit(sub, d, grader.job_of(sub) | {"sources": job["sources"]}))

@@ -42,7 +42,7 @@ from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
 from .protocol import INFRA_RETRIES, LIMITS, MEDIA_NAME, Inbox, Rejected
 from .safety import clean_text, output_dirname
-from .spawn import child_context, read_child_log
+from .spawn import child_context, read_child_log, work_prefix
 
 GRADER_VERSION = "2"
 _OUTSIDE_SIGNALS = {int(getattr(signal, n)) for n in ("SIGKILL", "SIGTERM", "SIGHUP", "SIGINT")
@@ -142,12 +142,6 @@ def _is_program(p: Path) -> bool:
     except OSError:
         return False
     return stat.S_ISDIR(mode) or stat.S_ISLNK(mode) or p.suffix.lower() in SOURCE_EXTS
-
-
-def work_prefix() -> str:
-    """The prefix of a grading child's temporary folder: it names the grader's process, so a
-    later run can remove what a grader killed with SIGKILL left behind."""
-    return f"plclab-grade-{os.getpid()}-"
 
 
 def remove_stale_workdirs(tmp: str | os.PathLike | None = None) -> int:
@@ -405,10 +399,8 @@ class Grader:
                         r.proc.kill()
                         r.proc.join(timeout=5)
                     r.drain()
-                    if self._killed_from_outside(r, timed_out) and \
-                            self._tries.get(r.sub.dirname, 0) < INFRA_RETRIES:
+                    if self._grade_again(r, timed_out):
                         # not the student's doing: grade it again, nothing is written
-                        self._tries[r.sub.dirname] = self._tries.get(r.sub.dirname, 0) + 1
                         r.close()
                         shutil.rmtree(r.workdir, ignore_errors=True)
                         closing.remove(r)
@@ -428,6 +420,15 @@ class Grader:
                 shutil.rmtree(r.workdir, ignore_errors=True)
             raise
         return finished
+
+    def _grade_again(self, r: Any, timed_out: bool) -> bool:
+        """Whether a finished child (local or replayed from a cluster worker) was killed from
+        outside and may be tried again (at most INFRA_RETRIES times); counts the try."""
+        if not self._killed_from_outside(r, timed_out) or \
+                self._tries.get(r.sub.dirname, 0) >= INFRA_RETRIES:
+            return False
+        self._tries[r.sub.dirname] = self._tries.get(r.sub.dirname, 0) + 1
+        return True
 
     @staticmethod
     def _killed_from_outside(r: Any, timed_out: bool) -> bool:

@@ -13,6 +13,13 @@ from typing import Any
 from .protocol import LIMITS
 
 
+def work_prefix() -> str:
+    """The prefix of a grading child's temporary folder (local or on a Dask worker): it names
+    the grading process, so a later run can remove what one killed with SIGKILL left behind
+    (:func:`plclab.grade.grader.remove_stale_workdirs`)."""
+    return f"plclab-grade-{os.getpid()}-"
+
+
 def child_context() -> Any:
     """The multiprocessing context of grading children: a forkserver that has preloaded
     what they need (:mod:`plclab.grade._preload`), started with the minimal environment;
