@@ -173,10 +173,10 @@ class Result:
 
 
 def language_of(filename: str) -> str | None:
-    """``st``/``il``/``ld``/``xml`` by extension (None for other files); the text after the
-    last dot of the name, so ``..st`` and ``.x.st`` are ST too."""
-    base = filename.replace("\\", "/").rsplit("/", 1)[-1]
-    return SOURCE_EXTS.get("." + base.rsplit(".", 1)[1].lower()) if "." in base else None
+    """``st``/``il``/``ld``/``xml`` by extension (None for other files); ``Path.suffix``, as
+    the grader's folder walk uses, so ``..st`` and ``.x.st`` are ST too (``splitext`` sees no
+    extension in ``..st``)."""
+    return SOURCE_EXTS.get(Path(filename).suffix.lower())
 
 
 def guess_language(text: str) -> str:
