@@ -426,7 +426,7 @@ def _simulate(lab: Lab, compiled: Any, sc: ScenarioSpec) -> Any:
     from plclab.runtime.plc import Plc
     from plclab.sim import Simulation
 
-    plc = Plc(compiled, cycle_time=lab.scan)
+    plc = Plc(compiled, cycle_time=lab.scan, task_intervals=sc.task_intervals)
     sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
                      watch=lab.all_watch(sc), plant_params={**lab.plant_params,
                                                             **sc.plant_params})

@@ -45,7 +45,7 @@ TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", 
 LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
 """``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
-                 "action", "actions", "until", "watch", "recipe")
+                 "action", "actions", "until", "watch", "recipe", "task_intervals")
 CRITERION_KEYS = ("name", "scenario", "scenarios", "check", "python", "params", "points",
                   "message", "hint", "hint_fix", "signals", "window", "description", "requires",
                   "critical", "requirements")
@@ -156,6 +156,8 @@ class ScenarioSpec:
     until: str | None = None
     watch: list[str] = field(default_factory=list)
     recipe: list[tuple[float, str]] = field(default_factory=list)  # (s, record): plclab.scada
+    # the tasks configured at one interval run at another ({"10ms": "20ms"}): plclab.runtime.Plc
+    task_intervals: dict[str, str] = field(default_factory=dict)
 
     def scenario(self, duration: float | None = None) -> Any:
         """The :class:`plclab.sim.Scenario` of this spec."""
@@ -930,7 +932,8 @@ class _Builder:
                                "until")
             spec = ScenarioSpec(name, dur, self.string(s, "description", what, "scenario", i),
                                 seed, vis, dict(pp), [dict(a) for a in acts], until,
-                                self.strings(s, "watch", what, "scenario", i))
+                                self.strings(s, "watch", what, "scenario", i),
+                                task_intervals=self.task_intervals(s, what, i))
             try:
                 sc = spec.scenario()
             except PlcError as e:
@@ -938,6 +941,22 @@ class _Builder:
             self.check_actions(sc, plant_obj, what, i)
             out.append(spec)
         return out
+
+    def task_intervals(self, s: Mapping[str, Any], what: str, i: int) -> dict[str, str]:
+        """``task_intervals = { "10ms" = "20ms" }``: durations on both sides (PLC5004)."""
+        from plclab.runtime.plc import parse_task_intervals
+
+        raw = s.get("task_intervals", {})
+        if not isinstance(raw, Mapping) or not all(isinstance(v, str) for v in raw.values()):
+            raise self.err("PLC5004", f"{what}: task_intervals is a table from the configured "
+                           "interval to the one the scenario runs, e.g. task_intervals = "
+                           "{ \"10ms\" = \"20ms\" }", "scenario", i, "task_intervals")
+        try:
+            parse_task_intervals(raw)
+        except PlcError as e:
+            raise self.err("PLC5004", f"{what}: task_intervals: {e.message}", "scenario", i,
+                           "task_intervals") from None
+        return dict(raw)
 
     def check_actions(self, sc: Any, plant_obj: Any, what: str, i: int) -> None:
         from plclab.sim.simulation import Simulation
@@ -1246,7 +1265,8 @@ def validate_deep(lab: Lab) -> None:
         raise grade_error("PLC5007", f"{lab.id}: the I/O table does not make a valid program: "
                           f"{e}", Location(str(lab.path / "lab.toml"))) from None
     for sc in lab.scenarios:
-        plc = plclab.loads(plc_text, "labcheck.st", cycle_time=lab.scan)
+        plc = plclab.loads(plc_text, "labcheck.st", cycle_time=lab.scan,
+                           task_intervals=sc.task_intervals)
         acts = [a for a in sc.actions if not any(k in a for k in ("var", "force", "unforce"))]
         spec = ScenarioSpec(sc.name, sc.duration, sc.description, sc.seed, sc.visible,
                             sc.plant_params, acts, sc.until, [])

@@ -113,6 +113,17 @@ def check_cycle_ns(ns: int, what: str, location: Location | None = None) -> int:
     return ns
 
 
+def parse_task_intervals(mapping: Any) -> dict[int, int]:
+    """``{"10ms": "20ms"}`` as nanoseconds, each side checked like a cycle time (PLC3011)."""
+    if not mapping:
+        return {}
+    if not hasattr(mapping, "items"):
+        raise PlcError("PLC3011", f"task_intervals={mapping!r}: give a table from the "
+                       "configured interval to the one to run, e.g. {'10ms': '20ms'}")
+    return {check_cycle_ns(to_ns(k), "a task interval"): check_cycle_ns(to_ns(v), "a task "
+            "interval") for k, v in mapping.items()}
+
+
 def _fmt_ns(ns: int) -> str:
     if ns <= 0 or ns % 1_000_000:
         return f"{ns} ns"
@@ -188,12 +199,18 @@ class Plc:
         Loop iterations allowed per scan before a scan-overrun fault (deterministic).
     image_size : int
         Bytes of each process image area (%I, %Q, %M), 8 to 65536.
+    task_intervals : mapping, optional
+        Run the tasks configured at one interval at another, ``{"10ms": "20ms"}``: the same
+        program on a controller whose tasks are scheduled differently (a lab checks that a
+        program measures its periods instead of assuming them). Keys that no task has are
+        ignored; the default cyclic task counts as configured at ``cycle_time``.
     """
 
     def __init__(self, compiled: Compiled, cycle_time: Any = "10ms",
                  watchdog: int = 2_000_000, image_size: int = 1024,
                  system_memory_byte: int | None = None,
-                 clock_memory_byte: int | None = None) -> None:
+                 clock_memory_byte: int | None = None,
+                 task_intervals: Any = None) -> None:
         self.compiled = compiled
         self.project = compiled.project
         self.cycle_ns = check_cycle_ns(to_ns(cycle_time), "the cycle time")
@@ -227,7 +244,7 @@ class Plc:
         self.fault: PlcRuntimeFault | None = None
         self._natives = {k: natives.resolve(v) for k, v in compiled.natives.items()}
         self._var_cache: dict[str, Var] = {}
-        self.tasks = self._make_tasks()
+        self.tasks = self._make_tasks(parse_task_intervals(task_intervals))
         self._tick_ns = _gcd_all([t.interval_ns for t in self.tasks] or [self.cycle_ns])
         if self._tick_ns < MIN_CYCLE_NS:
             raise PlcError("PLC3011", "the task intervals (" + ", ".join(
@@ -236,7 +253,7 @@ class Plc:
         self.cold_restart()
 
     # -- set-up -------------------------------------------------------------------------------
-    def _make_tasks(self) -> list[Task]:
+    def _make_tasks(self, retime: dict[int, int]) -> list[Task]:
         tasks: dict[str, Task] = {}
         for td in self.project.tasks:
             iv = self.cycle_ns
@@ -246,8 +263,8 @@ class Plc:
                     iv = v  # ns, range-checked by the checker (PLC0129)
             prio = getattr(td.priority, "value", 0) if td.priority is not None else 0
             name = f"{td.resource}.{td.name}" if td.resource else td.name  # ADR 0037
-            tasks[name] = Task(name, iv, int(prio or 0), [])
-        default = Task("__default__", self.cycle_ns, 0, [])
+            tasks[name] = Task(name, retime.get(iv, iv), int(prio or 0), [])
+        default = Task("__default__", retime.get(self.cycle_ns, self.cycle_ns), 0, [])
         for inst, _, task in self.project.programs:
             (tasks[task] if task in tasks else default).programs.append(inst)
         out = sorted(tasks.values(), key=lambda t: t.priority)
