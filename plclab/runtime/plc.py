@@ -113,6 +113,26 @@ def check_cycle_ns(ns: int, what: str, location: Location | None = None) -> int:
     return ns
 
 
+MAX_SHOWN = 1000  # elements of an array that format_typed writes out
+
+
+def format_typed(v: Any, ty: Any) -> str:
+    """``v`` as an IEC literal of its declared type: arrays as ``[1, 2]`` (flat, as an array
+    initializer; the first :data:`MAX_SHOWN` elements), structures as ``(X := 1, S := 'a')``,
+    every element formatted by its own type (``T#1s``, ``'a$N'``), never a Python repr."""
+    r = T.resolve(ty) if ty is not None else None
+    if isinstance(r, T.ArrayType) and isinstance(v, list):
+        shown = [format_typed(e, r.elem) for e in v[:MAX_SHOWN]]
+        if len(v) > MAX_SHOWN:
+            shown.append(f"... {len(v) - MAX_SHOWN} more")
+        return "[" + ", ".join(shown) + "]"
+    if isinstance(r, T.StructType) and hasattr(type(v), "__slots__"):
+        return "(" + ", ".join(
+            f"{getattr(d, 'spelling', None) or n} := {format_typed(getattr(v, n.upper(), None), d.ty)}"
+            for n, d in r.fields.items()) + ")"
+    return format_value(v, kind_name(ty))
+
+
 def parse_task_intervals(mapping: Any) -> dict[int, int]:
     """``{"10ms": "20ms"}`` as nanoseconds, each side checked like a cycle time (PLC3011)."""
     if not mapping:
@@ -716,7 +736,7 @@ class Plc:
     def get(self, path: str, iec: bool = False) -> Any:
         v = self.var(path)
         val = v.get()
-        return format_value(val, kind_name(v.type)) if iec else val
+        return format_typed(val, v.type) if iec else val
 
     def format(self, path: str) -> str:
         """The value as an IEC literal (``T#1s``, ``TRUE``, ``7.8``)."""

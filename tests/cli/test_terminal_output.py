@@ -47,6 +47,32 @@ def test_run_print_shows_iec_values(tmp_path, capsys):
     assert "Main.w = '$D800'" in out and "Main.s = 'a$1B[2Kb'" in out
 
 
+AGGREGATES = """TYPE Pt : STRUCT x : INT; s : STRING; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR
+    names : ARRAY[1..3] OF STRING := ['a', 'b$N', 'c'];
+    grid : ARRAY[0..1, 0..1] OF TIME;
+    ps : ARRAY[1..2] OF Pt;
+    big : ARRAY[1..1500] OF BOOL;
+END_VAR
+ps[2].s := 'q$1B';
+grid[1, 1] := T#2s;
+END_PROGRAM
+"""
+
+
+def test_run_print_shows_arrays_and_structures_element_by_element(tmp_path, capsys):
+    f = tmp_path / "agg.st"
+    f.write_text(AGGREGATES, encoding="utf-8")
+    assert main(["run", str(f), "--cycles", "1", "--print", "names,grid,ps,big"]) == 0
+    out = capsys.readouterr().out
+    assert _raw(out) == [] and " object at 0x" not in out
+    assert "names = ['a', 'b$N', 'c']" in out
+    assert "grid = [T#0ms, T#0ms, T#0ms, T#2s]" in out
+    assert "ps = [(x := 0, s := ''), (x := 0, s := 'q$1B')]" in out
+    assert "FALSE, ... 500 more]" in out
+
+
 def test_diagnostics_escape_what_they_quote():
     d = Diagnostic("PLC0001", "unexpected character '\x1b'\r")
     assert _raw(str(d)) == [] and "\\x1b" in str(d)

@@ -398,6 +398,19 @@ r := REF(x); F := r^; END_FUNCTION""")
                               "END_PROGRAM")
 
 
+@pytest.mark.parametrize("decl,words", [
+    ("r : REF_TO REAL;", "write r := REF(speed); for a REF_TO REAL"),
+    ("r : REAL;", "declare r : REFERENCE TO REAL (codesys dialect)"),
+])
+def test_ref_assign_to_what_is_no_reference_to_says_which_operator(decl, words):
+    src = f"PROGRAM P VAR speed : REAL; {decl} END_VAR r REF= speed; END_PROGRAM"
+    assert codes(src) == ["PLC0244"]
+    assert words in errors(src)[0] and "set/reset" not in errors(src)[0]
+    ok = "{dialect 'codesys'}\nPROGRAM P VAR speed : REAL; r : REFERENCE TO REAL; x : REAL; " \
+         "END_VAR r REF= speed; x := r; END_PROGRAM"
+    assert codes(ok) == []
+
+
 START_PUMP = """FUNCTION_BLOCK Pump
 VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
 METHOD Start : BOOL

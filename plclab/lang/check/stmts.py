@@ -117,8 +117,17 @@ class Statements(Pass, NodeVisitor):
         vt = self.cx.exprs.expr(s.value, tt)
         if s.op == ":=":
             self.cx.exprs.check_assignable(vt, tt, s.value, s.loc)
+        elif s.op == "REF=":  # left when the target is no REFERENCE TO (lower.reference_to)
+            from ..unparse import expr
+
+            name = expr(s.target)
+            fix = (f"write {name} := REF({expr(s.value)}); for a {tt}"
+                   if isinstance(T.resolve(tt), T.RefType) else
+                   f"declare {name} : REFERENCE TO {vt} (codesys dialect), or assign a value "
+                   f"with {name} := {expr(s.value)};")
+            self.err("PLC0244", f"REF= binds a REFERENCE TO, but {name} is {tt}; {fix}", s.loc)
         else:
-            self.cond_type(vt, s.value, "a set/reset coil")
+            self.cond_type(vt, s.value, "set/reset coil")
 
     def visit_CallStmt(self, s: A.CallStmt) -> None:
         self.cx.calls.call(s.call, statement=True)
