@@ -1213,6 +1213,8 @@ class Codegen(FastPaths):
             if d is T.LREAL:
                 if isinstance(e, A.Literal) and isinstance(e.value, int | float):
                     return _float_code(e.value, single=False)
+                if T.base_of(s) is T.REAL and e is not None:  # a REAL sum is a REAL value
+                    return self.own_value(code, e)  # (ADR 0038): as REAL_TO_LREAL sees it
                 if T.base_of(s).kind == "real":
                     return code
                 return f"_fl({code})"

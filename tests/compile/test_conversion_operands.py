@@ -34,6 +34,12 @@ def main(decls: str, body: str) -> Plc:
     ("r : REAL := 16777216.0; k : DINT;", "k := REAL_TO_DINT(r + 1.0);", "k", 16777216),
     ("r : REAL := 16777216.0; k : DINT;", "k := TRUNC_DINT(r + 1.0);", "k", 16777216),
     ("r : REAL := 16777216.0; x : LREAL;", "x := REAL_TO_LREAL(r + 1.0);", "x", 16777216.0),
+    # ... and so is the implicit widening of the same sum (ADR 0038, decision 4)
+    ("r : REAL := 16777216.0; x : LREAL;", "x := r + 1.0;", "x", 16777216.0),
+    ("r : REAL := 16777216.0; x : LREAL;", "x := MAX(r + 1.0, 0.0);", "x", 16777216.0),
+    ("r : REAL := 0.1; x : LREAL;", "x := r;", "x", float.fromhex("0x1.99999ap-4")),
+    # an LREAL sum stays a double
+    ("r : LREAL := 16777216.0; x : LREAL;", "x := r + 1.0;", "x", 16777217.0),
     # a stored value needs nothing: the same conversions of variables
     ("s : SINT := -128; i : INT;", "i := SINT_TO_INT(s);", "i", -128),
     ("u : UINT := 65535; d : UDINT;", "d := UINT_TO_UDINT(u);", "d", 65535),
@@ -47,6 +53,21 @@ def main(decls: str, body: str) -> Plc:
 ])
 def test_a_converted_operand_is_a_value_of_its_type(decls, body, name, want):
     assert main(decls, body)[name] == want
+
+
+def test_an_lreal_input_given_a_real_sum_gets_the_real_value():
+    plc = scan("""
+FUNCTION Id : LREAL
+VAR_INPUT x : LREAL; END_VAR
+Id := x;
+END_FUNCTION
+PROGRAM Main
+VAR r : REAL := 16777216.0; a, b : LREAL; END_VAR
+a := Id(r + 1.0);
+b := Id(REAL_TO_LREAL(r + 1.0));
+END_PROGRAM
+""")
+    assert plc["a"] == plc["b"] == 16777216.0
 
 
 def test_a_widened_value_never_leaves_the_target_type():

@@ -14,7 +14,8 @@ The rules the reference follows:
 * REAL is IEEE single: every store into a REAL (and every conversion or math function with a
   REAL result) rounds to nearest, ties to even; the operators keep intermediates in double;
 * implicit conversions only widen (IEC 61131-3 3rd ed., Figure 11); a widened integer keeps its
-  exact value, TIME widens to LTIME as nanoseconds;
+  exact value, TIME widens to LTIME as nanoseconds; a REAL expression widened to LREAL is the
+  REAL value first (rounded to single, as ``REAL_TO_LREAL`` of it: ADR 0038, decision 4);
 * REAL -> integer rounds half away from zero, TRUNC toward zero, NaN/inf is PLC2006;
 * bit strings: SHL/SHR shift in zeros (a count >= the width gives 0), ROL/ROR rotate modulo the
   width, a negative count is PLC2020;
@@ -208,6 +209,8 @@ def widened(v: Any, src: str, dst: str) -> Any:
     """The value of an implicit widening from src to dst."""
     if src == dst:
         return v
+    if src == "REAL" and dst == "LREAL":
+        return single(v)
     if dst in REALS:
         return to_double(v) if isinstance(v, int) else v
     if src == "TIME" and dst == "LTIME":
