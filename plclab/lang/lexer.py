@@ -380,8 +380,18 @@ class Lexer:
     def _string(self, pos: int, line: int, col: int, wide: bool) -> tuple[Token | None, int, bool]:
         text, quote = self.text, self.text[pos]
         i, n, buf = pos + 1, len(self.text), []
+        doubled = False
         while i < n:
             c = text[i]
+            if c == quote and text[i + 1:i + 2] == quote:  # 'it''s' (SQL, Pascal): not ST
+                if not doubled:  # one error a string
+                    self.error("PLC0003", f"a doubled {quote}{quote} inside a string ends it in "
+                               f"ST (CODESYS and TwinCAT too); write the quote as ${quote}, e.g. "
+                               f"{quote}it${quote}s{quote}", line, col + i - pos)
+                doubled = True
+                buf.append(c)
+                i += 2
+                continue
             if c == quote:
                 s = "".join(buf)
                 kind = "WSTRING" if wide else "STRING"

@@ -73,6 +73,23 @@ def test_unclosed_comment_and_string_are_reported():
     assert lx.diagnostics[0].code == "PLC0003"
 
 
+@pytest.mark.parametrize("text,value", [("'it''s'", "it's"), ('"say ""hi"""', 'say "hi"')])
+def test_a_doubled_quote_in_a_string_is_one_error_naming_the_escape(text, value):
+    lx = Lexer(f"x := {text};", "c.st")
+    toks = lx.tokens()
+    assert [d.code for d in lx.diagnostics] == ["PLC0003"]
+    assert "$" + text[0] in lx.diagnostics[0].message
+    assert [t.value for t in toks if t.kind in ("STRING", "WSTRING")] == [value]
+
+
+@pytest.mark.parametrize("text,value", [("''", ""), ("'$''", "'"), ("'a$'$'b'", "a''b")])
+def test_empty_strings_and_escaped_quotes_are_clean(text, value):
+    lx = Lexer(f"x := {text};", "c.st")
+    toks = lx.tokens()
+    assert lx.diagnostics == []
+    assert [t.value for t in toks if t.kind == "STRING"] == [value]
+
+
 def test_identifiers_and_keywords_are_case_insensitive():
     f = parse_st("program p var MyVar : int; end_var myvar := MYVAR + 1; END_PROGRAM")
     assert f.pous[0].name == "P"

@@ -411,6 +411,45 @@ def test_ref_assign_to_what_is_no_reference_to_says_which_operator(decl, words):
     assert codes(ok) == []
 
 
+OVERRIDES = """FUNCTION_BLOCK Base
+METHOD PUBLIC GetTag : INT
+GetTag := 1;
+END_METHOD
+END_FUNCTION_BLOCK
+INTERFACE ITagged
+METHOD Name : INT
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK Derived EXTENDS Base IMPLEMENTS ITagged
+METHOD PUBLIC OVERRIDE GetTag : INT
+GetTag := 2;
+END_METHOD
+METHOD OVERRIDE Name : INT
+Name := 3;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR b : Base; d : Derived; i : ITagged; t, u, n : INT; END_VAR
+i := d;
+t := d.GetTag();
+u := b.GetTag();
+n := i.Name();
+END_PROGRAM
+"""
+
+
+def test_ed3_override_keyword_overrides():
+    plc = plclab.loads(OVERRIDES)
+    plc.scan()
+    assert (plc["Main.t"], plc["Main.u"], plc["Main.n"]) == (2, 1, 3)
+
+
+def test_override_without_a_base_method_is_an_error():
+    src = OVERRIDES.replace("OVERRIDE GetTag : INT\nGetTag := 2", "OVERRIDE GetTags : INT\nGetTags := 2")
+    assert codes(src) == ["PLC0245"]
+    assert "remove OVERRIDE or check the name" in errors(src)[0]
+
+
 START_PUMP = """FUNCTION_BLOCK Pump
 VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
 METHOD Start : BOOL

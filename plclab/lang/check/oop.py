@@ -162,6 +162,13 @@ class ObjectChecks(Pass):
         for m in p.methods:
             base = inherited.get(m.name)
             if base is None:
+                if "OVERRIDE" in m.modifiers and not any(  # IEC 61131-3 ed.3: it overrides
+                        im.name == m.name for i in self.interfaces_of(p) for im in i.methods):
+                    where = (f"the blocks {_label(p)} extends" if bases else
+                             f"{_label(p)}, which extends no block")
+                    self.err("PLC0245", f"METHOD {_label(m)} is declared OVERRIDE, but no "
+                             f"method of that name exists in {where}; remove OVERRIDE or "
+                             "check the name", m.loc)
                 continue
             if "FINAL" in base.modifiers:
                 self.err("PLC0224", f"METHOD {_label(m)} overrides a FINAL method of "

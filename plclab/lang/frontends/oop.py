@@ -25,7 +25,7 @@ from .. import ast as A
 from ..lexer import Token, add_capped
 from ..parsing import ParseAbort
 
-MODIFIERS = ("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")
+MODIFIERS = ("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL", "OVERRIDE")
 HEADER_WORDS = ("EXTENDS", "IMPLEMENTS")
 # words after which a statement list of a method or an FB body ends
 BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY", "END_GET", "END_SET",
