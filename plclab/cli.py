@@ -46,6 +46,8 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
 @arg("--no-lint", action="store_true", help="without the beginner warnings (PLC0210-PLC0216)")
 @arg("--lab", default=None, metavar="LAB", help="also compare the addresses with the I/O "
      "table of this lab")
+@arg("-v", "--verbose", action="store_true", help="also say in which dialect each file is read "
+     "and why (its pragma, --dialect, the tool that wrote it, or the default)")
 def cmd_check(ns: argparse.Namespace) -> int:
     from .project import check_sources, read_sources
 
@@ -54,8 +56,17 @@ def cmd_check(ns: argparse.Namespace) -> int:
         from .grade.lab import load_lab
 
         io_table = load_lab(ns.lab).io
-    _, diags = check_sources(read_sources(ns.files), ns.dialect, lint=not ns.no_lint,
-                             io_table=io_table)
+    sources = read_sources(ns.files)
+    if ns.verbose:
+        from .lang.dialect import explain_choice
+
+        for text, filename in sources:
+            try:
+                name, why = explain_choice(text, ns.dialect, filename)
+            except PlcError as e:
+                name, why = "?", e.message
+            print(f"{printable(filename)}: dialect {name} ({why})")
+    _, diags = check_sources(sources, ns.dialect, lint=not ns.no_lint, io_table=io_table)
     if ns.no_warnings:
         diags = [d for d in diags if d.severity == "error"]
     errors, warnings = _print_diags(diags)

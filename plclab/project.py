@@ -114,6 +114,9 @@ def check_sources(sources: list[tuple[str, str]], dialect: str | None = None, *,
         from .lang.check.lint import lint as beginner_lint
 
         all_diags += beginner_lint(files, io_table)
+    from .lang.beremiz_extensions import explain
+
+    all_diags = explain(all_diags, sources, dialect)
     # errors before warnings, each in source order (the checks of a whole program, like the
     # data size, run last; a student must see them before the warnings)
     all_diags.sort(key=lambda d: (d.severity != "error",) + (

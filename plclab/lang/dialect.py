@@ -1,7 +1,9 @@
 """Dialects: what differs between strict IEC 61131-3, CODESYS, TIA Portal (S7) and MATIEC.
 
 A file's dialect is, first found: its ``{dialect 'NAME'}`` pragma, the dialect the caller gives
-(``plclab check --dialect``, ``plclab.load(..., dialect=...)``, ``dialect`` in ``lab.toml``), or
+(``plclab check --dialect``, ``plclab.load(..., dialect=...)``, ``dialect`` in ``lab.toml``), the
+tool that wrote it (a PLCopen XML file from Beremiz or OpenPLC Editor is ``matiec``: its
+``fileHeader``, or a ``beremiz.xml`` project file beside it; :func:`origin`), or
 :data:`DEFAULT`. ADR 0017 says why the default is ``codesys``; the README's compliance list has the
 table of differences.
 
@@ -13,6 +15,7 @@ table of differences.
 
 from __future__ import annotations
 
+import os
 import re
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -21,7 +24,7 @@ from dataclasses import dataclass
 from ..errors import Location, PlcError
 
 __all__ = ["Dialect", "PROFILES", "DEFAULT", "profile", "current", "using", "dialect_pragma",
-           "choose"]
+           "choose", "explain_choice", "origin"]
 
 
 @dataclass(frozen=True)
@@ -116,9 +119,67 @@ def dialect_pragma(text: str) -> str | None:
     return m.group(1).lower() if m else None
 
 
-def choose(text: str, given: str | None, file: str = "<input>") -> str:
-    """A file's dialect: its pragma, else ``given``, else :data:`DEFAULT` (PLC0170 if unknown)."""
+_HEADER = re.compile(r"<fileHeader\b[^>]*>", re.IGNORECASE)
+_ATTR = re.compile(r"""\b(companyName|productName)\s*=\s*["']([^"']*)["']""", re.IGNORECASE)
+# PLCopen editor defaults: Beremiz's and OpenPLC Editor's new project ("Unknown", "Unnamed")
+_MATIEC_WRITERS = ("beremiz", "openplc", "plcopeneditor")
+
+
+def origin(text: str, file: str = "<input>") -> tuple[str, str] | None:
+    """The dialect of a PLCopen XML file from the tool that wrote it, with the reason, or None.
+
+    Beremiz and OpenPLC Editor compile with MATIEC, so their files are read as ``matiec``
+    (``%QD0.2``, ed.2 rules). Their ``fileHeader`` names Beremiz, OpenPLC or the editor's
+    defaults (company "Unknown", product "Unnamed"); a Beremiz project also has a
+    ``beremiz.xml`` beside its ``plc.xml``.
+
+    >>> origin('<project><fileHeader companyName="Beremiz" productName="Beremiz"/></project>')
+    ('matiec', 'its PLCopen fileHeader names Beremiz')
+    >>> origin('<fileHeader companyName="CODESYS" productName="CODESYS"/>') is None
+    True
+    """
+    if not file.lower().endswith(".xml") and not text.lstrip().startswith("<"):
+        return None
+    head = _HEADER.search(text[:4096])
+    if head:
+        attrs = {k.lower(): v.strip() for k, v in _ATTR.findall(head.group(0))}
+        values = " ".join(attrs.values()).lower()
+        for w in _MATIEC_WRITERS:
+            if w in values:
+                who = next(v for v in attrs.values() if w in v.lower())
+                return "matiec", f"its PLCopen fileHeader names {who}"
+        if attrs.get("companyname") == "Unknown" and attrs.get("productname") == "Unnamed":
+            return "matiec", ("its PLCopen fileHeader has the Beremiz / OpenPLC Editor defaults "
+                              "(Unknown, Unnamed)")
+    folder = os.path.dirname(file)
+    if file.lower().endswith(".xml") and folder and os.path.isfile(
+            os.path.join(folder, "beremiz.xml")):
+        return "matiec", "a Beremiz project file (beremiz.xml) lies beside it"
+    return None
+
+
+def explain_choice(text: str, given: str | None, file: str = "<input>") -> tuple[str, str]:
+    """A file's dialect and why: its pragma, else ``given``, else the tool that wrote it
+    (:func:`origin`), else :data:`DEFAULT` (PLC0170 if unknown)."""
     named = dialect_pragma(text)
+    if named:
+        return choose(text, given, file), "its {dialect} pragma"
+    if given:
+        return choose(text, given, file), "chosen by the caller (--dialect or the lab)"
+    found = origin(text, file)
+    if found:
+        return found
+    return DEFAULT, "the default, ADR 0017"
+
+
+def choose(text: str, given: str | None, file: str = "<input>") -> str:
+    """A file's dialect: its pragma, else ``given``, else the tool that wrote it
+    (:func:`origin`), else :data:`DEFAULT` (PLC0170 if unknown)."""
+    named = dialect_pragma(text)
+    if not named and not given:
+        found = origin(text, file)
+        if found:
+            return found[0]
     try:
         return profile(named or given or DEFAULT).name
     except PlcError as exc:

@@ -1,0 +1,76 @@
+"""Names that a Beremiz project's extensions declare, and plclab does not run.
+
+A Beremiz project (``plc.xml`` with a ``beremiz.xml`` beside it) may use globals and types that
+no IEC file declares: its extensions (the ``NAME@EXT`` folders: Python ``py_ext``, the SVG HMI
+``svghmi``, MQTT, OPC UA, ...) add them when Beremiz builds the project. plclab reads the IEC
+part only, so such a name is unknown; instead of "no matching VAR_GLOBAL" (PLC0100) or "unknown
+type" (PLC0102) the student learns which extension declares it (PLC0246) and how to stand in
+for it in a simulation.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import replace
+
+from ..errors import Diagnostic
+from .dialect import origin
+
+EXTENSIONS = {
+    "py_ext": "Python (py_ext)", "svghmi": "SVG HMI (svghmi)", "wxglade_hmi": "wxGlade HMI",
+    "mqtt": "MQTT", "opcua": "OPC UA", "modbus": "Modbus", "canfestival": "CANopen",
+    "bacnet": "BACnet", "c_ext": "C code (c_ext)", "wamp": "WAMP",
+}
+_EXTERNAL = re.compile(r"^VAR_EXTERNAL (\S+) has no matching VAR_GLOBAL")
+_TYPE = re.compile(r"^unknown type (HMI_[A-Z0-9_]+)")
+
+
+def extensions_of(filename: str) -> list[str]:
+    """The extensions of the Beremiz project ``filename`` belongs to (its ``NAME@EXT``
+    folders), as readable names."""
+    folder = os.path.dirname(os.path.abspath(filename))
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return []
+    found = []
+    for n in names:
+        ext = n.rpartition("@")[2].lower() if "@" in n else ""
+        if ext and os.path.isdir(os.path.join(folder, n)):
+            label = EXTENSIONS.get(ext, ext)
+            if label not in found:
+                found.append(label)
+    return found
+
+
+def explain(diags: list[Diagnostic], sources: list[tuple[str, str]],
+            given: str | None) -> list[Diagnostic]:
+    """``diags`` with PLC0100/PLC0102 of names a Beremiz extension declares turned into
+    PLC0246 naming the extension (files read as Beremiz's by :func:`dialect.origin`)."""
+    beremiz = {f: extensions_of(f) for text, f in sources
+               if not given and origin(text, f) is not None}
+    if not beremiz:
+        return diags
+    out = []
+    for d in diags:
+        exts = beremiz.get(d.location.file) if d.location is not None else None
+        m_ext = _EXTERNAL.match(d.message) if d.code == "PLC0100" else None
+        m_type = _TYPE.match(d.message) if d.code == "PLC0102" else None
+        if exts is None or not (m_ext or m_type):
+            out.append(d)
+            continue
+        if m_type:
+            name = m_type.group(1)
+            msg = (f"{name} is a type of Beremiz's SVG HMI extension (svghmi), which plclab does "
+                   f"not run; to simulate the program declare TYPE {name} : "
+                   f"{name[4:]}; END_TYPE in a file of your own")
+        else:
+            name = m_ext.group(1)
+            who = (f"the Beremiz project's extension {exts[0]}" if len(exts) == 1 else
+                   f"one of the Beremiz project's extensions ({', '.join(exts)})" if exts else
+                   "an extension of the Beremiz project (Python, SVG HMI, WAMP, MQTT...)")
+            msg = (f"VAR_EXTERNAL {name} is declared by {who}, which plclab does not run; to "
+                   f"simulate the program declare {name} in a VAR_GLOBAL of a file of your own")
+        out.append(replace(d, code="PLC0246", message=msg))
+    return out

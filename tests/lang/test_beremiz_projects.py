@@ -1,0 +1,101 @@
+"""A PLCopen XML file is read in the dialect of the tool that wrote it (issue 33): Beremiz and
+OpenPLC Editor compile with MATIEC, so their files are ``matiec`` without an option; a pragma or
+``--dialect`` still wins; names that a Beremiz extension declares are PLC0246 naming it."""
+
+import pytest
+
+from plclab.cli import main
+from plclab.lang.dialect import explain_choice, origin
+from plclab.project import check_sources
+
+PLC_XML = """<?xml version='1.0' encoding='utf-8'?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201">
+  <fileHeader companyName="{company}" productName="{product}" productVersion="1"
+              creationDateTime="2018-07-27T13:19:12"/>
+  <contentHeader name="Unnamed" modificationDateTime="2022-07-21T11:39:43"/>
+  <types>
+    <dataTypes/>
+    <pous>
+      <pou name="Main" pouType="program">
+        <interface>
+          <localVars>
+            <variable name="level" address="%QD0.2"><type><DINT/></type></variable>
+          </localVars>
+          {externals}
+        </interface>
+        <body><ST><xhtml:p xmlns:xhtml="http://www.w3.org/1999/xhtml"><![CDATA[
+level := level + 1;
+]]></xhtml:p></ST></body>
+      </pou>
+    </pous>
+  </types>
+  <instances>
+    <configurations>
+      <configuration name="Config0">
+        <resource name="Res0">
+          <task name="T" interval="T#20ms" priority="0"><pouInstance name="M" typeName="Main"/></task>
+        </resource>
+      </configuration>
+    </configurations>
+  </instances>
+</project>
+"""
+PYVAR = ('<externalVars><variable name="PyVar0"><type><INT/></type></variable></externalVars>')
+
+
+def write(folder, company="Beremiz", product="Beremiz", externals="", beremiz=False):
+    folder.mkdir(parents=True, exist_ok=True)
+    f = folder / "plc.xml"
+    f.write_text(PLC_XML.format(company=company, product=product, externals=externals),
+                 encoding="utf-8")
+    if beremiz:
+        (folder / "beremiz.xml").write_text("<BeremizRoot/>", encoding="utf-8")
+    return f
+
+
+def errors(f, dialect=None):
+    _, diags = check_sources([(f.read_text(encoding="utf-8"), str(f))], dialect)
+    return [d for d in diags if d.severity == "error"]
+
+
+@pytest.mark.parametrize("company,product", [("Beremiz", "Beremiz"), ("beremiz", "beremiz"),
+                                             ("Unknown", "Unnamed"), ("", "Beremiz"),
+                                             ("Unknown", "OpenPLC")])
+def test_beremiz_and_openplc_files_are_read_as_matiec(tmp_path, company, product):
+    f = write(tmp_path, company, product)
+    assert origin(f.read_text(), str(f))[0] == "matiec"
+    assert errors(f) == []
+
+
+def test_a_beremiz_project_file_beside_it_is_enough(tmp_path):
+    f = write(tmp_path, "SMARTEH d.o.o.", "LHC2", beremiz=True)
+    assert explain_choice(f.read_text(), None, str(f)) == (
+        "matiec", "a Beremiz project file (beremiz.xml) lies beside it")
+    assert errors(f) == []
+
+
+def test_other_tools_keep_the_default_and_an_option_wins(tmp_path):
+    other = write(tmp_path / "codesys", "CODESYS", "CODESYS V3.5")
+    assert origin(other.read_text(), str(other)) is None
+    assert [d.code for d in errors(other)]  # %QD0.2 has no bit part in codesys
+    beremiz = write(tmp_path / "bz")
+    assert [d.code for d in errors(beremiz, "codesys")]  # --dialect codesys wins
+    text = beremiz.read_text().replace("level := level + 1;", "{dialect 'codesys'}\nlevel := 1;")
+    assert explain_choice(text, None, str(beremiz))[1] == "its {dialect} pragma"
+
+
+def test_a_name_from_an_extension_is_plc0246_naming_it(tmp_path):
+    f = write(tmp_path, externals=PYVAR, beremiz=True)
+    (tmp_path / "py_ext_0@py_ext").mkdir()
+    (diag,) = errors(f)
+    assert diag.code == "PLC0246"
+    assert "PYVAR0" in diag.message and "Python (py_ext)" in diag.message
+    # the same file outside a Beremiz project: the ordinary error
+    plain = write(tmp_path / "plain", "CODESYS", "CODESYS", externals=PYVAR)
+    assert [d.code for d in errors(plain)] != ["PLC0246"]
+
+
+def test_check_verbose_says_which_dialect_and_why(tmp_path, capsys):
+    f = write(tmp_path)
+    assert main(["check", "-v", str(f)]) == 0
+    assert "dialect matiec (its PLCopen fileHeader names Beremiz)" in capsys.readouterr().out
