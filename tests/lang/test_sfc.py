@@ -56,6 +56,26 @@ def test_a_chart_runs_through_the_api_and_exposes_step_and_action_flags():
     assert plc.format("Main.Run.T") == "T#40ms" and plc["Main.n"] == 5
 
 
+@pytest.mark.parametrize("qualifier,runs", [
+    # entering Run at scan 1, leaving it at scan 4 (back), three more scans in Idle
+    ("N", 4),   # scans 1-3 active, scan 4 the final scan after Q fell
+    ("P", 2),   # the pulse at scan 1, its final scan at scan 2
+    ("P1", 1),  # a pulse on activation: exactly one execution, no final scan (ed.2 NOTE 3)
+    ("P0", 1),  # a pulse on deactivation: exactly one execution
+])
+def test_action_executions_per_qualifier(qualifier, runs):
+    plc = plclab.loads(CHART.replace("Count(N)", f"Count({qualifier})"), "chart.st")
+    plc["Main.go"] = True
+    plc.scan()
+    plc["Main.go"] = False
+    plc.scan(2)
+    plc["Main.back"] = True
+    plc.scan()
+    plc["Main.back"] = False
+    plc.scan(3)
+    assert plc["Main.n"] == runs
+
+
 def test_sfc_words_stay_ordinary_names_outside_a_chart():
     text = """
 PROGRAM Main
