@@ -56,6 +56,11 @@ class Dialect:
     # with the warning PLC0283 and rounds as REAL_TO_INT does (CODESYS compiles it with a
     # message; ADR 0035); elsewhere it is PLC0118
     implicit_real_to_int: bool = False
+    # ``i := d;`` / ``cnt := n;``: an integer or bit string stored in an integer or bit string
+    # it does not widen to (DINT into INT, INT into BYTE, UINT into INT) compiles with the
+    # warning PLC0285 and wraps as DINT_TO_INT does: CODESYS accepts such an implicit
+    # conversion and only warns about the sign (C0195, C0196); elsewhere it is PLC0118
+    implicit_int_conversion: bool = False
     # ``SIZEOF(x)``: the bytes of a variable or a type, a constant (CODESYS online help,
     # "Operator SIZEOF"; :mod:`plclab.lang.sizeof`); elsewhere PLC0106
     sizeof: bool = False
@@ -77,6 +82,7 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
             hierarchical_words=True),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
             end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
+            implicit_int_conversion=True,
             sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,

@@ -187,3 +187,20 @@ def test_s7_folds_a_constant_sum_in_the_operands_width():
     plc = Plc(plclab.compile_sources([(src, "p.st")], dialect="s7"))
     plc.scan()
     assert plc["x"] == 0  # 24584 + 32766 is -8186 in an INT; -8186 / 32767 truncates to 0
+
+
+@pytest.mark.parametrize("decls,body,name,want", [
+    ("n : DINT := 70000; i : INT;", "i := n;", "i", 4464),
+    ("n : INT := -1; b : BYTE;", "b := n;", "b", 255),
+    ("u : UINT := 65535; i : INT;", "i := u;", "i", -1),
+])
+def test_codesys_implicit_integer_conversion_wraps_like_the_conversion(decls, body, name, want):
+    from plclab.project import check_sources
+
+    src = f"PROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n"
+    assert main(decls, body)[name] == want  # the default dialect is codesys
+    warned = [d.code for d in check_sources([(src, "p.st")])[1]]
+    assert "PLC0285" in warned
+    strict = [d.code for d in check_sources([("{dialect 'iec'}\n" + src, "p.st")])[1]
+              if d.severity == "error"]
+    assert strict == ["PLC0118"]

@@ -37,7 +37,7 @@ CASES = {
     "PLC0115": P.format(body="CASE x OF 1: b := TRUE; 1: b := FALSE; END_CASE"),
     "PLC0116": "PROGRAM P VAR t : TON; q : BOOL; END_VAR t(IN := TRUE); q := t.QQ; END_PROGRAM",
     "PLC0117": P.format(body="x := x[1];"),
-    "PLC0118": P.format(body="x := d;"),
+    "PLC0118": "{dialect 'iec'}\n" + P.format(body="x := d;"),
     "PLC0119": "FUNCTION F : INT VAR_INPUT n : INT; END_VAR n := n; END_FUNCTION",
     "PLC0120": "PROGRAM P VAR x AT %IX0.0 : INT; END_VAR END_PROGRAM",
     "PLC0121": ("FUNCTION_BLOCK FB VAR secret : INT; END_VAR secret := 1; END_FUNCTION_BLOCK\n"

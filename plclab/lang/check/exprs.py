@@ -85,6 +85,13 @@ class Expressions(Pass, NodeVisitor):
                       f"write {sn}_TO_{dn}(...) to say so, or TRUNC(...) to drop the fraction",
                       loc)
             return
+        if rs.kind in ("int", "bits") and rd.kind in ("int", "bits") and not isinstance(
+                rd, T.Subrange) and self.cx.dialect(loc).implicit_int_conversion:
+            sn, dn = T.base_of(T.concrete(rs)).name, T.base_of(rd).name
+            self.warn("PLC0285", f"{sn} stored in {dn} without a conversion (accepted as in "
+                      f"CODESYS): it wraps as {sn}_TO_{dn} wraps (a value outside {dn} "
+                      f"changes, a sign may flip); write {sn}_TO_{dn}(...) to say so", loc)
+            return
         hint = ""
         if rs.kind in ("int", "real", "bits", "time", "bool") and rd.kind in (
             "int", "real", "bits", "time", "bool"
