@@ -52,3 +52,131 @@ def steady_output(trace, signal="POWER", max_std=3.0, start=0.0, end=None):
     if std <= float(max_std):
         return True, msg
     return False, msg, float(start), [signal, "TEMP"]
+
+
+def _why(trace, err, t_from, target, band, signal="TEMP", after=0.0, sp="SP"):
+    """What the error ``err`` (signal - target over a window starting at ``t_from``) shows:
+    a swing around the set point, a steady error (held at an old set point, held far away, a
+    proportional offset), a decaying overshoot or a slow creep."""
+    import numpy as np
+
+    t = trace.time
+    mean = float(np.mean(err))
+    half = len(err) // 2
+    drift = float(np.mean(err[half:]) - np.mean(err[:half]))
+    crossings = int(np.count_nonzero(np.diff(np.sign(err)) != 0))
+    p2p = float(np.max(err) - np.min(err))
+    held = target + mean
+    before = (t >= float(after)) & (t < float(t_from))
+    peak = float(np.max(trace[signal].astype(float)[before])) if np.any(before) else target
+    old = []
+    if sp and sp in trace:
+        spv = trace[sp].astype(float)
+        old = sorted({round(float(v), 3) for v in spv[t < float(t_from)]} - {round(target, 3)})
+    if crossings >= 1 and p2p > band:
+        return (f"it swings around the set point ({float(np.min(err)):+.2f} to "
+                f"{float(np.max(err)):+.2f} °C): too much gain, too short an integral time or "
+                f"too long a sampling period")
+    if p2p <= band and any(abs(held - o) <= band for o in old):
+        o = next(o for o in old if abs(held - o) <= band)
+        return (f"it stays at {held:.1f} °C, the set point before the change ({o:g} °C): the "
+                f"controller does not follow SP")
+    if p2p <= band and abs(mean) > 4.0:
+        return (f"it is held steadily at {held:.1f} °C, {mean:+.1f} °C from the set point: the "
+                f"loop works but holds the wrong value: does the controller get SP as its set "
+                f"point, and is TEMP_RAW scaled right (0..27648 counts = -20..120 °C)?")
+    if p2p <= band and mean < 0:
+        return (f"it stays {-mean:.2f} °C below the set point: a steady-state error (a "
+                f"proportional action alone needs an error to give power; the integral action "
+                f"removes it)")
+    if p2p <= band:
+        return f"it stays {mean:.2f} °C above the set point"
+    if abs(drift) > 0.5 * band and np.sign(drift) == -np.sign(mean):
+        if mean > 0 and peak > target + 2.0 * band:
+            return (f"it is still coming down from an overshoot (peak {peak:.1f} °C): the "
+                    f"integral grew too much on the way (windup) or acts too strongly")
+        return (f"it is still creeping towards the set point ({mean:+.2f} °C on average): the "
+                f"loop is too slow")
+    return f"it is {mean:+.2f} °C from the set point on average and moves by {p2p:.2f} °C"
+
+
+def settles_diagnosed(trace, signal="TEMP", target=50.0, band=0.5, after=0.0, within=600.0,
+                      to=None, sp="SP"):
+    """From ``after + within`` seconds to ``to`` (the end) the signal stays within
+    ``target +- band``. On failure the message names what the trace shows (:func:`_why`)
+    rather than one guess for all."""
+    import numpy as np
+
+    t = trace.time
+    a = float(after) + float(within)
+    b = trace.t_end if to is None else float(to)
+    sel = (t >= a) & (t <= b)
+    x = trace[signal].astype(float)[sel]
+    if len(x) < 2:
+        return False, f"no samples of {signal} between {a:g} s and {b:g} s", a, [signal]
+    target, band = float(target), float(band)
+    err = x - target
+    bad = np.nonzero(np.abs(err) > band)[0]
+    span = f"between {a:.0f} s and {b:.0f} s"
+    if len(bad) == 0:
+        return True, (f"{signal} stayed within {target - band:g}..{target + band:g} {span} "
+                      f"(largest error {float(np.max(np.abs(err))):.2f})")
+    t_fail = float(t[sel][bad[0]])
+    why = _why(trace, err, a, target, band, signal, after, sp)
+    return (False, f"{signal} left {target - band:g}..{target + band:g} at t = {t_fail:.0f} s "
+            f"{span}: {why}", t_fail, [signal])
+
+
+def holds_diagnosed(trace, signal="TEMP", target=50.0, band=0.2, start=600.0, min_fraction=0.9,
+                    sp="SP"):
+    """From ``start`` on the signal is within ``target +- band`` for at least ``min_fraction``
+    of the time; on failure the message says what it does instead (:func:`_why`)."""
+    import numpy as np
+
+    t = trace.time
+    sel = t >= float(start)
+    x = trace[signal].astype(float)[sel]
+    if len(x) < 2:
+        return False, f"no samples of {signal} from {start:g} s on", float(start), [signal]
+    target, band = float(target), float(band)
+    err = x - target
+    frac = float(np.mean(np.abs(err) <= band))
+    head = (f"{signal} was within {target - band:g}..{target + band:g} for {100 * frac:.0f} % "
+            f"of the time from {float(start):.0f} s on (at least {100 * float(min_fraction):.0f} "
+            f"% expected)")
+    if frac >= float(min_fraction):
+        return True, head
+    return False, f"{head}: {_why(trace, err, float(start), target, band, signal, 0.0, sp)}", \
+        float(start), [signal]
+
+
+def heats_up(trace, signal="TEMP", level=45.0, to=600.0, power="POWER"):
+    """The water reaches ``level`` by ``to`` seconds. On failure the message tells a controller
+    that never gives power (direction, or nothing written to the output) from one whose output
+    arrives as a tiny fraction (not scaled to counts) and from one that holds a lower
+    temperature calmly (a measurement scaled wrongly)."""
+    import numpy as np
+
+    t = trace.time
+    sel = t <= float(to)
+    x = trace[signal].astype(float)[sel]
+    p = trace[power].astype(float)[sel]
+    if np.any(x >= float(level)):
+        i = int(np.argmax(x >= float(level)))
+        return True, f"{signal} reached {level:g} °C at {float(t[sel][i]):.0f} s"
+    pmax = float(np.max(p)) if len(p) else 0.0
+    top = float(np.max(x)) if len(x) else float("nan")
+    msg = f"{signal} reached only {top:.1f} °C in {float(to):.0f} s: "
+    if pmax <= 0.01:
+        msg += ("the element never got any power: a heater is direct acting (the colder the "
+                "water, the more power), and the controller's output must be written to "
+                "POWER_OUT")
+    elif pmax < 5.0:
+        msg += (f"the element got at most {pmax:.2f} % of its power: the controller's 0..100 % "
+                f"is not scaled to the analog output (27648 counts = 100 %)")
+    else:
+        tail = p[t[sel] >= float(to) * 0.7]
+        msg += (f"the temperature levels off with the element at {float(np.mean(tail)):.0f} % "
+                f"on average: the controller is content with a lower temperature; is TEMP_RAW "
+                f"scaled right (0..27648 counts = -20..120 °C)?")
+    return False, msg, 0.0, [signal, power]
