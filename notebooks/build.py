@@ -421,6 +421,8 @@ def build_notebook(lab_id: str) -> nbformat.NotebookNode:
     cells.append(new_markdown_cell("\n".join(head).strip()))
     if "Your task" in sec:
         cells.append(new_markdown_cell("## Your task\n\n" + sec["Your task"]))
+    if "Requirements" in sec:  # what the grader checks, as the README states it (issue 31)
+        cells.append(new_markdown_cell("## Requirements\n\n" + sec["Requirements"]))
     if "Where this comes from" in sec:
         cells.append(new_markdown_cell("## Where this comes from\n\n"
                                        + sec["Where this comes from"]))
