@@ -62,6 +62,12 @@ def boxes_of(trace, size=6, boxes=2):
         return (False, f"{size} bottles went past X1 by t = {late:.2f} s but BOX_FULL did not "
                 f"light", late + 0.5, signals)
     if len(changes) < int(boxes):
+        ended = [e for _, e, done in _intervals(trace, LAMP) if done]
+        if ended and not any(t > ended[-1] for t in _rises(trace, BELT)) \
+                and not trace[BELT].astype(bool)[-1]:
+            return (False, f"only {len(changes)} box change(s) in the run, {boxes} expected: "
+                    f"the belt never ran again after the box change that ended at "
+                    f"t = {ended[-1]:.2f} s", ended[-1] + 0.5, [LAMP, BELT, "X1"])
         return (False, f"only {len(changes)} box change(s) in the run, {boxes} expected "
                 f"({len(bottles)} standing bottles were seen)", trace.t_end, signals)
     return True, f"{len(changes)} boxes of {size} ({len(bottles)} standing bottles)", None, signals

@@ -2,7 +2,7 @@
 critical criteria, six mistakes, two correct variants). The other labs keep the older contract
 (three mistakes) until their rubric is rewritten; the list only grows (docs/labs.md, Audit)."""
 
-CONVERTED = {"heater-pid", "level-4-20ma", "modbus-operator", "motor-start-stop", "pump-station",
-             "relay-thermostat", "scan-timing", "tank-two-position", "ventilation-fans",
-             "water-boiler"}
-REQUIREMENTS_MAPPED = CONVERTED | {"bottle-reject"}
+CONVERTED = {"bottle-packing", "bottle-reject", "bottling-recipes", "heater-pid", "level-4-20ma",
+             "modbus-operator", "motor-start-stop", "pump-station", "relay-thermostat",
+             "scan-timing", "tank-two-position", "ventilation-fans", "water-boiler"}
+REQUIREMENTS_MAPPED = CONVERTED
