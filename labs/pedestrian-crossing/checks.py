@@ -74,25 +74,41 @@ def clearance(trace, seconds=2.0, tolerance=0.1, max_seconds=None):
     return True, f"pedestrians get green {float(seconds):g} s after the cars' yellow"
 
 
-def pedestrians_clear(trace, seconds=3.0, tolerance=0.1):
+def pedestrians_clear(trace, seconds=3.0, tolerance=0.1, slack=0.25):
     """After every pedestrian green the cars stay red (no red-yellow, no green) for at least
-    ``seconds``: the pedestrians who started late leave the crossing."""
+    ``seconds``, so that the pedestrians who started late leave the crossing, and no longer
+    than needed: red-yellow comes within ``slack`` s of the moment the ``seconds`` are over
+    and the crossing sensor sees nobody."""
     import numpy as np
 
     t = trace.time
     ped = trace["PED_GREEN"].astype(bool)
+    busy = trace["ON_CROSSING"].astype(bool)
     cars_go = trace["CAR_YELLOW"].astype(bool) | trace["CAR_GREEN"].astype(bool)
     signals = ["PED_GREEN", "CAR_RED", "CAR_YELLOW", "CAR_GREEN", "ON_CROSSING"]
     for i in np.nonzero(ped[:-1] & ~ped[1:])[0] + 1:
+        free = np.nonzero((t >= t[i] + float(seconds)) & ~busy)[0]
+        free = free[free >= i]
+        t_free = float(t[free[0]]) if len(free) else None
         nxt = np.nonzero(cars_go[i:])[0]
         if len(nxt) == 0:
+            if t_free is not None and trace.t_end > t_free + float(slack):
+                return (False, f"the cars stay red after the pedestrians' green ended at "
+                        f"t = {t[i]:.2f} s although the crossing is clear from t = {t_free:.2f} s",
+                        t_free, signals)
             continue
-        gap = float(t[i + nxt[0]] - t[i])
+        go = float(t[i + nxt[0]])
+        gap = go - float(t[i])
         if gap < float(seconds) - float(tolerance):
             return (False, f"the cars get red-yellow {gap:.2f} s after the pedestrians' green "
                     f"ended at t = {t[i]:.2f} s ({float(seconds):g} s of red for everyone "
                     "expected)", float(t[i]), signals)
-    return True, f"the cars wait at least {float(seconds):g} s after every pedestrian green"
+        if t_free is not None and go > t_free + float(slack):
+            return (False, f"the cars wait {gap:.2f} s after the pedestrians' green ended at "
+                    f"t = {t[i]:.2f} s, although the {float(seconds):g} s were over and the "
+                    f"crossing was clear at t = {t_free:.2f} s", t_free, signals)
+    return True, (f"the cars wait {float(seconds):g} s after every pedestrian green, longer only "
+                  "while someone is on the crossing")
 
 
 def wait_lamp(trace, react=0.2):

@@ -16,6 +16,11 @@ def heating_time(trace, seconds=600.0, tolerance=2.0, signal="HEATER"):
     msg = f"{signal} was on for {total:.1f} s in all ({float(seconds):g} s expected)"
     if ok:
         return True, msg
+    drained = on & trace["DRAIN_VALVE"].astype(bool)
+    if drained.any():  # the usual cause: a stored action that no later step resets
+        k = int(np.nonzero(drained)[0][0])
+        return (False, f"{msg}; it is still on at t = {float(t[k]):.1f} s while the water is "
+                "drained", float(t[k]), [signal, "DRAIN_VALVE"])
     first = np.nonzero(on)[0]
     return False, msg, float(t[first[0]]) if len(first) else None, [signal]
 
@@ -53,7 +58,8 @@ def starts_only_on_start(trace, grace=2.0, window=1.0):
     ready = sig["STOP"] & sig["DOOR"] & (sig["COTTON"] ^ sig["SILK"])
     signals = ["START", "STOP", "DOOR", "COTTON", "SILK", "FILL_VALVE", "HEATER", "MOTOR"]
     on_idx = np.nonzero(running)[0]
-    for i in np.nonzero(running[1:] & ~running[:-1])[0] + 1:
+    starts = np.nonzero(running & ~np.concatenate(([False], running[:-1])))[0]
+    for i in starts:  # a machine running from the first scan started too
         now = float(t[i])
         before = on_idx[on_idx < i]
         if len(before) and now - float(t[before[-1]]) <= grace:
