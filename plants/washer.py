@@ -21,8 +21,11 @@ Physics
 
 integrated exactly per step; the heater only heats while covered (``element_level``), and
 water cannot exceed 100 degC (the excess boils off). Cooling is by losses and, faster, by
-exchanging water: drain and fill at the same time. The drum speed follows ``MOTOR`` with a
-first-order lag.
+exchanging water: drain and fill at the same time. The fill valve delivers what the drain pump
+removes (both 0.5 l/s by default, ADR 0046), so exchanging water keeps the drum full: the water
+cools as ``T_in + (T0 - T_in) exp(-q t / V)`` (losses aside), about 16 s per time constant
+with 8 l, and an exchange that goes on after 40 degC wastes water instead of emptying the tub.
+The drum speed follows ``MOTOR`` with a first-order lag.
 
 Events: ``overflow``, ``dry_heating``, ``boiling``, ``drum_dry`` (drum turning with no water
 for more than 10 s), ``door_open_running`` (the drum motor or the heater still on a second
@@ -50,7 +53,7 @@ class Washer(Plant):
         Tub volume before overflow, l.
     fill_flow, drain_flow : float
         Flows of the open fill and drain valves, l/s (the drain pump is linear in the level
-        below 2 litres).
+        below 2 litres). Equal by default, so that exchanging water (both open) keeps the level.
     level_full, level_empty : float
         Switching points of LEVEL_SW and EMPTY, l.
     heater_power : float
@@ -89,7 +92,7 @@ class Washer(Plant):
         self,
         *,
         capacity: float = 30.0,
-        fill_flow: float = 0.25,
+        fill_flow: float = 0.5,
         drain_flow: float = 0.5,
         level_full: float = 12.0,
         level_empty: float = 0.5,

@@ -16,6 +16,11 @@ def heating_time(trace, seconds=600.0, tolerance=2.0, signal="HEATER"):
     msg = f"{signal} was on for {total:.1f} s in all ({float(seconds):g} s expected)"
     if ok:
         return True, msg
+    drained = on & trace["DRAIN_VALVE"].astype(bool)
+    if drained.any():  # the usual cause: a stored action that no later step resets
+        k = int(np.nonzero(drained)[0][0])
+        return (False, f"{msg}; it is still on at t = {float(t[k]):.1f} s while the water is "
+                "drained", float(t[k]), [signal, "DRAIN_VALVE"])
     first = np.nonzero(on)[0]
     return False, msg, float(t[first[0]]) if len(first) else None, [signal]
 
@@ -36,3 +41,41 @@ def finished(trace, settle=5.0):
         what = ", ".join(on + ([] if empty else ["the tub is not empty"]))
         return False, f"at the end: {what}", float(trace.t_end - settle), ["EMPTY"] + outputs
     return True, "the programme ended: the tub is empty and every output is off"
+
+
+def starts_only_on_start(trace, grace=2.0, window=1.0):
+    """The machine (fill valve, heater or drum) starts only right after a START press made
+    while the machine may start: STOP released, the door closed and the selector on exactly
+    one programme. A start is a rising edge of "running" after ``grace`` s of standstill; it
+    must follow such a press by at most ``window`` s. Covers a START refused (door open, STOP
+    held, selector off) and a chart that carries on by itself after an abort."""
+    import numpy as np
+
+    t = trace.time
+    sig = {n: trace[n].astype(bool) for n in ("FILL_VALVE", "HEATER", "MOTOR", "START", "STOP",
+                                              "DOOR", "COTTON", "SILK")}
+    running = sig["FILL_VALVE"] | sig["HEATER"] | sig["MOTOR"]
+    ready = sig["STOP"] & sig["DOOR"] & (sig["COTTON"] ^ sig["SILK"])
+    signals = ["START", "STOP", "DOOR", "COTTON", "SILK", "FILL_VALVE", "HEATER", "MOTOR"]
+    on_idx = np.nonzero(running)[0]
+    starts = np.nonzero(running & ~np.concatenate(([False], running[:-1])))[0]
+    for i in starts:  # a machine running from the first scan started too
+        now = float(t[i])
+        before = on_idx[on_idx < i]
+        if len(before) and now - float(t[before[-1]]) <= grace:
+            continue  # a step change inside the programme, not a start
+        near = (t >= now - window) & (t <= now)
+        pressed = near & sig["START"]
+        if (pressed & ready).any():
+            continue
+        if pressed.any():
+            k = np.nonzero(pressed)[0][-1]
+            why = [w for w, bad in (("the door open", not sig["DOOR"][k]),
+                                    ("STOP pressed", not sig["STOP"][k]),
+                                    ("the selector on no programme",
+                                     not (sig["COTTON"][k] ^ sig["SILK"][k]))) if bad]
+            return (False, f"the machine starts at t = {now:.1f} s on a START pressed with "
+                    f"{' and '.join(why)}", now, signals)
+        return (False, f"the machine starts by itself at t = {now:.1f} s: no START was pressed",
+                now, signals)
+    return True, "the machine starts only on START, with the door closed, STOP released and a programme selected"

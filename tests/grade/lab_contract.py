@@ -3,6 +3,7 @@ critical criteria, six mistakes, two correct variants). The other labs keep the 
 (three mistakes) until their rubric is rewritten; the list only grows (docs/labs.md, Audit)."""
 
 CONVERTED = {"bottle-packing", "bottle-reject", "bottling-recipes", "heater-pid", "level-4-20ma",
-             "modbus-operator", "motor-start-stop", "pump-station", "relay-thermostat",
-             "scan-timing", "tank-two-position", "ventilation-fans", "water-boiler"}
+             "modbus-operator", "motor-start-stop", "pedestrian-crossing", "pump-station",
+             "relay-thermostat", "scan-timing", "tank-two-position", "ventilation-fans",
+             "washing-machine", "water-boiler"}
 REQUIREMENTS_MAPPED = CONVERTED
