@@ -450,6 +450,15 @@ def test_override_without_a_base_method_is_an_error():
     assert "remove OVERRIDE or check the name" in errors(src)[0]
 
 
+@pytest.mark.parametrize("call", ["n := FOO.R() + 1;", "FOO.R();", "n := FOO.R2();",
+                                  "n := SUPERCALC.R();", "n := q.x.R();"])
+def test_a_method_call_on_an_unknown_name_is_an_error(call):
+    # found by the fuzzer: the call was accepted and compiled to None (PLC9999 at run time)
+    src = ("FUNCTION_BLOCK X METHOD R : INT R := 1; END_METHOD END_FUNCTION_BLOCK\n"
+           f"PROGRAM Main VAR q : X; n : INT; END_VAR {call} END_PROGRAM")
+    assert codes(src) == ["PLC0100"] or (call.startswith("n := q.x") and codes(src))
+
+
 START_PUMP = """FUNCTION_BLOCK Pump
 VAR_OUTPUT Enabled : BOOL; speed : INT; END_VAR
 METHOD Start : BOOL

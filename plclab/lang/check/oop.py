@@ -250,6 +250,9 @@ class ObjectChecks(Pass):
         n = len(self.cx.diags)
         ot = T.resolve(self.cx.exprs.expr(obj, None))
         pou = ot.pou if isinstance(ot, T.FBType | T.InterfaceType) else None
+        if ot is T.ANY and len(self.cx.diags) > n:  # obj itself is wrong (unknown name...):
+            self.cx.calls._args_only(c)  # keep its error; typed again it would say nothing
+            return T.ANY
         if pou is None or pou.kind not in ("FUNCTION_BLOCK", "INTERFACE", "PROGRAM"):
             del self.cx.diags[n:]  # the caller types the expression again and reports
             return None
