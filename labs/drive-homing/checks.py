@@ -75,17 +75,20 @@ def moves_after_all_home(trace, backoff=5.0):
         seg = slice(i0, i1)
         h = np.nonzero(home[seg])[0]
         stop = i0 + int(h[0]) if len(h) else i1
+        first = None
         for a in AXES:
             pos = trace[f"{a}_POS"].astype(float)[i0:stop]
             if not len(pos):
                 continue
             away = pos - np.minimum.accumulate(pos)
             bad = np.nonzero(away > float(backoff))[0]
-            if len(bad):
-                k = i0 + int(bad[0])
-                return (False, f"the {a.lower()} moves away from home at t = {t[k]:.2f} s, "
-                        "before every drive is home", float(t[k]),
-                        ["START", f"{a}_POS", "BELT_HOME", "PISTON_HOME", "PUMP_HOME"])
+            if len(bad) and (first is None or i0 + int(bad[0]) < first[0]):
+                first = (i0 + int(bad[0]), a)
+        if first is not None:
+            k, a = first
+            return (False, f"the {a.lower()} moves away from home at t = {t[k]:.2f} s, "
+                    "before every drive is home", float(t[k]),
+                    ["START", f"{a}_POS", "BELT_HOME", "PISTON_HOME", "PUMP_HOME"])
     return True, f"{len(presses)} START press(es): the moves begin once every drive is home"
 
 
