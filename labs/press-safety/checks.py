@@ -78,3 +78,120 @@ def dose(trace, pulses=60, per_mm=1.0, tol=2.0, count=None, down="DOWN", positio
                 float(t[-1]), ["POSITION", "DOWN"])
     shown = ", ".join(f"{x:.1f}" for x in travels)
     return True, f"{len(travels)} stroke(s) of {shown} mm ({want:g} mm expected)"
+
+
+def _held_since(x, t, seconds):
+    """Rows where the boolean ``x`` has been TRUE for more than ``seconds``."""
+    import numpy as np
+
+    x = np.asarray(x).astype(bool)
+    out = np.zeros(len(x), dtype=bool)
+    since = None
+    for i, v in enumerate(x):
+        if not v:
+            since = None
+        elif since is None:
+            since = t[i]
+        if since is not None and t[i] - since > seconds:
+            out[i] = True
+    return out
+
+
+def curtain_stops(trace, react=0.05, curtain="LIGHT_CURTAIN", down="%QX0.0", up="%QX0.1"):
+    """While the light curtain has been broken for longer than ``react`` seconds (the input
+    filter and a scan or two), neither valve output is on: at rest, going down or going up."""
+    import numpy as np
+
+    t = trace.time
+    broken = ~trace[curtain].astype(bool)
+    if not broken.any():
+        return False, "the light curtain is never broken in this scenario", None, [curtain]
+    late = _held_since(broken, t, float(react))
+    valves = trace[down].astype(bool) | trace[up].astype(bool)
+    bad = np.nonzero(late & valves)[0]
+    if len(bad):
+        i = int(bad[0])
+        which = "DOWN" if trace[down][i] else "UP"
+        where = "at rest" if trace["TOP"][i] else f"at {float(trace['POSITION'][i]):.0f} mm"
+        return (False, f"{which} is on at t = {t[i]:.2f} s while the light curtain is broken "
+                f"(the piston {where})", float(t[i]), [curtain, "DOWN", "UP", "POSITION"])
+    return True, "both valves off whenever the light curtain is broken"
+
+
+def returns_when_clear(trace, time=0.5, curtain="LIGHT_CURTAIN", top_mm=5.0):
+    """Each time the curtain clears with the piston away from the top, ``UP`` is on within
+    ``time`` seconds and ``DOWN`` stays off until the piston is back at TOP."""
+    import numpy as np
+
+    t = trace.time
+    clear = trace[curtain].astype(bool)
+    pos = trace["POSITION"].astype(float)
+    up = trace["%QX0.1"].astype(bool)
+    dn = trace["%QX0.0"].astype(bool)
+    top = trace["TOP"].astype(bool)
+    n = 0
+    for i in _rises(clear):
+        if pos[i] <= top_mm:
+            continue
+        n += 1
+        k = int(np.searchsorted(t, t[i] + float(time), "right"))
+        if not up[i:k].any():
+            return (False, f"the field is clear at t = {t[i]:.2f} s with the piston at "
+                    f"{pos[i]:.0f} mm, but UP does not come within {float(time):g} s",
+                    float(t[i]), [curtain, "UP", "POSITION"])
+        at_top = np.nonzero(top[i:])[0]
+        j = i + int(at_top[0]) if len(at_top) else len(t)
+        if dn[i:j].any():
+            m = i + int(np.nonzero(dn[i:j])[0][0])
+            return (False, f"DOWN at t = {t[m]:.2f} s, after the field cleared and before the "
+                    "piston was back at the top", float(t[m]), [curtain, "DOWN", "POSITION"])
+    if not n:
+        return True, "the field never cleared with the piston away from the top"
+    return True, f"{n} time(s) the field cleared: the piston went back up"
+
+
+def estop_no_restart(trace, react=0.05, skew=0.5):
+    """After each E-stop: the valves stay off from the press (+``react``) until a two-hand
+    command given after the release (a button pressed after it, the other within ``skew``
+    seconds); that command only returns the piston: DOWN stays off until both buttons have
+    been released and pressed again."""
+    import numpy as np
+
+    t = trace.time
+    es = trace["E_STOP"].astype(bool)
+    lx = trace["%IX0.0"].astype(bool)
+    rx = trace["%IX0.1"].astype(bool)
+    dn = trace["%QX0.0"].astype(bool)
+    valves = dn | trace["%QX0.1"].astype(bool)
+    falls = _rises(~es)
+    if not len(falls):
+        return False, "the E-stop is never pressed in this scenario", None, ["E_STOP"]
+    sig = ["E_STOP", "HAND_L", "HAND_R", "DOWN", "UP"]
+    for f in falls:
+        rel = np.nonzero(es[f:])[0]
+        r = f + int(rel[0]) if len(rel) else len(t)
+        # the first command after the release: both on, one of them pressed after the release
+        both = lx & rx
+        cmd = len(t)
+        for i in np.nonzero(both[r:])[0] + r:
+            li, ri = _rises(lx[r:i + 1]), _rises(rx[r:i + 1])
+            if len(li) and len(ri) and abs(float(t[r + li[-1]] - t[r + ri[-1]])) <= skew + 0.03:
+                cmd = int(i)
+                break
+        i0 = int(np.searchsorted(t, t[f] + float(react)))
+        bad = np.nonzero(valves[i0:cmd])[0]
+        if len(bad):
+            k = i0 + int(bad[0])
+            when = "while the E-stop is pressed" if k < r else "after the E-stop was released"
+            return (False, f"a valve is on at t = {t[k]:.2f} s {when}, without a new two-hand "
+                    "command", float(t[k]), sig)
+        if cmd < len(t):
+            off = np.nonzero(~lx[cmd:] & ~rx[cmd:])[0]
+            end = cmd + int(off[0]) if len(off) else len(t)
+            bad = np.nonzero(dn[cmd:end])[0]
+            if len(bad):
+                k = cmd + int(bad[0])
+                return (False, f"the command after the E-stop (t = {t[cmd]:.2f} s) also starts "
+                        f"a dose at t = {t[k]:.2f} s: it may only bring the piston back up",
+                        float(t[k]), sig)
+    return True, "after each E-stop nothing moved until a new two-hand command returned the piston"

@@ -100,3 +100,35 @@ def test_bad_parameters_are_refused() -> None:
         Axes(speeds={"SPINDLE": 10.0})
     with pytest.raises(PlantError, match="start"):
         Axes(starts={"PUMP": 500.0})
+
+
+EULER = 100.0 * 0.005 / 2 + 1e-9  # the largest error of one ramp at 100 mm/s, mm
+
+
+def test_travel_and_braking_distance_match_the_hand_computed_values() -> None:
+    # the drives lab's plant: 100 mm/s, accel 10 000 mm/s^2. Run 1 s forward: 0.01 s of ramp
+    # (0.5 * 100 * 0.01 = 0.5 mm) and 0.99 s at speed (99 mm): 99.5 mm. Then braking from
+    # 100 mm/s takes v^2 / 2a = 0.5 mm: the lab's +-1 mm window is reachable at a 10 ms scan.
+    # The plant integrates in steps of max_dt (5 ms): a ramp is off by at most v * max_dt / 2.
+    p = Axes(accel=10000.0, starts={"BELT": 0.0})
+    p["BELT_FWD"] = True
+    p.step(1.0)
+    assert p["BELT_POS"] == pytest.approx(99.5, abs=EULER)
+    p["BELT_FWD"] = False
+    p.step(0.5)
+    assert p["BELT_POS"] == pytest.approx(100.0, abs=EULER)
+    assert p.snapshot()["distance"] == pytest.approx(100.0, abs=EULER)  # every mm is counted
+
+
+def test_a_tripped_drive_stops_and_reports_its_fault_contact() -> None:
+    p = Axes(accel=10000.0)
+    p["PISTON_REV"] = True
+    p.step(0.5)
+    x = float(p["PISTON_POS"])
+    assert x == pytest.approx(130.0 - 50.0 * 0.5 + 0.5 * 50.0 * 0.005, abs=EULER)
+    p.inject("piston_trip")
+    p.step(0.5)
+    assert p["PISTON_FAULT"]
+    assert float(p["PISTON_POS"]) == pytest.approx(x - 50.0 ** 2 / (2 * 10000.0), abs=EULER)
+    p.step(1.0)  # still commanded a second after the trip
+    assert "moved_tripped" in [e.kind for e in p.drain_events()]

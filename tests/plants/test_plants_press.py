@@ -186,3 +186,53 @@ def test_initial_temperature_t0() -> None:
     assert p["TEMP"] == pytest.approx(150.0)
     p.step(1.0)  # no heating: it cools towards ambient, ua (150 - 20) / C = 0.52 K/s
     assert p["TEMP"] == pytest.approx(150.0 - 0.52, abs=0.01)
+
+
+def test_lab_heat_balance_matches_the_readme_rates_and_the_energy_integral() -> None:
+    """The press-safety lab's container (1 kJ/K, 1.5 kW, 4 W/K to 20 degC) at 210 degC: it
+    cools by 4 * 190 / 1000 = 0.76 K/s with the heater off and warms by (1500 - 760) / 1000 =
+    0.74 K/s with it on (the README's 'about 0.75 K/s'). Over 20 s the energy balance holds:
+    C * dT = P * t_on - UA * integral(T - T_amb) dt."""
+    import math
+
+    kw = dict(heat_capacity=1000.0, heater_power=1500.0, ua=4.0, t_amb=20.0, t0=210.0)
+    p = Press(**kw)
+    p.reset()
+    p.step(0.1)
+    assert (p["TEMP"] - 210.0) / 0.1 == pytest.approx(-0.76, abs=0.005)
+    p = Press(**kw)
+    p.reset()
+    p["HEATER"] = True
+    p.step(0.1)
+    assert (p["TEMP"] - 210.0) / 0.1 == pytest.approx(0.74, abs=0.005)
+    # 10 s on, 10 s off: sum the losses step by step and compare with the stored heat
+    p = Press(**kw)
+    p.reset()
+    loss, dt = 0.0, 0.01
+    for k in range(2000):
+        p["HEATER"] = k < 1000
+        t_before = p["TEMP"]
+        p.step(dt)
+        loss += 4.0 * ((t_before + p["TEMP"]) / 2 - 20.0) * dt
+    stored = 1000.0 * (p["TEMP"] - 210.0)
+    assert stored == pytest.approx(1500.0 * 10.0 - loss, rel=1e-4)
+    # and the closed form of the cooling half: T = T_amb + (T1 - T_amb) exp(-UA t / C)
+    p = Press(**kw)
+    p.reset()
+    p.step(10.0)
+    assert p["TEMP"] == pytest.approx(20.0 + 190.0 * math.exp(-0.04), abs=1e-6)
+
+
+def test_lab_dose_is_sixty_pulses_for_sixty_mm_and_its_time_at_25_mm_per_s() -> None:
+    """60 mm at 25 mm/s take 2.4 s (+ the 30 ms valve lag); the encoder gives one rising edge
+    per mm, so a PLC sampling every 10 ms (half a pulse lasts 20 ms) counts all 60."""
+    p = Press(end_switch_margin=5.0)
+    p.reset()
+    count = EdgeCounter()
+    p["DOWN"] = True
+    t = 0.0
+    while count(bool(p["ENCODER_PULSE"])) < 60:
+        p.step(0.01)
+        t += 0.01
+    assert t == pytest.approx(60.0 / 25.0 + 0.03, abs=0.03)
+    assert p["POSITION"] == pytest.approx(60.0, abs=0.6)
