@@ -22,6 +22,7 @@ True
 from __future__ import annotations
 
 import functools
+import re
 from typing import Any
 from xml.sax.saxutils import escape
 
@@ -326,7 +327,8 @@ class _Layout:
             feed = True if any(x is True for x in ins) else (None if None in ins else False)
             if k == "contact":
                 v = self.value_of(_var_text(e))
-                cond = None if not isinstance(v, bool) else (not v if e.mode == "/" else v)
+                cond = None if not isinstance(v, bool) or e.mode in ("P", "N") else \
+                    (not v if e.mode == "/" else v)  # an edge: one scan, unknown from a value
                 out = None if feed is None or cond is None else (feed and cond)
             else:
                 out = feed
@@ -380,7 +382,8 @@ class _Layout:
         return self.pin_text(pin)
 
     def operand_label(self, text: str) -> str:
-        v = self.value_of(text)
+        """An operand with its value when it is a variable the values know."""
+        v = self.value_of(text) if _VARIABLE.fullmatch(text) else None
         return text + (f" = {_fmt(v)}" if v is not None else "")
 
     def box_width(self, e) -> float:
@@ -417,6 +420,7 @@ class _Layout:
 
 
 BOXES = ("fb", "func", "cmp")
+_VARIABLE = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)*")
 LABEL = 12  # font size of names and pins
 OPERAND = 11  # font size of the operands written at box pins
 
@@ -629,7 +633,9 @@ def _draw(e, lay: _Layout, xl: float, w: float, y: float) -> str:
     color = ON if live else "#222"
     if k in ("contact", "coil"):
         style = f"stroke='{color}' stroke-width='2' fill='none'"
-        out = [_ln(xl, y, mid - 9, y, ON_WIRE if live else WIRE),
+        fed = any(lay.flows(lay.elems[i]) is True if i >= 0 else lay.values
+                  for i, _ in e.inputs.get("", []))
+        out = [_ln(xl, y, mid - 9, y, ON_WIRE if fed else WIRE),
                _ln(mid + 9, y, xr, y, ON_WIRE if live else WIRE)]
         if k == "contact":
             out += [_ln(mid - 9, y - 11, mid - 9, y + 11, style),
