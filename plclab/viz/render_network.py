@@ -675,7 +675,7 @@ def _box(e, lay: _Layout, xl: float, w: float, y: float) -> str:
     top = y - 27
     xr = xl + w
     name = escape(_box_title(e))
-    out = [f"<g class='box' data-type='{name}'>",
+    out = [f"<g class='box' data-type='{name}' data-elem='{e.id}'>",
            f"<rect x='{xl:.1f}' y='{top:.1f}' width='{w:.1f}' height='{h:.1f}' rx='3' {BOX}/>",
            _txt(xl + w / 2, top + 12, _box_title(e), "middle",
                 "class='type' font-weight='bold' fill='#1f4e8c'")]
