@@ -416,6 +416,8 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
     labels.append((bar_x, bar_y, label, "cond enabled" if enabled else "cond"))
     # from the bar down to the following steps
     below = bar_y + 16
+    if forward and not back:  # a simultaneous divergence's double line just above its steps,
+        below = min(_y(n) for n in forward) - 20  # clear of jumps hanging from other bars
     if len(forward) == 1 and not back:
         n = forward[0]
         if abs(_x(n) - bar_x) < 0.5:
