@@ -136,15 +136,17 @@ class _Layout:
         pins: list[str] = []
         if "" in e.inputs:
             pins.append(self.power_pins(e)[0].upper() if e.kind == "fb" else "EN")
+        if "EN" in (p.upper() for p in e.inputs):
+            pins.append("EN")
+        if e.kind == "fb":  # a block's pins in the order it declares them, as editors draw
+            d = self.declared(e.type_name)
+            pins += [p for p in (d[0] if d is not None else []) if p not in pins]
         for p in e.inputs:
             if p and p.upper() not in pins:
                 pins.append(p.upper())
         for a, p in zip(e.args, self.arg_pins(e), strict=True):
             if not a.output and p not in pins:
                 pins.append(p)
-        if e.kind == "fb":
-            d = self.declared(e.type_name)
-            pins += [p for p in (d[0] if d is not None else []) if p not in pins]
         return pins or [""]
 
     def out_pins(self, e) -> list[str]:
@@ -162,12 +164,12 @@ class _Layout:
                     [(e.out_pin or "OUT").upper()]
             else:
                 outs = (["ENO"] if "" in e.inputs else []) + ["OUT"]
-        for a, p in zip(e.args, self.arg_pins(e), strict=True):
-            if a.output and p not in outs:
-                outs.append(p)
         if e.kind == "fb":
             d = self.declared(e.type_name)
             outs += [p for p in (d[1] if d is not None else []) if p not in outs]
+        for a, p in zip(e.args, self.arg_pins(e), strict=True):
+            if a.output and p not in outs:
+                outs.append(p)
         return outs
 
     def in_operands(self, e) -> dict[str, str]:
@@ -289,6 +291,8 @@ class _Layout:
             cur = max(nxt, free) if by_pin.get(pin) else nxt
             arrive = None
             for j, sp in by_pin.get(pin, []):
+                if places and self.elems[j].kind in BOXES:
+                    cur += 1  # a row for the title of a box under another child
                 places.append((cur, j))
                 if arrive is None:
                     arrive = cur + self.out_row(self.elems[j], sp)
@@ -315,6 +319,8 @@ class _Layout:
 
     def flows(self, e) -> bool | None:
         """Power flowing out of ``e`` (LD) or its BOOL output value, when values are known."""
+        if not self.values:  # no values, no power flow drawn
+            return None
         if e.id in self.power:
             return self.power[e.id]
         self.power[e.id] = None  # cycles: unknown
