@@ -200,6 +200,25 @@ def _place(nodes: list[_Node], chart: Any, o: dict[str, Any]) -> None:
                     n.row, n.parent = cur.row + 1, cur.name
                     order.append(n)
                     queue.append(n)
+    # a simultaneous convergence: the steps it leads to stand below the lowest step it joins
+    # (and what follows them further down); a few rounds settle it
+    for _ in range(len(nodes)):
+        moved = False
+        for t in chart.transitions:
+            srcs = [by_name[s] for s, _ in t.sources if s in by_name]
+            low = max((m.row for m in srcs), default=-1)
+            for tgt, _ in t.targets:
+                n = by_name.get(tgt)
+                if n is None or n.parent not in {m.name for m in srcs}:
+                    continue
+                if len(srcs) > 1 and n.row <= low:
+                    n.row, moved = low + 1, True
+        for n in nodes:
+            p = by_name.get(n.parent)
+            if p is not None and n.row <= p.row:
+                n.row, moved = p.row + 1, True
+        if not moved:
+            break
     last = max((n.row for n in nodes), default=0)
     for n in nodes:  # steps never reached (reported by the checks): a row of their own
         if n.row < 0:

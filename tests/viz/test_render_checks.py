@@ -240,3 +240,26 @@ def test_titles_never_show_an_absolute_path(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert str(ROOT) not in render_file(str(lab)) and display_name(str(lab)) == "tank.st"
     assert display_name("labs/x.st") == "labs/x.st"
+
+
+CHARTS = sorted((Path(__file__).parent / "charts").glob("*.st"))
+
+
+@pytest.mark.parametrize("path", CHARTS, ids=lambda p: p.name)
+def test_charts_with_every_construct_pass_the_checks(path):
+    """Alternative divergence (3 ways) and convergence, simultaneous divergence (3 ways) and
+    convergence, an abort with a priority, jumps back, every qualifier kind, long names."""
+    svg = render_file(str(path))
+    assert doubled_lines(svg) == []
+    assert text_overflows(svg) == []
+    assert arrows_on_lines(svg) == []
+
+
+def test_a_simultaneous_convergence_leads_below_the_lowest_step_it_joins():
+    import xml.etree.ElementTree as ET
+
+    root = ET.fromstring(render_file(str(CHARTS[0])))
+    y = {g.get("data-step"): float(g.find("{http://www.w3.org/2000/svg}rect").get("y"))
+         for g in root.iter("{http://www.w3.org/2000/svg}g") if g.get("data-step")}
+    assert y["Drain"] > y["Wait"] > y["Heat"], y
+    assert y["Agitate"] == y["Heat"] == y["CoolJacket"], "a simultaneous divergence: one row"
