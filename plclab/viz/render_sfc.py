@@ -325,7 +325,12 @@ def _bars(nodes: dict[str, _Node], chart: Any, o: dict[str, Any]) -> dict[int, f
             low = max((m.row for m in srcs), default=0)
             fwd = [nodes[m] for m, _ in t.targets if m in nodes and nodes[m].row > low]
             pts = fwd if len(fwd) == 1 else srcs
-            out[k] = sum(_x(m) for m in pts) / max(len(pts), 1)
+            x = sum(_x(m) for m in pts) / max(len(pts), 1)
+            row = [out[j] for j, u in enumerate(chart.transitions) if j in out and
+                   max((nodes[m].row for m, _ in u.sources if m in nodes), default=0) == low]
+            while any(abs(x - u) < SIDE for u in row):  # not on a bar of the same row
+                x = max(u for u in row if abs(x - u) < SIDE) + SIDE + 1
+            out[k] = x
     return out
 
 
@@ -447,7 +452,12 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
             svg.line(bar_x, top, _x(n), top)
             svg.line(_x(n), top, _x(n), _y(n))
     elif forward or len(back) > 1:  # a simultaneous divergence: a double line
-        ends = [_x(n) for n in forward] + [bar_x + 60 * (j + 1) for j in range(len(back))]
+        spots = []  # each jump right of the steps and their actions, and of the jump before
+        x = max([bar_x] + [_x(n) + n.right - 40 for n in forward])
+        for n in back:
+            x += max(60.0, _width(spots[-1][1].text, bold=True) + 36) if spots else 60.0
+            spots.append((x, n))
+        ends = [_x(n) for n in forward] + [x for x, _ in spots]
         lo, hi = min(ends + [bar_x]), max(ends + [bar_x])
         svg.line(bar_x, bar_y, bar_x, below)
         svg.line(lo, below, hi, below)
@@ -455,7 +465,7 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
         for n in forward:
             svg.line(_x(n), below + 3, _x(n), _y(n))
         for j, n in enumerate(back):
-            jumps.append((bar_x + 60 * (j + 1), below + 3, n, bar_y))
+            jumps.append((spots[j][0], below + 3, n, bar_y))
     if not forward and len(back) == 1:
         jumps.append((bar_x, bar_y, back[0], bar_y))
 
