@@ -485,11 +485,11 @@ class _Wires:
         out = []
         for live in (False, True):
             style = ON_WIRE if live else WIRE
-            out += [_ln(*s, style) for s in _merge(self.segs[live])]
+            out += [_ln(*s, style) for s in merge_segments(self.segs[live])]
         return out
 
 
-def _merge(segs: list[tuple[float, float, float, float]]) -> list[tuple[float, float, float,
+def merge_segments(segs: list[tuple[float, float, float, float]]) -> list[tuple[float, float, float,
                                                                                float]]:
     """Overlapping or touching collinear horizontal and vertical segments joined into one."""
     lines: dict[tuple[str, float], list[tuple[float, float]]] = {}

@@ -145,10 +145,10 @@ def render_sfc_svg(pou: Any, *, values: dict[str, Any] | None = None) -> str:
     for x, y, n, bar_y in jumps:  # below the condition written beside the arrow
         lines_here = lines.get((round(x), round(bar_y)), 0) if abs(y - bar_y) < 0.5 else 0
         _jump(svg, x, y, n, max(JUMP_H, 14 * lines_here + 6))
-    from plclab.viz.render_network import _merge
+    from plclab.viz.render_network import merge_segments
 
     svg.parts[:0] = [f'<line class="wire" x1="{x1:g}" y1="{y1:g}" x2="{x2:g}" y2="{y2:g}"/>'
-                     for x1, y1, x2, y2 in _merge(svg.wires)]
+                     for x1, y1, x2, y2 in merge_segments(svg.wires)]
     w, h = svg.width + MARGIN, svg.height + MARGIN
     head = (f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0f}" height="{h:.0f}" '
             f'viewBox="0 0 {w:.0f} {h:.0f}" font-family="DejaVu Sans, Arial, sans-serif" '
