@@ -489,8 +489,10 @@ class _Wires:
         return out
 
 
-def merge_segments(segs: list[tuple[float, float, float, float]]) -> list[tuple[float, float, float,
-                                                                               float]]:
+Segment = tuple[float, float, float, float]  # x1, y1, x2, y2
+
+
+def merge_segments(segs: list[Segment]) -> list[Segment]:
     """Overlapping or touching collinear horizontal and vertical segments joined into one."""
     lines: dict[tuple[str, float], list[tuple[float, float]]] = {}
     other = []
