@@ -164,9 +164,12 @@ class _Layout:
                     [(e.out_pin or "OUT").upper()]
             else:
                 outs = (["ENO"] if "" in e.inputs else []) + ["OUT"]
-        if e.kind == "fb":
+        if e.kind == "fb":  # declared order, as the inputs (ENO and the rung's pin first)
             d = self.declared(e.type_name)
-            outs += [p for p in (d[1] if d is not None else []) if p not in outs]
+            if d is not None:
+                head = [p for p in outs[:1] if p == "ENO" or "" in e.inputs]
+                outs = head + [p for p in d[1] if p not in head] + \
+                    [p for p in outs if p not in head and p not in d[1]]
         for a, p in zip(e.args, self.arg_pins(e), strict=True):
             if a.output and p not in outs:
                 outs.append(p)

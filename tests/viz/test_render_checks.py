@@ -264,3 +264,20 @@ def test_a_simultaneous_convergence_leads_below_the_lowest_step_it_joins():
          for g in root.iter("{http://www.w3.org/2000/svg}g") if g.get("data-step")}
     assert y["Drain"] > y["Wait"] > y["Heat"], y
     assert y["Agitate"] == y["Heat"] == y["CoolJacket"], "a simultaneous divergence: one row"
+
+
+def test_an_exported_fbd_draws_every_box_kind_with_pins_in_declared_order(tmp_path):
+    """SEL, LIMIT, MUX, TON, CTU, a comparison and a negated AND input, exported as FBD."""
+    xml = tmp_path / "mix.xml"
+    src = Path(__file__).parent / "programs" / "fbd_mix.st"
+    assert main(["export", str(src), "--fbd", "-o", str(xml)]) == 0
+    svg = render_file(str(xml))
+    assert doubled_lines(svg) == [] and text_overflows(svg) == []
+    import re
+    ctu = svg[svg.index("data-type='CTU'"):]
+    ctu = ctu[:ctu.index("</g>")]
+    assert re.findall(r"class='pin in' data-pin='(\w+)'", ctu) == ["CU", "R", "PV"]
+    assert re.findall(r"class='pin out' data-pin='(\w+)'", ctu) == ["Q", "CV"]
+    for pins in (["G", "IN0", "IN1"], ["MN", "IN", "MX"]):
+        for p in pins:
+            assert f"data-pin='{p}'>" in svg
