@@ -4,11 +4,13 @@ go through the same drawing.
 
 The layout is computed, not copied: an element's column is the length of the longest path of
 wires feeding it; coils, output variables, jumps and returns stand in the last column, so the
-right rail is one straight line for the whole POU; rows follow the wiring (a box's first input
-on its own row, its other inputs below). Boxes show their type above, their instance name on
-top and pin names on both sides. With ``values`` (variable name -> value, e.g. from a Trace at
-a time), contacts and coils that carry power are drawn green, wires carrying TRUE too, and each
-variable shows its value, as an editor's online mode does.
+right rail is one straight line for the whole POU; rows follow the wiring (each input pin on
+the row of the output pin feeding it). Boxes are drawn as CODESYS and OpenPLC Editor draw them
+(docs/adr/0048): the instance above, the type inside, every declared pin in declared order, each
+operand at its pin; wires into one pin meet on one junction line; columns and boxes are as wide
+as their measured text. With ``values`` (variable name -> value, e.g. from a Trace at a time),
+contacts and coils that carry power are drawn green, wires carrying TRUE too, and each variable
+shows its value, as an editor's online mode does.
 
 >>> from plclab.viz.render_network import render_source
 >>> svg = render_source('''PROGRAM P VAR a, q : BOOL; END_VAR
