@@ -53,19 +53,62 @@ def trace_values(path: str, time: str | None) -> dict[str, Any]:
         v = tr.value_at(name, t)
         v = v.item() if hasattr(v, "item") else v  # numpy scalars -> bool, int, float
         out[name] = v
-        out.setdefault(name.split(".", 1)[-1], v)
+        if not name.startswith("%"):  # an address's dot is not a program prefix
+            out.setdefault(name.split(".", 1)[-1], v)
     return out
 
 
-def render_file(path: str, pou: str | None = None, values: dict[str, Any] | None = None) -> str:
-    """The SVG text of the POU ``pou`` (default: the first) of a source file."""
+def pou_values(values: dict[str, Any], pou: Any) -> tuple[dict[str, Any], list[str]]:
+    """The values of a trace as the POU ``pou`` names them, and the POU's variables the trace
+    has no value for (each with its address).
+
+    A variable recorded under the POU's name (``Main.PUMP``) is taken first; a variable
+    located at an address (``PUMP AT %QX0.0``) then takes the address's value, which is what
+    the PLC saw (a plant signal of the same name is the plant's side of the wiring); other
+    names as they are."""
+    from ..lang import ast as A
+    from ..lang.types import ELEMENTARY
+
+    tr = {str(k).upper(): v for k, v in values.items()}
+    prefix = pou.name.upper() + "."
+    out = dict(tr)
+    out.update({k[len(prefix):]: v for k, v in tr.items() if k.startswith(prefix)})
+    missing = []
+    for d in pou.decls:
+        n = d.name.upper()
+        addr = (d.address or "").upper()
+        if prefix + n in tr:
+            continue
+        if addr and addr in tr:
+            out[n] = tr[addr]
+        elif n not in tr and isinstance(d.type, A.NamedTypeRef) and d.type.name in ELEMENTARY:
+            missing.append((d.spelling or d.name) + (f" (AT {d.address})" if addr else ""))
+    return out, missing
+
+
+def display_name(path: str) -> str:
+    """A file's name as a title shows it: relative to the current folder when inside it,
+    else the file's name alone (never a machine's absolute path)."""
+    p = Path(path)
+    if not p.is_absolute():
+        return p.as_posix()
+    try:
+        return p.resolve().relative_to(Path.cwd().resolve()).as_posix()
+    except (ValueError, OSError):
+        return p.name
+
+
+def render_file(path: str, pou: str | None = None, values: dict[str, Any] | None = None,
+                source: str = "") -> str:
+    """The SVG text of the POU ``pou`` (default: the first) of a source file; ``values``: a
+    trace's values at one moment (from :func:`trace_values`), ``source`` how to name it."""
     from ..project import read_sources
 
-    [(text, name)] = read_sources([path])
-    return _render(text, name, pou, values)
+    [(text, _)] = read_sources([path])
+    return _render(text, display_name(path), pou, values, source)
 
 
-def _render(text: str, name: str, pou: str | None, values) -> str:
+def _render(text: str, name: str, pou: str | None, values, source: str = "") -> str:
     from .render_network import parse_source
 
     src = parse_source(text, name)
@@ -74,6 +117,47 @@ def _render(text: str, name: str, pou: str | None, values) -> str:
         names = ", ".join(p.spelling or p.name for p in src.pous) or "none"
         raise PlcError("PLC4040", f"{name} has no POU named {pou}; its POUs: {names}")
     p = chosen[0]
+    if values is None:
+        return _draw_pou(text, name, p, None)
+    values, missing = pou_values(values, p)
+    svg = _draw_pou(text, name, p, values)
+    if not missing:
+        return svg
+    shown = ", ".join(missing[:8]) + (f" and {len(missing) - 8} more" if len(missing) > 8
+                                      else "")
+    watch = ",".join(m.split(" ")[0] for m in missing[:8])
+    return _with_note(svg, [f"No value in {source or 'the trace'} for {shown}:",
+                            "the trace did not record them (located variables are shown by "
+                            "their address's value when the trace has it);",
+                            f"record them with plclab sim ... --watch {watch}"])
+
+
+def _with_note(svg: str, lines: list[str]) -> str:
+    """The SVG with ``lines`` written under the drawing (the picture grows to hold them)."""
+    import re
+    from xml.sax.saxutils import escape
+
+    m = re.match(r"<svg[^>]*?width=['\"]([\d.]+)['\"] height=['\"]([\d.]+)['\"] "
+                 r"viewBox=['\"]0 0 [\d.]+ [\d.]+['\"]", svg)
+    if m is None:
+        return svg
+    w, h = float(m.group(1)), float(m.group(2))
+    from .text_width import text_width
+
+    w2 = max(w, max(text_width(t, 12) for t in lines) + 32)
+    h2 = h + 18 * len(lines) + 12
+    head = (f"<svg xmlns='http://www.w3.org/2000/svg' width='{w2:.0f}' height='{h2:.0f}' "
+            f"viewBox='0 0 {w2:.0f} {h2:.0f}'")
+    note = "".join(f"<text class='note' x='16' y='{h + 16 + 18 * k:.0f}' font-size='12' "
+                   f"font-family='DejaVu Sans, Arial, sans-serif' fill='#b35900'>"
+                   f"{escape(t)}</text>" for k, t in enumerate(lines))
+    body = svg[m.end():]
+    end = body.rstrip().rfind("</svg>")
+    return (head + body[:end] + f"<rect y='{h:.0f}' width='100%' height='{h2 - h:.0f}' fill='white'/>" + note
+            + body[end:])
+
+
+def _draw_pou(text: str, name: str, p: Any, values) -> str:
     if any(b.kind == "NETWORK" for b in p.pending):
         from .render_network import render_source
 
@@ -106,7 +190,8 @@ def _render(text: str, name: str, pou: str | None, values) -> str:
 def render(ns: argparse.Namespace) -> int:
     """The ``render`` sub-command."""
     values = trace_values(ns.at, ns.time) if ns.at else None
-    svg = render_file(ns.file, ns.pou, values)
+    svg = render_file(ns.file, ns.pou, values,
+                      f"{display_name(ns.at)} at t = {ns.time}" if ns.at else "")
     if ns.fmt == "png":
         if ns.output is None:
             raise PlcError("PLC4044", "a PNG picture needs a file: add -o picture.png")

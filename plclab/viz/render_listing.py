@@ -30,7 +30,8 @@ KEYWORDS = {
     "LD", "LDN", "ST", "STN", "S", "R", "ANDN", "ORN", "XORN", "ADD", "SUB", "MUL", "DIV", "GT",
     "GE", "EQ", "NE", "LE", "LT", "JMP", "JMPC", "JMPCN", "CAL", "CALC", "CALCN", "RET", "RETC",
     "RETCN"}
-_TOKEN = re.compile(r"(\(\*.*?\*\)|//.*$)|('(?:[^'$]|\$.)*'|\b[A-Za-z]+#[\w.:#-]+|\b\d[\w.]*)"
+_TOKEN = re.compile(r"(\(\*.*?\*\)|//.*$)|('(?:[^'$]|\$.)*'|%[A-Za-z]+[\d.]*|\b[A-Za-z]+#[\w.:#-]+"
+                    r"|\b\d[\w.]*)"
                     r"|(\b[A-Za-z_]\w*\b)")
 
 

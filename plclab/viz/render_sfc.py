@@ -28,13 +28,15 @@ from xml.sax.saxutils import escape
 
 from plclab.errors import PlcError
 from plclab.lang.sfc_outline import evaluate, outline
+from plclab.viz.text_width import text_width
 
 STEP_W, STEP_H = 96, 32
-GAP = 92  # vertical space between a row of steps (with their actions) and the next
-COL = 340  # horizontal distance between step columns
+GAP = 104  # vertical space between a row of steps (with their actions) and the next
+COL = 340  # least horizontal distance between step columns (more when actions are wide)
 SIDE = 170  # a second transition of a step (a loop, an abort) stands this far to the right
 MARGIN = 30
-CHAR_W = 6.6  # average width of a character at FONT px
+QUAL_W = 38  # the qualifier's cell of an action block
+JUMP_H = 20  # a jump arrow: line and head, from its start down to the tip
 FONT = 12
 ACTIVE = "#ffd54a"
 ENABLED = "#e65100"
@@ -50,6 +52,7 @@ class _Node:
     col: float = 0.0
     active: bool = False
     parent: str = ""  # the step that first leads to it (it is drawn under that step)
+    cx: float = 0.0  # the centre of the step
     y: float = 0.0
     row_h: float = STEP_H  # the tallest step of its row, with its actions
 
@@ -57,6 +60,25 @@ class _Node:
     def h(self) -> float:
         """The step with its action block."""
         return max(STEP_H, 22.0 * len(self.actions))
+
+    @property
+    def w(self) -> float:
+        """The step's frame: its name (bold) fits with room on both sides."""
+        return max(STEP_W, _width(self.text, bold=True) + 24)
+
+    @property
+    def name_w(self) -> float:
+        """The action-name cell of its action block: the widest name fits."""
+        return max((_width(_action_label(a)) + 16 for a in self.actions), default=0.0)
+
+    @property
+    def right(self) -> float:
+        """How far right of the step's centre its action block reaches."""
+        return self.w / 2 + (18 + QUAL_W + self.name_w if self.actions else 0.0)
+
+
+def _width(s: str, bold: bool = False) -> float:
+    return text_width(s, FONT, "sans-bold" if bold else "sans")
 
 
 @dataclass
@@ -69,7 +91,13 @@ class _Svg:
         self.width = max(self.width, x)
         self.height = max(self.height, y)
 
+    wires: list[tuple[float, float, float, float]] = field(default_factory=list)
+
     def line(self, x1: float, y1: float, x2: float, y2: float, cls: str = "wire") -> None:
+        if cls == "wire":  # merged at the end: a line shared by two branches drawn once
+            self.wires.append((round(x1, 2), round(y1, 2), round(x2, 2), round(y2, 2)))
+            self.grow(max(x1, x2), max(y1, y2))
+            return
         self.parts.append(f'<line class="{cls}" x1="{x1:g}" y1="{y1:g}" x2="{x2:g}" '
                           f'y2="{y2:g}"/>')
         self.grow(max(x1, x2), max(y1, y2))
@@ -83,7 +111,7 @@ class _Svg:
              ) -> None:
         self.parts.append(f'<text class="{cls}" x="{x:g}" y="{y:g}" text-anchor="{anchor}">'
                           f"{escape(s)}</text>")
-        w = len(s) * CHAR_W
+        w = _width(s, bold="name" in cls.split())
         self.grow(x + (w if anchor == "start" else w / 2), y + 4)
 
 
@@ -104,15 +132,23 @@ def render_sfc_svg(pou: Any, *, values: dict[str, Any] | None = None) -> str:
     by_name = {n.name: n for n in nodes}
     for n in nodes:
         n.active = bool(vals.get(f"{n.text}.X".upper(), vals.get(f"{n.name}.X", False)))
-    _place(nodes, chart)
-    bars = _bars(by_name, chart)
+    _place(nodes, chart, o)
+    bars = _bars(by_name, chart, o)
     svg = _Svg()
     for n in nodes:
         _step(svg, n)
     labels: list[tuple[float, float, str, str]] = []
+    jumps: list[tuple[float, float, _Node, float]] = []
     for k, t in enumerate(chart.transitions):
-        _transition(svg, t, o["transitions"][k], by_name, vals, bars[k], labels)
-    _conditions(svg, labels)
+        _transition(svg, t, o["transitions"][k], by_name, vals, bars[k], labels, jumps)
+    lines = _conditions(svg, labels)
+    for x, y, n, bar_y in jumps:  # below the condition written beside the arrow
+        lines_here = lines.get((round(x), round(bar_y)), 0) if abs(y - bar_y) < 0.5 else 0
+        _jump(svg, x, y, n, max(JUMP_H, 14 * lines_here + 6))
+    from plclab.viz.render_network import merge_segments
+
+    svg.parts[:0] = [f'<line class="wire" x1="{x1:g}" y1="{y1:g}" x2="{x2:g}" y2="{y2:g}"/>'
+                     for x1, y1, x2, y2 in merge_segments(svg.wires)]
     w, h = svg.width + MARGIN, svg.height + MARGIN
     head = (f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0f}" height="{h:.0f}" '
             f'viewBox="0 0 {w:.0f} {h:.0f}" font-family="DejaVu Sans, Arial, sans-serif" '
@@ -143,7 +179,7 @@ def _chart_of(pou: Any) -> Any:
     return chart
 
 
-def _place(nodes: list[_Node], chart: Any) -> None:
+def _place(nodes: list[_Node], chart: Any, o: dict[str, Any]) -> None:
     """Rows: breadth first from the initial step; columns: in the order the steps are
     reached, each row starting under the leftmost step that leads to it."""
     by_name = {n.name: n for n in nodes}
@@ -164,6 +200,25 @@ def _place(nodes: list[_Node], chart: Any) -> None:
                     n.row, n.parent = cur.row + 1, cur.name
                     order.append(n)
                     queue.append(n)
+    # a simultaneous convergence: the steps it leads to stand below the lowest step it joins
+    # (and what follows them further down); a few rounds settle it
+    for _ in range(len(nodes)):
+        moved = False
+        for t in chart.transitions:
+            srcs = [by_name[s] for s, _ in t.sources if s in by_name]
+            low = max((m.row for m in srcs), default=-1)
+            for tgt, _ in t.targets:
+                n = by_name.get(tgt)
+                if n is None or n.parent not in {m.name for m in srcs}:
+                    continue
+                if len(srcs) > 1 and n.row <= low:
+                    n.row, moved = low + 1, True
+        for n in nodes:
+            p = by_name.get(n.parent)
+            if p is not None and n.row <= p.row:
+                n.row, moved = p.row + 1, True
+        if not moved:
+            break
     last = max((n.row for n in nodes), default=0)
     for n in nodes:  # steps never reached (reported by the checks): a row of their own
         if n.row < 0:
@@ -195,6 +250,18 @@ def _place(nodes: list[_Node], chart: Any) -> None:
     for n in order:
         if not n.parent:
             column(n, 0.0 if n is start else free[0])
+    # each column as far right of the one before as its steps and action blocks need
+    cols = sorted({int(n.col) for n in nodes})
+    x = float(MARGIN)
+    prev: list[_Node] = []
+    for c in cols:
+        here = [n for n in nodes if int(n.col) == c]
+        half = max(n.w / 2 for n in here)
+        reach = max((max(n.right, _reach(n, chart, o, by_name)) for n in prev), default=0.0)
+        x = MARGIN + half if not prev else max(x + COL, x + reach + half + 60)
+        for n in here:
+            n.cx = x
+        prev = here
     y = float(MARGIN)
     for r in range(max(n.row for n in nodes) + 1):
         row = [n for n in nodes if n.row == r]
@@ -204,16 +271,40 @@ def _place(nodes: list[_Node], chart: Any) -> None:
         y += tall + GAP
 
 
-def _bars(nodes: dict[str, _Node], chart: Any) -> dict[int, float]:
+def _reach(n: _Node, chart: Any, o: dict[str, Any], nodes: dict[str, _Node]) -> float:
+    """How far right of the step's centre its transitions reach: the bars beside the step
+    (as :func:`_bars` places them) and their conditions on one line."""
+    outs = sorted((k for k, t in enumerate(chart.transitions)
+                   if [s for s, _ in t.sources] == [n.name]),
+                  key=lambda k: chart.transitions[k].priority is not None)
+
+    def child(k: int) -> bool:
+        return any(m in nodes and nodes[m].parent == n.name and nodes[m].row > n.row
+                   for m, _ in chart.transitions[k].targets)
+
+    labels = [_width(_cond_label(chart.transitions[k], o["transitions"][k])) for k in outs]
+    own = [w for k, w in zip(outs, labels, strict=True) if child(k) and len(outs) > 1][:1]
+    side = [w for k, w in zip(outs, labels, strict=True) if not (child(k) and len(outs) > 1)]
+    x, prev = 0.0, (own[0] if own else None)
+    reach = 30 + prev if prev is not None else 0.0
+    for w in side:
+        if prev is not None:
+            x += min(max(SIDE, prev + 64), 2 * SIDE)
+        reach = max(reach, x + 20 + w + 10)
+        prev = w
+    return reach
+
+
+def _bars(nodes: dict[str, _Node], chart: Any, o: dict[str, Any]) -> dict[int, float]:
     """The x of each transition's bar: under its step; a step's second and further
     transitions go down into the column of the step they lead to (when drawn under this
-    step), else beside the step."""
+    step), else beside the step, far enough right for the condition of the bar before."""
     out: dict[int, float] = {}
+    owner: dict[float, int] = {}
     for n in nodes.values():
         outs = [k for k, t in enumerate(chart.transitions)
                 if [s for s, _ in t.sources] == [n.name]]
         taken: list[float] = []
-        side = 0
         for k in sorted(outs, key=lambda k: chart.transitions[k].priority is not None):
             t = chart.transitions[k]
             fwd = [nodes[m] for m, _ in t.targets if m in nodes and nodes[m].row > n.row]
@@ -221,9 +312,12 @@ def _bars(nodes: dict[str, _Node], chart: Any) -> dict[int, float]:
             if len(outs) > 1 and fwd and fwd[0].parent == n.name:
                 x = _x(fwd[0])
             while any(abs(x - u) < 1 for u in taken):
-                side += 1
-                x = _x(n) + side * SIDE
+                last = max(taken)
+                before = chart.transitions[owner[last]]
+                room = _width(_cond_label(before, o["transitions"][owner[last]])) + 64
+                x = last + min(max(SIDE, room), 2 * SIDE)
             taken.append(x)
+            owner[x] = k
             out[k] = x
     for k, t in enumerate(chart.transitions):
         if k not in out:  # a simultaneous convergence: under the steps it joins
@@ -231,12 +325,17 @@ def _bars(nodes: dict[str, _Node], chart: Any) -> dict[int, float]:
             low = max((m.row for m in srcs), default=0)
             fwd = [nodes[m] for m, _ in t.targets if m in nodes and nodes[m].row > low]
             pts = fwd if len(fwd) == 1 else srcs
-            out[k] = sum(_x(m) for m in pts) / max(len(pts), 1)
+            x = sum(_x(m) for m in pts) / max(len(pts), 1)
+            row = [out[j] for j, u in enumerate(chart.transitions) if j in out and
+                   max((nodes[m].row for m, _ in u.sources if m in nodes), default=0) == low]
+            while any(abs(x - u) < SIDE for u in row):  # not on a bar of the same row
+                x = max(u for u in row if abs(x - u) < SIDE) + SIDE + 1
+            out[k] = x
     return out
 
 
 def _x(n: _Node) -> float:
-    return MARGIN + n.col * COL + STEP_W / 2
+    return n.cx
 
 
 def _y(n: _Node) -> float:
@@ -244,8 +343,7 @@ def _y(n: _Node) -> float:
 
 
 def _step(svg: _Svg, n: _Node) -> None:
-    x, y = _x(n) - STEP_W / 2, _y(n)
-    w = max(STEP_W, len(n.text) * CHAR_W + 20)
+    y, w = _y(n), n.w
     x = _x(n) - w / 2
     cls = "step active" if n.active else "step"
     svg.parts.append(f'<g class="{cls}" data-step="{escape(n.text)}">')
@@ -258,8 +356,7 @@ def _step(svg: _Svg, n: _Node) -> None:
         return
     ax = x + w + 18
     svg.line(x + w, y + STEP_H / 2, ax, y + STEP_H / 2)
-    qual_w = 38
-    name_w = max(len(_action_label(a)) * CHAR_W + 14 for a in n.actions)
+    qual_w, name_w = QUAL_W, n.name_w
     for k, a in enumerate(n.actions):
         ay = y + k * 22
         svg.rect(ax, ay, qual_w, 22, "act")
@@ -268,22 +365,28 @@ def _step(svg: _Svg, n: _Node) -> None:
         svg.text(ax + qual_w + 7, ay + 15, _action_label(a))
 
 
-def _conditions(svg: _Svg, labels: list[tuple[float, float, str, str]]) -> None:
+def _conditions(svg: _Svg, labels: list[tuple[float, float, str, str]]
+                ) -> dict[tuple[int, int], int]:
     """Each condition right of its bar, wrapped so that it stops before the next bar of the
-    same height."""
+    same height; the number of lines of each, by its bar's (x, y)."""
+    out: dict[tuple[int, int], int] = {}
     for x, y, text, cls in labels:
         right = min((x2 for x2, y2, _, _ in labels if abs(y2 - y) < 1 and x2 > x + 1),
                     default=None)
-        room = int((right - x - 44) / CHAR_W) if right is not None else 10_000
-        for k, line in enumerate(_wrap(text, max(room, 12))):
+        room = right - x - 44 if right is not None else 1e9
+        wrapped = _wrap(text, max(room, 100.0))
+        out[(round(x), round(y))] = len(wrapped)
+        for k, line in enumerate(wrapped):
             svg.text(x + 20, y + 4 + 14 * k, line, cls)
+    return out
 
 
-def _wrap(text: str, width: int) -> list[str]:
+def _wrap(text: str, width: float) -> list[str]:
+    """Words into lines no wider than ``width`` px (a longer word stands alone)."""
     lines: list[str] = []
     cur = ""
     for word in text.split(" "):
-        if cur and len(cur) + 1 + len(word) > width:
+        if cur and _width(f"{cur} {word}") > width:
             lines.append(cur)
             cur = word
         else:
@@ -296,14 +399,14 @@ def _action_label(a: dict[str, Any]) -> str:
 
 
 def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
-                vals: dict[str, Any], bar_x: float, labels: list) -> None:
+                vals: dict[str, Any], bar_x: float, labels: list, jumps: list) -> None:
     srcs = [nodes[s] for s, _ in t.sources if s in nodes]
     tgts = [nodes[s] for s, _ in t.targets if s in nodes]
     if not srcs:
         return
     row = max(n.row for n in srcs)
     forward = [n for n in tgts if n.row > row]
-    jumps = [n for n in tgts if n.row <= row]
+    back = [n for n in tgts if n.row <= row]
     bottom = max(_y(n) + n.row_h for n in srcs)
     bar_y = bottom + 44
     # from the steps down to the bar: one step straight, several steps (simultaneous
@@ -331,15 +434,15 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
         value = evaluate(t.cond, lambda p: vals.get(p.upper()))
     cls = "bar enabled" if enabled else "bar"
     svg.line(bar_x - 14, bar_y, bar_x + 14, bar_y, cls)
-    label = ot["condition"]
-    if t.priority is not None:
-        label = f"[{t.priority}] {label}"
+    label = _cond_label(t, ot)
     if value is not None:
         label += f" = {'TRUE' if value else 'FALSE'}"
     labels.append((bar_x, bar_y, label, "cond enabled" if enabled else "cond"))
     # from the bar down to the following steps
     below = bar_y + 16
-    if len(forward) == 1 and not jumps:
+    if forward and not back:  # a simultaneous divergence's double line just above its steps,
+        below = min(_y(n) for n in forward) - 20  # clear of jumps hanging from other bars
+    if len(forward) == 1 and not back:
         n = forward[0]
         if abs(_x(n) - bar_x) < 0.5:
             svg.line(bar_x, bar_y, bar_x, _y(n))
@@ -348,23 +451,35 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
             svg.line(bar_x, bar_y, bar_x, top)
             svg.line(bar_x, top, _x(n), top)
             svg.line(_x(n), top, _x(n), _y(n))
-    elif forward or len(jumps) > 1:  # a simultaneous divergence: a double line
-        ends = [_x(n) for n in forward] + [bar_x + 60 * (j + 1) for j in range(len(jumps))]
+    elif forward or len(back) > 1:  # a simultaneous divergence: a double line
+        spots = []  # each jump right of the steps and their actions, and of the jump before
+        x = max([bar_x] + [_x(n) + n.right - 40 for n in forward])
+        for n in back:
+            x += max(60.0, _width(spots[-1][1].text, bold=True) + 36) if spots else 60.0
+            spots.append((x, n))
+        ends = [_x(n) for n in forward] + [x for x, _ in spots]
         lo, hi = min(ends + [bar_x]), max(ends + [bar_x])
         svg.line(bar_x, bar_y, bar_x, below)
         svg.line(lo, below, hi, below)
         svg.line(lo, below + 3, hi, below + 3)
         for n in forward:
             svg.line(_x(n), below + 3, _x(n), _y(n))
-        for j, n in enumerate(jumps):
-            _jump(svg, bar_x + 60 * (j + 1), below + 3, n)
-    if not forward and len(jumps) == 1:
-        _jump(svg, bar_x, bar_y, jumps[0])
+        for j, n in enumerate(back):
+            jumps.append((spots[j][0], below + 3, n, bar_y))
+    if not forward and len(back) == 1:
+        jumps.append((bar_x, bar_y, back[0], bar_y))
 
 
-def _jump(svg: _Svg, x: float, y: float, n: _Node) -> None:
-    """An arrow down to the name of the step the transition activates (PLCopen jumpStep)."""
-    svg.line(x, y, x, y + 26)
-    svg.parts.append(f'<path class="jump" d="M{x - 6:g},{y + 20:g} L{x + 6:g},{y + 20:g} '
-                     f'L{x:g},{y + 30:g} Z"/>')
-    svg.text(x + 10, y + 30, n.text, "name")
+def _cond_label(t: Any, ot: dict[str, Any]) -> str:
+    """A transition's condition as drawn, its priority first."""
+    return f"[{t.priority}] {ot['condition']}" if t.priority is not None else ot["condition"]
+
+
+def _jump(svg: _Svg, x: float, y: float, n: _Node, length: float = JUMP_H) -> None:
+    """An arrow down to the name of the step the transition activates (PLCopen jumpStep):
+    short, so that it ends well above the lines that join the branches before the next row."""
+    svg.line(x, y, x, y + length - 8)
+    svg.parts.append(f'<path class="jump" d="M{x - 6:g},{y + length - 10:g} '
+                     f'L{x + 6:g},{y + length - 10:g} L{x:g},{y + length:g} Z" '
+                     f'data-target="{escape(n.text)}"/>')
+    svg.text(x + 10, y + length - 1, n.text, "name jump-target")
