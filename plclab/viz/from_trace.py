@@ -274,6 +274,12 @@ def _t(t: float | None) -> str:
     return f"{t:.2f} s" if t < 60 else f"{int(t // 60)} min {t % 60:.1f} s"
 
 
+def plant_limits(trace) -> dict[str, list[tuple[float, str]]]:
+    """The plant's own marks (switch heights, the rim) per signal as (value, label), for a
+    diagram's lines."""
+    return {k: [(v, name) for name, v in lst] for k, lst in _limits(trace, _plant(trace)).items()}
+
+
 def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
     """Switch heights and vessel rims worth drawing as limits, from the plant's geometry: the
     marks beside a filled vessel are limits of its level, the end switches of a piston limits

@@ -364,3 +364,25 @@ def run_info(lab: Any = None, result: Any = None, scenario: str = "",
             info.verdicts.append(Verdict(t.criterion, bool(t.passed), t.t_fail,
                                          t.detail or t.message, list(sigs)))
     return info
+
+
+def signal_labels(io: Any, trace: Any) -> dict[str, str]:
+    """Each trace column of a program input or output named as a logic analyser names it:
+    the student's variable and its address (``PUMP %QX0.0``), for the PLC side (``%QX0.0``)
+    and the plant side of the wiring (``PUMP``, ``LS1``) alike. ``io`` is the lab's I/O
+    table (rows with ``name`` and ``address``, or (name, address, type) tuples)."""
+    names: dict[str, str] = {}
+    for r in io or ():
+        name, address = (r[0], r[1]) if isinstance(r, tuple) else (r.name, r.address)
+        if address:
+            names[str(address).upper()] = f"{name} {address}"
+    out: dict[str, str] = {}
+    for col in trace.columns if hasattr(trace, "columns") else ():
+        if col.upper() in names:
+            out[col] = names[col.upper()]
+    for r in getattr(trace, "io", None) or ():
+        col, plant = str(r.get("column") or ""), r.get("plant_column")
+        if plant and col.upper() in names and plant in trace.columns and \
+                trace.kind(plant) == "bool":  # an analog plant value is not the ADC's counts
+            out.setdefault(plant, names[col.upper()])
+    return out

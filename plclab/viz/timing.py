@@ -28,7 +28,10 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
                    markers: Sequence[tuple[float, str]] = (), width: float = 10.0,
                    dpi: int = 110,
                    thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
-                   fixed_layout: bool = False):
+                   fixed_layout: bool = False,
+                   bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
+                   spans: Sequence[tuple[float | None, float | None, str]] = (),
+                   note: str = ""):
     """Draw ``series`` stacked over a shared time axis; save to ``path`` (.png/.svg) if given.
 
     ``markers`` are (time, label) pairs drawn as vertical lines (e.g. "chatter", "fault");
@@ -46,7 +49,7 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
         from .failure_diagram import failure_figure
 
         fig = failure_figure(series, lo, hi, heights, title, markers, width, thresholds,
-                             marker_labels(markers, lo, hi))
+                             marker_labels(markers, lo, hi), bands, spans, note)
         if path is not None:
             fig.savefig(str(path), dpi=dpi)
         return fig
@@ -90,15 +93,19 @@ def _rows(series: Sequence[Series], t0: float | None, t1: float | None
 def failure_png(series: Sequence[Series], path: str | Path | None, t0: float | None = None,
                 t1: float | None = None, title: str = "",
                 markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
-                thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None) -> bytes:
+                thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
+                bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
+                spans: Sequence[tuple[float | None, float | None, str]] = (),
+                note: str = "") -> bytes:
     """``timing_diagram(..., fixed_layout=True)`` saved at 72 dpi, drawn with Pillow instead
     of matplotlib (:mod:`plclab.viz.failure_png`, a tenth of the cost): the feedback's
-    failure diagrams. Writes ``path`` when given; returns the PNG's bytes."""
+    failure diagrams. Writes ``path`` when given; returns the PNG's bytes. ``bands``,
+    ``spans`` and ``note`` draw what a criterion checks (:func:`criterion_drawing`)."""
     from .failure_png import failure_png as draw
 
     rows, heights, lo, hi = _rows(series, t0, t1)
     return draw(rows, path, lo, hi, heights, title, markers, width, thresholds,
-                marker_labels(markers, lo, hi))
+                marker_labels(markers, lo, hi), bands, spans, note)
 
 
 ANALOG_VALUES = 12
