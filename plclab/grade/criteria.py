@@ -828,7 +828,11 @@ def comparisons(text: str) -> list[tuple[str, str, float]]:
     ``abs(TEMP - 50) <= 2`` -> TEMP >= 48, TEMP <= 52)."""
     import ast
 
-    from plclab.trace.expr import _path
+    def _path(node: Any) -> str | None:  # a signal as the condition names it
+        if not isinstance(node, ast.Name | ast.Attribute | ast.Subscript):
+            return None
+        text = ast.unparse(node)
+        return "%" + text[5:].replace("_dot_", ".") if text.startswith("_pct_") else text
 
     out: list[tuple[str, str, float]] = []
     try:

@@ -237,8 +237,11 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
     tmp = _atomic_tmp(path)
     try:
         info = run_info(lab, None, sc.name)
+        from .criteria import criterion_limits
+
         info.verdicts = [Verdict(t.criterion, False, t.t_fail, t.detail or t.message,
-                                 list(crits[t.criterion].relevant_signals())) for t in failed]
+                                 list(crits[t.criterion].relevant_signals()),
+                                 criterion_limits(crits[t.criterion])) for t in failed]
         _write(recording(trace, names, t0, t1, fps=RRD_FPS, info=info), tmp)
         os.replace(tmp, path)
     except Exception as e:  # noqa: BLE001 - a recording must never cost a grade

@@ -38,6 +38,20 @@ def band_scale(s: Series, limits: Sequence[tuple[float, str]],
     return lo, hi
 
 
+INPUT_RGB = (31, 119, 180)
+OUTPUT_RGB = (44, 160, 44)
+"""A program input is blue, an output green, in every picture (as in the rerun lanes,
+:data:`plclab.viz.layout.LANE_COLORS`)."""
+
+
+def bool_rgb(name: str) -> tuple[int, int, int]:
+    """The colour of a BOOL row by the address in its name (``START %IX0.0`` blue);
+    outputs and rows without an address green."""
+    import re
+
+    return INPUT_RGB if re.search(r"(^|\s)%I", name) else OUTPUT_RGB
+
+
 def spread(ys: Sequence[float], gap: float) -> list[float]:
     """Label heights moved apart so that no two are closer than ``gap`` (the order kept,
     each group centred on where its labels belong): labels of close lines never overlap."""
@@ -158,8 +172,9 @@ def _row(ax: Any, s: Series, lo: float, hi: float, y0: float, y1: float,
         ys = [y1 if v else y0 for v in s.values]
         if times:
             times, ys = times + [hi], ys + ys[-1:]
-            ax.step(times, ys, where="post", color="tab:green", lw=1.2)
-            ax.fill_between(times, ys, y0, step="post", alpha=0.15, color="tab:green",
+            rgb = tuple(c / 255 for c in bool_rgb(s.name))
+            ax.step(times, ys, where="post", color=rgb, lw=1.2)
+            ax.fill_between(times, ys, y0, step="post", alpha=0.15, color=rgb,
                             lw=0)
     elif s.kind == "real":
         vlo, vhi = band_scale(s, limits, bands or ())

@@ -23,7 +23,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from .failure_diagram import PAD, band_scale, frame, spread
+from .failure_diagram import PAD, band_scale, bool_rgb, frame, spread
 from .series import Series
 
 DPI = 72
@@ -218,6 +218,11 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
     return data
 
 
+def _fill(rgb: tuple[int, int, int]) -> tuple[int, int, int]:
+    """``rgb`` at alpha 0.15 on white (GREEN_FILL for GREEN)."""
+    return tuple(int(round(255 - 0.15 * (255 - c))) for c in rgb)  # type: ignore[return-value]
+
+
 def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
          limits: list[tuple[float, str]], X: Any, ax_l: float, ax_r: float,
          ax_w: float, bands: list[tuple[float, float, str]] | None = None) -> None:
@@ -230,6 +235,7 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
         if not len(times):
             return
         on = np.asarray(s.values, dtype=bool)
+        rgb = bool_rgb(s.name)  # inputs blue, outputs green: as everywhere
         edges = np.clip(X(np.append(times, hi)), ax_l, ax_r)
         # the step line as one float32 buffer (Pillow reads it without a Python object per
         # point: objects made in a grading child cost page faults, ADR 0033)
@@ -239,8 +245,8 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
         step[0::2, 1] = step[1::2, 1] = ys
         if on.any():  # the filled ON stretches: one polygon down to the low edge
             area = np.concatenate(([[step[0, 0], py0]], step, [[step[-1, 0], py0]]))
-            d.polygon(area.astype(np.float32), fill=GREEN_FILL)
-        d.line(step, fill=GREEN, width=cv.px(1.2))
+            d.polygon(area.astype(np.float32), fill=_fill(rgb))
+        d.line(step, fill=rgb, width=cv.px(1.2))
     elif s.kind == "real":
 
         vlo, vhi = band_scale(s, limits, bands or ())

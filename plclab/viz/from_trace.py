@@ -14,7 +14,7 @@ from typing import Any
 
 from ..errors import PlcError
 from .chatter import output_stats
-from .layout import Layout, RunInfo, plan
+from .layout import Layout, RunInfo, plan, slug
 from .recording import Event, Marker, Recording, write_rrd
 from .series import Series
 
@@ -121,7 +121,11 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
     end = t1 if t1 is not None else trace.t_end
     plant = _plant(trace)
     lay = plan(trace, info, names, t0, t1, _limits(trace, plant))
+    _criterion_lines(trace, lay)
     rec = Recording(layout=lay)
+    fails = [v.time for v in info.verdicts if not v.passed and v.time is not None]
+    if fails:  # the viewer's time selection: the moment of the first failure
+        rec.focus = min(fails)
 
     def inside(t: float) -> bool:
         return start - 1e-9 <= t <= end + 1e-9
@@ -188,6 +192,42 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
     return rec
 
 
+def _criterion_lines(trace, lay: Layout) -> None:
+    """The levels, set points and band edges of the failed criteria as dashed lines in the
+    plot of their signal (beside the plant's switch heights), the plot's range widened to
+    show them."""
+    from .layout import LIMIT_COLORS, Limit
+
+    for v in lay.info.verdicts:
+        if v.passed:
+            continue
+        for lim in v.limits:
+            if lim.kind not in ("level", "target", "band") or lim.value is None:
+                continue
+            try:
+                col = trace.resolve(lim.signal) if lim.signal in trace else lim.signal
+            except PlcError:
+                continue
+            hit = lay.plot_of(col) or lay.plot_of(lim.signal)
+            if hit is None:
+                continue
+            plot = hit[0]
+            values = [(lim.label, float(lim.value))]
+            if lim.kind == "band" and lim.hi is not None:
+                values = [(f"{lim.label} low", float(lim.value)),
+                          (f"{lim.label} high", float(lim.hi))]
+            for label, value in values:
+                if any(abs(x.value - value) < 1e-9 for x in plot.limits):
+                    continue
+                color = LIMIT_COLORS[len(plot.limits) % len(LIMIT_COLORS)]
+                plot.limits.append(Limit(f"{v.name}: {label}", value, color))
+            lo, hi = plot.y_range or (min(x.value for x in plot.limits),
+                                      max(x.value for x in plot.limits))
+            vals = [x.value for x in plot.limits]
+            lo, hi = min([lo, *vals]), max([hi, *vals])
+            plot.y_range = (lo, hi + 0.05 * (hi - lo) if hi > lo else hi + 1.0)
+
+
 def _label(lay: Layout, source: str) -> str:
     """An event source as the lab names it (``%QX0.0`` -> ``PUMP (%QX0.0)``)."""
     lane = lay.lane_of(source)
@@ -210,7 +250,7 @@ def _markers(lay: Layout, source: str, what: str, t: float, t_end: float | None,
         k = lay.lanes.index(lane)
         span = t_end if t_end is not None else t
         out.append(Marker(t, label, what, end=max(span, t + _min_width(lane)),
-                          lane=lane_entity(k, lane.label)))
+                          lane=lane_entity(k, lane.label, lane.address)))
     hit = lay.plot_of(source) if source else None
     if hit is None and lay.plots and lay.plots[0].lines:
         hit = lay.plots[0], lay.plots[0].lines[0]
@@ -314,42 +354,59 @@ def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
 
 
 def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
-                   scan: bool = False, names: list[str] | None = None) -> list[Recording]:
-    """One recording per scenario of a graded run, named by lab, scenario, file and score;
-    scenarios with a failed criterion first (the viewer opens the first)."""
+                   scan: bool = False, names: list[str] | None = None,
+                   limits: Any = None) -> list[Recording]:
+    """One recording per scenario of a graded run, named by lab, scenario, file and score,
+    each with its own layout and time span; scenarios with a failed criterion first, in
+    the lab's order (the first is the one every picture opens on). ``limits`` maps a
+    criterion to what it checks (drawn on its signals)."""
     from .layout import run_info, varying
 
-    keep: set[str] = set()  # one layout for all scenarios: the viewer keeps one blueprint
+    keep: set[str] = set()  # the same plots in every scenario: easier to compare
     for trace in result.traces.values():
         keep |= varying(trace)
     recs = []
     for name, trace in result.traces.items():
-        info = run_info(lab, result, name, student_file)
+        info = run_info(lab, result, name, student_file, limits)
         info.keep = sorted(keep)
         recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
-    recs.sort(key=lambda r: all(v.passed for v in r.layout.info.verdicts))
+    recs.sort(key=lambda r: all(v.passed or v.detail.startswith(("not earned", "not run"))
+                                for v in r.layout.info.verdicts))
     return recs
 
 
-def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any = None) -> str:
-    """``plclab lab check --rrd``: every scenario of the run in one file, one recording each
-    (failing scenarios first); returns the line to print."""
+def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any = None,
+                  limits: Any = None) -> str:
+    """``plclab lab check --rrd F``: one recording file per scenario, so that the viewer
+    cannot open another scenario first: ``F`` holds the first failing scenario (else the
+    first), ``F-2-<scenario>.rrd``... the others, failures first; returns the lines to
+    print (each file with its scenario and score)."""
     try:
         import rerun  # noqa: F401
     except ImportError:
         raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
                        "'plclab[viz]'") from None
-    from .recording import write_many
-
     sig = getattr(ns, "signals", None)
     names = [s.strip() for s in sig.split(",") if s.strip()] if sig else None
     recs = lab_recordings(lab, result, student_file, scan=bool(getattr(ns, "scan_times", False)),
-                          names=names)
-    write_many(recs, path)
-    shown = ", ".join(r.layout.info.scenario for r in recs)
-    return (f"timeline: {path} ({len(recs)} scenario(s): {shown}; rerun's viewer lists them "
-            "all when Settings > 'Load files via Viewer catalog' is off, else it opens the "
-            "first)")
+                          names=names, limits=limits)
+    from .recording import write_rrd
+
+    path = Path(path)
+    lines = []
+    for k, rec in enumerate(recs):
+        info = rec.layout.info
+        where = path if k == 0 else path.with_name(
+            f"{path.stem}-{k + 1}-{slug(info.scenario)}{path.suffix or '.rrd'}")
+        write_rrd(rec, where)
+        failed = [v for v in info.verdicts if not v.passed
+                  and not v.detail.startswith(("not earned", "not run"))]
+        score = f"{info.score:g}/{info.max_score:g}" if info.score is not None else ""
+        what = (f"FAILED {failed[0].name}" + (f" at t = {failed[0].time:.2f} s"
+                                               if failed[0].time is not None else "")
+                if failed else "passed")
+        lines.append(f"timeline: {where} (scenario '{info.scenario}', {score}, {what})")
+    return "\n".join(lines)
 
 
 def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,

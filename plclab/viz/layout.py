@@ -42,6 +42,7 @@ class Verdict:
     time: float | None = None
     detail: str = ""
     signals: list[str] = field(default_factory=list)
+    limits: list[Any] = field(default_factory=list)  # what it checks (criteria.Limit)
 
 
 @dataclass
@@ -68,7 +69,9 @@ class RunInfo:
         return " · ".join(parts) or "plclab run"
 
     def application_id(self) -> str:
-        return f"plclab {self.lab}" if self.lab else "plclab"
+        """One per lab and scenario: the viewer keeps one blueprint per application, so each
+        scenario opens with its own layout and time span, not another scenario's."""
+        return " ".join(p for p in ("plclab", self.lab, self.scenario) if p)
 
     def recording_id(self) -> str:
         """Stable per lab, scenario and file, so a re-run replaces its recording in the viewer."""
@@ -231,8 +234,8 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
             analog.append((w, col, "watched", trace.kind(col) != "float"))
     from .sfc_lane import step_columns  # a lane per SFC step (ADR 0023)
 
-    for label, col in step_columns(trace):
-        if (wanted is None or col in wanted) and not any(ln.series.name == col for ln in lanes):
+    for label, col in step_columns(trace):  # always: a chart's steps are the story of its run
+        if not any(ln.series.name == col for ln in lanes):
             lanes.append(Lane(label, series(col, "bool"), "var", col))
     labels = {a[0] for a in analog}
     for sig in trace.signals:
@@ -335,9 +338,11 @@ def _overlap(a: tuple[float, float], b: tuple[float, float]) -> float:
 
 
 def run_info(lab: Any = None, result: Any = None, scenario: str = "",
-             student_file: str = "") -> RunInfo:
+             student_file: str = "", limits: Any = None) -> RunInfo:
     """A :class:`RunInfo` from a :class:`~plclab.grade.lab.Lab` and a grading result
-    (duck-typed, so this module does not import the grader)."""
+    (duck-typed, so this module does not import the grader); ``limits`` maps a criterion's
+    name to what it checks (``plclab.grade.criteria.criterion_limits``), drawn on its
+    signals."""
     info = RunInfo(scenario=scenario, student_file=student_file)
     if lab is not None:
         info.lab = lab.id
@@ -362,7 +367,8 @@ def run_info(lab: Any = None, result: Any = None, scenario: str = "",
         for t in tests:
             sigs = crits[t.criterion].relevant_signals() if t.criterion in crits else []
             info.verdicts.append(Verdict(t.criterion, bool(t.passed), t.t_fail,
-                                         t.detail or t.message, list(sigs)))
+                                         t.detail or t.message, list(sigs),
+                                         list((limits or {}).get(t.criterion, ()))))
     return info
 
 
@@ -386,3 +392,4 @@ def signal_labels(io: Any, trace: Any) -> dict[str, str]:
                 trace.kind(plant) == "bool":  # an analog plant value is not the ADC's counts
             out.setdefault(plant, names[col.upper()])
     return out
+

@@ -37,6 +37,14 @@ MARK = (230, 40, 40)
 OFF_LANE = (45, 45, 45)
 SCREEN_PX = 930.0
 """Height of the left column on a 1000-pixel screen: lanes get their height, plots the rest."""
+LANE_PX = 34.0
+"""Height of one state lane in the viewer."""
+MIN_PLOT_PX = 200.0
+"""A plot is never squashed below this height, whatever the number of lanes."""
+MARK_COLORS = {"fails": (230, 40, 40), "chatter": (255, 140, 0), "plc fault": (200, 0, 200),
+               "fault injected": (120, 120, 255)}
+"""One colour per marker kind (red: a failed criterion); other warnings are yellow."""
+WARN_MARK = (230, 200, 0)
 DASHES = 48
 """A limit line is drawn as this many dashes across the run."""
 
@@ -78,6 +86,7 @@ class Recording:
     frame_rows: Sequence[int] = ()
     frame_times: Sequence[float] = ()
     view_span: tuple[float, float] | None = None  # time range at open (default: the run's)
+    focus: float | None = None  # the moment of the first failure: the time selection at open
 
     @property
     def title(self) -> str:
@@ -92,15 +101,30 @@ class Recording:
         return float(min(t[0] for t in ts)), float(max(t[-1] for t in ts))
 
 
+def mark_color(kind: str) -> tuple[int, int, int]:
+    """The colour of a marker kind: red for a failed criterion, one colour per other kind."""
+    return MARK_COLORS.get(kind, WARN_MARK)
+
+
 def _limit_entity(p: Any, lim: Any) -> str:
     """Highest limit first, as they lie in the plot (``/plots/m/limits/1_rim``)."""
     order = sorted(p.limits, key=lambda x: -x.value).index(lim) + 1
     return f"/plots/{p.key}/limits/{order}_{slug(lim.label)}"
 
 
-def lane_entity(k: int, label: str) -> str:
-    """Lanes sort by entity path in the viewer: the number keeps the lab's order."""
-    return f"/digital/{k + 1:02d}_{slug(label)}"
+def escape_part(text: str) -> str:
+    """One entity path part as rerun reads it (``rr.escape_entity_path_part``, without
+    importing rerun): a backslash before every character but letters, digits, ``_-.``."""
+    return "".join(c if c.isascii() and (c.isalnum() or c in "_-.") else "\\" + c
+                   for c in text)
+
+
+def lane_entity(k: int, label: str, address: str = "") -> str:
+    """A lane named as a logic analyser names a channel: number, the student's variable and
+    its address (``/digital/03 PUMP %QX0.0``); lanes sort by entity path in the viewer, so
+    the number keeps the lab's order."""
+    name = f"{k + 1:02d} {label}" + (f" {address}" if address and address != label else "")
+    return f"/digital/{escape_part(name)}"
 
 
 def blueprint(rec: Recording) -> Any:
@@ -114,15 +138,16 @@ def blueprint(rec: Recording) -> Any:
         end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range
     left: list[Any] = []
     shares: list[float] = []
-    marks = sum(1 for m in rec.markers if m.lane)
-    lanes_px = 46.0 * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
-    plot_px = max(140.0, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
+    marks = len({m.lane + m.kind for m in rec.markers if m.lane})  # a marker lane each
+    lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
+    plot_px = max(MIN_PLOT_PX, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
     for p in lay.plots:
         kw: dict[str, Any] = {}
         if p.y_range is not None:
             kw["axis_y"] = rrb.ScalarAxis(range=p.y_range)
-        left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=p.title,
-                                       plot_legend=rrb.PlotLegend(corner="LeftTop"),
+        # no legend over the data: the lines and the dashed limits are named in the title
+        left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=plot_title(p),
+                                       plot_legend=rrb.PlotLegend(visible=False),
                                        axis_x=whole, **kw))
         shares.append(plot_px)
     if lay.lanes:
@@ -151,7 +176,35 @@ def blueprint(rec: Recording) -> Any:
     return rrb.Blueprint(
         rrb.Horizontal(*cols, column_shares=[3, 2] if left else None),
         rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"),
-        rrb.TimePanel(state="collapsed", timeline="sim_time", play_state="paused"))
+        rrb.TimePanel(state="collapsed", timeline="sim_time", play_state="paused",
+                      **_selection(rec)))
+
+
+def _selection(rec: Recording) -> dict[str, Any]:
+    """The time selection at open: a little before to a little after the first failure
+    (rerun 0.41's blueprint has no initial time cursor; the selection marks the moment)."""
+    if rec.focus is None:
+        return {}
+    import rerun.blueprint as rrb
+
+    a, b = rec.span()
+    w = max((b - a) * 0.01, 0.05)
+    return {"time_selection": rrb.components.AbsoluteTimeRange(
+        min=_ns(max(a, rec.focus - w)), max=_ns(min(b, rec.focus + w)))}
+
+
+def _ns(seconds: float) -> int:
+    return int(round(seconds * 1e9))
+
+
+def plot_title(p: Any) -> str:
+    """A plot's title names its lines and its dashed limits (the legend is hidden, so that
+    it covers no data): ``LEVEL [m] · dashed: LS1 0.5, LS2 1.5, rim 2``."""
+    if not p.limits:
+        return p.title
+    lims = ", ".join(f"{lim.label} {lim.value:g}" for lim in
+                     sorted(p.limits, key=lambda x: x.value))
+    return f"{p.title} · dashed: {lims}"
 
 
 class RrdWriter:
@@ -188,7 +241,7 @@ class RrdWriter:
         self._sent: set[str] = set()  # events and markers already sent
         self._shown: set[str] = set()  # plant entities drawn so far
         self._drawn: dict[str, Any] = {}  # what each plant entity shows now
-        self.lane_paths = {lane.label: lane_entity(k, lane.label)
+        self.lane_paths = {lane.label: lane_entity(k, lane.label, lane.address)
                            for k, lane in enumerate(rec.layout.lanes)}
         self._styles(rec)
         self._static_plant(rec)
@@ -339,14 +392,14 @@ class RrdWriter:
         rr, st = self.rr, self.stream
         if m.plot is not None and m.value is not None:
             path = f"/plots/{m.plot}/markers/{slug(m.label)}"
-            st.log(path, rr.SeriesPoints(markers="cross", colors=[MARK], marker_sizes=[8.0],
-                                         names=m.label), static=True)
+            st.log(path, rr.SeriesPoints(markers="cross", colors=[mark_color(m.kind)],
+                                         marker_sizes=[8.0], names=m.label), static=True)
             st.set_time("sim_time", duration=m.time)
             st.log(path, rr.Scalars(m.value))
         if m.lane is not None:
-            path = f"{m.lane}_{slug(m.kind)}"  # a sibling: sorts right under its lane
+            path = m.lane + escape_part(f" {m.kind}")  # a sibling: sorts right under its lane
             st.log(path, rr.StateConfiguration(values=["1", "0"], labels=[m.label, ""],
-                                               colors=[MARK, (0, 0, 0, 0)],
+                                               colors=[mark_color(m.kind), (0, 0, 0, 0)],
                                                visible=[True, False]), static=True)
             st.set_time("sim_time", duration=m.time)
             st.log(path, rr.StateChange(state="1"))
@@ -505,10 +558,7 @@ def write_many(recs: list[Recording], path: str | Path) -> Path:
 
     Each is written on its own, then rerun's own ``rrd merge`` joins them (a concatenation of
     .rrd files is not a valid .rrd since 0.41's footers)."""
-    path = Path(path)
-    spans = [r.span() for r in recs]
-    for r in recs:  # the application's blueprint is shared: show the longest run whole
-        r.view_span = (min(a for a, _ in spans), max(b for _, b in spans))
+    path = Path(path)  # each keeps its own time span and layout (its own application id)
     if len(recs) == 1:
         return write_rrd(recs[0], path) or path
     with tempfile.TemporaryDirectory(prefix="plclab-rrd-", dir=path.parent) as tmp:
