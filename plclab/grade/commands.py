@@ -392,7 +392,7 @@ def lab_check(ns: argparse.Namespace) -> int:
             student_picture(lab, again, name, ns, first)
             if ns.png and first is not None:  # the failure, its criterion and limits
                 print(failure_picture(lab, again.traces[name], first, ns))
-                ns.png = None
+                ns.png, ns.png_done = None, True
             if ns.rrd and not ns.spawn:  # one file per scenario, the first failure first
                 from plclab.viz.from_trace import write_lab_rrd
 
@@ -406,7 +406,8 @@ def lab_check(ns: argparse.Namespace) -> int:
                 print(line)
     if out is not None:
         print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
-    elif any(not t.passed for t in res.tests) and not ns.no_media:
+    elif any(not t.passed for t in res.tests) and not ns.no_media and not getattr(ns, "png_done",
+                                                                                  False):
         print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
     print(f"score: {res.score:g}/{res.max_score:g}")
     return 0

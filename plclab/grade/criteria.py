@@ -782,7 +782,7 @@ class Limit:
     kind : str
         ``level`` (a value the signal is compared with), ``band`` (``value .. hi``),
         ``target`` (a set point), ``window`` (the time span ``t0 .. t1`` the check looks
-        at), ``count`` (a number of switchings, events or pulses), ``time`` (a response,
+        at), ``rule`` (the condition itself, in words), ``count`` (a number of switchings, events or pulses), ``time`` (a response,
         dwell or on time), ``rate`` (a frequency).
     signal : str
         The signal as the criterion names it (``TEMP``, ``%QX0.0``); empty for events.
@@ -913,7 +913,7 @@ def limits_of(check_name: str, params: Mapping[str, Any]) -> list[Limit]:
     windows, counts and times, from the parameters alone (no trace needed).
 
     >>> [(x.kind, x.signal, x.label) for x in limits_of("never", {"condition": "LEVEL >= 1.75"})]
-    [('level', 'LEVEL', 'never >= 1.75')]
+    [('rule', '', 'never: LEVEL >= 1.75'), ('level', 'LEVEL', 'never >= 1.75')]
     >>> [(x.kind, x.value, x.hi) for x in limits_of("in_band", {"signal": "T", "lo": 200, "hi": 220})]
     [('band', 200.0, 220.0)]
     """
@@ -921,8 +921,11 @@ def limits_of(check_name: str, params: Mapping[str, Any]) -> list[Limit]:
     out: list[Limit] = []
     sig = str(p.get("signal") or "")
     if check_name in ("never", "always", "always_after", "eventually"):
+        word = {"never": "never", "eventually": "at least once"}.get(check_name, "always")
+        out.append(Limit("rule", "", f"{word}: {p.get('condition')}"))
         out += _condition_limits(check_name, str(p.get("condition", "")))
     elif check_name == "implies":
+        out.append(Limit("rule", "", f"whenever {p.get('if')}: {p.get('then')}"))
         out += _condition_limits("implies", str(p.get("then", "")))
         out += [lim for lim in _condition_limits("", str(p.get("if", "")))
                 if not any(o.signal == lim.signal and o.value == lim.value for o in out)]
