@@ -1,0 +1,296 @@
+"""Issue 32: every picture after a failed check opens on the first failing scenario at the
+moment of its first failure, with what the criterion checks drawn on its signal.
+
+The description of a criterion's limits is checked on made-up parameters (including ones it
+must not mistake for limits) and on the labs' own criteria; the pictures are read back: the
+PNG's pixels (the failure's red line where the failure is, the band's fill, the window's
+tint), the rerun files (one per scenario, the failing one first, lanes named by the
+student's variable and address, the limit lines)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import pytest
+
+from plclab.grade.criteria import comparisons, criterion_limits, describe_limits, limits_of
+from plclab.grade.lab import load_lab
+
+
+def _kinds(lims):
+    return [(x.kind, x.signal, x.value, x.hi) for x in lims]
+
+
+# ---------------------------------------------------------------------------- the description
+
+
+def test_comparisons_put_the_signal_left_and_read_bands_and_addresses():
+    assert comparisons("LEVEL >= 1.75") == [("LEVEL", ">=", 1.75)]
+    assert comparisons("1.75 <= LEVEL") == [("LEVEL", ">=", 1.75)]  # flipped
+    assert comparisons("47 <= TEMP <= 53") == [("TEMP", ">=", 47.0), ("TEMP", "<=", 53.0)]
+    assert comparisons("abs(TEMP - 50) <= 2") == [("TEMP", ">=", 48.0), ("TEMP", "<=", 52.0)]
+    assert comparisons("%QX0.0 and %IW64 > -3") == [("%IW64", ">", -3.0)]
+    assert comparisons("PUMP and not LS2") == []  # no number: no limit
+    assert comparisons("t > 30") == []  # time is a window, not a level of a signal
+    assert comparisons("LEVEL > OTHER") == []  # two signals: no constant to draw
+
+
+def test_each_check_kind_describes_its_limits():
+    assert _kinds(limits_of("always_after", {"condition": "47 <= TEMP <= 53", "after": 360.0})) \
+        == [("rule", "", None, None), ("band", "TEMP", 47.0, 53.0), ("window", "", None, None)]
+    win = limits_of("always_after", {"condition": "47 <= TEMP <= 53", "after": 360.0})[-1]
+    assert (win.t0, win.t1) == (360.0, None)
+    assert _kinds(limits_of("in_band", {"signal": "TEMP", "lo": 200.0, "hi": 220.0})) == \
+        [("band", "TEMP", 200.0, 220.0)]
+    st = limits_of("settles", {"signal": "TEMP", "target": 50.0, "band": 0.5, "within": 600.0,
+                               "to": 720.0})
+    assert _kinds(st)[:2] == [("target", "TEMP", 50.0, None), ("band", "TEMP", 49.5, 50.5)]
+    assert (st[2].kind, st[2].t0, st[2].t1) == ("window", 600.0, 720.0)
+    sw = limits_of("max_switchings", {"signal": "PUMP", "max": 8})
+    assert _kinds(sw) == [("count", "PUMP", 8.0, None)] and "8 switchings" in sw[0].label
+    ev = limits_of("event_count", {"event": "cold_extrusion", "max": 0})
+    assert ev[0].kind == "count" and ev[0].label == "at most 0 cold extrusion events"
+    wi = limits_of("within", {"trigger": "not LS1", "response": "PUMP", "time": 1.0})
+    assert wi[-1].kind == "time" and wi[-1].value == 1.0 and wi[-1].signal == "PUMP"
+    own = limits_of("", {"pulses": 60, "tol": 2.0, "count": 2, "strict": True, "from": 3.0})
+    assert own[0].label == "pulses = 60, tol = 2, count = 2"  # no bool, no window in it
+    assert own[-1].kind == "window" and own[-1].t0 == 3.0
+    # a condition with no number draws no line, but still says what it checks
+    assert [x.kind for x in limits_of("never", {"condition": "PUMP and LS2"})] == ["rule"]
+
+
+def test_the_labs_criteria_are_described_from_their_definitions():
+    thermo = {c.name: c for c in load_lab("relay-thermostat").criteria}
+    holds = criterion_limits(thermo["holds 50 °C ± 2 °C"])
+    band = next(x for x in holds if x.kind == "band")
+    assert (band.signal, band.value, band.hi) == ("TEMP", 47.0, 53.0)
+    washer = {c.name: c for c in load_lab("washing-machine").criteria}
+    cool = [x for x in criterion_limits(washer["cools before draining"]) if x.kind == "level"]
+    assert [(x.signal, x.value) for x in cool] == [("TEMP", 41.0)]
+    press = {c.name: c for c in load_lab("press-safety").criteria}
+    doses = describe_limits(criterion_limits(press["makes doses"]))
+    assert "pulses = 60" in doses and "count = 2" in doses
+    band = criterion_limits(press["temperature in its band"])[0]
+    assert (band.value, band.hi) == (200.0, 220.0)
+    tank = {c.name: c for c in load_lab("tank-two-position").criteria}
+    assert "LEVEL never >= 1.75 m" in describe_limits(criterion_limits(tank["no overflow"]),
+                                                     {"LEVEL": "m"})
+
+
+def test_every_criterion_of_every_lab_can_be_described():
+    """Held-back labs use the same check kinds: none may make the description fail."""
+    from plclab.grade.lab import list_labs
+
+    for lab_id in list_labs():
+        lab = load_lab(lab_id)
+        for c in lab.criteria:
+            for lim in criterion_limits(c):
+                assert lim.kind in ("level", "band", "target", "window", "count", "time",
+                                    "rate", "rule"), (lab_id, c.name, lim)
+                assert lim.label.strip()
+
+
+# ---------------------------------------------------------------------------- the first failure
+
+
+def _test(scenario, criterion, t_fail, passed=False, detail="x"):
+    return SimpleNamespace(scenario=scenario, criterion=criterion, t_fail=t_fail,
+                           passed=passed, detail=detail)
+
+
+def test_the_first_failure_is_the_first_failing_scenario_in_the_labs_order():
+    from plclab.grade.commands import first_failure
+
+    lab = load_lab("press-safety")
+    order = [s.name for s in lab.scenarios]
+    a, b = order[0], order[2]
+    traces = {a: None, b: None}
+    tests = [_test(b, "stops for the light curtain", 2.25),
+             _test(a, "makes doses", None),  # failed over the whole run
+             _test(a, "the piston moves", 1.0, passed=True),
+             _test(a, "returns to the top", 5.0, detail="not run: requires ..."),
+             _test(a, "no crash", 7.0)]
+    got = first_failure(lab, tests, traces)
+    assert (got.scenario, got.criterion) == (a, "no crash")  # a moment beats "over the run"
+    assert first_failure(lab, tests[:1], traces).scenario == b
+    assert first_failure(lab, [tests[2], tests[3]], traces) is None  # passed or not run
+    assert first_failure(lab, tests, {b: None}).scenario == b  # only scenarios drawn
+
+
+# ---------------------------------------------------------------------------- the pictures
+
+
+def _pixels(path):
+    from PIL import Image
+
+    img = Image.open(path).convert("RGB")
+    return img, img.load()
+
+
+def _red(c) -> bool:
+    """Red, or red thinned towards white by anti-aliasing (not orange, not pink fills)."""
+    return c[0] - c[1] > 45 and abs(c[1] - c[2]) < 30
+
+
+def _red_columns(img, px, min_count=40):
+    """x of the columns with at least ``min_count`` red pixels (a vertical line, dashed or
+    not)."""
+    w, h = img.size
+    return [x for x in range(w) if sum(_red(px[x, y]) for y in range(h)) >= min_count]
+
+
+def test_png_of_a_failed_check_marks_the_failure_and_draws_the_band(tmp_path):
+    """A trace whose TEMP leaves a 47..53 band at 30 s: the diagram has the red failure line
+    at 30 s, the band's fill and edges and the window's tint; without the criterion none."""
+    import numpy as np
+
+    from plclab.grade.feedback import criterion_picture, timing_png
+    from plclab.trace import Trace
+    from plclab.viz.failure_diagram import BAND_RGB, SPAN_RGB
+
+    t = np.arange(0.0, 60.0, 0.1)
+    temp = np.where(t < 30, 50 + np.sin(t), 56.0)
+    trace = Trace(t, {"TEMP": temp, "HEATER": np.sin(t) > 0}, {"TEMP": "float",
+                                                               "HEATER": "bool"},
+                  meta={"t_end": 60.0, "units": {"TEMP": "degC"}})
+    crit = SimpleNamespace(check="always_after", function=None,
+                           params={"condition": "47 <= TEMP <= 53", "after": 10.0})
+    path = tmp_path / "f.png"
+    timing_png(trace, ["TEMP", "HEATER"], path, 0.0, 60.0, [(30.0, "holds fails")],
+               "warm-up: holds", None, drawing=criterion_picture(trace, crit,
+                                                                 ["TEMP", "HEATER"]))
+    img, px = _pixels(path)
+    colours = {c for _, c in img.getcolors(1 << 20)}
+    band = tuple(int(255 * c) for c in BAND_RGB)
+    span = tuple(int(255 * c) for c in SPAN_RGB)
+    assert any(all(abs(c[i] - band[i]) < 4 for i in range(3)) for c in colours)
+    assert any(all(abs(c[i] - span[i]) < 4 for i in range(3)) for c in colours)
+    reds = _red_columns(img, px)
+    assert reds, "no failure line"
+    # where 30 s lies: between the axis' ends, which are 0 s and 60 s
+    w = img.size[0]
+    assert 0.35 * w < sum(reds) / len(reds) < 0.75 * w
+    plain = tmp_path / "g.png"
+    timing_png(trace, ["TEMP", "HEATER"], plain, 0.0, 60.0, [], "t", None)
+    img2, _ = _pixels(plain)
+    assert not any(all(abs(c[i] - band[i]) < 4 for i in range(3))
+                   for _, c in img2.getcolors(1 << 20))
+
+
+def test_input_rows_are_blue_and_output_rows_green():
+    from plclab.viz.failure_diagram import INPUT_RGB, OUTPUT_RGB, bool_rgb
+
+    assert bool_rgb("START %IX0.0") == INPUT_RGB
+    assert bool_rgb("PUMP %QX0.0") == OUTPUT_RGB
+    assert bool_rgb("PUMP") == OUTPUT_RGB and bool_rgb("X%IX") == OUTPUT_RGB
+
+
+def test_labels_of_close_limits_never_overlap():
+    from plclab.viz.failure_diagram import spread
+
+    ys = [10.0, 11.0, 50.0, 12.0]
+    got = spread(ys, 5.0)
+    order = sorted(got)
+    assert all(b - a >= 5.0 - 1e-9 for a, b in zip(order, order[1:], strict=False))
+    assert got[2] == 50.0  # a label with room stays where its line is
+    assert [ys.index(y) for y in sorted(ys)] == [got.index(y) for y in sorted(got)]
+
+
+def test_signal_labels_name_both_sides_of_a_wire_but_not_analog_values():
+    import numpy as np
+
+    from plclab.trace import Trace
+    from plclab.viz.layout import signal_labels
+
+    t = np.arange(3.0)
+    tr = Trace(t, {"PUMP": np.array([0, 1, 0], bool), "%QX0.0": np.array([0, 1, 0], bool),
+                   "TEMP": np.array([1.0, 2, 3]), "%IW64": np.array([1, 2, 3])},
+               {"PUMP": "bool", "%QX0.0": "bool", "TEMP": "float", "%IW64": "int"},
+               meta={"t_end": 3.0, "io": [
+                   {"column": "%QX0.0", "plant_column": "PUMP", "direction": "out"},
+                   {"column": "%IW64", "plant_column": "TEMP", "direction": "in"}]})
+    io = [("PUMP", "%QX0.0", "BOOL"), ("TEMP_RAW", "%IW64", "INT")]
+    got = signal_labels(io, tr)
+    assert got["%QX0.0"] == got["PUMP"] == "PUMP %QX0.0"
+    assert got["%IW64"] == "TEMP_RAW %IW64" and "TEMP" not in got  # degC is not counts
+
+
+def test_lab_check_png_draws_the_first_failure_and_says_so(tmp_path, capsys):
+    from plclab.cli import main
+
+    lab = load_lab("tank-two-position")
+    png = tmp_path / "t.png"
+    assert main(["lab", "check", "tank-two-position",
+                 str(lab.path / "mistakes" / "follows_ls1.st"), "--png", str(png)]) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if ln.startswith("timing diagram:"))
+    first = next(s.name for s in lab.scenarios if s.visible)
+    assert f"scenario '{first}'" in line and "criterion '" in line and "failed at t =" in line
+    img, px = _pixels(png)
+
+    assert _red_columns(img, px), "the failure's line"
+    assert "add --out DIR (or --png" not in out
+
+
+# ---------------------------------------------------------------------------- rerun
+
+
+rr = pytest.importorskip("rerun")
+
+
+def test_lab_rrd_is_one_file_per_scenario_the_failure_first(tmp_path):
+    from rerun.chunk import RrdReader
+
+    from plclab.grade.criteria import criterion_limits as cl
+    from plclab.grade.engine import grade_sources, read_submission
+    from plclab.viz.from_trace import write_lab_rrd
+    from plclab.viz.recording import read_entity_paths
+
+    lab = load_lab("tank-two-position")
+    src, _ = read_submission(str(lab.path / "mistakes" / "follows_ls2.st"))
+    res = grade_sources(lab, src, student="", scenarios=["normal", "low-demand"],
+                        keep_traces=True)
+    failing = [s for s in ("normal", "low-demand") if any(
+        t.scenario == s and not t.passed for t in res.tests)]
+    assert failing, "the mistake fails somewhere"
+    text = write_lab_rrd(lab, res, tmp_path / "run.rrd", "follows_ls2.st",
+                         limits={c.name: cl(c) for c in lab.criteria})
+    lines = text.splitlines()
+    assert f"scenario '{failing[0]}'" in lines[0] and "FAILED" in lines[0]
+    files = sorted(tmp_path.glob("*.rrd"))
+    assert len(files) == 2
+    stores = RrdReader(tmp_path / "run.rrd").recordings()
+    assert [s.recording_id for s in stores] == [f"tank-two-position/{failing[0]}/follows_ls2.st"]
+    paths = read_entity_paths(tmp_path / "run.rrd")
+    assert r"/digital/03\ PUMP\ \%QX0.0" in paths
+    assert any(p.startswith("/plots/m/limits/") for p in paths)
+
+
+def test_rerun_plot_has_the_failed_criterions_limit_and_the_failure_selected(tmp_path):
+    import numpy as np
+    import rerun.blueprint as rrb
+
+    from plclab.trace import Trace
+    from plclab.viz.from_trace import recording
+    from plclab.viz.layout import RunInfo, Verdict
+    from plclab.viz.recording import blueprint, plot_title
+
+    t = np.arange(0.0, 60.0, 0.1)
+    trace = Trace(t, {"TEMP": 45 + t / 5}, {"TEMP": "float"},
+                  meta={"t_end": 60.0, "units": {"TEMP": "degC"}, "signals": ["TEMP"]})
+    lims = limits_of("never", {"condition": "TEMP >= 53"})
+    info = RunInfo(lab="x", scenario="warm", verdicts=[
+        Verdict("never overheats", False, 40.0, "TEMP >= 53", ["TEMP"], lims)])
+    rec = recording(trace, info=info, fps=1.0)
+    plot = rec.layout.plots[0]
+    assert [lim.value for lim in plot.limits] == [53.0]
+    assert "53" in plot_title(plot)
+    assert rec.focus == 40.0
+    bp = blueprint(rec)
+    sel = bp.time_panel.time_selection
+    assert sel is not None and "40" in repr(sel).replace("_", "")  # around 40 s
+    passed = RunInfo(lab="x", scenario="warm", verdicts=[
+        Verdict("never overheats", True, None, "", ["TEMP"], lims)])
+    rec2 = recording(trace, info=passed, fps=1.0)
+    assert rec2.layout.plots[0].limits == [] and rec2.focus is None
+    assert isinstance(bp, rrb.Blueprint)
