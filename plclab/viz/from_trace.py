@@ -286,6 +286,9 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     for v in failed:
         when = f"at {_t(v.time)}" if v.time is not None else "over the run"
         lines.append(f"- **FAILED {when}: {v.name}**: {v.detail}")
+        checks = _checks_text(v.limits, trace)
+        if checks:
+            lines.append(f"  - checks: {checks}")
     for e in chat:
         lines.append(f"- **CHATTER at {_t(e.time)}**: {_label(lay, e.source)}, {e.message}")
     for e in warns[:8]:
@@ -306,6 +309,21 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     if len(lines) == 2:
         lines.append("- nothing went wrong")
     return "\n".join(lines)
+
+
+def _checks_text(limits, trace) -> str:
+    """What a criterion checks, in words with units (the same description the diagrams
+    draw)."""
+    parts = []
+    units = trace.meta.get("units", {}) or {}
+    for lim in limits:
+        try:
+            col = trace.resolve(lim.signal) if lim.signal and lim.signal in trace else ""
+        except PlcError:
+            col = ""
+        who = f"{lim.signal} " if lim.signal and lim.kind not in ("window", "time") else ""
+        parts.append(f"{who}{lim.text(units.get(col, ''))}")
+    return "; ".join(dict.fromkeys(parts))
 
 
 def _t(t: float | None) -> str:

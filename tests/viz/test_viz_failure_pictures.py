@@ -286,6 +286,7 @@ def test_rerun_plot_has_the_failed_criterions_limit_and_the_failure_selected(tmp
     assert [lim.value for lim in plot.limits] == [53.0]
     assert "53" in plot_title(plot)
     assert rec.focus == 40.0
+    assert "checks: never: TEMP >= 53; TEMP never >= 53 degC" in rec.summary
     bp = blueprint(rec)
     sel = bp.time_panel.time_selection
     assert sel is not None and "40" in repr(sel).replace("_", "")  # around 40 s
