@@ -181,6 +181,8 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
 
         n = max(1, int((end - start) * fps))
         times = np.array([start + k / fps for k in range(n + 1)])
+        if rec.focus is not None and start <= rec.focus <= end:  # a frame at the failure
+            times = np.unique(np.append(times, rec.focus))
         rows = np.clip(np.searchsorted(trace.time, times + 1e-9, "right") - 1, 0,
                        len(trace.time) - 1)
         rec.picture, rec.frame_times, rec.frame_rows = pic, list(times), list(rows)
@@ -221,8 +223,9 @@ def _criterion_lines(trace, lay: Layout) -> None:
                     continue
                 color = LIMIT_COLORS[len(plot.limits) % len(LIMIT_COLORS)]
                 plot.limits.append(Limit(f"{v.name}: {label}", value, color))
-            lo, hi = plot.y_range or (min(x.value for x in plot.limits),
-                                      max(x.value for x in plot.limits))
+            from .layout import span_of
+
+            lo, hi = plot.y_range or span_of(plot)
             vals = [x.value for x in plot.limits]
             lo, hi = min([lo, *vals]), max([hi, *vals])
             plot.y_range = (lo, hi + 0.05 * (hi - lo) if hi > lo else hi + 1.0)
@@ -250,7 +253,7 @@ def _markers(lay: Layout, source: str, what: str, t: float, t_end: float | None,
         k = lay.lanes.index(lane)
         span = t_end if t_end is not None else t
         out.append(Marker(t, label, what, end=max(span, t + _min_width(lane)),
-                          lane=lane_entity(k, lane.label, lane.address)))
+                          lane=lane_entity(k, lane.label)))
     hit = lay.plot_of(source) if source else None
     if hit is None and lay.plots and lay.plots[0].lines:
         hit = lay.plots[0], lay.plots[0].lines[0]
@@ -405,6 +408,8 @@ def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any
         raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
                        "'plclab[viz]'") from None
     sig = getattr(ns, "signals", None)
+    if sig and sig == getattr(ns, "_default_signals", None):
+        sig = None  # the lab's diagram list is for the diagram: the timeline shows all I/O
     names = [s.strip() for s in sig.split(",") if s.strip()] if sig else None
     recs = lab_recordings(lab, result, student_file, scan=bool(getattr(ns, "scan_times", False)),
                           names=names, limits=limits)

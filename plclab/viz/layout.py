@@ -203,6 +203,10 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
     wanted = None
     if names is not None:
         wanted = [c for c in (_resolve(trace, n) for n in names) if c]
+        wire = {r.get("plant_column"): r.get("column") for r in trace.io
+                if r.get("column") in trace.columns and r.get("plant_column") in trace.columns
+                and _is_bool(trace, r["plant_column"])}  # a value is not its ADC counts
+        wanted += [wire[c] for c in wanted if c in wire and wire[c] not in wanted]
 
     def win(s: Series) -> Series:
         return s.window(t0, t1) if (t0 is not None or t1 is not None) else s
@@ -253,10 +257,18 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
             analog = [a for a in analog if a[0] != sig]
         analog.append((sig, col, unit, False))
     if wanted is not None:  # explicit names keep their order and may add plant booleans
+        wired = {r.get("plant_column") for r in trace.io if r.get("column") in io_cols}
         for col in wanted:
+            if col in wired:  # its wire's PLC side is a lane already
+                continue
             if _is_bool(trace, col) and not any(ln.series.name == col for ln in lanes):
                 lanes.append(Lane(col, series(col, "bool"), "var", col))
-        order = {c: k for k, c in enumerate(wanted)}
+        order: dict[str, int] = {}
+        for k, c in enumerate(wanted):
+            order.setdefault(c, k)
+            w = wire.get(c)
+            if w is not None:
+                order.setdefault(w, k)
         lanes.sort(key=lambda ln: order.get(ln.series.name, len(order)))
         analog.sort(key=lambda a: order.get(a[1], len(order)))
     plots = _group(analog, focus_order, series, limits or {}, wanted is None)
@@ -298,7 +310,7 @@ def _group(analog, focus: list[str], series, limits, cap: bool) -> list[Plot]:
     for label, s, step in watched:
         best, score = None, 0.05
         for p in plots.values():
-            o = _overlap(_span(s), _span_of(p))
+            o = _overlap(_span(s), span_of(p))
             if o > score:
                 best, score = p, o
         if best is not None:
@@ -312,8 +324,8 @@ def _group(analog, focus: list[str], series, limits, cap: bool) -> list[Plot]:
         ordered = ordered[:MAX_PLOTS]
     for p in ordered:
         if p.limits:
-            lo = min([0.0] + [lim.value for lim in p.limits] + [_span_of(p)[0]])
-            hi = max([lim.value for lim in p.limits] + [_span_of(p)[1]])
+            lo = min([0.0] + [lim.value for lim in p.limits] + [span_of(p)[0]])
+            hi = max([lim.value for lim in p.limits] + [span_of(p)[1]])
             p.y_range = (lo, hi + 0.08 * (hi - lo) if hi > lo else hi + 1.0)
     return ordered
 
@@ -323,7 +335,7 @@ def _span(s: Series) -> tuple[float, float]:
     return (min(vals), max(vals)) if vals else (0.0, 0.0)
 
 
-def _span_of(p: Plot) -> tuple[float, float]:
+def span_of(p: Plot) -> tuple[float, float]:
     spans = [_span(ln.series) for ln in p.lines]
     return min(a for a, _ in spans), max(b for _, b in spans)
 

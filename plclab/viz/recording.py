@@ -112,19 +112,18 @@ def _limit_entity(p: Any, lim: Any) -> str:
     return f"/plots/{p.key}/limits/{order}_{slug(lim.label)}"
 
 
-def escape_part(text: str) -> str:
-    """One entity path part as rerun reads it (``rr.escape_entity_path_part``, without
-    importing rerun): a backslash before every character but letters, digits, ``_-.``."""
-    return "".join(c if c.isascii() and (c.isalnum() or c in "_-.") else "\\" + c
-                   for c in text)
+def lane_entity(k: int, label: str) -> str:
+    """Lanes sort by entity path in the viewer: the number keeps the lab's order. (The
+    viewer shows a path's escapes, ``01\\ PUMP``, so the name and address of the student's
+    variable are in the lane's state labels instead: :func:`lane_name`.)"""
+    return f"/digital/{k + 1:02d}_{slug(label)}"
 
 
-def lane_entity(k: int, label: str, address: str = "") -> str:
-    """A lane named as a logic analyser names a channel: number, the student's variable and
-    its address (``/digital/03 PUMP %QX0.0``); lanes sort by entity path in the viewer, so
-    the number keeps the lab's order."""
-    name = f"{k + 1:02d} {label}" + (f" {address}" if address and address != label else "")
-    return f"/digital/{escape_part(name)}"
+def lane_name(lane: Any) -> str:
+    """What a lane says in its bars: the student's variable and its address, as a logic
+    analyser names a channel (``PUMP %QX0.0``)."""
+    addr = lane.address if lane.address.startswith("%") and lane.address != lane.label else ""
+    return f"{lane.label} {addr}".strip()
 
 
 def blueprint(rec: Recording) -> Any:
@@ -162,8 +161,14 @@ def blueprint(rec: Recording) -> Any:
     rshares: list[float] = []
     if rec.picture is not None:
         x0, y0, x1, y1 = rec.picture.bounds
-        right.append(rrb.Spatial2DView(origin="/plant", name="plant", visual_bounds=(
-            rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0)))))
+        kw = {}
+        name = "plant"
+        if rec.focus is not None:  # the plant at the failure, wherever the cursor is
+            at = rrb.TimeRangeBoundary.absolute(seconds=rec.focus)
+            kw["time_ranges"] = rrb.VisibleTimeRange("sim_time", start=at, end=at)
+            name = f"plant at the first failure, t = {rec.focus:.2f} s"
+        right.append(rrb.Spatial2DView(origin="/plant", name=name, visual_bounds=(
+            rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0))), **kw))
         rshares.append(3.0)
     right.append(rrb.TextDocumentView(origin="/summary", name="summary: most important first"))
     rshares.append(2.0)
@@ -181,16 +186,18 @@ def blueprint(rec: Recording) -> Any:
 
 
 def _selection(rec: Recording) -> dict[str, Any]:
-    """The time selection at open: a little before to a little after the first failure
-    (rerun 0.41's blueprint has no initial time cursor; the selection marks the moment)."""
+    """At open, after a failure: the moments before and just after the first failure
+    selected on the time line (rerun 0.41's blueprint has no initial time cursor: a playing
+    loop over the selection would start from the cursor at 0, so the plant view shows the
+    failure's moment by its own visible time range instead)."""
     if rec.focus is None:
         return {}
     import rerun.blueprint as rrb
 
     a, b = rec.span()
-    w = max((b - a) * 0.01, 0.05)
+    w = max((b - a) * 0.02, 1.0)
     return {"time_selection": rrb.components.AbsoluteTimeRange(
-        min=_ns(max(a, rec.focus - w)), max=_ns(min(b, rec.focus + w)))}
+        min=_ns(max(a, rec.focus - w)), max=_ns(min(b, rec.focus + w / 2)))}
 
 
 def _ns(seconds: float) -> int:
@@ -241,7 +248,7 @@ class RrdWriter:
         self._sent: set[str] = set()  # events and markers already sent
         self._shown: set[str] = set()  # plant entities drawn so far
         self._drawn: dict[str, Any] = {}  # what each plant entity shows now
-        self.lane_paths = {lane.label: lane_entity(k, lane.label, lane.address)
+        self.lane_paths = {lane.label: lane_entity(k, lane.label)
                            for k, lane in enumerate(rec.layout.lanes)}
         self._styles(rec)
         self._static_plant(rec)
@@ -259,8 +266,9 @@ class RrdWriter:
                     names=f"{lim.label} {lim.value:g} {p.unit}".rstrip(), colors=[lim.color],
                     widths=[1.5]), static=True)
         for lane in rec.layout.lanes:
+            name = lane_name(lane)
             st.log(self.lane_paths[lane.label], rr.StateConfiguration(
-                values=["1", "0"], labels=[f"{lane.label} ON", "off"],
+                values=["1", "0"], labels=[f"{name} ON", f"{name} off"],
                 colors=[lane.color, OFF_LANE]), static=True)
         if len(rec.scan_durations_us):
             st.log("/scan/duration_us", rr.SeriesLines(names="scan duration [us]",
@@ -397,7 +405,7 @@ class RrdWriter:
             st.set_time("sim_time", duration=m.time)
             st.log(path, rr.Scalars(m.value))
         if m.lane is not None:
-            path = m.lane + escape_part(f" {m.kind}")  # a sibling: sorts right under its lane
+            path = f"{m.lane}_{slug(m.kind)}"  # a sibling: sorts right under its lane
             st.log(path, rr.StateConfiguration(values=["1", "0"], labels=[m.label, ""],
                                                colors=[mark_color(m.kind), (0, 0, 0, 0)],
                                                visible=[True, False]), static=True)
@@ -424,7 +432,8 @@ class RrdWriter:
             for name, shapes in groups.items():
                 key = tuple((s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
                              round(s.h, 4), round(s.angle, 3), s.label) for s in shapes)
-                if last.get(name) != key:
+                # every shape at the failure's moment: the plant view shows that moment
+                if last.get(name) != key or (rec.focus is not None and t == rec.focus):
                     rows.setdefault((name, shapes[0].kind), []).append((float(t), shapes))
                     last[name] = key
             for name in shown - set(groups):

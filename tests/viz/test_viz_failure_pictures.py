@@ -262,7 +262,7 @@ def test_lab_rrd_is_one_file_per_scenario_the_failure_first(tmp_path):
     stores = RrdReader(tmp_path / "run.rrd").recordings()
     assert [s.recording_id for s in stores] == [f"tank-two-position/{failing[0]}/follows_ls2.st"]
     paths = read_entity_paths(tmp_path / "run.rrd")
-    assert r"/digital/03\ PUMP\ \%QX0.0" in paths
+    assert "/digital/03_PUMP" in paths
     assert any(p.startswith("/plots/m/limits/") for p in paths)
 
 
@@ -295,3 +295,121 @@ def test_rerun_plot_has_the_failed_criterions_limit_and_the_failure_selected(tmp
     rec2 = recording(trace, info=passed, fps=1.0)
     assert rec2.layout.plots[0].limits == [] and rec2.focus is None
     assert isinstance(bp, rrb.Blueprint)
+
+
+# ---------------------------------------------------------------------------- plant drawings
+
+
+class _Plant:
+    def __init__(self, geo):
+        self.geo = geo
+
+    def geometry(self):
+        return self.geo
+
+
+def _plant_trace(cols, kinds, info):
+    import numpy as np
+
+    from plclab.trace import Trace
+
+    t = np.arange(0.0, 10.0, 0.5)
+    return Trace(t, {k: np.asarray(v) for k, v in cols.items()}, kinds,
+                 meta={"t_end": 10.0, "signal_info": info,
+                       "units": {k: d.get("unit", "") for k, d in info.items()}})
+
+
+def test_a_round_drum_holds_its_water_level():
+    from plclab.viz.plant_view import picture
+
+    level = [0.0] * 4 + [10.0] * 16  # half of 0..20 l from t = 2 s
+    tr = _plant_trace({"LEVEL": level}, {"LEVEL": "float"},
+                      {"LEVEL": {"type": "real", "kind": "sensor", "unit": "l",
+                                 "range": [0.0, 20.0]}})
+    geo = {"shapes": [{"type": "rect", "name": "cabinet", "x": 0.0, "y": 0.0, "w": 0.6,
+                       "h": 0.85},
+                      {"type": "circle", "name": "drum", "x": 0.3, "y": 0.45, "r": 0.25}]}
+    pic = picture(tr, _Plant(geo))
+    empty = [s for s in pic.frame(0) if s.name == "water"]
+    half = [s for s in pic.frame(10) if s.name == "water"]
+    assert not empty and half
+    top = max(s.y + s.h for s in half)
+    assert abs(top - 0.45) < 1e-6  # half full: up to the drum's centre
+    assert all(0.05 - 1e-9 <= s.x and s.x + s.w <= 0.55 + 1e-9 for s in half)  # inside
+    label = next(s for s in pic.frame(10) if s.name == "level_value")
+    assert label.label == "LEVEL 10.0 l" and label.x < 0.0  # outside the cabinet
+
+
+def test_fans_turn_while_they_run_and_a_curtain_shows_a_hand():
+    from plclab.viz.plant_view import HOT, ON, picture
+
+    on = [False] * 6 + [True] * 14
+    clear = [True] * 10 + [False] * 4 + [True] * 6
+    tr = _plant_trace({"FAN1": on, "LIGHT_CURTAIN": clear, "HAND_L": on},
+                      {"FAN1": "bool", "LIGHT_CURTAIN": "bool", "HAND_L": "bool"},
+                      {"FAN1": {"type": "bool", "kind": "actuator"},
+                       "LIGHT_CURTAIN": {"type": "bool", "kind": "panel"},
+                       "HAND_L": {"type": "bool", "kind": "panel"}})
+    geo = {"shapes": [{"type": "rect", "name": "building", "x": 0.0, "y": 0.0, "w": 30.0,
+                       "h": 6.0},
+                      {"type": "circle", "name": "FAN1", "x": 5.0, "y": 4.5, "r": 0.6}]}
+    pic = picture(tr, _Plant(geo))
+
+    def blades(i):
+        return [s.points[1] for s in pic.frame(i) if s.name == "FAN1/blades"]
+
+    assert blades(2) == blades(5)  # stopped: the blades stand still
+    assert blades(8) != blades(12)  # running: they turn
+    state = {s.label for i in (2, 12) for s in pic.frame(i) if s.name == "FAN1/state"}
+    assert state == {"FAN1 stopped", "FAN1 runs"}
+    beams_clear = [s for s in pic.frame(2) if s.name == "LIGHT_CURTAIN/beams"]
+    beams_cut = [s for s in pic.frame(11) if s.name == "LIGHT_CURTAIN/beams"]
+    assert {s.color for s in beams_clear} == {ON} and {s.color for s in beams_cut} == {HOT}
+    assert len(beams_cut) < len(beams_clear)
+    hands = {s.label for i in (2, 12) for s in pic.frame(i) if s.name == "HAND_L"}
+    assert hands == {"HAND_L released", "HAND_L pressed"}
+    assert not any(s.name == "FAN1" and s.kind == "dot" for s in pic.frame(12))  # no lamp
+
+
+def test_the_plant_view_shows_the_failure_with_every_shape_logged_there(tmp_path):
+    from plclab.viz.from_trace import recording
+    from plclab.viz.layout import RunInfo, Verdict
+    from plclab.viz.recording import blueprint
+
+    tr = sim_tank()
+    info = RunInfo(lab="x", scenario="s", verdicts=[Verdict("c", False, 20.25, "d")])
+    rec = recording(tr, info=info, fps=1.0)
+    assert 20.25 in [round(t, 6) for t in rec.frame_times]
+    import rerun.blueprint as rrb
+
+    views = []
+
+    def walk(node):
+        for c in getattr(node, "contents", []) or []:
+            walk(c)
+        if isinstance(node, rrb.View):
+            views.append(node)
+
+    walk(blueprint(rec).root_container)
+    plant = next(v for v in views if v.origin == "/plant")
+    assert plant.name == "plant at the first failure, t = 20.25 s"
+    # every moving shape is logged at that moment, so a view of that moment shows them all
+    from plclab.viz.recording import RrdWriter
+
+    sent = []
+    w = RrdWriter(rec, tmp_path / "a.rrd")
+    w._shape_columns = lambda entity, items: sent.extend(
+        entity for t, _ in items if abs(t - 20.25) < 1e-9)
+    w.send(rec)
+    w.close()
+    names = {s.name for s in rec.picture.frame(int(rec.frame_rows[
+        [round(t, 6) for t in rec.frame_times].index(20.25)]))}
+    assert {f"/plant/{n}" for n in names} <= set(sent)
+
+
+def sim_tank():
+    import plclab.sim as sim
+
+    prog = ("PROGRAM P VAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL; M AT %QX0.0 : BOOL; "
+            "END_VAR M := ((NOT LS1) OR M) AND (NOT LS2); END_PROGRAM")
+    return sim.run(prog, plant="tank", duration="40s")

@@ -84,18 +84,18 @@ def test_recording_reads_back_with_names_lanes_limits_and_markers(recs, tmp_path
                    "tank-two-position/low-demand/follows_ls1.st"}  # every scenario, selectable
     rid = "tank-two-position/normal/follows_ls1.st"
     paths = read_entity_paths(path, rid)
-    # lanes named like a logic analyser's channels: number, variable, address
-    assert {r"/digital/01\ LS1\ \%IX0.0", r"/digital/02\ LS2\ \%IX0.1",
-            r"/digital/03\ PUMP\ \%QX0.0"} <= paths
-    assert r"/digital/03\ PUMP\ \%QX0.0\ chatter" in paths  # in the lane it concerns
+    assert {"/digital/01_LS1", "/digital/02_LS2", "/digital/03_PUMP"} <= paths
+    assert "/digital/03_PUMP_chatter" in paths  # the chatter in the lane it concerns
+    # the lane says the student's variable and its address, as a logic analyser does
+    labels = _columns(path, rid, "/digital/03_PUMP", "StateConfiguration:labels")
+    assert "PUMP %QX0.0 ON" in str(labels) and "PUMP %QX0.0 off" in str(labels)
     assert "/plots/m/markers/PUMP_chatter" in paths  # ... and in the level plot
     names = _columns(path, rid, "/plots/m/limits/2_LS2", "SeriesLines:names")
     assert names and "LS2 1.5 m" in str(names)
     dashes = _columns(path, rid, "/plots/m/limits/2_LS2", "Scalars:scalars")
     flat = [v for row in dashes for v in (row or [])]
     assert any(v != v for v in flat) and 1.5 in flat  # dashed: NaN gaps between dashes
-    states = [v for row in _columns(path, rid, r"/digital/03\ PUMP\ \%QX0.0",
-                                    "StateChange:state")
+    states = [v for row in _columns(path, rid, "/digital/03_PUMP", "StateChange:state")
               for v in (row or [])]
     assert set(states) == {"0", "1"} and len(states) > 50  # chattering: many changes
     title = _columns(path, rid, "/__properties", "RecordingInfo:name")
