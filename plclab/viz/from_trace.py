@@ -123,9 +123,9 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
     lay = plan(trace, info, names, t0, t1, _limits(trace, plant))
     _criterion_lines(trace, lay)
     rec = Recording(layout=lay)
-    fails = [v.time for v in info.verdicts if not v.passed and v.time is not None]
-    if fails:  # the viewer's time selection: the moment of the first failure
-        rec.focus = min(fails)
+    first = first_failed(info.verdicts)
+    if first is not None and first.time is not None:  # the moment every view shows
+        rec.focus = first.time
 
     def inside(t: float) -> bool:
         return start - 1e-9 <= t <= end + 1e-9
@@ -196,16 +196,18 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
 
 def _criterion_lines(trace, lay: Layout) -> None:
     """The levels, set points and band edges of the failed criteria as dashed lines in the
-    plot of their signal (beside the plant's switch heights), the plot's range widened to
+    plot of their signal (beside the plant's switch heights), and the set points and bands
+    of the criteria that passed (what the signal is held to); the plot's range widened to
     show them."""
     from .layout import LIMIT_COLORS, Limit
 
-    for v in lay.info.verdicts:
-        if v.passed:
+    for v in sorted(lay.info.verdicts, key=lambda v: v.passed):  # failures first
+        if _not_run(v):
             continue
         for lim in v.limits:
-            if lim.kind not in ("level", "target", "band") or lim.value is None:
-                continue
+            kinds = ("target", "band") if v.passed else ("level", "target", "band")
+            if lim.kind not in kinds or lim.value is None:
+                continue  # a passed criterion's band or set point is context, not its levels
             try:
                 col = trace.resolve(lim.signal) if lim.signal in trace else lim.signal
             except PlcError:
@@ -282,7 +284,7 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     info = lay.info
     lines = [f"**{info.title()}**", ""]
     errors = [e for e in rec.events if e.level == "ERROR" and e.kind != "verdict"]
-    failed = [v for v in info.verdicts if not v.passed]
+    failed = [v for v in info.verdicts if not v.passed and not _not_run(v)]
     warns = [e for e in rec.events if e.level == "WARN" and e.kind != "chatter"]
     for e in errors:
         lines.append(f"- **FAULT at {_t(e.time)}**: {e.message}")
@@ -301,6 +303,10 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     passed = [v for v in info.verdicts if v.passed]
     if passed:
         lines.append(f"- passed: {', '.join(v.name for v in passed)}")
+    skipped = [v for v in info.verdicts if not v.passed and _not_run(v)]
+    if skipped:
+        lines.append(f"- not run (they need another criterion first): "
+                     f"{', '.join(v.name for v in skipped)}")
     relays = [(src, n) for (kind, src), n in counts.items() if kind == "relay"]
     if relays:
         lines.append("- relay operations: " + ", ".join(
@@ -312,6 +318,20 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     if len(lines) == 2:
         lines.append("- nothing went wrong")
     return "\n".join(lines)
+
+
+def _not_run(v) -> bool:
+    """A criterion that was not evaluated (it requires another one), not a failure."""
+    return v.detail.startswith(("not earned", "not run"))
+
+
+def first_failed(verdicts):
+    """The failed verdict every picture opens on: a moment of failure before a failure over
+    the whole run, the earliest first, criteria that did not run left out."""
+    failed = [v for v in verdicts if not v.passed and not _not_run(v)]
+    if not failed:
+        return None
+    return min(failed, key=lambda v: (v.time is None, v.time or 0.0))
 
 
 def _checks_text(limits, trace) -> str:
@@ -391,8 +411,7 @@ def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
         info = run_info(lab, result, name, student_file, limits)
         info.keep = sorted(keep)
         recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
-    recs.sort(key=lambda r: all(v.passed or v.detail.startswith(("not earned", "not run"))
-                                for v in r.layout.info.verdicts))
+    recs.sort(key=lambda r: first_failed(r.layout.info.verdicts) is None)
     return recs
 
 
@@ -422,12 +441,11 @@ def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any
         where = path if k == 0 else path.with_name(
             f"{path.stem}-{k + 1}-{slug(info.scenario)}{path.suffix or '.rrd'}")
         write_rrd(rec, where)
-        failed = [v for v in info.verdicts if not v.passed
-                  and not v.detail.startswith(("not earned", "not run"))]
+        first = first_failed(info.verdicts)
         score = f"{info.score:g}/{info.max_score:g}" if info.score is not None else ""
-        what = (f"FAILED {failed[0].name}" + (f" at t = {failed[0].time:.2f} s"
-                                               if failed[0].time is not None else "")
-                if failed else "passed")
+        what = (f"FAILED {first.name}" + (f" at t = {first.time:.2f} s"
+                                           if first.time is not None else "")
+                if first is not None else "passed")
         lines.append(f"timeline: {where} (scenario '{info.scenario}', {score}, {what})")
     return "\n".join(lines)
 

@@ -124,6 +124,8 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
         kind, name = s.get("type"), s.get("name", "")
         if kind == "circle":  # a fan (named by its contactor) or a vessel (a drum)
             r = float(s.get("r", dot))
+            if name in cols and trace.kind(name) == "bool":
+                r = max(r, 0.06 * size)  # a fan big enough to see its blades turn
             static.append(Shape("outline", f"{name}_rim", STEEL,
                                 points=_circle(s["x"], s["y"], r)))
             extent(s["x"] - r, s["y"] - r - 0.1 * size, s["x"] + r, s["y"] + r)
@@ -210,10 +212,10 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
         extent(cx - 0.1 * size, min(ys), cx, max(ys) + 0.1 * size)
     hands = [n for n, d in info.items() if d.get("type") == "bool" and n in cols
              and n.upper().startswith("HAND") and n not in drawn]
-    for k, n in enumerate(hands):
-        hx = min(xs) + (max(xs) - min(xs)) * (k + 0.5) / len(hands) - 0.25 * size * \
-            (len(hands) - 1) * (0.5 - k)
-        hy = min(ys) - 0.18 * size
+    hy = min(ys) - 0.18 * size
+    x_a, x_b = min(xs), max(xs)
+    for k, n in enumerate(hands):  # spread out under the plant, left hand left
+        hx = (x_a + x_b) / 2 + 0.5 * size * (k - (len(hands) - 1) / 2)
         moving.append(_hand(n, hx, hy, 1.8 * dot, cols[n]))
         drawn.add(n)
         extent(hx - 0.1 * size, hy - 0.1 * size, hx + 0.1 * size, hy)
@@ -228,7 +230,7 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     longest = max((len(n) for n in row), default=0) + 4  # "NAME off", right of its dot
     step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row),
                0.55 * (max(ys) - min(ys)),  # tall, narrow vessels need a wider row
-               LABEL_EM * longest * size)  # a label never reaches its neighbour
+               LABEL_EM * longest * (max(ys) - min(ys)))  # labels never touch
     width = step * min(len(row), per_row)
     x_lo, x_hi = min(min(xs), mid - width / 2), max(max(xs), mid + width / 2)
     y_row = min(ys) - 0.12 * size
