@@ -390,6 +390,9 @@ def lab_check(ns: argparse.Namespace) -> int:
             if first is not None and ns.scenario and first.scenario != ns.scenario:
                 first = None
             student_picture(lab, again, name, ns, first)
+            from plclab.viz.layout import signal_labels
+
+            ns.labels = signal_labels(lab.io, again.traces[name])  # PUMP %QX0.0
             if ns.png and first is not None:  # the failure, its criterion and limits
                 print(failure_picture(lab, again.traces[name], first, ns))
                 ns.png, ns.png_done = None, True

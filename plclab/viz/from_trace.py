@@ -469,8 +469,11 @@ def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
 def export(trace, *, rrd: str | None = None, vcd: str | None = None,
            wavedrom: str | None = None, png: str | None = None, csv: str | None = None,
            signals: list[str] | None = None, window: str | None = None,
-           spawn: bool = False, scan: bool = False, info: RunInfo | None = None) -> list[str]:
-    """Write every requested file; returns lines saying what was written where."""
+           spawn: bool = False, scan: bool = False, info: RunInfo | None = None,
+           labels: dict[str, str] | None = None) -> list[str]:
+    """Write every requested file; returns lines saying what was written where. ``labels``
+    names columns for the timing diagram (``%QX0.0`` -> ``PUMP %QX0.0``; default: the
+    wiring's signal names, :func:`plclab.viz.layout.signal_labels`)."""
     t0, t1 = parse_window(window)
     done = []
     if spawn:
@@ -478,6 +481,18 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
 
         require_display()
     ss = series(trace, signals, t0, t1) if (vcd or wavedrom or png or csv) else []
+    if png:
+        from .layout import signal_labels
+
+        names = labels if labels is not None else signal_labels(None, trace)
+        seen: set[str] = set()
+        ss_png = []
+        for s in ss:  # one row per wire, named by the student's variable and address
+            label = names.get(s.name, s.name)
+            if label in seen:
+                continue
+            seen.add(label)
+            ss_png.append(s.__class__(label, s.times, s.values, s.kind, s.unit, s.labels))
     if rrd or spawn:
         to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan)
         done.append("rerun viewer opened" if spawn else f"timeline: {rrd}")
@@ -495,7 +510,7 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
         from .timing import timing_diagram
 
         markers = [(e.time, e.kind) for e in chatter_events(trace)]
-        timing_diagram(ss[:12], png, t0=t0, t1=t1, markers=markers,
+        timing_diagram(ss_png[:12], png, t0=t0, t1=t1, markers=markers,
                        title=str(trace.meta.get("title", "")))
         done.append(f"timing diagram: {png}")
     if csv:
@@ -525,4 +540,5 @@ def run_exports(trace, ns: Any) -> list[str]:
     return export(trace, rrd=getattr(ns, "rrd", None), vcd=getattr(ns, "vcd", None),
                   wavedrom=getattr(ns, "wavedrom", None), png=getattr(ns, "png", None),
                   signals=sig, window=getattr(ns, "window", None),
-                  spawn=getattr(ns, "spawn", False), scan=getattr(ns, "scan_times", False))
+                  spawn=getattr(ns, "spawn", False), scan=getattr(ns, "scan_times", False),
+                  labels=getattr(ns, "labels", None))

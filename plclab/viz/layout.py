@@ -388,12 +388,18 @@ def signal_labels(io: Any, trace: Any) -> dict[str, str]:
     """Each trace column of a program input or output named as a logic analyser names it:
     the student's variable and its address (``PUMP %QX0.0``), for the PLC side (``%QX0.0``)
     and the plant side of the wiring (``PUMP``, ``LS1``) alike. ``io`` is the lab's I/O
-    table (rows with ``name`` and ``address``, or (name, address, type) tuples)."""
+    table (rows with ``name`` and ``address``, or (name, address, type) tuples); None: the
+    wiring's signal names."""
     names: dict[str, str] = {}
     for r in io or ():
         name, address = (r[0], r[1]) if isinstance(r, tuple) else (r.name, r.address)
         if address:
             names[str(address).upper()] = f"{name} {address}"
+    if io is None:  # no I/O table: the wiring's signal names
+        for r in getattr(trace, "io", None) or ():
+            col, sig = str(r.get("column") or ""), r.get("signal")
+            if sig and col.startswith("%"):
+                names.setdefault(col.upper(), f"{sig} {col}")
     out: dict[str, str] = {}
     for col in trace.columns if hasattr(trace, "columns") else ():
         if col.upper() in names:

@@ -159,12 +159,15 @@ def _draw(ax, s: Series, lo: float, hi: float) -> None:
         ax.spines[side].set_visible(False)
     times = list(s.times) + [hi]
     if s.kind == "bool":
+        from .failure_diagram import bool_rgb
+
+        rgb = tuple(c / 255 for c in bool_rgb(s.name))  # inputs blue, outputs green
         vals = [1.0 if v else 0.0 for v in s.values]
-        ax.step(list(s.times), vals, where="post", color="tab:green", lw=1.2)
+        ax.step(list(s.times), vals, where="post", color=rgb, lw=1.2)
         if len(s.times):
-            ax.plot([s.times[-1], hi], [vals[-1]] * 2, color="tab:green", lw=1.2)
+            ax.plot([s.times[-1], hi], [vals[-1]] * 2, color=rgb, lw=1.2)
         ax.fill_between(times[:-1] + [hi], (vals + vals[-1:]) if vals else [], step="post",
-                        alpha=0.15, color="tab:green")
+                        alpha=0.15, color=rgb)
         ax.set_ylim(-0.2, 1.3)
         ax.set_yticks([])
     elif s.kind == "real":

@@ -70,7 +70,7 @@ def test_sim_command_exports_everything(tmp_path, capsys):
     for p in out.values():
         assert p.exists() and p.stat().st_size > 0
     svg = out["svg"].read_text()
-    for label in (">LEVEL [m]<", ">PUMP<", ">LS1<"):
+    for label in (">LEVEL [m]<", ">PUMP %QX0.0<", ">LS1 %IX0.0<"):  # name and address
         assert label in svg
     rc = main(["view", str(out["npz"]), "--report", "--vcd", str(tmp_path / "v.vcd")])
     assert rc == 0
