@@ -159,7 +159,9 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         rec.markers += _markers(lay, name, "chatter", e.time, min(b, end))
     for v in info.verdicts:
         t = v.time if v.time is not None else end
-        if not v.passed:
+        if not v.passed and _not_run(v):
+            rec.events.append(Event(t, "verdict", "", f"not run {v.name}: {v.detail}", "INFO"))
+        elif not v.passed:
             rec.events.append(Event(t, "verdict", "", f"FAILED {v.name}: {v.detail}", "ERROR"))
             if v.time is not None and inside(v.time):
                 sig = next((s for s in v.signals if lay.lane_of(s) or lay.plot_of(s)), "")
@@ -401,15 +403,11 @@ def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
     each with its own layout and time span; scenarios with a failed criterion first, in
     the lab's order (the first is the one every picture opens on). ``limits`` maps a
     criterion to what it checks (drawn on its signals)."""
-    from .layout import run_info, varying
+    from .layout import run_info
 
-    keep: set[str] = set()  # the same plots in every scenario: easier to compare
-    for trace in result.traces.values():
-        keep |= varying(trace)
-    recs = []
+    recs = []  # each its own layout: a signal flat in this scenario tells nothing here
     for name, trace in result.traces.items():
         info = run_info(lab, result, name, student_file, limits)
-        info.keep = sorted(keep)
         recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
     recs.sort(key=lambda r: first_failed(r.layout.info.verdicts) is None)
     return recs

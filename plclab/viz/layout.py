@@ -111,6 +111,8 @@ class Plot:
     @property
     def title(self) -> str:
         names = ", ".join(ln.label for ln in self.lines)
+        if self.unit == "every edge":
+            return f"every edge of the fast-switching signals: {names}"
         if self.unit == "watched":
             return f"watched: {names}"
         return f"{names} [{self.unit}]" if self.unit else names
@@ -272,7 +274,43 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
         lanes.sort(key=lambda ln: order.get(ln.series.name, len(order)))
         analog.sort(key=lambda a: order.get(a[1], len(order)))
     plots = _group(analog, focus_order, series, limits or {}, wanted is None)
+    edges = edge_plot(lanes)
+    if edges is not None:
+        if wanted is None:  # within the cap on plots: the edges take the last place
+            plots = plots[:MAX_PLOTS - 1]
+        plots.append(edges)
     return Layout(plots, lanes, info)
+
+
+FAST_CHANGES = 40
+"""A lane that changes more often than this in the view is also drawn as a square wave in
+the ``edges`` plot: a state lane merges states narrower than a pixel into one grey bar
+("363 states"), a line shows every edge."""
+
+
+def edge_plot(lanes: list[Lane]) -> Plot | None:
+    """The fast-switching lanes as square waves stacked in one plot (each on its own
+    level, named by the student's variable and address, in its lane's colour)."""
+    fast = [ln for ln in lanes if _changes(ln.series) > FAST_CHANGES]
+    if not fast:
+        return None
+    p = Plot("edges", "every edge")
+    for k, ln in enumerate(reversed(fast)):  # the first lane on top
+        base = 1.5 * k
+        vals = [base + (1.0 if v else 0.0) for v in ln.series.values]
+        name = f"{ln.label} {ln.address}".strip() if ln.address.startswith("%") and \
+            ln.address != ln.label else ln.label
+        s = Series(ln.series.name, ln.series.times, vals, "real", "")
+        p.lines.append(Line(f"{name} ({_changes(ln.series)} switchings)", s, ln.color,
+                            step=True))
+    p.lines.reverse()
+    p.y_range = (-0.25, 1.5 * len(fast) - 0.25)
+    return p
+
+
+def _changes(s: Series) -> int:
+    v = list(s.values)
+    return sum(1 for a, b in zip(v, v[1:], strict=False) if bool(a) != bool(b))
 
 
 def varying(trace: Any) -> set[str]:

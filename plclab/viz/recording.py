@@ -41,6 +41,8 @@ LANE_PX = 34.0
 """Height of one state lane in the viewer."""
 MIN_PLOT_PX = 200.0
 """A plot is never squashed below this height, whatever the number of lanes."""
+MIN_LANES_PX = 170.0
+"""The lanes' pane is at least this high (it scrolls when the lanes need more)."""
 MARK_COLORS = {"fails": (230, 40, 40), "chatter": (255, 140, 0), "plc fault": (200, 0, 200),
                "fault injected": (120, 120, 255)}
 """One colour per marker kind (red: a failed criterion); other warnings are yellow."""
@@ -140,6 +142,8 @@ def blueprint(rec: Recording) -> Any:
     marks = len({m.lane + m.kind for m in rec.markers if m.lane})  # a marker lane each
     lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
     plot_px = max(MIN_PLOT_PX, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
+    if lay.plots and lay.lanes:  # plots keep their 200 px; the lanes scroll in the rest
+        lanes_px = max(MIN_LANES_PX, min(lanes_px, SCREEN_PX - plot_px * len(lay.plots)))
     for p in lay.plots:
         kw: dict[str, Any] = {}
         if p.y_range is not None:

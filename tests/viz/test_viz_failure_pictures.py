@@ -413,3 +413,21 @@ def sim_tank():
     prog = ("PROGRAM P VAR LS1 AT %IX0.0 : BOOL; LS2 AT %IX0.1 : BOOL; M AT %QX0.0 : BOOL; "
             "END_VAR M := ((NOT LS1) OR M) AND (NOT LS2); END_PROGRAM")
     return sim.run(prog, plant="tank", duration="40s")
+
+
+def test_fast_switching_lanes_are_also_drawn_edge_by_edge():
+    from plclab.viz.layout import FAST_CHANGES, Lane, edge_plot
+    from plclab.viz.series import Series
+
+    n = 2 * FAST_CHANGES
+    t = [0.1 * k for k in range(n)]
+    fast = Lane("PUMP", Series("%QX0.0", t, [k % 2 == 1 for k in range(n)], "bool"), "out",
+                "%QX0.0")
+    slow = Lane("LS2", Series("%IX0.1", t, [k > n // 2 for k in range(n)], "bool"), "in",
+                "%IX0.1")
+    assert edge_plot([slow]) is None  # one switching: the lane shows it
+    p = edge_plot([slow, fast])
+    assert [ln.label for ln in p.lines] == [f"PUMP %QX0.0 ({n - 1} switchings)"]
+    assert p.lines[0].step and p.lines[0].color == fast.color
+    vals = list(p.lines[0].series.values)
+    assert sorted(set(vals)) == [0.0, 1.0] and sum(vals) == n // 2  # every edge kept

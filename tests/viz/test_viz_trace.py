@@ -29,7 +29,7 @@ def test_rrd_has_the_expected_entities(tank_trace, tmp_path):
     paths = read_entity_paths(path)
     for p in ("/plots/m/LEVEL", "/plots/m/limits/3_LS1", "/plots/m/limits/2_LS2",
               "/digital/03_PUMP", "/digital/01_LS1", "/events", "/summary", "/plant/static/tank",
-              "/plant/water", "/scan/duration_us", "/plots/m/markers/PUMP_chatter",
+              "/plant/water", "/scan/duration_us", "/plots/edges/markers/PUMP_chatter",
               "/digital/03_PUMP_chatter"):
         assert p in paths, p
     assert "/scan/duration_us" not in read_entity_paths(to_rerun(tank_trace, tmp_path / "b.rrd"))
