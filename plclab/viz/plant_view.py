@@ -206,7 +206,7 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     curtains = [n for n, d in info.items() if d.get("type") == "bool" and n in cols
                 and "CURTAIN" in n.upper()]
     for n in curtains:
-        cx = min(xs) - 0.25 * size
+        cx = min(xs) - 0.4 * size
         moving.append(_curtain(n, cx, min(ys), max(ys), cols[n], size))
         drawn.add(n)
         extent(cx - 0.1 * size, min(ys), cx, max(ys) + 0.1 * size)
@@ -215,7 +215,7 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     hy = min(ys) - 0.18 * size
     x_a, x_b = min(xs), max(xs)
     for k, n in enumerate(hands):  # spread out under the plant, left hand left
-        hx = (x_a + x_b) / 2 + 0.5 * size * (k - (len(hands) - 1) / 2)
+        hx = (x_a + x_b) / 2 + 0.9 * size * (k - (len(hands) - 1) / 2)
         moving.append(_hand(n, hx, hy, 1.8 * dot, cols[n]))
         drawn.add(n)
         extent(hx - 0.1 * size, hy - 0.1 * size, hx + 0.1 * size, hy)
@@ -240,9 +240,12 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
         in_row = min(per_row, len(row) - r * per_row)
         x = mid + step * (c + 0.5 - in_row / 2)
         lamp = info[n].get("kind") == "lamp"
-        moving.append(_switch(n, x, y_row - r * gap, 1.6 * dot, cols[n], lamp))
+        stagger = 0.45 * gap * (c % 2)  # neighbours' labels side by side never touch
+        moving.append(_switch(n, x, y_row - r * 1.5 * gap - stagger, 1.6 * dot, cols[n],
+                              lamp))
     if row:
-        y_row -= gap * ((len(row) - 1) // per_row)
+        y_row -= 1.5 * gap * ((len(row) - 1) // per_row) + (0.45 * gap if len(row) > 1
+                                                            else 0.0)
         extent(x_lo, y_row - 0.08 * size, x_hi, y_row)
     if analog_act:
         y_txt = y_row - 0.12 * size
@@ -290,7 +293,7 @@ def _circle(x: float, y: float, r: float, n: int = 48) -> list[tuple[float, floa
 def _fan(trace: Any, name: str, x: float, y: float, r: float, gap: float,
          rev_per_s: float = 0.5):
     """A fan: three blades turning while its contactor is ON (the angle is the time it has
-    run so far), green when on, grey when off; its state written under it, outside."""
+    run so far), green when on, grey when off; its state written above it."""
     import numpy as np
 
     on = np.asarray(trace.columns[name], dtype=bool)
@@ -304,7 +307,7 @@ def _fan(trace: Any, name: str, x: float, y: float, r: float, gap: float,
         blades = [Shape("outline", f"{name}/blades", c, points=[
             (x, y), (x + 0.9 * r * math.cos(a + k * 2 * math.pi / 3),
                      y + 0.9 * r * math.sin(a + k * 2 * math.pi / 3))]) for k in range(3)]
-        return blades + [Shape("text", f"{name}/state", TEXT, x, y - r - gap,
+        return blades + [Shape("text", f"{name}/state", TEXT, x, y + r + gap,
                                label=f"{name} {'runs' if on[i] else 'stopped'}")]
     return f
 
@@ -360,7 +363,7 @@ def _curtain(name: str, x: float, y0: float, y1: float, col: Any, size: float):
             beams.append(Shape("outline", f"{name}/beams", ON if clear else HOT,
                                points=[(x - 0.06 * size, yy), (x, yy)]))
         return beams + [Shape("text", f"{name}/state", TEXT, x - 0.03 * size,
-                              y1 + 0.06 * size,
+                              y1 + 0.12 * size,
                               label=f"{name} {'clear' if clear else 'BROKEN'}")]
     return f
 
