@@ -409,6 +409,11 @@ def lab_check(ns: argparse.Namespace) -> int:
                 print(line)
     if out is not None:
         print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
+        first = first_failure(lab, res.tests, {t.scenario: None for t in res.tests})
+        if first is not None and getattr(first, "diagram", None):
+            when = f"at t = {first.t_fail:.2f} s" if first.t_fail is not None else "over the run"
+            print(f"first failure: {out / first.diagram} (scenario '{first.scenario}', "
+                  f"criterion '{first.criterion}', failed {when})")
     elif any(not t.passed for t in res.tests) and not ns.no_media and not getattr(ns, "png_done",
                                                                                   False):
         print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")

@@ -431,3 +431,20 @@ def test_fast_switching_lanes_are_also_drawn_edge_by_edge():
     assert p.lines[0].step and p.lines[0].color == fast.color
     vals = list(p.lines[0].series.values)
     assert sorted(set(vals)) == [0.0, 1.0] and sum(vals) == n // 2  # every edge kept
+
+
+def test_lab_check_out_names_the_first_failures_picture(tmp_path, capsys):
+    from plclab.cli import main
+
+    lab = load_lab("tank-two-position")
+    out = tmp_path / "fb"
+    assert main(["lab", "check", "tank-two-position",
+                 str(lab.path / "mistakes" / "follows_ls1.st"), "--out", str(out)]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("first failure: "))
+    first = next(s.name for s in lab.scenarios if s.visible)
+    assert f"scenario '{first}'" in line
+    path = line.split(": ", 1)[1].split(" (")[0]
+    assert path.endswith(".png") and (out / path.rsplit("/", 1)[1]).is_file()
+    img, px = _pixels(path)
+    assert _red_columns(img, px)
