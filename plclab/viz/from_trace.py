@@ -218,7 +218,9 @@ def _criterion_lines(trace, lay: Layout) -> None:
             if hit is None:
                 continue
             plot = hit[0]
-            values = [(lim.label, float(lim.value))]
+            num = f"{lim.value:g}"  # the value is written after the label: not twice
+            text = lim.label[:-len(num)].rstrip() if lim.label.endswith(num) else lim.label
+            values = [(text or lim.kind, float(lim.value))]
             if lim.kind == "band" and lim.hi is not None:
                 values = [(f"{lim.label} low", float(lim.value)),
                           (f"{lim.label} high", float(lim.hi))]
