@@ -262,9 +262,12 @@ class RrdWriter:
         rr, st = self.rr, self.stream
         for p in rec.layout.plots:
             for ln in p.lines:
+                # MinMax: squeezed into a pixel, a square wave keeps both levels (every edge,
+                # not an average of 0.5), a chattering level its whole swing
                 st.log(f"/plots/{p.key}/{slug(ln.label)}", rr.SeriesLines(
                     names=ln.label, colors=[ln.color], widths=[2.0],
-                    interpolation_mode="StepAfter" if ln.step else "Linear"), static=True)
+                    interpolation_mode="StepAfter" if ln.step else "Linear",
+                    aggregation_policy="MinMax"), static=True)
             for lim in p.limits:
                 st.log(_limit_entity(p, lim), rr.SeriesLines(
                     names=f"{lim.label} {lim.value:g} {p.unit}".rstrip(), colors=[lim.color],
