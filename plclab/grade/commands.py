@@ -481,7 +481,7 @@ def student_picture(lab, res, scenario: str, ns: argparse.Namespace, first: Any 
     and the student's ``--watch`` variables, over the window around the scenario's first
     failure (``first``, the test every picture opens on) or the lab's diagram window from
     the start."""
-    from .feedback import failure_window
+    from .feedback import failure_window, judged_at_end
 
     trace = res.traces[scenario]
     if not getattr(ns, "signals", None):
@@ -493,7 +493,8 @@ def student_picture(lab, res, scenario: str, ns: argparse.Namespace, first: Any 
                  and t.t_fail is not None]
         if first is not None and first.scenario == scenario:
             fails = [first.t_fail] if first.t_fail is not None else []
-            if first.t_fail is None:  # failed over the whole run: show the whole run
+            if first.t_fail is None or judged_at_end(first.t_fail, trace.t_end):
+                # failed over the whole run, or judged at its end: show the whole run
                 ns.window = f"0s..{trace.t_end:.3f}s"
                 return
         crit = next((c for c in lab.criteria if first is not None

@@ -47,6 +47,12 @@ def failure_window(tf: float | None, w: float, t_end: float) -> tuple[float, flo
     return max(0.0, min(t0, t1 - w)), t1
 
 
+def judged_at_end(t_fail: float, t_end: float) -> bool:
+    """A failure dated at the end of the run (a count or a value judged there): the window
+    before it shows what led to it only when it is the whole run."""
+    return t_fail >= t_end - 1e-6
+
+
 def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
     """The values a criterion compares signals with, from its own definition
     (:func:`plclab.grade.criteria.criterion_limits`: ``LEVEL >= 1.75``, a band's edges, a
@@ -125,8 +131,8 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
     for t in failed:
         crit = crits[t.criterion]
         w = crit.window or lab.diagram_window
-        if t.t_fail is None:  # no single moment to blame: the whole scenario
-            t0, t1 = 0.0, trace.t_end
+        if t.t_fail is None or judged_at_end(t.t_fail, trace.t_end):
+            t0, t1 = 0.0, trace.t_end  # no single moment to blame: the whole scenario
         else:
             t0, t1 = failure_window(t.t_fail, w, trace.t_end)
         names = diagram_names(trace, lab, crit)

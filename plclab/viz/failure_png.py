@@ -194,7 +194,8 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
             cv.dashed((x, ax_t), (x, ax_b), RED, cv.px(0.8), 3 * SCALE, 2 * SCALE)
     for t, label, level in labels:
         y = ax_b - (1.02 + 0.17 * level / (frac * h_in)) * ax_h
-        cv.text((X(t), y), label, 7, RED, "ls")
+        right = cv.draw.textlength(label, font=font(int(round(7 * SCALE)))) > cv.w - X(t)
+        cv.text((X(t), y), label, 7, RED, "rs" if right else "ls")  # never cut at the edge
     # the time axis: the bottom spine, ticks pointing out, labels, its name
     cv.draw.line([(ax_l, ax_b), (ax_r, ax_b)], fill=BLACK, width=cv.px(0.8))
     ticks = [t for t in nice_ticks(lo, hi) if lo - 1e-9 <= t <= hi + 1e-9]

@@ -448,3 +448,23 @@ def test_lab_check_out_names_the_first_failures_picture(tmp_path, capsys):
     assert path.endswith(".png") and (out / path.rsplit("/", 1)[1]).is_file()
     img, px = _pixels(path)
     assert _red_columns(img, px)
+
+
+def test_a_failure_judged_at_the_end_is_drawn_over_the_whole_run():
+    import argparse
+
+    from plclab.grade.commands import student_picture
+    from plclab.grade.feedback import judged_at_end
+
+    assert judged_at_end(40.0, 40.0) and not judged_at_end(39.0, 40.0)
+    lab = load_lab("bottle-reject")
+    res = SimpleNamespace(traces={"run": SimpleNamespace(t_end=40.0)}, tests=[])
+    lab.student_watch = []
+    for t_fail, want in ((40.0, "0s..40.000s"), (None, "0s..40.000s")):
+        ns = argparse.Namespace(signals="X", window=None)
+        student_picture(lab, res, "run", ns, _test("run", "counts good bottles", t_fail))
+        assert ns.window == want
+    ns = argparse.Namespace(signals="X", window=None)
+    student_picture(lab, res, "run", ns, _test("run", "counts good bottles", 20.0))
+    a, _, b = ns.window.partition("..")
+    assert float(a.rstrip("s")) > 0.0 and float(b.rstrip("s")) < 40.0  # around 20 s
