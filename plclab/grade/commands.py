@@ -12,6 +12,7 @@ import argparse
 import os
 import sys
 from pathlib import Path
+from typing import Any
 
 from plclab.cli_registry import arg, command
 
@@ -384,21 +385,37 @@ def lab_check(ns: argparse.Namespace) -> int:
         # within the limits above, so running it again here is bounded
         again = grade_sources(lab, sources, scenarios=names, keep_traces=True)
         if again.traces:
-            failing = [t.scenario for t in res.tests if not t.passed
-                       and t.scenario in again.traces]  # the picture opens on a failure
-            name = ns.scenario or (failing[0] if failing else next(iter(again.traces)))
-            student_picture(lab, again, name, ns)
-            if ns.rrd and not ns.spawn:  # every scenario, named by lab, scenario, file, score
+            first = first_failure(lab, res.tests, again.traces)
+            name = ns.scenario or (first.scenario if first else next(iter(again.traces)))
+            if first is not None and ns.scenario and first.scenario != ns.scenario:
+                first = None
+            student_picture(lab, again, name, ns, first)
+            from plclab.viz.layout import signal_labels
+
+            ns.labels = signal_labels(lab.io, again.traces[name])  # PUMP %QX0.0
+            if ns.png and first is not None:  # the failure, its criterion and limits
+                print(failure_picture(lab, again.traces[name], first, ns))
+                ns.png, ns.png_done = None, True
+            if ns.rrd and not ns.spawn:  # one file per scenario, the first failure first
                 from plclab.viz.from_trace import write_lab_rrd
 
+                from .criteria import criterion_limits
+
                 print(write_lab_rrd(lab, again, ns.rrd,
-                                    ", ".join(Path(f).name for f in ns.files), ns))
+                                    ", ".join(Path(f).name for f in ns.files), ns,
+                                    limits={c.name: criterion_limits(c) for c in lab.criteria}))
                 ns.rrd = None
             for line in run_exports(again.traces[name], ns):
                 print(line)
     if out is not None:
         print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
-    elif any(not t.passed for t in res.tests) and not ns.no_media:
+        first = first_failure(lab, res.tests, {t.scenario: None for t in res.tests})
+        if first is not None and getattr(first, "diagram", None):
+            when = f"at t = {first.t_fail:.2f} s" if first.t_fail is not None else "over the run"
+            print(f"first failure: {out / first.diagram} (scenario '{first.scenario}', "
+                  f"criterion '{first.criterion}', failed {when})")
+    elif any(not t.passed for t in res.tests) and not ns.no_media and not getattr(ns, "png_done",
+                                                                                  False):
         print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
     print(f"score: {res.score:g}/{res.max_score:g}")
     return 0
@@ -416,20 +433,74 @@ def lab_get(ns: argparse.Namespace) -> int:
     return 0
 
 
-def student_picture(lab, res, scenario: str, ns: argparse.Namespace) -> None:
+def first_failure(lab, tests, traces) -> Any:
+    """The test every picture opens on: the first failing scenario in the lab's order (a
+    criterion that really failed, not one 'not run'), and in it the criterion that failed
+    first (one with a moment of failure before one failed over the whole run)."""
+    from .feedback import real_failure
+
+    order = {s.name: k for k, s in enumerate(lab.scenarios)}
+    failed = [t for t in tests if real_failure(t) and t.scenario in traces]
+    if not failed:
+        return None
+    crit_order = {c.name: k for k, c in enumerate(lab.criteria)}
+    return min(failed, key=lambda t: (order.get(t.scenario, len(order)), t.t_fail is None,
+                                      t.t_fail or 0.0, crit_order.get(t.criterion, 0)))
+
+
+def failure_picture(lab, trace, test, ns: argparse.Namespace) -> str:
+    """``lab check --png F`` after a failure: the diagram of the first failing scenario
+    around the moment of its first failure, the failed criterion and its limits drawn, as
+    ``--out`` draws it; returns the line that says what was drawn."""
+    from plclab.viz.from_trace import parse_window
+    from plclab.viz.layout import signal_labels
+
+    from .feedback import criterion_picture, diagram_names, timing_png
+
+    crit = next(c for c in lab.criteria if c.name == test.criterion)
+    if getattr(ns, "signals", None) and ns.signals != getattr(ns, "_default_signals", None):
+        names = [trace.resolve(n.strip()) for n in ns.signals.split(",") if n.strip()]
+    else:
+        names = diagram_names(trace, lab, crit)
+    t0, t1 = parse_window(ns.window)
+    t0 = 0.0 if t0 is None else t0
+    t1 = trace.t_end if t1 is None else t1
+    markers = [(test.t_fail, f"{crit.name} fails")] if test.t_fail is not None else []
+    markers += [(e.time, "PLC fault") for e in trace.events_of("plc_fault") if t0 <= e.time <= t1]
+    timing_png(trace, names, Path(ns.png), t0, t1, markers,
+               f"{test.scenario}: {crit.name} (FAILED)", signal_labels(lab.io, trace),
+               drawing=criterion_picture(trace, crit, names))
+    when = f"at t = {test.t_fail:.2f} s" if test.t_fail is not None else "over the run"
+    return (f"timing diagram: {ns.png} (scenario '{test.scenario}', criterion "
+            f"'{test.criterion}', failed {when})")
+
+
+def student_picture(lab, res, scenario: str, ns: argparse.Namespace, first: Any = None
+                    ) -> None:
     """Defaults of ``--png`` and the other exports in ``lab check``: the lab's diagram signals
     and the student's ``--watch`` variables, over the window around the scenario's first
-    failure (or the lab's diagram window from the start)."""
-    from .feedback import failure_window
+    failure (``first``, the test every picture opens on) or the lab's diagram window from
+    the start."""
+    from .feedback import failure_window, judged_at_end
 
     trace = res.traces[scenario]
     if not getattr(ns, "signals", None):
         names = [n for n in [*lab.diagram_signals, *lab.student_watch] if n in trace]
         ns.signals = ",".join(names) or None
+        ns._default_signals = ns.signals
     if not getattr(ns, "window", None):
         fails = [t.t_fail for t in res.tests if t.scenario == scenario and not t.passed
                  and t.t_fail is not None]
-        t0, t1 = failure_window(min(fails) if fails else None, lab.diagram_window, trace.t_end)
+        if first is not None and first.scenario == scenario:
+            fails = [first.t_fail] if first.t_fail is not None else []
+            if first.t_fail is None or judged_at_end(first.t_fail, trace.t_end):
+                # failed over the whole run, or judged at its end: show the whole run
+                ns.window = f"0s..{trace.t_end:.3f}s"
+                return
+        crit = next((c for c in lab.criteria if first is not None
+                     and c.name == first.criterion), None)
+        width = (crit.window if crit is not None and crit.window else lab.diagram_window)
+        t0, t1 = failure_window(min(fails) if fails else None, width, trace.t_end)
         if not fails:
             t0, t1 = 0.0, min(trace.t_end, lab.diagram_window)
         ns.window = f"{t0:.3f}s..{t1:.3f}s"

@@ -47,24 +47,53 @@ def failure_window(tf: float | None, w: float, t_end: float) -> tuple[float, flo
     return max(0.0, min(t0, t1 - w)), t1
 
 
-_NUM = r"(-?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)"
-_CMP = re.compile(r"([A-Za-z_%][\w.%]*)\s*(>=|<=|>|<)\s*" + _NUM)
-_CMP_REV = re.compile(_NUM + r"\s*(>=|<=|>|<)\s*([A-Za-z_%][\w.%]*)")
+def judged_at_end(t_fail: float, t_end: float) -> bool:
+    """A failure dated at the end of the run (a count or a value judged there): the window
+    before it shows what led to it only when it is the whole run."""
+    return t_fail >= t_end - 1e-6
 
 
 def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
-    """The limits a criterion compares signals with (``LEVEL >= 1.75``, ``0.4 <= LEVEL``):
-    signal name -> [(value, label)], drawn as lines in its diagram."""
+    """The values a criterion compares signals with, from its own definition
+    (:func:`plclab.grade.criteria.criterion_limits`: ``LEVEL >= 1.75``, a band's edges, a
+    set point): signal name -> [(value, label)]."""
+    from .criteria import criterion_limits
+
     out: dict[str, list[tuple[float, str]]] = {}
-    texts = [v for v in crit.params.values() if isinstance(v, str)]
-    for text in texts:
-        found = [(m.group(1), float(m.group(3))) for m in _CMP.finditer(text)]
-        found += [(m.group(3), float(m.group(1))) for m in _CMP_REV.finditer(text)]
-        for name, value in found:
-            lst = out.setdefault(name, [])
+    for lim in criterion_limits(crit):
+        if lim.kind not in ("level", "band", "target") or not lim.signal or lim.value is None:
+            continue
+        for value in [lim.value] + ([lim.hi] if lim.kind == "band" and lim.hi is not None
+                                    else []):
+            lst = out.setdefault(lim.signal, [])
             if all(v != value for v, _ in lst):
-                lst.append((value, "limit"))
+                lst.append((float(value), lim.label))
     return out
+
+
+def criterion_picture(trace: Any, crit: Any, rows: list[str], analog: Any = None) -> Any:
+    """What ``crit`` checks, drawn over the diagram rows ``rows`` (trace columns): the
+    :class:`plclab.viz.failure_diagram.Drawing` every picture of a failure shares."""
+    from plclab.viz.failure_diagram import criterion_drawing
+
+    from .criteria import criterion_limits
+
+    def row_of(name: str) -> str | None:
+        try:
+            col = trace.resolve(name) if name in trace else None
+        except Exception:  # noqa: BLE001 - a name the trace does not know
+            return None
+        return col if col in rows else None
+
+    def is_analog(col: str) -> bool:
+        try:
+            return trace.kind(col) != "bool"
+        except Exception:  # noqa: BLE001
+            return False
+
+    return criterion_drawing(criterion_limits(crit), row_of,
+                             trace.meta.get("units", {}) if hasattr(trace, "meta") else {},
+                             analog or is_analog)
 
 
 def diagram_names(trace: Any, lab: Any, crit: Any) -> list[str]:
@@ -96,26 +125,28 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
     crits = {c.name: c for c in lab.criteria_for(sc.name)}
     faults = [(e.time, "PLC fault") for e in trace.events_of("plc_fault")]
     drawn: dict[tuple[Any, ...], str] = {}
-    labels = {r.address.upper(): f"{r.name} ({r.address})" for r in lab.io}
+    from plclab.viz.layout import signal_labels
+
+    labels = signal_labels(lab.io, trace)
     for t in failed:
         crit = crits[t.criterion]
         w = crit.window or lab.diagram_window
-        if t.t_fail is None:  # no single moment to blame: the whole scenario
-            t0, t1 = 0.0, trace.t_end
+        if t.t_fail is None or judged_at_end(t.t_fail, trace.t_end):
+            t0, t1 = 0.0, trace.t_end  # no single moment to blame: the whole scenario
         else:
             t0, t1 = failure_window(t.t_fail, w, trace.t_end)
         names = diagram_names(trace, lab, crit)
-        key = (tuple(names), round(t0, 3), round(t1, 3))
+        key = (tuple(names), round(t0, 3), round(t1, 3), crit.name)
         if key in drawn:  # same picture as another failed criterion
             t.diagram = drawn[key]
             continue
         fname = f"{slug(sc.name)}--{slug(crit.name)}.png"
         markers = [(t.t_fail, f"{crit.name} fails")] if t.t_fail is not None else []
         markers += [m for m in faults if t0 <= m[0] <= t1]
-        limits = {trace.resolve(k): v for k, v in thresholds_of(crit).items() if k in trace}
         try:
             timing_png(trace, names, media_dir / fname, t0, t1, markers,
-                       f"{sc.name}: {crit.name}", labels, limits)
+                       f"{sc.name}: {crit.name}", labels,
+                       drawing=criterion_picture(trace, crit, names))
         except Exception as e:  # noqa: BLE001 - a picture must never cost a grade
             run.notes.append(f"(no diagram for {crit.name}: {type(e).__name__}: {e})")
             continue
@@ -128,21 +159,47 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
 def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
                markers: list[tuple[float, str]], title: str,
                labels: dict[str, str] | None = None,
-               thresholds: dict[str, list[tuple[float, str]]] | None = None) -> None:
+               thresholds: dict[str, list[tuple[float, str]]] | None = None,
+               drawing: Any = None) -> None:
     """A timing diagram of ``names`` over [t0, t1], written atomically. ``labels`` renames
-    PLC addresses for the reader (``%QX0.1`` -> ``REJECT (%QX0.1)``)."""
-    from plclab.viz.from_trace import series
-    from plclab.viz.timing import failure_png
+    columns for the reader (``%QX0.1`` -> ``REJECT %QX0.1``); ``drawing`` is what the
+    failed criterion checks (:func:`criterion_picture`); ``thresholds`` extra lines. A
+    ``.svg`` path is drawn with matplotlib, the same picture."""
+    from plclab.viz.from_trace import plant_limits, series
+    from plclab.viz.timing import failure_png, timing_diagram
 
     ss = series(trace, names, t0, t1)
-    limits = {}
+    limits: dict[str, list[tuple[float, str]]] = {}
+    bands: dict[str, list[tuple[float, float, str]]] = {}
+    lines = {k: list(v) for k, v in plant_limits(trace).items()}  # switch heights, rims
+    extra_lines = [thresholds or {}] + ([drawing.thresholds] if drawing is not None else [])
+    for more in extra_lines:
+        for k, v in more.items():
+            have = lines.setdefault(k, [])
+            have += [(x, lab) for x, lab in v if all(abs(x - y) > 1e-9 for y, _ in have)]
+    seen: set[str] = set()
+    rows = []
+    for s in ss:  # the plant side and the PLC side of one wire are one row
+        shown = (labels or {}).get(s.name, (labels or {}).get(s.name.upper(), s.name))
+        if shown not in seen:
+            seen.add(shown)
+            rows.append(s)
+    ss = rows
     for s in ss:
-        shown = (labels or {}).get(s.name.upper(), s.name)
-        if s.name in (thresholds or {}):
-            limits[shown] = thresholds[s.name]
+        shown = (labels or {}).get(s.name, (labels or {}).get(s.name.upper(), s.name))
+        if s.name in lines:
+            limits[shown] = lines[s.name]
+        if drawing is not None and s.name in drawing.bands:
+            bands[shown] = drawing.bands[s.name]
         s.name = shown
+    extra = {"bands": bands, "spans": drawing.spans if drawing is not None else (),
+             "note": drawing.note if drawing is not None else ""}
+    if Path(path).suffix.lower() == ".svg":
+        timing_diagram(ss, path, t0, t1, title=title, markers=markers, width=9.0,
+                       thresholds=limits, fixed_layout=True, **extra)
+        return
     data = failure_png(ss, None, t0, t1, title=title, markers=markers, width=9.0,
-                       thresholds=limits)  # Pillow, not matplotlib: ADR 0033
+                       thresholds=limits, **extra)  # Pillow, not matplotlib: ADR 0033
     tmp = _atomic_tmp(path)
     tmp.write_bytes(data)
     os.replace(tmp, path)
@@ -186,8 +243,11 @@ def write_rrd(trace: Any, lab: Any, sc: Any, failed: list[Any], media_dir: Path,
     tmp = _atomic_tmp(path)
     try:
         info = run_info(lab, None, sc.name)
+        from .criteria import criterion_limits
+
         info.verdicts = [Verdict(t.criterion, False, t.t_fail, t.detail or t.message,
-                                 list(crits[t.criterion].relevant_signals())) for t in failed]
+                                 list(crits[t.criterion].relevant_signals()),
+                                 criterion_limits(crits[t.criterion])) for t in failed]
         _write(recording(trace, names, t0, t1, fps=RRD_FPS, info=info), tmp)
         os.replace(tmp, path)
     except Exception as e:  # noqa: BLE001 - a recording must never cost a grade

@@ -23,7 +23,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from .failure_diagram import PAD, band_scale, frame
+from .failure_diagram import PAD, band_scale, bool_rgb, frame, spread
 from .series import Series
 
 DPI = 72
@@ -37,6 +37,8 @@ ORANGE = (255, 127, 14)
 RED = (214, 39, 40)
 PURPLE = (148, 103, 189)
 GRID = (217, 217, 217)
+SPAN = (237, 242, 250)  # failure_diagram.SPAN_RGB: the window a criterion checks
+BAND = (255, 237, 217)  # failure_diagram.BAND_RGB: a value band a criterion checks
 RANGE = (102, 102, 102)
 BLACK = (0, 0, 0)
 
@@ -145,13 +147,17 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
                 hi: float, heights: Sequence[float], title: str = "",
                 markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
                 thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
-                labels: Sequence[tuple[float, str, int]] = ()) -> bytes:
+                labels: Sequence[tuple[float, str, int]] = (),
+                bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
+                spans: Sequence[tuple[float | None, float | None, str]] = (),
+                note: str = "") -> bytes:
     """The PNG of ``series`` (already windowed to [lo, hi]), one band of ``heights[i]``
     inches per row; arguments as :func:`plclab.viz.failure_diagram.failure_figure`. Writes
     ``path`` when given; returns the PNG's bytes."""
     import io
 
-    h_in, left, right_in, frac = frame(series, heights, width, title, thresholds, labels)
+    h_in, left, right_in, frac = frame(series, heights, width, title, thresholds, labels,
+                                       note, bands)
     cv = _Canvas(width, h_in)
     ax_l = left * cv.w
     ax_r = (1 - right_in / width) * cv.w
@@ -167,6 +173,10 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
     def Y(v: Any) -> Any:  # height in the stacked bands (0 .. total) to pixels
         return ax_b - v / total * ax_h
 
+    for a, b, _text in spans:  # the window the criterion looks at, under everything
+        a, b = max(lo, a if a is not None else lo), min(hi, b if b is not None else hi)
+        if b > a:
+            cv.draw.rectangle([X(a), ax_t, X(b), ax_b], fill=SPAN)
     top = total
     for s, h in zip(series, heights, strict=True):
         base = top - h
@@ -174,7 +184,8 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
         limits = list((thresholds or {}).get(s.name, ()))
         cv.text((ax_l - 0.01 * ax_w, Y((y0 + y1) / 2)),
                 s.name + (f" [{s.unit}]" if s.unit else ""), 8, BLACK, "rm")
-        _row(cv, s, lo, hi, Y(y0), Y(y1), limits, X, ax_l, ax_r, ax_w)
+        _row(cv, s, lo, hi, Y(y0), Y(y1), limits, X, ax_l, ax_r, ax_w,
+             list((bands or {}).get(s.name, ())))
         cv.draw.line([(ax_l, Y(base)), (ax_r, Y(base))], fill=GRID, width=cv.px(0.6))
         top = base
     for t, _label in markers:
@@ -183,7 +194,8 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
             cv.dashed((x, ax_t), (x, ax_b), RED, cv.px(0.8), 3 * SCALE, 2 * SCALE)
     for t, label, level in labels:
         y = ax_b - (1.02 + 0.17 * level / (frac * h_in)) * ax_h
-        cv.text((X(t), y), label, 7, RED, "ls")
+        right = cv.draw.textlength(label, font=font(int(round(7 * SCALE)))) > cv.w - X(t)
+        cv.text((X(t), y), label, 7, RED, "rs" if right else "ls")  # never cut at the edge
     # the time axis: the bottom spine, ticks pointing out, labels, its name
     cv.draw.line([(ax_l, ax_b), (ax_r, ax_b)], fill=BLACK, width=cv.px(0.8))
     ticks = [t for t in nice_ticks(lo, hi) if lo - 1e-9 <= t <= hi + 1e-9]
@@ -196,6 +208,8 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
             "time [s]", 8, BLACK, "mt")
     if title:
         cv.text((cv.w / 2, 0.02 * cv.h), title, 10, BLACK, "mt")
+    if note:
+        cv.text((cv.w / 2, (0.32 if title else 0.12) * cv.k), note, 8, ORANGE, "mt")
     img = cv.img.reduce(SCALE)
     buf = io.BytesIO()
     img.save(buf, format="PNG", compress_level=6)
@@ -205,9 +219,14 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
     return data
 
 
+def _fill(rgb: tuple[int, int, int]) -> tuple[int, int, int]:
+    """``rgb`` at alpha 0.15 on white (GREEN_FILL for GREEN)."""
+    return tuple(int(round(255 - 0.15 * (255 - c))) for c in rgb)  # type: ignore[return-value]
+
+
 def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
          limits: list[tuple[float, str]], X: Any, ax_l: float, ax_r: float,
-         ax_w: float) -> None:
+         ax_w: float, bands: list[tuple[float, float, str]] | None = None) -> None:
     """One signal between the pixel heights py0 (its low edge) and py1 (its high edge)."""
     import numpy as np
 
@@ -217,6 +236,7 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
         if not len(times):
             return
         on = np.asarray(s.values, dtype=bool)
+        rgb = bool_rgb(s.name)  # inputs blue, outputs green: as everywhere
         edges = np.clip(X(np.append(times, hi)), ax_l, ax_r)
         # the step line as one float32 buffer (Pillow reads it without a Python object per
         # point: objects made in a grading child cost page faults, ADR 0033)
@@ -226,11 +246,21 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
         step[0::2, 1] = step[1::2, 1] = ys
         if on.any():  # the filled ON stretches: one polygon down to the low edge
             area = np.concatenate(([[step[0, 0], py0]], step, [[step[-1, 0], py0]]))
-            d.polygon(area.astype(np.float32), fill=GREEN_FILL)
-        d.line(step, fill=GREEN, width=cv.px(1.2))
+            d.polygon(area.astype(np.float32), fill=_fill(rgb))
+        d.line(step, fill=rgb, width=cv.px(1.2))
     elif s.kind == "real":
 
-        vlo, vhi = band_scale(s, limits)
+        vlo, vhi = band_scale(s, limits, bands or ())
+
+        def vy(v: float) -> float:
+            return py0 + (v - vlo) / (vhi - vlo) * (py1 - py0)
+
+        for a, b, label in bands or ():  # under the curve: shaded, dashed edges, one label
+            d.rectangle([ax_l, min(vy(a), vy(b)), ax_r, max(vy(a), vy(b))], fill=BAND)
+            for v in (a, b):
+                cv.dashed((ax_l, vy(v)), (ax_r, vy(v)), ORANGE, cv.px(0.9), 4 * SCALE,
+                          2 * SCALE)
+            cv.text((ax_r + 0.005 * ax_w, vy((a + b) / 2)), label, 7, ORANGE, "lm")
         vals = np.asarray(s.values, dtype=float)
         ys = py0 + (vals - vlo) / (vhi - vlo) * (py1 - py0)
         xy = np.stack([X(times), ys], axis=1).astype(np.float32)
@@ -242,12 +272,13 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
                 d.line(np.ascontiguousarray(xy[part]), fill=BLUE, width=cv.px(1.0))
         for edge, y in ((vlo, py0), (vhi, py1)):
             cv.text((ax_l - 0.003 * ax_w, y), f"{edge:.4g}", 6, RANGE, "rm")
-        for value, label in limits:
-            y = py0 + (value - vlo) / (vhi - vlo) * (py1 - py0)
+        at = spread([vy(value) for value, _ in limits], 8.5 * SCALE)  # labels never overlap
+        for (value, label), ty in zip(limits, at, strict=True):
+            y = vy(value)
             lw = 0.9
             cv.dashed((ax_l, y), (ax_r, y), ORANGE, cv.px(lw), 1.0 * lw * SCALE,
                       1.65 * lw * SCALE)
-            cv.text((ax_r + 0.005 * ax_w, y), f"{label} {value:g}", 7, ORANGE, "lm")
+            cv.text((ax_r + 0.005 * ax_w, ty), f"{label} {value:g}", 7, ORANGE, "lm")
     else:
         ch = s.changes()
         mid, dy = (py0 + py1) / 2, (py1 - py0) / 2

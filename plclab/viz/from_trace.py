@@ -14,7 +14,7 @@ from typing import Any
 
 from ..errors import PlcError
 from .chatter import output_stats
-from .layout import Layout, RunInfo, plan
+from .layout import Layout, RunInfo, plan, slug
 from .recording import Event, Marker, Recording, write_rrd
 from .series import Series
 
@@ -121,7 +121,11 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
     end = t1 if t1 is not None else trace.t_end
     plant = _plant(trace)
     lay = plan(trace, info, names, t0, t1, _limits(trace, plant))
+    _criterion_lines(trace, lay)
     rec = Recording(layout=lay)
+    first = first_failed(info.verdicts)
+    if first is not None and first.time is not None:  # the moment every view shows
+        rec.focus = first.time
 
     def inside(t: float) -> bool:
         return start - 1e-9 <= t <= end + 1e-9
@@ -155,7 +159,9 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         rec.markers += _markers(lay, name, "chatter", e.time, min(b, end))
     for v in info.verdicts:
         t = v.time if v.time is not None else end
-        if not v.passed:
+        if not v.passed and _not_run(v):
+            rec.events.append(Event(t, "verdict", "", f"not run {v.name}: {v.detail}", "INFO"))
+        elif not v.passed:
             rec.events.append(Event(t, "verdict", "", f"FAILED {v.name}: {v.detail}", "ERROR"))
             if v.time is not None and inside(v.time):
                 sig = next((s for s in v.signals if lay.lane_of(s) or lay.plot_of(s)), "")
@@ -177,6 +183,8 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
 
         n = max(1, int((end - start) * fps))
         times = np.array([start + k / fps for k in range(n + 1)])
+        if rec.focus is not None and start <= rec.focus <= end:  # a frame at the failure
+            times = np.unique(np.append(times, rec.focus))
         rows = np.clip(np.searchsorted(trace.time, times + 1e-9, "right") - 1, 0,
                        len(trace.time) - 1)
         rec.picture, rec.frame_times, rec.frame_rows = pic, list(times), list(rows)
@@ -186,6 +194,47 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         rec.scan_times = [float(trace.time[k]) for k in keep]
         rec.scan_durations_us = [float(wall[k]) * 1e6 for k in keep]
     return rec
+
+
+def _criterion_lines(trace, lay: Layout) -> None:
+    """The levels, set points and band edges of the failed criteria as dashed lines in the
+    plot of their signal (beside the plant's switch heights), and the set points and bands
+    of the criteria that passed (what the signal is held to); the plot's range widened to
+    show them."""
+    from .layout import LIMIT_COLORS, Limit
+
+    for v in sorted(lay.info.verdicts, key=lambda v: v.passed):  # failures first
+        if _not_run(v):
+            continue
+        for lim in v.limits:
+            kinds = ("target", "band") if v.passed else ("level", "target", "band")
+            if lim.kind not in kinds or lim.value is None:
+                continue  # a passed criterion's band or set point is context, not its levels
+            try:
+                col = trace.resolve(lim.signal) if lim.signal in trace else lim.signal
+            except PlcError:
+                continue
+            hit = lay.plot_of(col) or lay.plot_of(lim.signal)
+            if hit is None:
+                continue
+            plot = hit[0]
+            num = f"{lim.value:g}"  # the value is written after the label: not twice
+            text = lim.label[:-len(num)].rstrip() if lim.label.endswith(num) else lim.label
+            values = [(text or lim.kind, float(lim.value))]
+            if lim.kind == "band" and lim.hi is not None:
+                values = [(f"{lim.label} low", float(lim.value)),
+                          (f"{lim.label} high", float(lim.hi))]
+            for label, value in values:
+                if any(abs(x.value - value) < 1e-9 for x in plot.limits):
+                    continue
+                color = LIMIT_COLORS[len(plot.limits) % len(LIMIT_COLORS)]
+                plot.limits.append(Limit(f"{v.name}: {label}", value, color))
+            from .layout import span_of
+
+            lo, hi = plot.y_range or span_of(plot)
+            vals = [x.value for x in plot.limits]
+            lo, hi = min([lo, *vals]), max([hi, *vals])
+            plot.y_range = (lo, hi + 0.05 * (hi - lo) if hi > lo else hi + 1.0)
 
 
 def _label(lay: Layout, source: str) -> str:
@@ -239,13 +288,16 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     info = lay.info
     lines = [f"**{info.title()}**", ""]
     errors = [e for e in rec.events if e.level == "ERROR" and e.kind != "verdict"]
-    failed = [v for v in info.verdicts if not v.passed]
+    failed = [v for v in info.verdicts if not v.passed and not _not_run(v)]
     warns = [e for e in rec.events if e.level == "WARN" and e.kind != "chatter"]
     for e in errors:
         lines.append(f"- **FAULT at {_t(e.time)}**: {e.message}")
     for v in failed:
         when = f"at {_t(v.time)}" if v.time is not None else "over the run"
         lines.append(f"- **FAILED {when}: {v.name}**: {v.detail}")
+        checks = _checks_text(v.limits, trace)
+        if checks:
+            lines.append(f"  - checks: {checks}")
     for e in chat:
         lines.append(f"- **CHATTER at {_t(e.time)}**: {_label(lay, e.source)}, {e.message}")
     for e in warns[:8]:
@@ -255,6 +307,10 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     passed = [v for v in info.verdicts if v.passed]
     if passed:
         lines.append(f"- passed: {', '.join(v.name for v in passed)}")
+    skipped = [v for v in info.verdicts if not v.passed and _not_run(v)]
+    if skipped:
+        lines.append(f"- not run (they need another criterion first): "
+                     f"{', '.join(v.name for v in skipped)}")
     relays = [(src, n) for (kind, src), n in counts.items() if kind == "relay"]
     if relays:
         lines.append("- relay operations: " + ", ".join(
@@ -268,10 +324,45 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     return "\n".join(lines)
 
 
+def _not_run(v) -> bool:
+    """A criterion that was not evaluated (it requires another one), not a failure."""
+    return v.detail.startswith(("not earned", "not run"))
+
+
+def first_failed(verdicts):
+    """The failed verdict every picture opens on: a moment of failure before a failure over
+    the whole run, the earliest first, criteria that did not run left out."""
+    failed = [v for v in verdicts if not v.passed and not _not_run(v)]
+    if not failed:
+        return None
+    return min(failed, key=lambda v: (v.time is None, v.time or 0.0))
+
+
+def _checks_text(limits, trace) -> str:
+    """What a criterion checks, in words with units (the same description the diagrams
+    draw)."""
+    parts = []
+    units = trace.meta.get("units", {}) or {}
+    for lim in limits:
+        try:
+            col = trace.resolve(lim.signal) if lim.signal and lim.signal in trace else ""
+        except PlcError:
+            col = ""
+        who = f"{lim.signal} " if lim.signal and lim.kind not in ("window", "time") else ""
+        parts.append(f"{who}{lim.text(units.get(col, ''))}")
+    return "; ".join(dict.fromkeys(parts))
+
+
 def _t(t: float | None) -> str:
     if t is None:
         return ""
     return f"{t:.2f} s" if t < 60 else f"{int(t // 60)} min {t % 60:.1f} s"
+
+
+def plant_limits(trace) -> dict[str, list[tuple[float, str]]]:
+    """The plant's own marks (switch heights, the rim) per signal as (value, label), for a
+    diagram's lines."""
+    return {k: [(v, name) for name, v in lst] for k, lst in _limits(trace, _plant(trace)).items()}
 
 
 def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
@@ -308,42 +399,55 @@ def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
 
 
 def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
-                   scan: bool = False, names: list[str] | None = None) -> list[Recording]:
-    """One recording per scenario of a graded run, named by lab, scenario, file and score;
-    scenarios with a failed criterion first (the viewer opens the first)."""
-    from .layout import run_info, varying
+                   scan: bool = False, names: list[str] | None = None,
+                   limits: Any = None) -> list[Recording]:
+    """One recording per scenario of a graded run, named by lab, scenario, file and score,
+    each with its own layout and time span; scenarios with a failed criterion first, in
+    the lab's order (the first is the one every picture opens on). ``limits`` maps a
+    criterion to what it checks (drawn on its signals)."""
+    from .layout import run_info
 
-    keep: set[str] = set()  # one layout for all scenarios: the viewer keeps one blueprint
-    for trace in result.traces.values():
-        keep |= varying(trace)
-    recs = []
+    recs = []  # each its own layout: a signal flat in this scenario tells nothing here
     for name, trace in result.traces.items():
-        info = run_info(lab, result, name, student_file)
-        info.keep = sorted(keep)
+        info = run_info(lab, result, name, student_file, limits)
         recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
-    recs.sort(key=lambda r: all(v.passed for v in r.layout.info.verdicts))
+    recs.sort(key=lambda r: first_failed(r.layout.info.verdicts) is None)
     return recs
 
 
-def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any = None) -> str:
-    """``plclab lab check --rrd``: every scenario of the run in one file, one recording each
-    (failing scenarios first); returns the line to print."""
+def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any = None,
+                  limits: Any = None) -> str:
+    """``plclab lab check --rrd F``: one recording file per scenario, so that the viewer
+    cannot open another scenario first: ``F`` holds the first failing scenario (else the
+    first), ``F-2-<scenario>.rrd``... the others, failures first; returns the lines to
+    print (each file with its scenario and score)."""
     try:
         import rerun  # noqa: F401
     except ImportError:
         raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
                        "'plclab[viz]'") from None
-    from .recording import write_many
-
     sig = getattr(ns, "signals", None)
+    if sig and sig == getattr(ns, "_default_signals", None):
+        sig = None  # the lab's diagram list is for the diagram: the timeline shows all I/O
     names = [s.strip() for s in sig.split(",") if s.strip()] if sig else None
     recs = lab_recordings(lab, result, student_file, scan=bool(getattr(ns, "scan_times", False)),
-                          names=names)
-    write_many(recs, path)
-    shown = ", ".join(r.layout.info.scenario for r in recs)
-    return (f"timeline: {path} ({len(recs)} scenario(s): {shown}; rerun's viewer lists them "
-            "all when Settings > 'Load files via Viewer catalog' is off, else it opens the "
-            "first)")
+                          names=names, limits=limits)
+    from .recording import write_rrd
+
+    path = Path(path)
+    lines = []
+    for k, rec in enumerate(recs):
+        info = rec.layout.info
+        where = path if k == 0 else path.with_name(
+            f"{path.stem}-{k + 1}-{slug(info.scenario)}{path.suffix or '.rrd'}")
+        write_rrd(rec, where)
+        first = first_failed(info.verdicts)
+        score = f"{info.score:g}/{info.max_score:g}" if info.score is not None else ""
+        what = (f"FAILED {first.name}" + (f" at t = {first.time:.2f} s"
+                                           if first.time is not None else "")
+                if first is not None else "passed")
+        lines.append(f"timeline: {where} (scenario '{info.scenario}', {score}, {what})")
+    return "\n".join(lines)
 
 
 def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
@@ -365,8 +469,11 @@ def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
 def export(trace, *, rrd: str | None = None, vcd: str | None = None,
            wavedrom: str | None = None, png: str | None = None, csv: str | None = None,
            signals: list[str] | None = None, window: str | None = None,
-           spawn: bool = False, scan: bool = False, info: RunInfo | None = None) -> list[str]:
-    """Write every requested file; returns lines saying what was written where."""
+           spawn: bool = False, scan: bool = False, info: RunInfo | None = None,
+           labels: dict[str, str] | None = None) -> list[str]:
+    """Write every requested file; returns lines saying what was written where. ``labels``
+    names columns for the timing diagram (``%QX0.0`` -> ``PUMP %QX0.0``; default: the
+    wiring's signal names, :func:`plclab.viz.layout.signal_labels`)."""
     t0, t1 = parse_window(window)
     done = []
     if spawn:
@@ -374,6 +481,18 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
 
         require_display()
     ss = series(trace, signals, t0, t1) if (vcd or wavedrom or png or csv) else []
+    if png:
+        from .layout import signal_labels
+
+        names = labels if labels is not None else signal_labels(None, trace)
+        seen: set[str] = set()
+        ss_png = []
+        for s in ss:  # one row per wire, named by the student's variable and address
+            label = names.get(s.name, s.name)
+            if label in seen:
+                continue
+            seen.add(label)
+            ss_png.append(s.__class__(label, s.times, s.values, s.kind, s.unit, s.labels))
     if rrd or spawn:
         to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan)
         done.append("rerun viewer opened" if spawn else f"timeline: {rrd}")
@@ -391,7 +510,7 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
         from .timing import timing_diagram
 
         markers = [(e.time, e.kind) for e in chatter_events(trace)]
-        timing_diagram(ss[:12], png, t0=t0, t1=t1, markers=markers,
+        timing_diagram(ss_png[:12], png, t0=t0, t1=t1, markers=markers,
                        title=str(trace.meta.get("title", "")))
         done.append(f"timing diagram: {png}")
     if csv:
@@ -421,4 +540,5 @@ def run_exports(trace, ns: Any) -> list[str]:
     return export(trace, rrd=getattr(ns, "rrd", None), vcd=getattr(ns, "vcd", None),
                   wavedrom=getattr(ns, "wavedrom", None), png=getattr(ns, "png", None),
                   signals=sig, window=getattr(ns, "window", None),
-                  spawn=getattr(ns, "spawn", False), scan=getattr(ns, "scan_times", False))
+                  spawn=getattr(ns, "spawn", False), scan=getattr(ns, "scan_times", False),
+                  labels=getattr(ns, "labels", None))

@@ -42,6 +42,7 @@ class Verdict:
     time: float | None = None
     detail: str = ""
     signals: list[str] = field(default_factory=list)
+    limits: list[Any] = field(default_factory=list)  # what it checks (criteria.Limit)
 
 
 @dataclass
@@ -68,7 +69,9 @@ class RunInfo:
         return " · ".join(parts) or "plclab run"
 
     def application_id(self) -> str:
-        return f"plclab {self.lab}" if self.lab else "plclab"
+        """One per lab and scenario: the viewer keeps one blueprint per application, so each
+        scenario opens with its own layout and time span, not another scenario's."""
+        return " ".join(p for p in ("plclab", self.lab, self.scenario) if p)
 
     def recording_id(self) -> str:
         """Stable per lab, scenario and file, so a re-run replaces its recording in the viewer."""
@@ -108,6 +111,8 @@ class Plot:
     @property
     def title(self) -> str:
         names = ", ".join(ln.label for ln in self.lines)
+        if self.unit == "every edge":
+            return f"every edge of the fast-switching signals: {names}"
         if self.unit == "watched":
             return f"watched: {names}"
         return f"{names} [{self.unit}]" if self.unit else names
@@ -200,6 +205,10 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
     wanted = None
     if names is not None:
         wanted = [c for c in (_resolve(trace, n) for n in names) if c]
+        wire = {r.get("plant_column"): r.get("column") for r in trace.io
+                if r.get("column") in trace.columns and r.get("plant_column") in trace.columns
+                and _is_bool(trace, r["plant_column"])}  # a value is not its ADC counts
+        wanted += [wire[c] for c in wanted if c in wire and wire[c] not in wanted]
 
     def win(s: Series) -> Series:
         return s.window(t0, t1) if (t0 is not None or t1 is not None) else s
@@ -231,8 +240,8 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
             analog.append((w, col, "watched", trace.kind(col) != "float"))
     from .sfc_lane import step_columns  # a lane per SFC step (ADR 0023)
 
-    for label, col in step_columns(trace):
-        if (wanted is None or col in wanted) and not any(ln.series.name == col for ln in lanes):
+    for label, col in step_columns(trace):  # always: a chart's steps are the story of its run
+        if not any(ln.series.name == col for ln in lanes):
             lanes.append(Lane(label, series(col, "bool"), "var", col))
     labels = {a[0] for a in analog}
     for sig in trace.signals:
@@ -250,14 +259,58 @@ def plan(trace: Any, info: RunInfo | None = None, names: list[str] | None = None
             analog = [a for a in analog if a[0] != sig]
         analog.append((sig, col, unit, False))
     if wanted is not None:  # explicit names keep their order and may add plant booleans
+        wired = {r.get("plant_column") for r in trace.io if r.get("column") in io_cols}
         for col in wanted:
+            if col in wired:  # its wire's PLC side is a lane already
+                continue
             if _is_bool(trace, col) and not any(ln.series.name == col for ln in lanes):
                 lanes.append(Lane(col, series(col, "bool"), "var", col))
-        order = {c: k for k, c in enumerate(wanted)}
+        order: dict[str, int] = {}
+        for k, c in enumerate(wanted):
+            order.setdefault(c, k)
+            w = wire.get(c)
+            if w is not None:
+                order.setdefault(w, k)
         lanes.sort(key=lambda ln: order.get(ln.series.name, len(order)))
         analog.sort(key=lambda a: order.get(a[1], len(order)))
     plots = _group(analog, focus_order, series, limits or {}, wanted is None)
+    edges = edge_plot(lanes)
+    if edges is not None:
+        if wanted is None:  # within the cap on plots: the edges take the last place
+            plots = plots[:MAX_PLOTS - 1]
+        plots.append(edges)
     return Layout(plots, lanes, info)
+
+
+FAST_CHANGES = 40
+"""A lane that changes more often than this in the view is also drawn as a square wave in
+the ``edges`` plot: a state lane merges states narrower than a pixel into one grey bar
+("363 states"), a line shows every edge."""
+
+
+def edge_plot(lanes: list[Lane]) -> Plot | None:
+    """The fast-switching lanes as square waves stacked in one plot (each on its own
+    level, named by the student's variable and address, in its lane's colour)."""
+    fast = [ln for ln in lanes if _changes(ln.series) > FAST_CHANGES]
+    if not fast:
+        return None
+    p = Plot("edges", "every edge")
+    for k, ln in enumerate(reversed(fast)):  # the first lane on top
+        base = 1.5 * k
+        vals = [base + (1.0 if v else 0.0) for v in ln.series.values]
+        name = f"{ln.label} {ln.address}".strip() if ln.address.startswith("%") and \
+            ln.address != ln.label else ln.label
+        s = Series(ln.series.name, ln.series.times, vals, "real", "")
+        p.lines.append(Line(f"{name} ({_changes(ln.series)} switchings)", s, ln.color,
+                            step=True))
+    p.lines.reverse()
+    p.y_range = (-0.25, 1.5 * len(fast) - 0.25)
+    return p
+
+
+def _changes(s: Series) -> int:
+    v = list(s.values)
+    return sum(1 for a, b in zip(v, v[1:], strict=False) if bool(a) != bool(b))
 
 
 def varying(trace: Any) -> set[str]:
@@ -295,7 +348,7 @@ def _group(analog, focus: list[str], series, limits, cap: bool) -> list[Plot]:
     for label, s, step in watched:
         best, score = None, 0.05
         for p in plots.values():
-            o = _overlap(_span(s), _span_of(p))
+            o = _overlap(_span(s), span_of(p))
             if o > score:
                 best, score = p, o
         if best is not None:
@@ -309,8 +362,8 @@ def _group(analog, focus: list[str], series, limits, cap: bool) -> list[Plot]:
         ordered = ordered[:MAX_PLOTS]
     for p in ordered:
         if p.limits:
-            lo = min([0.0] + [lim.value for lim in p.limits] + [_span_of(p)[0]])
-            hi = max([lim.value for lim in p.limits] + [_span_of(p)[1]])
+            lo = min([0.0] + [lim.value for lim in p.limits] + [span_of(p)[0]])
+            hi = max([lim.value for lim in p.limits] + [span_of(p)[1]])
             p.y_range = (lo, hi + 0.08 * (hi - lo) if hi > lo else hi + 1.0)
     return ordered
 
@@ -320,7 +373,7 @@ def _span(s: Series) -> tuple[float, float]:
     return (min(vals), max(vals)) if vals else (0.0, 0.0)
 
 
-def _span_of(p: Plot) -> tuple[float, float]:
+def span_of(p: Plot) -> tuple[float, float]:
     spans = [_span(ln.series) for ln in p.lines]
     return min(a for a, _ in spans), max(b for _, b in spans)
 
@@ -335,9 +388,11 @@ def _overlap(a: tuple[float, float], b: tuple[float, float]) -> float:
 
 
 def run_info(lab: Any = None, result: Any = None, scenario: str = "",
-             student_file: str = "") -> RunInfo:
+             student_file: str = "", limits: Any = None) -> RunInfo:
     """A :class:`RunInfo` from a :class:`~plclab.grade.lab.Lab` and a grading result
-    (duck-typed, so this module does not import the grader)."""
+    (duck-typed, so this module does not import the grader); ``limits`` maps a criterion's
+    name to what it checks (``plclab.grade.criteria.criterion_limits``), drawn on its
+    signals."""
     info = RunInfo(scenario=scenario, student_file=student_file)
     if lab is not None:
         info.lab = lab.id
@@ -362,5 +417,35 @@ def run_info(lab: Any = None, result: Any = None, scenario: str = "",
         for t in tests:
             sigs = crits[t.criterion].relevant_signals() if t.criterion in crits else []
             info.verdicts.append(Verdict(t.criterion, bool(t.passed), t.t_fail,
-                                         t.detail or t.message, list(sigs)))
+                                         t.detail or t.message, list(sigs),
+                                         list((limits or {}).get(t.criterion, ()))))
     return info
+
+
+def signal_labels(io: Any, trace: Any) -> dict[str, str]:
+    """Each trace column of a program input or output named as a logic analyser names it:
+    the student's variable and its address (``PUMP %QX0.0``), for the PLC side (``%QX0.0``)
+    and the plant side of the wiring (``PUMP``, ``LS1``) alike. ``io`` is the lab's I/O
+    table (rows with ``name`` and ``address``, or (name, address, type) tuples); None: the
+    wiring's signal names."""
+    names: dict[str, str] = {}
+    for r in io or ():
+        name, address = (r[0], r[1]) if isinstance(r, tuple) else (r.name, r.address)
+        if address:
+            names[str(address).upper()] = f"{name} {address}"
+    if io is None:  # no I/O table: the wiring's signal names
+        for r in getattr(trace, "io", None) or ():
+            col, sig = str(r.get("column") or ""), r.get("signal")
+            if sig and col.startswith("%"):
+                names.setdefault(col.upper(), f"{sig} {col}")
+    out: dict[str, str] = {}
+    for col in trace.columns if hasattr(trace, "columns") else ():
+        if col.upper() in names:
+            out[col] = names[col.upper()]
+    for r in getattr(trace, "io", None) or ():
+        col, plant = str(r.get("column") or ""), r.get("plant_column")
+        if plant and col.upper() in names and plant in trace.columns and \
+                trace.kind(plant) == "bool":  # an analog plant value is not the ADC's counts
+            out.setdefault(plant, names[col.upper()])
+    return out
+

@@ -32,9 +32,12 @@ def available() -> bool:
 
 
 def show(run: Any, lab: Any = None, student_file: str = "", height: int = 760,
-         fps: float = 5.0, scenario: str = "") -> list[Any]:
+         fps: float = 5.0, scenario: str = "", limits: Any = None) -> list[Any]:
     """Show a Trace (with its ``lab`` and ``scenario``: the lab's names and order) or a graded
-    Result with its ``lab`` (one viewer per scenario) inline; returns the viewer widgets."""
+    Result with its ``lab`` (one viewer per scenario, failures first, each with its time
+    cursor at its first failure) inline; ``limits`` maps a criterion to what it checks
+    (``plclab.grade.criteria.criterion_limits``), drawn on its signals. Returns the viewer
+    widgets."""
     os.environ.setdefault("RERUN_NOTEBOOK_ASSET", OFFLINE_ASSET)  # before rerun_notebook loads
     if not available():
         raise PlcError("PLC4031", "the inline rerun viewer needs rerun-notebook: pip install "
@@ -47,7 +50,7 @@ def show(run: Any, lab: Any = None, student_file: str = "", height: int = 760,
     from .recording import RrdWriter, blueprint
 
     if hasattr(run, "traces"):
-        recs = lab_recordings(lab, run, student_file, fps=fps)
+        recs = lab_recordings(lab, run, student_file, fps=fps, limits=limits)
     else:
         info = run_info(lab, None, scenario, student_file) if lab is not None else None
         recs = [recording(run, fps=fps, info=info)]
@@ -61,5 +64,7 @@ def show(run: Any, lab: Any = None, student_file: str = "", height: int = 760,
         writer.send(rec)
         stream.flush()
         viewer.display()
+        if rec.focus is not None:  # the notebook's viewer can place the cursor: the failure
+            viewer.set_time_ctrl(timeline="sim_time", duration=rec.focus, play=False)
         viewers.append(viewer)
     return viewers

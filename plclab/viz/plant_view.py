@@ -122,7 +122,26 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     placed: list[tuple[float, float]] = []
     for s in geo.get("shapes", []):
         kind, name = s.get("type"), s.get("name", "")
-        if kind not in ("mark", "circle"):
+        if kind == "circle":  # a fan (named by its contactor) or a vessel (a drum)
+            r = float(s.get("r", dot))
+            if name in cols and trace.kind(name) == "bool":
+                r = max(r, 0.06 * size)  # a fan big enough to see its blades turn
+            static.append(Shape("outline", f"{name}_rim", STEEL,
+                                points=_circle(s["x"], s["y"], r)))
+            extent(s["x"] - r, s["y"] - r - 0.1 * size, s["x"] + r, s["y"] + r)
+            if name in cols and trace.kind(name) == "bool":
+                drawn.add(name)
+                moving.append(_fan(trace, name, s["x"], s["y"], r, 0.06 * size))
+            else:
+                level = _level_signal(trace, info)
+                if level is not None:  # its value left of everything drawn so far
+                    lx = min(xs) - LABEL_EM * size * (len(level) + 8) / 2
+                    moving.append(_drum_water(trace, level, info, units, s["x"], s["y"], r,
+                                              lx))
+                    extent(lx - LABEL_EM * size * (len(level) + 8) / 2, s["y"], s["x"],
+                           s["y"])
+            continue
+        if kind != "mark":
             continue
         r = float(s.get("r", dot))
         x = s["x"] + (3 * dot if kind == "mark" else 0.0)
@@ -182,6 +201,24 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
             moving.append(count_text)
             extent(bx, by, bx, by)
 
+    # a light curtain beside the plant, the operator's hands under it (safety inputs that
+    # are the story of a press): drawn as what they are, not as lamps
+    curtains = [n for n, d in info.items() if d.get("type") == "bool" and n in cols
+                and "CURTAIN" in n.upper()]
+    for n in curtains:
+        cx = min(xs) - 0.4 * size
+        moving.append(_curtain(n, cx, min(ys), max(ys), cols[n], size))
+        drawn.add(n)
+        extent(cx - 0.1 * size, min(ys), cx, max(ys) + 0.1 * size)
+    hands = [n for n, d in info.items() if d.get("type") == "bool" and n in cols
+             and n.upper().startswith("HAND") and n not in drawn]
+    hy = min(ys) - 0.18 * size
+    x_a, x_b = min(xs), max(xs)
+    for k, n in enumerate(hands):  # spread out under the plant, left hand left
+        hx = (x_a + x_b) / 2 + 0.9 * size * (k - (len(hands) - 1) / 2)
+        moving.append(_hand(n, hx, hy, 1.8 * dot, cols[n]))
+        drawn.add(n)
+        extent(hx - 0.1 * size, hy - 0.1 * size, hx + 0.1 * size, hy)
     # actuators, lamps and panel buttons the geometry does not place: a row under the plant
     kinds = ("actuator", "lamp") if geo.get("shapes") else ("actuator", "lamp", "sensor", "panel")
     row = [n for n, d in info.items() if d.get("type") == "bool" and n in cols
@@ -189,20 +226,26 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     analog_act = [n for n, d in info.items() if d.get("type") == "real" and n in cols
                   and d.get("kind") in ("actuator", "panel")]
     mid = (min(xs) + max(xs)) / 2
-    per_row = 3  # a label needs about a fifth of the picture's width
+    per_row = 4
+    longest = max((len(n) for n in row), default=0) + 4  # "NAME off", right of its dot
     step = max((max(xs) - min(xs)) / min(max(len(row), 1), per_row),
-               0.55 * (max(ys) - min(ys)))  # tall, narrow vessels need a wider row
+               0.55 * (max(ys) - min(ys)),  # tall, narrow vessels need a wider row
+               LABEL_EM * longest * (max(ys) - min(ys)))  # labels never touch
     width = step * min(len(row), per_row)
     x_lo, x_hi = min(min(xs), mid - width / 2), max(max(xs), mid + width / 2)
     y_row = min(ys) - 0.12 * size
+    gap = ROW_GAP * size  # a dot and its label under the one above, not on it
     for k, n in enumerate(row):
         r, c = divmod(k, per_row)
         in_row = min(per_row, len(row) - r * per_row)
         x = mid + step * (c + 0.5 - in_row / 2)
         lamp = info[n].get("kind") == "lamp"
-        moving.append(_switch(n, x, y_row - r * 0.12 * size, 1.6 * dot, cols[n], lamp))
+        stagger = 0.45 * gap * (c % 2)  # neighbours' labels side by side never touch
+        moving.append(_switch(n, x, y_row - r * 1.5 * gap - stagger, 1.6 * dot, cols[n],
+                              lamp))
     if row:
-        y_row -= 0.12 * size * ((len(row) - 1) // per_row)
+        y_row -= 1.5 * gap * ((len(row) - 1) // per_row) + (0.45 * gap if len(row) > 1
+                                                            else 0.0)
         extent(x_lo, y_row - 0.08 * size, x_hi, y_row)
     if analog_act:
         y_txt = y_row - 0.12 * size
@@ -214,7 +257,7 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
         extent(x_lo, y_txt - 0.05 * size, x_hi, y_txt)
     if key and key[0] in cols and not (fill and fill.get("signal") == key[0]) \
             and not (piston and piston.get("signal") == key[0]):
-        ky = max(ys) + 0.1 * size
+        ky = max(ys) + 0.22 * size  # above the plant, not on its outline
         kc, kl, ku, whole = key
 
         def key_text(i: int, kc=kc, kl=kl, ku=ku, ky=ky, whole=whole) -> list[Shape]:
@@ -233,6 +276,106 @@ def picture(trace: Any, plant: Any, key: tuple[str, str, str, bool] | None = Non
     pad = 0.12 * max(max(xs) - min(xs), max(ys) - min(ys), 1e-3)
     bounds = (min(xs) - pad, min(ys) - pad, max(xs) + 2.5 * pad, max(ys) + pad)
     return Picture(static, frame, bounds)
+
+
+ROW_GAP = 0.2
+"""Distance of two rows of actuators, a fraction of the plant's size."""
+LABEL_EM = 0.045
+"""Width of one label character as a fraction of the plant's size (the viewer's labels are
+drawn at a fixed screen size; a plant about 600 px wide)."""
+
+
+def _circle(x: float, y: float, r: float, n: int = 48) -> list[tuple[float, float]]:
+    return [(x + r * math.cos(2 * math.pi * k / n), y + r * math.sin(2 * math.pi * k / n))
+            for k in range(n + 1)]
+
+
+def _fan(trace: Any, name: str, x: float, y: float, r: float, gap: float,
+         rev_per_s: float = 0.5):
+    """A fan: three blades turning while its contactor is ON (the angle is the time it has
+    run so far), green when on, grey when off; its state written above it."""
+    import numpy as np
+
+    on = np.asarray(trace.columns[name], dtype=bool)
+    t = np.asarray(trace.time, dtype=float)
+    dt = np.diff(t, prepend=t[0] if len(t) else 0.0)
+    turned = np.cumsum(on * dt) * 2 * math.pi * rev_per_s
+
+    def f(i: int) -> list[Shape]:
+        a = float(turned[i])
+        c = ON if on[i] else OFF
+        blades = [Shape("outline", f"{name}/blades", c, points=[
+            (x, y), (x + 0.9 * r * math.cos(a + k * 2 * math.pi / 3),
+                     y + 0.9 * r * math.sin(a + k * 2 * math.pi / 3))]) for k in range(3)]
+        return blades + [Shape("text", f"{name}/state", TEXT, x, y + r + gap,
+                               label=f"{name} {'runs' if on[i] else 'stopped'}")]
+    return f
+
+
+def _level_signal(trace: Any, info: dict[str, Any]) -> str | None:
+    """The plant's level (a real sensor named ...LEVEL with a range), for a vessel drawn as a
+    circle."""
+    for n, d in info.items():
+        if d.get("type") == "real" and "LEVEL" in n.upper() and n in trace.columns \
+                and len(d.get("range") or ()) == 2 and d["range"][1] > d["range"][0]:
+            return n
+    return None
+
+
+def _drum_water(trace: Any, sig: str, info: dict[str, Any], units: dict[str, str], x: float,
+                y: float, r: float, label_x: float, slices: int = 10):
+    """Water in a round drum: horizontal slices of the circle up to the level's share of its
+    range; the level written left of the drum, outside it."""
+    lo, hi = (float(v) for v in info[sig]["range"])
+    col = trace.columns[sig]
+    unit = units.get(sig, "")
+
+    def f(i: int) -> list[Shape]:
+        v = float(col[i])
+        frac = min(max((v - lo) / (hi - lo), 0.0), 1.0) if v == v else 0.0
+        top = y - r + 2 * r * frac
+        out = []
+        h = 2 * r / slices
+        yb = y - r
+        while yb < top - 1e-9:
+            yt = min(yb + h, top)
+            ym = (yb + yt) / 2
+            half = math.sqrt(max(r * r - (ym - y) ** 2, 0.0)) * 0.96
+            out.append(Shape("box", "water", WATER, x - half, yb, 2 * half, yt - yb))
+            yb = yt
+        return out + [Shape("text", "level_value", TEXT, label_x, y,
+                            label=f"{sig} {_fmt(v, unit)}")]
+    return f
+
+
+def _curtain(name: str, x: float, y0: float, y1: float, col: Any, size: float):
+    """A light curtain: a column of beams, green while the field is clear (TRUE), red and
+    broken in the middle while something is in it."""
+
+    def f(i: int) -> list[Shape]:
+        clear = bool(col[i])
+        beams = []
+        n = 7
+        for k in range(n):
+            yy = y0 + (y1 - y0) * (k + 0.5) / n
+            if not clear and k in (n // 2 - 1, n // 2, n // 2 + 1):
+                continue  # the broken beams: the hand is there
+            beams.append(Shape("outline", f"{name}/beams", ON if clear else HOT,
+                               points=[(x - 0.06 * size, yy), (x, yy)]))
+        return beams + [Shape("text", f"{name}/state", TEXT, x - 0.03 * size,
+                              y1 + 0.12 * size,
+                              label=f"{name} {'clear' if clear else 'BROKEN'}")]
+    return f
+
+
+def _hand(name: str, x: float, y: float, r: float, col: Any):
+    """A two-hand button with the operator's hand on it (green) or off it (grey)."""
+
+    def f(i: int) -> list[Shape]:
+        on = bool(col[i])
+        return [Shape("dot", name, ON if on else OFF, x, y, r=r,
+                      label=f"{name} {'pressed' if on else 'released'}")]
+    return f
 
 
 def _switch(name: str, x: float, y: float, r: float, col: Any, lamp: bool):

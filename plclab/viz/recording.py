@@ -37,6 +37,16 @@ MARK = (230, 40, 40)
 OFF_LANE = (45, 45, 45)
 SCREEN_PX = 930.0
 """Height of the left column on a 1000-pixel screen: lanes get their height, plots the rest."""
+LANE_PX = 34.0
+"""Height of one state lane in the viewer."""
+MIN_PLOT_PX = 200.0
+"""A plot is never squashed below this height, whatever the number of lanes."""
+MIN_LANES_PX = 170.0
+"""The lanes' pane is at least this high (it scrolls when the lanes need more)."""
+MARK_COLORS = {"fails": (230, 40, 40), "chatter": (255, 140, 0), "plc fault": (200, 0, 200),
+               "fault injected": (120, 120, 255)}
+"""One colour per marker kind (red: a failed criterion); other warnings are yellow."""
+WARN_MARK = (230, 200, 0)
 DASHES = 48
 """A limit line is drawn as this many dashes across the run."""
 
@@ -78,6 +88,7 @@ class Recording:
     frame_rows: Sequence[int] = ()
     frame_times: Sequence[float] = ()
     view_span: tuple[float, float] | None = None  # time range at open (default: the run's)
+    focus: float | None = None  # the moment of the first failure: the time selection at open
 
     @property
     def title(self) -> str:
@@ -92,6 +103,11 @@ class Recording:
         return float(min(t[0] for t in ts)), float(max(t[-1] for t in ts))
 
 
+def mark_color(kind: str) -> tuple[int, int, int]:
+    """The colour of a marker kind: red for a failed criterion, one colour per other kind."""
+    return MARK_COLORS.get(kind, WARN_MARK)
+
+
 def _limit_entity(p: Any, lim: Any) -> str:
     """Highest limit first, as they lie in the plot (``/plots/m/limits/1_rim``)."""
     order = sorted(p.limits, key=lambda x: -x.value).index(lim) + 1
@@ -99,8 +115,17 @@ def _limit_entity(p: Any, lim: Any) -> str:
 
 
 def lane_entity(k: int, label: str) -> str:
-    """Lanes sort by entity path in the viewer: the number keeps the lab's order."""
+    """Lanes sort by entity path in the viewer: the number keeps the lab's order. (The
+    viewer shows a path's escapes, ``01\\ PUMP``, so the name and address of the student's
+    variable are in the lane's state labels instead: :func:`lane_name`.)"""
     return f"/digital/{k + 1:02d}_{slug(label)}"
+
+
+def lane_name(lane: Any) -> str:
+    """What a lane says in its bars: the student's variable and its address, as a logic
+    analyser names a channel (``PUMP %QX0.0``)."""
+    addr = lane.address if lane.address.startswith("%") and lane.address != lane.label else ""
+    return f"{lane.label} {addr}".strip()
 
 
 def blueprint(rec: Recording) -> Any:
@@ -114,15 +139,18 @@ def blueprint(rec: Recording) -> Any:
         end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range
     left: list[Any] = []
     shares: list[float] = []
-    marks = sum(1 for m in rec.markers if m.lane)
-    lanes_px = 46.0 * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
-    plot_px = max(140.0, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
+    marks = len({m.lane + m.kind for m in rec.markers if m.lane})  # a marker lane each
+    lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
+    plot_px = max(MIN_PLOT_PX, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
+    if lay.plots and lay.lanes:  # plots keep their 200 px; the lanes scroll in the rest
+        lanes_px = max(MIN_LANES_PX, min(lanes_px, SCREEN_PX - plot_px * len(lay.plots)))
     for p in lay.plots:
         kw: dict[str, Any] = {}
         if p.y_range is not None:
             kw["axis_y"] = rrb.ScalarAxis(range=p.y_range)
-        left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=p.title,
-                                       plot_legend=rrb.PlotLegend(corner="LeftTop"),
+        # no legend over the data: the lines and the dashed limits are named in the title
+        left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=plot_title(p),
+                                       plot_legend=rrb.PlotLegend(visible=False),
                                        axis_x=whole, **kw))
         shares.append(plot_px)
     if lay.lanes:
@@ -137,8 +165,14 @@ def blueprint(rec: Recording) -> Any:
     rshares: list[float] = []
     if rec.picture is not None:
         x0, y0, x1, y1 = rec.picture.bounds
-        right.append(rrb.Spatial2DView(origin="/plant", name="plant", visual_bounds=(
-            rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0)))))
+        kw = {}
+        name = "plant"
+        if rec.focus is not None:  # the plant at the failure, wherever the cursor is
+            at = rrb.TimeRangeBoundary.absolute(seconds=rec.focus)
+            kw["time_ranges"] = rrb.VisibleTimeRange("sim_time", start=at, end=at)
+            name = f"plant at the first failure, t = {rec.focus:.2f} s"
+        right.append(rrb.Spatial2DView(origin="/plant", name=name, visual_bounds=(
+            rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0))), **kw))
         rshares.append(3.0)
     right.append(rrb.TextDocumentView(origin="/summary", name="summary: most important first"))
     rshares.append(2.0)
@@ -151,7 +185,37 @@ def blueprint(rec: Recording) -> Any:
     return rrb.Blueprint(
         rrb.Horizontal(*cols, column_shares=[3, 2] if left else None),
         rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"),
-        rrb.TimePanel(state="collapsed", timeline="sim_time", play_state="paused"))
+        rrb.TimePanel(state="collapsed", timeline="sim_time", play_state="paused",
+                      **_selection(rec)))
+
+
+def _selection(rec: Recording) -> dict[str, Any]:
+    """At open, after a failure: the moments before and just after the first failure
+    selected on the time line (rerun 0.41's blueprint has no initial time cursor: a playing
+    loop over the selection would start from the cursor at 0, so the plant view shows the
+    failure's moment by its own visible time range instead)."""
+    if rec.focus is None:
+        return {}
+    import rerun.blueprint as rrb
+
+    a, b = rec.span()
+    w = max((b - a) * 0.02, 1.0)
+    return {"time_selection": rrb.components.AbsoluteTimeRange(
+        min=_ns(max(a, rec.focus - w)), max=_ns(min(b, rec.focus + w / 2)))}
+
+
+def _ns(seconds: float) -> int:
+    return int(round(seconds * 1e9))
+
+
+def plot_title(p: Any) -> str:
+    """A plot's title names its lines and its dashed limits (the legend is hidden, so that
+    it covers no data): ``LEVEL [m] · dashed: LS1 0.5, LS2 1.5, rim 2``."""
+    if not p.limits:
+        return p.title
+    lims = ", ".join(f"{lim.label} {lim.value:g}" for lim in
+                     sorted(p.limits, key=lambda x: x.value))
+    return f"{p.title} · dashed: {lims}"
 
 
 class RrdWriter:
@@ -198,16 +262,20 @@ class RrdWriter:
         rr, st = self.rr, self.stream
         for p in rec.layout.plots:
             for ln in p.lines:
+                # MinMax: squeezed into a pixel, a square wave keeps both levels (every edge,
+                # not an average of 0.5), a chattering level its whole swing
                 st.log(f"/plots/{p.key}/{slug(ln.label)}", rr.SeriesLines(
                     names=ln.label, colors=[ln.color], widths=[2.0],
-                    interpolation_mode="StepAfter" if ln.step else "Linear"), static=True)
+                    interpolation_mode="StepAfter" if ln.step else "Linear",
+                    aggregation_policy="MinMax"), static=True)
             for lim in p.limits:
                 st.log(_limit_entity(p, lim), rr.SeriesLines(
                     names=f"{lim.label} {lim.value:g} {p.unit}".rstrip(), colors=[lim.color],
                     widths=[1.5]), static=True)
         for lane in rec.layout.lanes:
+            name = lane_name(lane)
             st.log(self.lane_paths[lane.label], rr.StateConfiguration(
-                values=["1", "0"], labels=[f"{lane.label} ON", "off"],
+                values=["1", "0"], labels=[f"{name} ON", f"{name} off"],
                 colors=[lane.color, OFF_LANE]), static=True)
         if len(rec.scan_durations_us):
             st.log("/scan/duration_us", rr.SeriesLines(names="scan duration [us]",
@@ -339,14 +407,14 @@ class RrdWriter:
         rr, st = self.rr, self.stream
         if m.plot is not None and m.value is not None:
             path = f"/plots/{m.plot}/markers/{slug(m.label)}"
-            st.log(path, rr.SeriesPoints(markers="cross", colors=[MARK], marker_sizes=[8.0],
-                                         names=m.label), static=True)
+            st.log(path, rr.SeriesPoints(markers="cross", colors=[mark_color(m.kind)],
+                                         marker_sizes=[8.0], names=m.label), static=True)
             st.set_time("sim_time", duration=m.time)
             st.log(path, rr.Scalars(m.value))
         if m.lane is not None:
             path = f"{m.lane}_{slug(m.kind)}"  # a sibling: sorts right under its lane
             st.log(path, rr.StateConfiguration(values=["1", "0"], labels=[m.label, ""],
-                                               colors=[MARK, (0, 0, 0, 0)],
+                                               colors=[mark_color(m.kind), (0, 0, 0, 0)],
                                                visible=[True, False]), static=True)
             st.set_time("sim_time", duration=m.time)
             st.log(path, rr.StateChange(state="1"))
@@ -371,7 +439,8 @@ class RrdWriter:
             for name, shapes in groups.items():
                 key = tuple((s.kind, s.color, round(s.x, 4), round(s.y, 4), round(s.w, 4),
                              round(s.h, 4), round(s.angle, 3), s.label) for s in shapes)
-                if last.get(name) != key:
+                # every shape at the failure's moment: the plant view shows that moment
+                if last.get(name) != key or (rec.focus is not None and t == rec.focus):
                     rows.setdefault((name, shapes[0].kind), []).append((float(t), shapes))
                     last[name] = key
             for name in shown - set(groups):
@@ -505,10 +574,7 @@ def write_many(recs: list[Recording], path: str | Path) -> Path:
 
     Each is written on its own, then rerun's own ``rrd merge`` joins them (a concatenation of
     .rrd files is not a valid .rrd since 0.41's footers)."""
-    path = Path(path)
-    spans = [r.span() for r in recs]
-    for r in recs:  # the application's blueprint is shared: show the longest run whole
-        r.view_span = (min(a for a, _ in spans), max(b for _, b in spans))
+    path = Path(path)  # each keeps its own time span and layout (its own application id)
     if len(recs) == 1:
         return write_rrd(recs[0], path) or path
     with tempfile.TemporaryDirectory(prefix="plclab-rrd-", dir=path.parent) as tmp:

@@ -28,7 +28,10 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
                    markers: Sequence[tuple[float, str]] = (), width: float = 10.0,
                    dpi: int = 110,
                    thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
-                   fixed_layout: bool = False):
+                   fixed_layout: bool = False,
+                   bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
+                   spans: Sequence[tuple[float | None, float | None, str]] = (),
+                   note: str = ""):
     """Draw ``series`` stacked over a shared time axis; save to ``path`` (.png/.svg) if given.
 
     ``markers`` are (time, label) pairs drawn as vertical lines (e.g. "chatter", "fault");
@@ -46,7 +49,7 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
         from .failure_diagram import failure_figure
 
         fig = failure_figure(series, lo, hi, heights, title, markers, width, thresholds,
-                             marker_labels(markers, lo, hi))
+                             marker_labels(markers, lo, hi), bands, spans, note)
         if path is not None:
             fig.savefig(str(path), dpi=dpi)
         return fig
@@ -90,15 +93,19 @@ def _rows(series: Sequence[Series], t0: float | None, t1: float | None
 def failure_png(series: Sequence[Series], path: str | Path | None, t0: float | None = None,
                 t1: float | None = None, title: str = "",
                 markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
-                thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None) -> bytes:
+                thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
+                bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
+                spans: Sequence[tuple[float | None, float | None, str]] = (),
+                note: str = "") -> bytes:
     """``timing_diagram(..., fixed_layout=True)`` saved at 72 dpi, drawn with Pillow instead
     of matplotlib (:mod:`plclab.viz.failure_png`, a tenth of the cost): the feedback's
-    failure diagrams. Writes ``path`` when given; returns the PNG's bytes."""
+    failure diagrams. Writes ``path`` when given; returns the PNG's bytes. ``bands``,
+    ``spans`` and ``note`` draw what a criterion checks (:func:`criterion_drawing`)."""
     from .failure_png import failure_png as draw
 
     rows, heights, lo, hi = _rows(series, t0, t1)
     return draw(rows, path, lo, hi, heights, title, markers, width, thresholds,
-                marker_labels(markers, lo, hi))
+                marker_labels(markers, lo, hi), bands, spans, note)
 
 
 ANALOG_VALUES = 12
@@ -152,12 +159,15 @@ def _draw(ax, s: Series, lo: float, hi: float) -> None:
         ax.spines[side].set_visible(False)
     times = list(s.times) + [hi]
     if s.kind == "bool":
+        from .failure_diagram import bool_rgb
+
+        rgb = tuple(c / 255 for c in bool_rgb(s.name))  # inputs blue, outputs green
         vals = [1.0 if v else 0.0 for v in s.values]
-        ax.step(list(s.times), vals, where="post", color="tab:green", lw=1.2)
+        ax.step(list(s.times), vals, where="post", color=rgb, lw=1.2)
         if len(s.times):
-            ax.plot([s.times[-1], hi], [vals[-1]] * 2, color="tab:green", lw=1.2)
+            ax.plot([s.times[-1], hi], [vals[-1]] * 2, color=rgb, lw=1.2)
         ax.fill_between(times[:-1] + [hi], (vals + vals[-1:]) if vals else [], step="post",
-                        alpha=0.15, color="tab:green")
+                        alpha=0.15, color=rgb)
         ax.set_ylim(-0.2, 1.3)
         ax.set_yticks([])
     elif s.kind == "real":

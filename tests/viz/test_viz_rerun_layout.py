@@ -86,7 +86,10 @@ def test_recording_reads_back_with_names_lanes_limits_and_markers(recs, tmp_path
     paths = read_entity_paths(path, rid)
     assert {"/digital/01_LS1", "/digital/02_LS2", "/digital/03_PUMP"} <= paths
     assert "/digital/03_PUMP_chatter" in paths  # the chatter in the lane it concerns
-    assert "/plots/m/markers/PUMP_chatter" in paths  # ... and in the level plot
+    # the lane says the student's variable and its address, as a logic analyser does
+    labels = _columns(path, rid, "/digital/03_PUMP", "StateConfiguration:labels")
+    assert "PUMP %QX0.0 ON" in str(labels) and "PUMP %QX0.0 off" in str(labels)
+    assert "/plots/edges/markers/PUMP_chatter" in paths  # ... and on its every-edge wave
     names = _columns(path, rid, "/plots/m/limits/2_LS2", "SeriesLines:names")
     assert names and "LS2 1.5 m" in str(names)
     dashes = _columns(path, rid, "/plots/m/limits/2_LS2", "Scalars:scalars")
@@ -208,8 +211,11 @@ def test_notebook_viewer_missing_is_a_plc_error(monkeypatch):
     assert e.value.code == "PLC4031"
 
 
-def test_scenarios_failing_first_and_one_layout_for_all(recs):
+def test_scenarios_failing_first_each_with_its_own_layout_and_application(recs):
     assert not all(v.passed for v in recs[0].layout.info.verdicts)
-    plots = [[p.key for p in r.layout.plots] for r in recs]
     lanes = [[ln.label for ln in r.layout.lanes] for r in recs]
-    assert all(p == plots[0] for p in plots) and all(ln == lanes[0] for ln in lanes)
+    assert all(ln == lanes[0] for ln in lanes)  # the lab's I/O table in every scenario
+    apps = {r.layout.info.application_id() for r in recs}
+    assert len(apps) == len(recs)  # the viewer keeps a blueprint per application
+    spans = {r.span() for r in recs}
+    assert all(a == 0.0 for a, _ in spans)

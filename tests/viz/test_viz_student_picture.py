@@ -45,6 +45,6 @@ def test_analog_integers_are_lines_and_bools_keep_only_their_changes():
 def test_thresholds_come_from_the_criteria():
     tank = load_lab("tank-two-position")
     crit = {c.name: c for c in tank.criteria}
-    assert thresholds_of(crit["no overflow"]) == {"LEVEL": [(1.75, "limit")]}
+    assert thresholds_of(crit["no overflow"]) == {"LEVEL": [(1.75, "never >= 1.75")]}
     both = thresholds_of(crit["level between the switches"])
     assert sorted(v for v, _ in both["LEVEL"]) == [0.4, 1.6]

@@ -29,7 +29,7 @@ def test_rrd_has_the_expected_entities(tank_trace, tmp_path):
     paths = read_entity_paths(path)
     for p in ("/plots/m/LEVEL", "/plots/m/limits/3_LS1", "/plots/m/limits/2_LS2",
               "/digital/03_PUMP", "/digital/01_LS1", "/events", "/summary", "/plant/static/tank",
-              "/plant/water", "/scan/duration_us", "/plots/m/markers/PUMP_chatter",
+              "/plant/water", "/scan/duration_us", "/plots/edges/markers/PUMP_chatter",
               "/digital/03_PUMP_chatter"):
         assert p in paths, p
     assert "/scan/duration_us" not in read_entity_paths(to_rerun(tank_trace, tmp_path / "b.rrd"))
@@ -70,7 +70,7 @@ def test_sim_command_exports_everything(tmp_path, capsys):
     for p in out.values():
         assert p.exists() and p.stat().st_size > 0
     svg = out["svg"].read_text()
-    for label in (">LEVEL [m]<", ">PUMP<", ">LS1<"):
+    for label in (">LEVEL [m]<", ">PUMP %QX0.0<", ">LS1 %IX0.0<"):  # name and address
         assert label in svg
     rc = main(["view", str(out["npz"]), "--report", "--vcd", str(tmp_path / "v.vcd")])
     assert rc == 0
