@@ -41,7 +41,7 @@ class Emission:
 
     def widened(self, first: int = 0) -> list[str]:
         """The argument code from ``first`` on, widened to the result type (MIN, LIMIT, SEL)."""
-        return self.codes[:first] + [self.cg.widen(c, a.ty, self.t) for c, a in
+        return self.codes[:first] + [self.cg.widen(c, a.ty, self.t, a) for c, a in
                                      zip(self.codes[first:], self.args[first:], strict=True)]
 
 
@@ -159,7 +159,7 @@ def _datetime(m: Emission) -> str:
 
 def _compare(m: Emission) -> str:
     common = _common([a.ty for a in m.args])
-    codes = [m.cg.widen(c, a.ty, common) for c, a in zip(m.codes, m.args, strict=True)]
+    codes = [m.cg.widen(c, a.ty, common, a) for c, a in zip(m.codes, m.args, strict=True)]
     op = m.spec.operator
     if len(codes) == 2:
         return f"({codes[0]} {op} {codes[1]})"

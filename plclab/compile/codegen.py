@@ -1431,12 +1431,21 @@ class Codegen(FastPaths):
         if op in ("AND", "OR", "XOR"):
             return f"({left} {dict(AND='&', OR='|', XOR='^')[op]} {right})"
         if op in ("=", "<>", "<", "<=", ">", ">="):
+            if lt is T.LREAL and rt is T.REAL:  # compared as LREAL: the REAL value (ADR 0038)
+                right = self.own_value(right, e.right)
+            elif rt is T.LREAL and lt is T.REAL:
+                left = self.own_value(left, e.left)
             if lt is T.LTIME and rt is T.TIME:
                 right = f"({right} * 1000000)"
             elif rt is T.LTIME and lt is T.TIME:
                 left = f"({left} * 1000000)"
             pyop = {"=": "==", "<>": "!="}.get(op, op)
             return f"({left} {pyop} {right})"
+        if t is T.LREAL:  # a REAL operand of an LREAL operation is a REAL value (ADR 0038)
+            if lt is T.REAL:
+                left = self.own_value(left, e.left)
+            if rt is T.REAL:
+                right = self.own_value(right, e.right)
         if t.kind == "time" and t is T.LTIME:
             if lt is T.TIME:
                 left = f"({left} * 1000000)"
@@ -1643,15 +1652,18 @@ class Codegen(FastPaths):
             return self.wrap(f"_round({code} * {unit})", d)
         return self.wrap(f"({code} * {unit})", d)
 
-    @staticmethod
-    def widen(code: str, src: T.Type | None, dst: T.Type | None) -> str:
-        """An implicit widening inside an expression (MIN, SEL, GT...): the value stays exact,
-        but an integer becomes a float for a REAL result and TIME becomes LTIME nanoseconds."""
+    def widen(self, code: str, src: T.Type | None, dst: T.Type | None,
+              e: A.Expr | None = None) -> str:
+        """An implicit widening inside an expression (MIN, SEL, GT...): an integer keeps its
+        exact value but becomes a float for a REAL result, TIME becomes LTIME nanoseconds, and a
+        REAL expression ``e`` widened to LREAL is its REAL value (ADR 0038, decision 4)."""
         if src is None or dst is None:
             return code
         s, d = T.base_of(src), T.base_of(dst)
         if s is d:
             return code
+        if s is T.REAL and d is T.LREAL and e is not None:
+            return self.own_value(code, e)
         if d.kind == "real" and s.kind in ("int", "bits") and s is not T.ANY_INT_LIT:
             return f"_fl({code})"
         if d is T.LTIME and s is T.TIME:

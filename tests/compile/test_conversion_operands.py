@@ -38,6 +38,13 @@ def main(decls: str, body: str) -> Plc:
     ("r : REAL := 16777216.0; x : LREAL;", "x := r + 1.0;", "x", 16777216.0),
     ("r : REAL := 16777216.0; x : LREAL;", "x := MAX(r + 1.0, 0.0);", "x", 16777216.0),
     ("r : REAL := 0.1; x : LREAL;", "x := r;", "x", float.fromhex("0x1.99999ap-4")),
+    # ... as an operand of an LREAL operation, a function or a comparison
+    ("r : REAL := 16777216.0; y : LREAL := 0.0; x : LREAL;", "x := (r + 1.0) + y;", "x",
+     16777216.0),
+    ("r : REAL := 16777216.0; y : LREAL := 0.0; x : LREAL;", "x := MAX(r + 1.0, y);", "x",
+     16777216.0),
+    ("r : REAL := 16777216.0; y : LREAL := 16777216.5; b : BOOL;", "b := (r + 1.0) < y;", "b",
+     True),
     # an LREAL sum stays a double
     ("r : LREAL := 16777216.0; x : LREAL;", "x := r + 1.0;", "x", 16777217.0),
     # a stored value needs nothing: the same conversions of variables
