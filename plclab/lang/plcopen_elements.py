@@ -54,8 +54,10 @@ def call_pins(e: A.Call, user_inputs: dict[str, list[str]]) -> list[str] | None:
     elif fname in BUILTINS:
         b = BUILTINS[fname]
         params = list(b.params)
-        if b.variadic:
-            params += [f"IN{i + 1}" for i in range(len(params), len(e.args))]
+        if b.variadic:  # numbered on from the last INn: ADD IN3, IN4...; MUX K, IN0, IN1, IN2...
+            last = max((int(p[2:]) for p in params if p[:2] == "IN" and p[2:].isdigit()),
+                       default=0)
+            params += [f"IN{last + 1 + k}" for k in range(len(e.args) - len(params))]
     elif conversion(fname) is not None:
         params = ["IN"]
     else:

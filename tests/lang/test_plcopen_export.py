@@ -316,3 +316,15 @@ def test_an_object_oriented_program_is_refused_clearly(path):
     with pytest.raises(PlcError) as e:
         exported(path, fbd=False)
     assert e.value.code == "PLC4043" and "object-oriented" in str(e.value)
+
+
+def test_variadic_pins_are_numbered_on_from_the_blocks_own():
+    # MUX K, IN0, IN1 goes on with IN2, IN3 (it used to jump to IN4, IN5); ADD with IN3, IN4
+    from plclab.lang.frontends.st import parse_st
+    from plclab.lang.plcopen_elements import call_pins
+
+    f = parse_st("PROGRAM P VAR x, a, b, c, d : INT; END_VAR x := MUX(1, a, b, c, d); "
+                 "x := ADD(a, b, c, d); END_PROGRAM")
+    mux, add = (s.value for s in f.pous[0].body)
+    assert call_pins(mux, {}) == ["K", "IN0", "IN1", "IN2", "IN3"]
+    assert call_pins(add, {}) == ["IN1", "IN2", "IN3", "IN4"]
