@@ -68,7 +68,8 @@ def _to_dint(m: Emission) -> str:  # TRUNC, ROUND: a conversion to DINT, wraps l
 
 
 def _operator(m: Emission) -> str:  # ADD, MUL, SUB; AND, OR, XOR
-    code = "(" + f" {m.spec.operator} ".join(m.codes) + ")"
+    codes = m.widened() if m.t is T.LREAL else m.codes  # a REAL input is its REAL value
+    code = "(" + f" {m.spec.operator} ".join(codes) + ")"
     t = m.t
     if m.spec.typing == "arithmetic" and t.kind in ("int", "bits") and \
             isinstance(t, T.Elementary) and t is not T.ANY_INT_LIT and \
@@ -79,7 +80,8 @@ def _operator(m: Emission) -> str:  # ADD, MUL, SUB; AND, OR, XOR
 
 def _div(m: Emission) -> str:
     fn = "_idiv" if m.t.kind in ("int", "bits") else "_rdiv"
-    return f"{fn}({m.codes[0]}, {m.codes[1]})"
+    codes = m.widened() if m.t is T.LREAL else m.codes  # a REAL input is its REAL value
+    return f"{fn}({codes[0]}, {codes[1]})"
 
 
 def _extremum(m: Emission) -> str:  # MIN, MAX
