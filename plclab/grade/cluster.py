@@ -70,15 +70,21 @@ def parse_executor(text: str | None) -> str | None:
 def collect_child(job: dict[str, Any], timeout: float) -> dict[str, Any]:
     """Run one grading child here (as the local grader does) and return what it sent, raw:
     ``{"messages": [bytes], "exitcode", "timed_out", "rejected", "wall", "log"}``."""
-    from .spawn import child_context, read_child_log
+    from .spawn import child_context, read_child_log, start_child
     from .worker import child_main
 
     ctx = child_context()
     parent, child = ctx.Pipe(duplex=False)
     proc = ctx.Process(target=child_main, args=(job, child), daemon=True,
                        name="plclab-grade-task")
-    with _may_have_children():
-        proc.start()
+    try:
+        with _may_have_children():
+            start_child(proc)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            parent.close()
+        child.close()
+        raise
     child.close()
     start = time.monotonic()
     messages: list[bytes] = []

@@ -1,0 +1,190 @@
+"""Grading integrity with real kills from outside (issue 30, ADR 0040): a grading child and the
+forkserver are killed with ``os.kill`` from the grader's own process, as the OOM killer does,
+and the gradebook equals a clean run's row for row; killed every time, the row says
+"infrastructure" and ``plclab grade`` asks to run the same command again.
+
+No timing: a victim is held after compiling (``PLCLAB_GRADE_SELFTEST_HOLD``) until it is killed,
+so the kill lands mid-run however loaded the machine is; the kill is triggered by the
+victim's "compiled" message, an event. Time limits are generous and only guard a failure."""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+from pathlib import Path
+
+import pytest
+
+from plclab.grade import grader as grader_mod
+from plclab.grade.grader import Grader
+from plclab.grade.lab import load_lab
+from plclab.grade.protocol import INFRA_RETRIES
+
+LAB = load_lab("motor-start-stop")
+GOOD = (LAB.path / "solution" / "motor.st").read_text(encoding="utf-8")
+WRONG = (LAB.path / "mistakes" / "set_dominant.st").read_text(encoding="utf-8")
+LIMIT = 300.0  # only a guard: a held child nobody kills ends here, and the test fails
+
+pytestmark = pytest.mark.slow
+
+
+def _rows(out: Path) -> list[dict[str, str]]:
+    """Every row of the gradebook, every test's points included."""
+    with open(out / "grades.csv", encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
+@pytest.fixture
+def subs(tmp_path):
+    folder = tmp_path / "subs"
+    folder.mkdir()
+    (folder / "alice.st").write_text(GOOD, encoding="utf-8")
+    (folder / "bob.st").write_text(WRONG, encoding="utf-8")
+    (folder / "carol.st").write_text(GOOD, encoding="utf-8")
+    return folder
+
+
+@pytest.fixture
+def clean(subs, tmp_path):
+    """The gradebook of a run nobody disturbs."""
+    Grader(LAB, tmp_path / "clean", jobs=2, timeout=LIMIT, media=False).grade_folder(subs)
+    rows = _rows(tmp_path / "clean")
+    assert {r["status"] for r in rows} == {"ok"}
+    assert len({r["score"] for r in rows}) == 2  # bob's mistake costs points: rows differ
+    return rows
+
+
+def _on_compiled(monkeypatch, act) -> dict[str, int]:
+    """Call ``act(running)`` in the grader's process when a child it started reports that it
+    compiled the program (an event); returns student -> children started."""
+    started: dict[str, int] = {}
+    real_start = Grader._start
+
+    def start(self, ctx, sub):
+        r = real_start(self, ctx, sub)
+        if not isinstance(r, grader_mod._Running):
+            return r
+        started[sub.student] = started.get(sub.student, 0) + 1
+        receive = r.inbox.receive
+
+        def receive_then_act(raw: bytes) -> None:
+            receive(raw)
+            if raw.startswith(b'["compiled"'):
+                act(r)
+
+        r.inbox.receive = receive_then_act
+        return r
+
+    monkeypatch.setattr(Grader, "_start", start)
+    return started
+
+
+def _hold(monkeypatch, student: str, n: int) -> None:
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_HOLD", f"{student}:{n}")
+
+
+# ---------------------------------------------------------------------------- killed children
+
+
+def test_children_killed_from_outside_give_the_clean_gradebook(subs, clean, tmp_path,
+                                                               monkeypatch, capfd):
+    killed: list[str] = []
+
+    def act(r):
+        if r.sub.student == "alice" and len(killed) < INFRA_RETRIES:
+            killed.append(r.sub.student)
+            os.kill(r.proc.pid, signal.SIGKILL)
+
+    _hold(monkeypatch, "alice", INFRA_RETRIES)  # both victims wait for their kill
+    started = _on_compiled(monkeypatch, act)
+    outs = Grader(LAB, tmp_path / "killed", jobs=2, timeout=LIMIT,
+                  media=False).grade_folder(subs)
+    assert killed == ["alice"] * INFRA_RETRIES
+    assert started == {"alice": INFRA_RETRIES + 1, "bob": 1, "carol": 1}  # graded again
+    assert _rows(tmp_path / "killed") == clean
+    assert {o.result.student: o.result.status for o in outs} == dict.fromkeys(
+        ("alice", "bob", "carol"), "ok")
+    assert "Traceback" not in capfd.readouterr().err
+
+
+def test_killed_every_time_is_infrastructure_and_the_next_run_grades_it(subs, clean, tmp_path,
+                                                                        monkeypatch):
+    out = tmp_path / "out"
+    _hold(monkeypatch, "bob", INFRA_RETRIES + 1)
+    started = _on_compiled(monkeypatch, lambda r: r.sub.student == "bob" and os.kill(
+        r.proc.pid, signal.SIGKILL))
+    first = {o.result.student: o.result for o in
+             Grader(LAB, out, jobs=2, timeout=LIMIT, media=False).grade_folder(subs)}
+    assert started["bob"] == INFRA_RETRIES + 1
+    assert first["bob"].status == "infrastructure" and "PLC5070" in first["bob"].message
+    assert "killed by SIGKILL" in first["bob"].message
+    monkeypatch.undo()
+    again = {o.result.student: o for o in
+             Grader(LAB, out, jobs=2, timeout=LIMIT, media=False).grade_folder(subs)}
+    assert not again["bob"].skipped and again["alice"].skipped and again["carol"].skipped
+    assert _rows(out) == clean
+
+
+def test_a_killed_forkserver_is_started_again_and_its_children_graded_again(
+        subs, clean, tmp_path, monkeypatch, capfd):
+    """The OOM killer may pick the forkserver: its children die with it (their status is
+    lost: exit code 255) and the next start finds no server. The grader starts a new one
+    (with the minimal environment) and grades them again: no traceback, no crash."""
+    from multiprocessing import forkserver
+
+    from plclab.grade.spawn import child_context
+
+    child_context()
+    killed: list[int] = []
+
+    def act(r):
+        if r.sub.student == "alice" and not killed:
+            killed.append(forkserver._forkserver._forkserver_pid)
+            os.kill(killed[0], signal.SIGKILL)
+
+    _hold(monkeypatch, "alice", 1)  # alice's first child waits; the server is killed under it
+    monkeypatch.setenv("PLCLAB_GRADE_SECRET_OF_THE_INSTRUCTOR", "x")
+    started = _on_compiled(monkeypatch, act)
+    outs = Grader(LAB, tmp_path / "killed", jobs=2, timeout=LIMIT,
+                  media=False).grade_folder(subs)
+    new = forkserver._forkserver._forkserver_pid
+    assert killed and new != killed[0]  # a new server
+    assert started["alice"] == 2
+    assert _rows(tmp_path / "killed") == clean
+    assert all(o.result.status == "ok" for o in outs)
+    with open(f"/proc/{new}/environ", "rb") as f:
+        assert b"PLCLAB_GRADE_SECRET_OF_THE_INSTRUCTOR" not in f.read()
+    assert "Traceback" not in capfd.readouterr().err
+
+
+def test_a_forkserver_that_cannot_be_started_is_plc5073(monkeypatch, tmp_path, subs):
+    """When no grading process can be started at all (here every start fails as on a machine
+    out of processes), the run stops with PLC5073 after a few tries, not a traceback."""
+    from multiprocessing.process import BaseProcess
+
+    from plclab.errors import PlcError
+
+    tries: list[int] = []
+
+    def refuse(self):
+        tries.append(1)
+        raise BlockingIOError(11, "Resource temporarily unavailable")
+
+    monkeypatch.setattr(BaseProcess, "start", refuse)
+    with pytest.raises(PlcError) as e:
+        Grader(LAB, tmp_path / "out", jobs=1, timeout=LIMIT, media=False).grade_folder(subs)
+    assert e.value.code == "PLC5073" and "run the same command again" in e.value.message
+    assert len(tries) == INFRA_RETRIES + 1
+    assert not list((tmp_path / "out").glob("*/results.json"))  # nothing graded wrongly
+
+
+def test_a_crash_inside_the_child_is_not_retried(subs, tmp_path, monkeypatch):
+    """The other side of the line: a child that fails by itself (a real SIGSEGV) is graded
+    once and reported as a crash, not as the machine's failure."""
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_CRASH", "carol")
+    started = _on_compiled(monkeypatch, lambda r: None)
+    outs = {o.result.student: o.result for o in
+            Grader(LAB, tmp_path / "out", jobs=2, timeout=LIMIT, media=False).grade_folder(subs)}
+    assert started["carol"] == 1
+    assert outs["carol"].status == "crash" and "PLC5070" not in outs["carol"].message
