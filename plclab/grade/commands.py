@@ -122,6 +122,13 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
     graded = sum(1 for o in outcomes if not o.skipped)
     print(f"{graded} graded, {len(outcomes) - graded} unchanged; results in {out}/<student>/, "
           f"gradebook {out / 'grades.csv'}")
+    lost = [o.result.student for o in outcomes if o.result.status == "infrastructure"]
+    if lost:
+        names = ", ".join(lost[:10]) + (f" and {len(lost) - 10} more" if len(lost) > 10 else "")
+        print(f"{len(lost)} submission(s) lost to the grading machine, not graded (PLC5070: "
+              f"{names}): their processes were killed from outside (out of memory?). Run the "
+              "same command again: it grades these again and keeps the grades already given "
+              "(with fewer --jobs if it happens again)")
 
 
 @command("grade-bundle")

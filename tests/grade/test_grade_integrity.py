@@ -188,3 +188,21 @@ def test_a_crash_inside_the_child_is_not_retried(subs, tmp_path, monkeypatch):
             Grader(LAB, tmp_path / "out", jobs=2, timeout=LIMIT, media=False).grade_folder(subs)}
     assert started["carol"] == 1
     assert outs["carol"].status == "crash" and "PLC5070" not in outs["carol"].message
+
+
+def test_the_command_names_the_lost_submissions_and_asks_to_run_again(subs, tmp_path,
+                                                                      monkeypatch, capsys):
+    from plclab.cli import main
+
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_KILL", f"bob:{INFRA_RETRIES + 1}")
+    argv = ["grade", LAB.id, str(subs), "--out", str(tmp_path / "out"), "--jobs", "2",
+            "--no-media", "-q"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    last = text.strip().splitlines()[-1]
+    assert "bob" in last and "PLC5070" in last and "run the same command again" in last.lower()
+    assert "alice" not in last and "carol" not in last
+    monkeypatch.delenv("PLCLAB_GRADE_SELFTEST_KILL")
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "PLC5070" not in text and "1 graded, 2 unchanged" in text
