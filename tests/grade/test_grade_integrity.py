@@ -206,3 +206,38 @@ def test_the_command_names_the_lost_submissions_and_asks_to_run_again(subs, tmp_
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert "PLC5070" not in text and "1 graded, 2 unchanged" in text
+
+
+# ---------------------------------------------------------------------------- an LMS zip
+
+
+def test_every_entry_of_an_lms_zip_gets_a_row(tmp_path):
+    """As in a folder: a report handed in instead of a program, or a student folder holding
+    only a picture, gets its row (an empty stand-in is unpacked, never the file's bytes); what
+    archivers and file managers leave does not; a report beside the wrapper folder is kept."""
+    import zipfile
+
+    from plclab.grade.batch import Unpacked
+
+    z = tmp_path / "export.zip"
+    with zipfile.ZipFile(z, "w") as zf:
+        zf.writestr("course/alice_1_2_motor.st", GOOD)
+        zf.writestr("course/bob_3_4_report.pdf", b"%PDF-1.4 secret text never unpacked")
+        zf.writestr("course/carol_5_6_assignsubmission_file_/photo.jpg", b"\xff\xd8\xff")
+        zf.writestr("course/dave_7_8_assignsubmission_file_/motor.st", WRONG)
+        zf.writestr("course/dave_7_8_assignsubmission_file_/notes.txt", b"mine")
+        zf.writestr("course/.DS_Store", b"\x00")
+        zf.writestr("__MACOSX/course/._alice_1_2_motor.st", b"\x00")
+        zf.writestr("readme.docx", b"PK\x03\x04")
+    with Unpacked(z) as folder:
+        assert folder.name == "course"
+        report = folder / "bob_3_4_report.pdf"
+        assert report.is_file() and report.stat().st_size == 0  # a stand-in, not the file
+        outs = Grader(LAB, tmp_path / "out", jobs=2, timeout=LIMIT, media=False,
+                      scenarios=[LAB.scenarios[0].name]).grade_folder(folder)
+    rows = {r["student"]: r["status"] for r in _rows(tmp_path / "out")}
+    assert rows == {"alice_1_2_motor": "ok", "bob_3_4_report": "rejected",
+                    "carol_5_6_assignsubmission_file_": "no_source",
+                    "dave_7_8_assignsubmission_file_": "ok", "readme": "rejected"}
+    msg = {o.result.student: o.result.message for o in outs}
+    assert "PLC5071" in msg["bob_3_4_report"] and "bob_3_4_report.pdf" in msg["bob_3_4_report"]
