@@ -241,3 +241,78 @@ def test_every_entry_of_an_lms_zip_gets_a_row(tmp_path):
                     "dave_7_8_assignsubmission_file_": "ok", "readme": "rejected"}
     msg = {o.result.student: o.result.message for o in outs}
     assert "PLC5071" in msg["bob_3_4_report"] and "bob_3_4_report.pdf" in msg["bob_3_4_report"]
+
+
+# ---------------------------------------------------------------------------- the student copy
+
+
+@pytest.fixture
+def student_labs(tmp_path):
+    """A labs folder as a pip install carries it: the student copy of motor-start-stop, made
+    as the build makes it, beside the shared wiring tables."""
+    import shutil
+
+    from plclab.grade.courseware import copy_student_lab
+
+    labs = tmp_path / "pip-labs"
+    copy_student_lab(LAB.path, labs / LAB.id)
+    shutil.copytree(LAB.path.parent / "wiring", labs / "wiring")
+    return labs
+
+
+def test_the_student_copy_counts_the_hidden_scenarios_it_lacks(student_labs):
+    hidden = [s.name for s in LAB.scenarios if not s.visible]
+    assert hidden and LAB.withheld is None and not LAB.student_copy  # the instructor's lab
+    copy = load_lab(student_labs / LAB.id)
+    assert copy.student_copy and copy.withheld == len(hidden)
+    assert not {s.name for s in copy.scenarios} & set(hidden)
+    assert copy.max_score < LAB.max_score
+
+
+@pytest.mark.parametrize("value", ["-1", "true", '"2"', "1.5"])
+def test_a_wrong_count_of_withheld_scenarios_is_a_lab_error(student_labs, value):
+    from plclab.errors import PlcError
+
+    toml = student_labs / LAB.id / "lab.toml"
+    text = toml.read_text(encoding="utf-8")
+    n = len([s for s in LAB.scenarios if not s.visible])
+    assert f"hidden_scenarios_withheld = {n}\n" in text
+    toml.write_text(text.replace(f"hidden_scenarios_withheld = {n}\n",
+                                 f"hidden_scenarios_withheld = {value}\n"), encoding="utf-8")
+    with pytest.raises(PlcError) as e:
+        load_lab(student_labs / LAB.id)
+    assert e.value.code == "PLC5004" and "hidden_scenarios_withheld" in e.value.message
+
+
+def test_lab_check_hidden_on_the_student_copy_says_it_runs_without_them(student_labs,
+                                                                        tmp_path, capsys):
+    from plclab.cli import main
+
+    prog = tmp_path / "motor.st"
+    prog.write_text(GOOD, encoding="utf-8")
+    n = len([s for s in LAB.scenarios if not s.visible])
+    assert main(["lab", "check", LAB.id, str(prog), "--hidden", "--no-media",
+                 "--labs", str(student_labs)]) == 0
+    out = capsys.readouterr().out
+    assert f"its {n} hidden scenario" in out and "visible ones only" in out
+    copy = load_lab(student_labs / LAB.id)
+    assert out.strip().splitlines()[-1] == f"score: {copy.max_score:g}/{copy.max_score:g}"
+    for argv in (["--labs", str(student_labs)], ["--hidden"]):  # without --hidden, or the
+        assert main(["lab", "check", LAB.id, str(prog), "--no-media", *argv]) == 0  # full lab
+        assert "hidden scenario" not in capsys.readouterr().out
+
+
+def test_grading_with_the_student_copy_names_what_it_lacks(student_labs, subs, tmp_path,
+                                                           capsys):
+    from plclab.cli import main
+
+    n = len([s for s in LAB.scenarios if not s.visible])
+    argv = ["grade", LAB.id, str(subs), "--labs", str(student_labs), "--out",
+            str(tmp_path / "out"), "--jobs", "2", "--no-media", "-q"]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert "PLC5072" in err and f"its {n} hidden scenario" in err
+    assert not (tmp_path / "out" / "grades.csv").exists()
+    assert main([*argv, "--visible-only"]) == 0
+    out = capsys.readouterr().out
+    assert "visible scenarios only" in out and f"its {n} hidden scenario" in out
