@@ -319,7 +319,7 @@ def compiled(out: _Outbox, diags: Any, job: dict[str, Any]) -> None:
     log and waits to be killed from outside (its time limit ends it otherwise)."""
     out.send("compiled", diags)
     if job.get("selftest_hold"):
-        print(HOLDING, flush=True)
+        print(f"{HOLDING} (pid {os.getpid()})", flush=True)
         while True:
             time.sleep(1.0)
 
