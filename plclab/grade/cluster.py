@@ -153,9 +153,28 @@ def _may_have_children():
         cur._config["daemon"] = was  # noqa: SLF001
 
 
+SWEEP_EVERY = 60.0
+"""Seconds between two looks of a worker process for the folders of dead graders."""
+_swept: list[float] = []
+
+
+def sweep_stale_workdirs() -> None:
+    """On a long-lived worker: remove the working folders that killed workers (``kill -9``,
+    a lost machine's restart) left in this machine's temporary folder, at most once every
+    SWEEP_EVERY seconds per process (ADR 0040)."""
+    now = time.monotonic()
+    if _swept and now - _swept[0] < SWEEP_EVERY:
+        return
+    _swept[:] = [now]
+    from .grader import remove_stale_workdirs
+
+    remove_stale_workdirs()
+
+
 def run_on_worker(payload: tuple[Any, dict[str, str]], job: dict[str, Any],
                   timeout: float) -> dict[str, Any]:
     """The Dask task: one submission graded in a sandboxed child on this worker."""
+    sweep_stale_workdirs()
     lab, checks = payload
     workdir = Path(tempfile.mkdtemp(prefix=work_prefix()))
     try:

@@ -274,7 +274,7 @@ def test_a_worker_killed_mid_task_gives_the_clean_gradebook(lab, tmp_path, monke
     workers: dict[str, subprocess.Popen] = {}
 
     def worker(name: str) -> subprocess.Popen:
-        tmp[name].mkdir()
+        tmp[name].mkdir(exist_ok=True)
         workers[name] = _start_worker(address, "--no-nanny", "--name", name, tmp=tmp[name])
         return workers[name]
 
@@ -290,6 +290,11 @@ def test_a_worker_killed_mid_task_gives_the_clean_gradebook(lab, tmp_path, monke
         _held(tmp["doomed"], run)
         os.killpg(doomed.pid, signal.SIGKILL)  # kill -9 of the worker, mid-task
         doomed.wait(timeout=60)
+        dead = subprocess.Popen([sys.executable, "-c", "pass"])
+        dead.wait()
+        tmp["healthy"].mkdir()
+        stale = tmp["healthy"] / f"plclab-grade-{dead.pid}-left"  # a worker killed earlier
+        (stale / "media").mkdir(parents=True)
         worker("healthy")
         os.kill(_held(tmp["healthy"], run), signal.SIGKILL)  # the same task, run again
         run.join(timeout=900)
@@ -306,6 +311,7 @@ def test_a_worker_killed_mid_task_gives_the_clean_gradebook(lab, tmp_path, monke
     assert rows(tmp_path / "dask") == rows(tmp_path / "clean")
     left = sorted(p.name for p in tmp["doomed"].iterdir())
     assert any(n.startswith(f"plclab-grade-{doomed.pid}-") for n in left)  # it was mid-task
+    assert not stale.exists()  # the healthy worker swept what a dead one left
     assert remove_stale_workdirs(tmp["doomed"]) >= 1
     assert not any(p.name.startswith(f"plclab-grade-{doomed.pid}-")
                    for p in tmp["doomed"].iterdir())
