@@ -46,7 +46,7 @@ def start_child(proc: Any) -> None:
     environment: one killed from outside (the OOM killer, an administrator) is replaced, and
     a start that fails on a dying server is tried again, at most INFRA_RETRIES more times;
     then PLC5073. Never a traceback of multiprocessing's socket (ADR 0040)."""
-    forked = proc._start_method == "forkserver"  # noqa: SLF001 - the context's own name
+    forked = getattr(proc, "_start_method", None) == "forkserver"  # the context's own name
     last: BaseException | None = None
     for _ in range(INFRA_RETRIES + 1):
         try:
