@@ -166,7 +166,7 @@ def sweep_stale_workdirs() -> None:
     if _swept and now - _swept[0] < SWEEP_EVERY:
         return
     _swept[:] = [now]
-    from .grader import remove_stale_workdirs
+    from .spawn import remove_stale_workdirs
 
     remove_stale_workdirs()
 

@@ -42,7 +42,14 @@ from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
 from .protocol import INFRA_RETRIES, LIMITS, MEDIA_NAME, Inbox, Rejected
 from .safety import clean_text, output_dirname
-from .spawn import FORKSERVER_LOST, child_context, read_child_log, start_child, work_prefix
+from .spawn import (  # noqa: F401 - remove_stale_workdirs: also the grader's name for it
+    FORKSERVER_LOST,
+    child_context,
+    read_child_log,
+    remove_stale_workdirs,
+    start_child,
+    work_prefix,
+)
 
 GRADER_VERSION = "2"
 _OUTSIDE_SIGNALS = {int(getattr(signal, n)) for n in ("SIGKILL", "SIGTERM", "SIGHUP", "SIGINT")
@@ -142,26 +149,6 @@ def _is_program(p: Path) -> bool:
     except OSError:
         return False
     return stat.S_ISDIR(mode) or stat.S_ISLNK(mode) or p.suffix.lower() in SOURCE_EXTS
-
-
-def remove_stale_workdirs(tmp: str | os.PathLike | None = None) -> int:
-    """Remove the temporary folders of graders that no longer run (``kill -9`` leaves them);
-    the number removed. A folder of a running grader (this one included) is kept."""
-    removed = 0
-    for d in Path(tmp or tempfile.gettempdir()).glob("plclab-grade-*-*"):
-        pid = d.name.split("-")[2]
-        if not pid.isdigit() or int(pid) == os.getpid() or not d.is_dir() or d.is_symlink():
-            continue
-        try:
-            os.kill(int(pid), 0)
-            continue  # its grader still runs
-        except ProcessLookupError:
-            pass
-        except OSError:
-            continue  # another user's process: not ours to judge
-        shutil.rmtree(d, ignore_errors=True)
-        removed += 1
-    return removed
 
 
 def _read(sub: Submission) -> None:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import contextlib
 import multiprocessing
 import os
+import shutil
 import signal
 import stat
 import tempfile
@@ -24,7 +25,7 @@ Never a program's own exit: the child's code ends by a message, a signal or exit
 def work_prefix() -> str:
     """The prefix of a grading child's temporary folder (local or on a Dask worker): it names
     the grading process, so a later run can remove what one killed with SIGKILL left behind
-    (:func:`plclab.grade.grader.remove_stale_workdirs`)."""
+    (:func:`remove_stale_workdirs`)."""
     return f"plclab-grade-{os.getpid()}-"
 
 
@@ -105,6 +106,26 @@ def _forkserver_runs() -> bool:
         return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is None
     except ChildProcessError:
         return False
+
+
+def remove_stale_workdirs(tmp: str | os.PathLike | None = None) -> int:
+    """Remove the temporary folders of graders that no longer run (``kill -9`` leaves them);
+    the number removed. A folder of a running grader (this one included) is kept."""
+    removed = 0
+    for d in Path(tmp or tempfile.gettempdir()).glob("plclab-grade-*-*"):
+        pid = d.name.split("-")[2]
+        if not pid.isdigit() or int(pid) == os.getpid() or not d.is_dir() or d.is_symlink():
+            continue
+        try:
+            os.kill(int(pid), 0)
+            continue  # its grader still runs
+        except ProcessLookupError:
+            pass
+        except OSError:
+            continue  # another user's process: not ours to judge
+        shutil.rmtree(d, ignore_errors=True)
+        removed += 1
+    return removed
 
 
 def read_child_log(workdir: Path) -> str:
