@@ -69,7 +69,11 @@ def read_manifest(path: str | os.PathLike) -> list[tuple[str, Path]]:
 def unpack_zip(zpath: Path, dest: Path) -> Path:
     """Unpack the source files of an LMS zip into ``dest`` (each entry's folders kept, so a
     folder per student stays one) and return the folder holding the submissions: ``dest``, or
-    its only top-level folder when the zip wraps everything in one (PLC5063)."""
+    its only top-level folder when the zip wraps everything in one (PLC5063). Every other
+    file (a report, a picture) becomes an empty stand-in of the same name, never its bytes, so
+    that it gets its gradebook row ("not a program", PLC5071) as in a folder; only what
+    archivers and file managers leave (:data:`plclab.grade.grader.JUNK`) is dropped."""
+    from .grader import JUNK
     from .lab import SOURCE_EXTS
 
     try:
@@ -77,6 +81,7 @@ def unpack_zip(zpath: Path, dest: Path) -> Path:
     except (OSError, zipfile.BadZipFile) as e:
         raise grade_error("PLC5063", f"{zpath}: not a readable zip ({e})") from None
     total = 0
+    stand_ins: set[Path] = set()
     with zf:
         infos = zf.infolist()
         if len(infos) > ZIP_LIMITS["files"]:
@@ -85,12 +90,17 @@ def unpack_zip(zpath: Path, dest: Path) -> Path:
         for info in infos:
             name = PurePosixPath(info.filename.replace("\\", "/"))
             mode = info.external_attr >> 16
-            if (info.is_dir() or name.suffix.lower() not in SOURCE_EXTS
-                    or stat.S_ISLNK(mode) or name.parts[:1] == ("__MACOSX",)):
-                continue  # only source files: no links, no other files
+            if info.is_dir() or stat.S_ISLNK(mode) or JUNK.intersection(name.parts):
+                continue  # no links; folders come with their files
             if name.is_absolute() or ".." in name.parts or not name.parts:
                 raise grade_error("PLC5063", f"{zpath}: entry {info.filename!r} points outside "
                                   "the zip; it was not unpacked")
+            if name.suffix.lower() not in SOURCE_EXTS:
+                target = dest.joinpath(*name.parts)
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.touch()  # a stand-in: the student's row says what it was
+                stand_ins.add(target)
+                continue
             if info.file_size > ZIP_LIMITS["file"]:
                 raise grade_error("PLC5063", f"{zpath}: {info.filename} has {info.file_size} "
                                   f"bytes (at most {ZIP_LIMITS['file']})")
@@ -102,11 +112,15 @@ def unpack_zip(zpath: Path, dest: Path) -> Path:
             target.parent.mkdir(parents=True, exist_ok=True)
             with zf.open(info) as src, open(target, "wb") as fh:
                 shutil.copyfileobj(src, fh, 1 << 16)
-    tops = [p for p in dest.iterdir() if not p.name.startswith(".")]
-    if len(tops) == 1 and tops[0].is_dir() and any(c.is_dir() or c.suffix.lower() in SOURCE_EXTS
-                                                   for c in tops[0].iterdir()):
-        inner = list(tops[0].iterdir())
-        if len(inner) > 1 or (inner and inner[0].is_dir()):
+    # a wrapper folder is decided on the programs alone, as if the stand-ins were not there
+    tops = [p for p in dest.iterdir() if not p.name.startswith(".") and p not in stand_ins]
+    if len(tops) == 1 and tops[0].is_dir():
+        inner = [c for c in tops[0].iterdir() if c not in stand_ins]
+        if any(c.is_dir() or c.suffix.lower() in SOURCE_EXTS for c in inner) and (
+                len(inner) > 1 or inner[0].is_dir()):
+            for p in dest.iterdir():  # a stray file beside the wrapper still gets its row
+                if p in stand_ins and not (tops[0] / p.name).exists():
+                    p.rename(tops[0] / p.name)
             return tops[0]
     return dest
 

@@ -70,15 +70,21 @@ def parse_executor(text: str | None) -> str | None:
 def collect_child(job: dict[str, Any], timeout: float) -> dict[str, Any]:
     """Run one grading child here (as the local grader does) and return what it sent, raw:
     ``{"messages": [bytes], "exitcode", "timed_out", "rejected", "wall", "log"}``."""
-    from .spawn import child_context, read_child_log
+    from .spawn import child_context, read_child_log, start_child
     from .worker import child_main
 
     ctx = child_context()
     parent, child = ctx.Pipe(duplex=False)
     proc = ctx.Process(target=child_main, args=(job, child), daemon=True,
                        name="plclab-grade-task")
-    with _may_have_children():
-        proc.start()
+    try:
+        with _may_have_children():
+            start_child(proc)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            parent.close()
+        child.close()
+        raise
     child.close()
     start = time.monotonic()
     messages: list[bytes] = []
@@ -147,9 +153,28 @@ def _may_have_children():
         cur._config["daemon"] = was  # noqa: SLF001
 
 
+SWEEP_EVERY = 60.0
+"""Seconds between two looks of a worker process for the folders of dead graders."""
+_swept: list[float] = []
+
+
+def sweep_stale_workdirs() -> None:
+    """On a long-lived worker: remove the working folders that killed workers (``kill -9``,
+    a lost machine's restart) left in this machine's temporary folder, at most once every
+    SWEEP_EVERY seconds per process (ADR 0040)."""
+    now = time.monotonic()
+    if _swept and now - _swept[0] < SWEEP_EVERY:
+        return
+    _swept[:] = [now]
+    from .spawn import remove_stale_workdirs
+
+    remove_stale_workdirs()
+
+
 def run_on_worker(payload: tuple[Any, dict[str, str]], job: dict[str, Any],
                   timeout: float) -> dict[str, Any]:
     """The Dask task: one submission graded in a sandboxed child on this worker."""
+    sweep_stale_workdirs()
     lab, checks = payload
     workdir = Path(tempfile.mkdtemp(prefix=work_prefix()))
     try:

@@ -104,12 +104,13 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
                    multi: bool) -> None:
     from .batch import Unpacked, run_summary
     from .grader import Grader, ProgressBar, summary_table
-    from .lab import load_lab, require_hidden
+    from .lab import lacks, load_lab, require_hidden
 
     lab = load_lab(lab_name, ns.labs, deep=True)
     require_hidden(lab, ns.visible_only)
     if lab.student_copy:
-        print(f"note: grading {lab.id} on its visible scenarios only (--visible-only)")
+        print(f"note: grading {lab.id} on its visible scenarios only (--visible-only): "
+              f"{lacks(lab)}")
     if multi:
         print(f"== {lab.id}: {subs} -> {out}")
     bar = ProgressBar() if sys.stdout.isatty() else None
@@ -123,6 +124,13 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
     graded = sum(1 for o in outcomes if not o.skipped)
     print(f"{graded} graded, {len(outcomes) - graded} unchanged; results in {out}/<student>/, "
           f"gradebook {out / 'grades.csv'}")
+    lost = [o.result.student for o in outcomes if o.result.status == "infrastructure"]
+    if lost:
+        names = ", ".join(lost[:10]) + (f" and {len(lost) - 10} more" if len(lost) > 10 else "")
+        print(f"{len(lost)} submission(s) lost to the grading machine, not graded (PLC5070: "
+              f"{names}): their processes were killed from outside (out of memory?). Run the "
+              "same command again: it grades these again and keeps the grades already given "
+              "(with fewer --jobs if it happens again)")
 
 
 @command("grade-bundle")
@@ -339,7 +347,7 @@ def lab_check(ns: argparse.Namespace) -> int:
     from .feedback import render_feedback
     from .grader import Grader
     from .gradescope import write_atomic
-    from .lab import load_lab
+    from .lab import hidden_note, load_lab
 
     if ns.hint not in (0, 1, 2):
         raise grade_error("PLC5054", f"--hint {ns.hint}: write --hint 0 (no hints), 1 (the "
@@ -357,6 +365,8 @@ def lab_check(ns: argparse.Namespace) -> int:
         raise grade_error("PLC5026", f"scenario '{ns.scenario}' is hidden; it runs when your "
                           "work is graded")
     names = scen or [s.name for s in lab.scenarios if s.visible or ns.hidden]
+    if ns.hidden and hidden_note(lab):  # the student copy: not silently without them
+        print(hidden_note(lab))
     for line in lint_lines(lab, sources):
         print(line)
     out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None

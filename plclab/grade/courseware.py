@@ -43,8 +43,8 @@ def student_lab_data(data: dict[str, Any]) -> dict[str, Any]:
     only they use (and ``requires`` naming those), ``[[mistake]]`` tables."""
     out = {k: v for k, v in data.items() if k != "mistake"}
     scen = [s for s in data.get("scenario", []) if s.get("visible", True) is not False]
-    # a grader that loads this copy knows the hidden scenarios are not in it (ADR 0040)
-    out["student_copy"] = True
+    # a grader that loads this copy knows how many hidden scenarios are not in it (ADR 0040)
+    out["hidden_scenarios_withheld"] = len(data.get("scenario", [])) - len(scen)
     names = {s.get("name") for s in scen}
     out["scenario"] = scen
     crits: list[dict[str, Any]] = []
@@ -76,7 +76,8 @@ def student_lab_toml(text: str) -> str:
     """The student copy of a ``lab.toml`` text (see :func:`student_lab_data`)."""
     data = student_lab_data(tomllib.loads(text))
     head = ("# The student copy of this lab, written when plclab was built: the hidden\n"
-            "# scenarios, reference solutions and typical mistakes stay with the instructor.\n")
+            "# scenarios, reference solutions and typical mistakes stay with the instructor\n"
+            "# (hidden_scenarios_withheld says how many scenarios are missing).\n")
     return head + dumps_toml(data)
 
 

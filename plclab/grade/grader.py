@@ -42,7 +42,14 @@ from .gradescope import gradebook_csv, results_json, write_atomic, write_json
 from .lab import SOURCE_EXTS, Lab
 from .protocol import INFRA_RETRIES, LIMITS, MEDIA_NAME, Inbox, Rejected
 from .safety import clean_text, output_dirname
-from .spawn import child_context, read_child_log, work_prefix
+from .spawn import (  # noqa: F401 - remove_stale_workdirs: also the grader's name for it
+    FORKSERVER_LOST,
+    child_context,
+    read_child_log,
+    remove_stale_workdirs,
+    start_child,
+    work_prefix,
+)
 
 GRADER_VERSION = "2"
 _OUTSIDE_SIGNALS = {int(getattr(signal, n)) for n in ("SIGKILL", "SIGTERM", "SIGHUP", "SIGINT")
@@ -144,26 +151,6 @@ def _is_program(p: Path) -> bool:
     return stat.S_ISDIR(mode) or stat.S_ISLNK(mode) or p.suffix.lower() in SOURCE_EXTS
 
 
-def remove_stale_workdirs(tmp: str | os.PathLike | None = None) -> int:
-    """Remove the temporary folders of graders that no longer run (``kill -9`` leaves them);
-    the number removed. A folder of a running grader (this one included) is kept."""
-    removed = 0
-    for d in Path(tmp or tempfile.gettempdir()).glob("plclab-grade-*-*"):
-        pid = d.name.split("-")[2]
-        if not pid.isdigit() or int(pid) == os.getpid() or not d.is_dir() or d.is_symlink():
-            continue
-        try:
-            os.kill(int(pid), 0)
-            continue  # its grader still runs
-        except ProcessLookupError:
-            pass
-        except OSError:
-            continue  # another user's process: not ours to judge
-        shutil.rmtree(d, ignore_errors=True)
-        removed += 1
-    return removed
-
-
 def _read(sub: Submission) -> None:
     """Read a submission's files (texts kept in ``sub.sources``) or note why it is rejected."""
     sources: list[tuple[str, str]] = []
@@ -183,6 +170,8 @@ def _read(sub: Submission) -> None:
 def _signame(code: int | None) -> str:
     if code is None:
         return "still running"
+    if code == FORKSERVER_LOST:
+        return "its forkserver was killed"
     if code < 0:
         try:
             return f"killed by {signal.Signals(-code).name}"
@@ -433,12 +422,14 @@ class Grader:
     @staticmethod
     def _killed_from_outside(r: Any, timed_out: bool) -> bool:
         """A child that ended by a signal the grader did not send, with no result: the OOM
-        killer, an administrator, a lost machine; never something the program did inside its
-        limits (those end as a result, a timeout, SIGXCPU or a memory failure)."""
+        killer, an administrator, a lost machine, or its forkserver killed (the child died
+        with it and its status is lost, :data:`~plclab.grade.spawn.FORKSERVER_LOST`); never
+        something the program did inside its limits (those end as a result, a timeout,
+        SIGXCPU or a memory failure)."""
         code = r.exitcode
         return (not timed_out and not r.rejected and r.inbox.done is None
                 and r.inbox.failure is None and code is not None
-                and -code in _OUTSIDE_SIGNALS)
+                and (-code in _OUTSIDE_SIGNALS or code == FORKSERVER_LOST))
 
     def _lab_payload(self) -> tuple[Any, dict[str, str]]:
         if self._payload is None:
@@ -455,13 +446,16 @@ class Grader:
                 "cpu_seconds": self.timeout + CPU_MARGIN,
                 "selftest_crash": bool(self.selftest_crash)
                 and self.selftest_crash == sub.student,
-                "selftest_kill": self._selftest_kill(sub)}
+                "selftest_kill": self._selftest("KILL", sub),
+                "selftest_hold": self._selftest("HOLD", sub)}
 
-    def _selftest_kill(self, sub: Submission) -> bool:
-        """``PLCLAB_GRADE_SELFTEST_KILL=student:N``: the first N processes grading that
-        student SIGKILL themselves after one scenario, as the OOM killer would (the grader's
-        own tests of ADR 0040; the parent cannot tell it from a kill from outside)."""
-        who, _, n = os.environ.get("PLCLAB_GRADE_SELFTEST_KILL", "").rpartition(":")
+    def _selftest(self, what: str, sub: Submission) -> bool:
+        """The grader's own tests of ADR 0040, ``PLCLAB_GRADE_SELFTEST_<what>=student:N``:
+        the first N processes grading that student SIGKILL themselves after one scenario, as
+        the OOM killer would (``KILL``; the parent cannot tell it from a kill from outside),
+        or wait after compiling, until the test kills them or their time limit (``HOLD``:
+        a test's kill from outside lands mid-run however loaded the machine is)."""
+        who, _, n = os.environ.get(f"PLCLAB_GRADE_SELFTEST_{what}", "").rpartition(":")
         return bool(who) and who == sub.student and n.isdigit() and \
             self._tries.get(sub.dirname, 0) < int(n)
 
@@ -492,7 +486,13 @@ class Grader:
         parent, child = ctx.Pipe(duplex=False)
         proc = ctx.Process(target=child_main, args=(job, child), daemon=True,
                            name=f"plclab-grade-{sub.dirname}")
-        proc.start()
+        try:
+            start_child(proc)
+        except BaseException:
+            with_conn_closed(parent)
+            with_conn_closed(child)
+            shutil.rmtree(workdir, ignore_errors=True)
+            raise
         child.close()
         return _Running(sub, proc, parent, d, workdir, Inbox(self.lab, d if self.media else None))
 

@@ -41,7 +41,7 @@ TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", 
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
             "criterion", "mistake", "level", "chapters", "alarms", "recipes", "critical_cap",
-            "student_copy")
+            "hidden_scenarios_withheld")
 LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
 """``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
@@ -292,7 +292,14 @@ class Lab:
     alarms: dict[str, Any] | None = None  # the lab's alarm configuration (plclab.scada)
     recipes: dict[str, Any] | None = None  # the lab's recipe and its records (plclab.scada)
     critical_cap: float = 0.5  # a failed critical criterion caps the score at this share
-    student_copy: bool = False  # the copy shipped to students: no hidden scenarios in it
+    withheld: int | None = None  # the student copy shipped with plclab: hidden scenarios it
+    # lacks (``hidden_scenarios_withheld`` in its lab.toml); None: the instructor's lab
+
+    @property
+    def student_copy(self) -> bool:
+        """The copy shipped to students (pip install): no hidden scenarios, solutions or
+        mistakes in it (ADR 0040)."""
+        return self.withheld is not None
 
     # -- queries
     def scenario(self, name: str) -> ScenarioSpec:
@@ -457,9 +464,31 @@ def require_hidden(lab: Lab, visible_only: bool = False, use: str = "grade") -> 
            "grade-bundle": f"plclab grade-bundle path/to/labs/{lab.id}",
            "lab audit": f"plclab lab audit path/to/labs/{lab.id}"}[use]
     raise grade_error("PLC5072", f"{lab.path} is the student copy of {lab.id} that ships with "
-                      "plclab: its hidden scenarios, solutions and mistakes are not in it. Use "
-                      f"the instructor's lab folder (labs/{lab.id} of the plclab repository, or "
-                      f"your own): {how}")
+                      f"plclab: {lacks(lab)}. Use the instructor's lab folder (labs/{lab.id} of "
+                      f"the plclab repository, or your own): {how}")
+
+
+def lacks(lab: Lab) -> str:
+    """What the student copy of a lab lacks, counted: "its 2 hidden scenarios, solutions and
+    mistakes are not in it" ("" for an instructor's lab)."""
+    if lab.withheld is None:
+        return ""
+    n = lab.withheld
+    what = (f"its {n} hidden scenario{'s' if n != 1 else ''}, solutions and mistakes are"
+            if n else "it has no hidden scenario, but its solutions and mistakes are")
+    return f"{what} not in it"
+
+
+def hidden_note(lab: Lab) -> str | None:
+    """``lab check --hidden`` with the student copy of a lab: the line saying that it runs
+    without the hidden scenarios this copy lacks (None when nothing is missing)."""
+    if not lab.withheld:
+        return None
+    n = lab.withheld
+    return (f"note: {lab.path} is the student copy of {lab.id} that ships with plclab: its "
+            f"{n} hidden scenario{'s are' if n != 1 else ' is'} not in it, so --hidden runs "
+            "the visible ones only. For every scenario use the instructor's lab folder "
+            f"(labs/{lab.id} of the plclab repository, or your own; --labs DIR)")
 
 
 # ---------------------------------------------------------------------------- loading
@@ -607,8 +636,22 @@ class _Builder:
         lab.alarms = self.alarms(d)
         lab.recipes = self.recipes(d, scenarios)
         lab.critical_cap = self.critical_cap(d)
-        lab.student_copy = d.get("student_copy") is True
+        lab.withheld = self.withheld(d)
         return lab
+
+    def withheld(self, d: Mapping[str, Any]) -> int | None:
+        """``hidden_scenarios_withheld = N``: written by the build into the student copy of a
+        lab (:func:`plclab.grade.courseware.student_lab_data`), the number of hidden scenarios
+        it lacks; absent from an instructor's lab."""
+        if "hidden_scenarios_withheld" not in d:
+            return None
+        n = d["hidden_scenarios_withheld"]
+        if isinstance(n, bool) or not isinstance(n, int) or n < 0:
+            raise self.err("PLC5004", f"hidden_scenarios_withheld = {n!r}: the number of "
+                           "hidden scenarios the student copy of a lab lacks (0 or more), "
+                           "written when plclab is built; an instructor's lab leaves it out",
+                           key="hidden_scenarios_withheld")
+        return n
 
     def critical_cap(self, d: Mapping[str, Any]) -> float:
         """``critical_cap = 0.5``: the most a submission earns, as a share of the lab's points,

@@ -3,20 +3,29 @@ grader, :mod:`plclab.grade.grader`, and by a cluster worker, :mod:`plclab.grade.
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
+import shutil
+import signal
 import stat
 import tempfile
 from pathlib import Path
 from typing import Any
 
-from .protocol import LIMITS
+from .errors import grade_error
+from .protocol import INFRA_RETRIES, LIMITS
+
+FORKSERVER_LOST = 255
+"""The exit code multiprocessing gives a child whose forkserver died: the child's status went
+with the server (and the child died with its parent, :func:`plclab.grade.sandbox.die_with_parent`).
+Never a program's own exit: the child's code ends by a message, a signal or exit code 0/1."""
 
 
 def work_prefix() -> str:
     """The prefix of a grading child's temporary folder (local or on a Dask worker): it names
     the grading process, so a later run can remove what one killed with SIGKILL left behind
-    (:func:`plclab.grade.grader.remove_stale_workdirs`)."""
+    (:func:`remove_stale_workdirs`)."""
     return f"plclab-grade-{os.getpid()}-"
 
 
@@ -33,6 +42,44 @@ def child_context() -> Any:
     return multiprocessing.get_context("spawn")
 
 
+def start_child(proc: Any) -> None:
+    """``proc.start()`` for a grading child, the forkserver (re)started first with the minimal
+    environment: one killed from outside (the OOM killer, an administrator) is replaced, and
+    a start that fails on a dying server is tried again, at most INFRA_RETRIES more times;
+    then PLC5073. Never a traceback of multiprocessing's socket (ADR 0040)."""
+    forked = getattr(proc, "_start_method", None) == "forkserver"  # the context's own name
+    last: BaseException | None = None
+    for _ in range(INFRA_RETRIES + 1):
+        try:
+            if forked:
+                _start_forkserver()  # a dead server is replaced here, not by proc.start(),
+                # which would start it with the instructor's environment
+            proc.start()
+            return
+        except (OSError, EOFError, ValueError) as e:  # ValueError: "too many fds", closed
+            last = e
+            if forked:
+                _end_broken_forkserver()
+    raise grade_error("PLC5073", "cannot start a grading process "
+                      f"({type(last).__name__}: {last}): is the machine out of memory or of "
+                      "processes? Nothing was graded wrongly: the submissions graded so far "
+                      "are kept; run the same command again, with fewer --jobs") from None
+
+
+def _end_broken_forkserver() -> None:
+    """The forkserver could not start a child: make sure it is dead (it may be dying of a
+    SIGKILL right now, still seen alive by ``ensure_running``) and wait until it is, without
+    reaping it, so that the next ``ensure_running`` reaps it and starts another."""
+    from multiprocessing import forkserver
+
+    pid = getattr(forkserver._forkserver, "_forkserver_pid", None)  # noqa: SLF001
+    if pid is None or not hasattr(os, "waitid"):
+        return
+    with contextlib.suppress(OSError):
+        os.kill(pid, signal.SIGKILL)
+        os.waitid(os.P_PID, pid, os.WEXITED | os.WNOWAIT)
+
+
 def _start_forkserver() -> None:
     """Start the forkserver (if it is not running) with the minimal environment, so neither
     it nor the children it forks ever hold the instructor's variables."""
@@ -40,9 +87,45 @@ def _start_forkserver() -> None:
 
     from .sandbox import environ_as, minimal_env
 
+    if _forkserver_runs():
+        return  # nothing to start: the environment is not touched
     tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
     with environ_as(minimal_env(None, "forkserver")):
         forkserver.ensure_running()
+
+
+def _forkserver_runs() -> bool:
+    """Whether this process's forkserver was started and has not ended (looked at without
+    reaping it: ``ensure_running`` reaps it and starts another)."""
+    from multiprocessing import forkserver
+
+    pid = getattr(forkserver._forkserver, "_forkserver_pid", None)  # noqa: SLF001
+    if pid is None or not hasattr(os, "waitid"):
+        return False
+    try:
+        return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is None
+    except ChildProcessError:
+        return False
+
+
+def remove_stale_workdirs(tmp: str | os.PathLike | None = None) -> int:
+    """Remove the temporary folders of graders that no longer run (``kill -9`` leaves them);
+    the number removed. A folder of a running grader (this one included) is kept."""
+    removed = 0
+    for d in Path(tmp or tempfile.gettempdir()).glob("plclab-grade-*-*"):
+        pid = d.name.split("-")[2]
+        if not pid.isdigit() or int(pid) == os.getpid() or not d.is_dir() or d.is_symlink():
+            continue
+        try:
+            os.kill(int(pid), 0)
+            continue  # its grader still runs
+        except ProcessLookupError:
+            pass
+        except OSError:
+            continue  # another user's process: not ours to judge
+        shutil.rmtree(d, ignore_errors=True)
+        removed += 1
+    return removed
 
 
 def read_child_log(workdir: Path) -> str:

@@ -28,6 +28,7 @@ import json
 import os
 import signal
 import sys
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -295,7 +296,7 @@ def child_main(job: dict[str, Any], conn: Any) -> None:
         res = grade_sources(lab, [tuple(s) for s in job["sources"]], student=job["student"],
                             scenarios=job.get("scenarios"), media_dir=media, rrd=bool(job.get("media")),
                             on_scenario=on_scenario,
-                            on_compiled=lambda diags: out.send("compiled", diags),
+                            on_compiled=lambda diags: compiled(out, diags, job),
                             guard=lambda: memory_limit(job.get("memory_mb")))
         if job.get("selftest_crash"):
             import faulthandler
@@ -313,6 +314,18 @@ def child_main(job: dict[str, Any], conn: Any) -> None:
         conn.close()
 
 
+def compiled(out: _Outbox, diags: Any, job: dict[str, Any]) -> None:
+    """Report the compilation; a test's held child (``selftest_hold``) then says so in its
+    log and waits to be killed from outside (its time limit ends it otherwise)."""
+    out.send("compiled", diags)
+    if job.get("selftest_hold"):
+        print(f"{HOLDING} (pid {os.getpid()})", flush=True)
+        while True:
+            time.sleep(1.0)
+
+
+HOLDING = "plclab selftest: compiled, holding until killed"
+"""The log line of a held child (``PLCLAB_GRADE_SELFTEST_HOLD``) that a test waits for."""
 LOG_NAME = "child.log"
 """The child's stdout and stderr, in its working folder (the grader keeps the end of it)."""
 

@@ -93,7 +93,9 @@ def test_an_lms_zip_is_graded_per_student_folder_or_file(tmp_path):
     folder = unpack_zip(z, tmp_path / "u")
     assert folder.name == "assignment1"
     assert sorted(p.name for p in folder.iterdir()) == [
-        "Ann Lee_123_assignsubmission_file_", "ben_456_main.st"]
+        "Ann Lee_123_assignsubmission_file_", "ben_456_main.st", "ben_456_notes.pdf"]
+    # the report is an empty stand-in (its row says "not a program", PLC5071), not its bytes
+    assert (folder / "ben_456_notes.pdf").stat().st_size == 0
 
 
 def test_an_lms_zip_with_a_path_outside_is_refused(tmp_path):

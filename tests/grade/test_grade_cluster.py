@@ -4,6 +4,7 @@ executor does; a worker killed mid-run loses nothing; a second run skips what is
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -40,9 +41,12 @@ def _env() -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": str(ROOT), "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
 
 
-def _start_worker(address: str, *extra: str) -> subprocess.Popen:
+def _start_worker(address: str, *extra: str, tmp: Path | None = None) -> subprocess.Popen:
+    """A worker process (its own session); ``tmp``: its temporary folder, where its grading
+    children's folders and logs are."""
+    env = _env() if tmp is None else {**_env(), "TMPDIR": str(tmp)}
     return subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
-                             "--nthreads", "1", "--no-dashboard", *extra], env=_env(),
+                             "--nthreads", "1", "--no-dashboard", *extra], env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
 
@@ -169,7 +173,9 @@ def test_a_second_run_skips_what_is_done(cluster, lab, tmp_path):
 def test_a_worker_killed_mid_run_loses_no_submission(cluster, lab, tmp_path):
     from plclab.grade.grader import Grader
 
-    doomed = _start_worker(cluster, "--no-nanny", "--name", "doomed")
+    tmp = tmp_path / "doomed"
+    tmp.mkdir()
+    doomed = _start_worker(cluster, "--no-nanny", "--name", "doomed", tmp=tmp)
     try:
         _wait_workers(cluster, 3)
         subs = tmp_path / "subs"
@@ -181,18 +187,13 @@ def test_a_worker_killed_mid_run_loses_no_submission(cluster, lab, tmp_path):
         run = threading.Thread(target=lambda: outcomes.extend(
             Grader(lab, tmp_path / "out", timeout=4.0, executor=cluster).grade_folder(subs)))
         run.start()
-        with distributed.Client(cluster, set_as_default=False) as c:
-            deadline = time.monotonic() + 60
-            busy = False
-            while time.monotonic() < deadline and not busy:
-                info = c.scheduler_info()["workers"]
-                addr = next((a for a, w in info.items() if w.get("name") == "doomed"), None)
-                busy = addr is not None and bool(c.processing().get(addr))
-                time.sleep(0.2)
-        assert busy, "the third worker never got a task"
-        time.sleep(1.0)  # its child is running
+        deadline = time.monotonic() + 600  # a guard only: the event is a child's log
+        while not list(tmp.glob("plclab-grade-*/child.log")):
+            assert run.is_alive() and time.monotonic() < deadline, \
+                "the third worker never started a grading child"
+            time.sleep(0.05)
         os.killpg(doomed.pid, signal.SIGKILL)
-        run.join(timeout=240)
+        run.join(timeout=900)  # a guard only
         assert not run.is_alive()
     finally:
         _stop(doomed)
@@ -226,3 +227,91 @@ def test_a_child_killed_on_a_worker_is_graded_again(cluster, lab, tmp_path, monk
         with open(out / "grades.csv", encoding="utf-8") as f:
             return {r["student"]: (r["score"], r["status"]) for r in csv.DictReader(f)}
     assert grades(tmp_path / "dask") == grades(tmp_path / "clean")
+
+
+def _held(tmp: Path, guard: threading.Thread, limit: float = 600.0) -> int:
+    """The pid of a grading child held after compiling (``PLCLAB_GRADE_SELFTEST_HOLD``) by a
+    worker whose temporary folder is ``tmp``, once its log says so (an event, not a delay;
+    ``limit`` only guards a failure)."""
+    from plclab.grade.worker import HOLDING
+
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline:
+        assert guard.is_alive(), "the run ended before a child was held"
+        for log in tmp.glob("plclab-grade-*/child.log"):
+            with contextlib.suppress(OSError):
+                for line in log.read_text(encoding="utf-8", errors="replace").splitlines():
+                    if line.startswith(HOLDING):
+                        return int(line.rsplit("pid ", 1)[1].rstrip(")"))
+        time.sleep(0.05)
+    raise AssertionError(f"no held child in {tmp} within {limit:g} s")
+
+
+def test_a_worker_killed_mid_task_gives_the_clean_gradebook(lab, tmp_path, monkeypatch):
+    """kill -9 of a worker while its grading child runs: the scheduler runs the task again on
+    another worker (the lab travels with it); the child there is killed from outside too, so
+    the client submits it once more; every row of the gradebook equals a clean local run's,
+    and the next run removes the folder the killed worker left (ADR 0040). The victim's
+    child holds after compiling until it is killed, so the kills land mid-task however loaded
+    the machine is; a test-only cluster, so the victim runs on the worker we kill."""
+    import csv
+
+    from plclab.grade.grader import Grader, remove_stale_workdirs
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    shutil.copy(LAB / "solution" / "tank.st", subs / "alice.st")
+    shutil.copy(LAB / "mistakes" / "never_stops.st", subs / "bob.st")
+    shutil.copy(LAB / "solution" / "tank.il", subs / "carol.il")
+    Grader(lab, tmp_path / "clean", jobs=2, timeout=300, media=False).grade_folder(subs)
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    sched = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
+                              "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+                             env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=True)
+    tmp = {k: tmp_path / k for k in ("doomed", "healthy")}
+    workers: dict[str, subprocess.Popen] = {}
+
+    def worker(name: str) -> subprocess.Popen:
+        tmp[name].mkdir(exist_ok=True)
+        workers[name] = _start_worker(address, "--no-nanny", "--name", name, tmp=tmp[name])
+        return workers[name]
+
+    monkeypatch.setenv("PLCLAB_GRADE_SELFTEST_HOLD", "alice:1")
+    outcomes: list = []
+    try:
+        doomed = worker("doomed")
+        _wait_workers(address, 1)
+        run = threading.Thread(target=lambda: outcomes.extend(
+            Grader(lab, tmp_path / "dask", timeout=300, media=False,
+                   executor=address).grade_folder(subs)))
+        run.start()
+        _held(tmp["doomed"], run)
+        os.killpg(doomed.pid, signal.SIGKILL)  # kill -9 of the worker, mid-task
+        doomed.wait(timeout=60)
+        dead = subprocess.Popen([sys.executable, "-c", "pass"])
+        dead.wait()
+        tmp["healthy"].mkdir()
+        stale = tmp["healthy"] / f"plclab-grade-{dead.pid}-left"  # a worker killed earlier
+        (stale / "media").mkdir(parents=True)
+        worker("healthy")
+        os.kill(_held(tmp["healthy"], run), signal.SIGKILL)  # the same task, run again
+        run.join(timeout=900)
+        assert not run.is_alive()
+    finally:
+        for p in [*workers.values(), sched]:
+            _stop(p)
+
+    def rows(out):
+        with open(out / "grades.csv", encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+    assert {o.result.student: o.result.status for o in outcomes} == dict.fromkeys(
+        ("alice", "bob", "carol"), "ok")
+    assert rows(tmp_path / "dask") == rows(tmp_path / "clean")
+    left = sorted(p.name for p in tmp["doomed"].iterdir())
+    assert any(n.startswith(f"plclab-grade-{doomed.pid}-") for n in left)  # it was mid-task
+    assert not stale.exists()  # the healthy worker swept what a dead one left
+    assert remove_stale_workdirs(tmp["doomed"]) >= 1
+    assert not any(p.name.startswith(f"plclab-grade-{doomed.pid}-")
+                   for p in tmp["doomed"].iterdir())
