@@ -5,12 +5,13 @@ not stopped 8 s after it began, no new cycle after the last START)."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 
 from plclab.trace import Trace
+
+from .lab_modules import lab_checks
 
 ROOT = Path(__file__).resolve().parents[2]
 T = np.round(np.arange(0.0, 20.0, 0.01), 2)
@@ -18,11 +19,7 @@ AXES = ("BELT", "PISTON", "PUMP")
 
 
 def _checks():
-    path = ROOT / "labs" / "drive-homing" / "checks.py"
-    spec = importlib.util.spec_from_file_location("checks_drive_homing_t", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return lab_checks("drive-homing")
 
 
 def _win(a, b):

@@ -4,22 +4,19 @@ a creep, a value held far away), and each of them fails where it must."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 
 from plclab.trace import Trace
 
+from .lab_modules import lab_checks
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def _checks():
-    path = ROOT / "labs" / "heater-pid" / "checks.py"
-    spec = importlib.util.spec_from_file_location("checks_heater_pid", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return lab_checks("heater-pid")
 
 
 C = _checks()

@@ -5,23 +5,20 @@ should only return the piston)."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 
 from plclab.trace import Trace
 
+from .lab_modules import lab_checks
+
 ROOT = Path(__file__).resolve().parents[2]
 T = np.round(np.arange(0.0, 10.0, 0.01), 2)
 
 
 def _checks():
-    path = ROOT / "labs" / "press-safety" / "checks.py"
-    spec = importlib.util.spec_from_file_location("checks_press_safety_t", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return lab_checks("press-safety")
 
 
 def _trace(**cols):

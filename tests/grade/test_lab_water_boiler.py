@@ -4,22 +4,19 @@ never moves fail."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 
 from plclab.trace import Trace
 
+from .lab_modules import lab_checks
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def _switch_points():
-    path = ROOT / "labs" / "water-boiler" / "checks.py"
-    spec = importlib.util.spec_from_file_location("checks_water_boiler", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod.switch_points
+    return lab_checks("water-boiler").switch_points
 
 
 CHECK = _switch_points()

@@ -6,7 +6,6 @@ graded for every lab by tests/grade/test_grade_labs.py.)"""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -16,17 +15,12 @@ from plclab.grade.lab import load_lab
 from plclab.trace import Trace
 from plclab.trace.events import Event
 
+from .lab_modules import lab_checks
+
 ROOT = Path(__file__).resolve().parents[2]
 LABS16 = {"bottle-packing": [3, 6, 10], "level-4-20ma": [4], "scan-timing": [2],
           "modbus-operator": [14]}
 
-
-def _checks(lab_id):
-    path = ROOT / "labs" / lab_id / "checks.py"
-    spec = importlib.util.spec_from_file_location(f"checks_{lab_id.replace('-', '_')}", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _trace(t, events=(), **cols):
@@ -66,7 +60,7 @@ def _packing(n_bottles, box_after, hold=3.0, belt_during_change=False, mw0=0, mw
 
 
 def test_boxes_of_six_pass_and_boxes_of_five_fail():
-    ck = _checks("bottle-packing")
+    ck = lab_checks("bottle-packing")
     ok, msg, *_ = ck.boxes_of(_packing(15, 6), size=6, boxes=2)
     assert ok, msg
     ok, msg, *_ = ck.boxes_of(_packing(15, 5), size=6, boxes=2)
@@ -74,13 +68,13 @@ def test_boxes_of_six_pass_and_boxes_of_five_fail():
 
 
 def test_a_box_that_never_closes_fails():
-    ck = _checks("bottle-packing")
+    ck = lab_checks("bottle-packing")
     ok, msg, *_ = ck.boxes_of(_packing(15, 20), size=6, boxes=2)
     assert not ok and "BOX_FULL did not light" in msg
 
 
 def test_box_change_length_and_belt():
-    ck = _checks("bottle-packing")
+    ck = lab_checks("bottle-packing")
     assert ck.box_change(_packing(15, 6), hold=3.0, tol=0.3)[0]
     assert not ck.box_change(_packing(15, 6, hold=1.0), hold=3.0, tol=0.3)[0]
     ok, msg, *_ = ck.box_change(_packing(15, 6, belt_during_change=True), hold=3.0)
@@ -88,7 +82,7 @@ def test_box_change_length_and_belt():
 
 
 def test_open_box_and_box_counters():
-    ck = _checks("bottle-packing")
+    ck = lab_checks("bottle-packing")
     assert ck.in_box(_packing(15, 6, mw0=3), size=6)[0]
     assert not ck.in_box(_packing(15, 6, mw0=15), size=6)[0]
     assert ck.boxes_counted(_packing(15, 6))[0]
@@ -99,7 +93,7 @@ def test_open_box_and_box_counters():
 
 
 def test_lamp_and_pump_during_loop_failures():
-    ck = _checks("level-4-20ma")
+    ck = lab_checks("level-4-20ma")
     t = np.arange(0.0, 100.0, 0.1)
     lamp = (t >= 10) & (t < 30)
     tr = _trace(t, **{"%QX0.1": lamp, "PUMP": ~lamp})
@@ -152,7 +146,7 @@ def _timing(reaction_ms_reported):
 
 
 def test_reaction_is_compared_with_the_plant_clock():
-    ck = _checks("scan-timing")
+    ck = lab_checks("scan-timing")
     assert ck.reaction(_timing(50), tol_ms=15)[0]
     ok, msg, *_ = ck.reaction(_timing(0), tol_ms=15)
     assert not ok and "took 50 ms" in msg
@@ -186,14 +180,14 @@ def _pump(t):
 
 
 def test_station_writes_are_read_back_from_the_scenario_events():
-    ck = _checks("modbus-operator")
+    ck = lab_checks("modbus-operator")
     tr = _station(_good_status, _pump)
     assert ck.writes(tr, "%MW0") == [(2.0, 1), (60.0, 2)]
     assert ck.running_periods(tr) == [(2.0, 60.0)]
 
 
 def test_acknowledgement_status_and_stop():
-    ck = _checks("modbus-operator")
+    ck = lab_checks("modbus-operator")
     good = _station(_good_status, _pump)
     assert ck.acknowledged(good)[0]
     assert ck.status_bits(good)[0]
@@ -209,7 +203,7 @@ def test_acknowledgement_status_and_stop():
 
 
 def test_follows_and_refused_read_the_accepted_set_point():
-    ck = _checks("modbus-operator")
+    ck = lab_checks("modbus-operator")
     near = _station(_good_status, _pump, level=lambda t: np.full(len(t), 1.05))
     assert ck.follows(near, band=0.15, settle=20.0)[0]
     far = _station(_good_status, _pump, level=lambda t: np.full(len(t), 1.5))

@@ -5,7 +5,6 @@ small hand-made traces."""
 
 from __future__ import annotations
 
-import importlib.util
 import re
 from pathlib import Path
 
@@ -16,6 +15,8 @@ from plclab.grade.engine import grade_sources, read_submission
 from plclab.grade.lab import load_lab
 from plclab.grade.scaffold import readme_table
 from plclab.trace import Trace
+
+from .lab_modules import lab_checks
 
 ROOT = Path(__file__).resolve().parents[2]
 NEW_LABS = ["ventilation-fans", "pump-station", "heater-pid", "press-safety"]
@@ -30,13 +31,6 @@ def _grade(lab_id, path):
     sources, _ = read_submission(path)
     return lab, grade_sources(lab, sources, include_hidden=True)
 
-
-def _checks(lab_id):
-    path = ROOT / "labs" / lab_id / "checks.py"
-    spec = importlib.util.spec_from_file_location(f"checks_{lab_id.replace('-', '_')}", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _trace(t, **cols):
@@ -95,7 +89,7 @@ def test_grading_is_deterministic():
 
 
 def test_two_fans_run():
-    two_fans_run = _checks("ventilation-fans").two_fans_run
+    two_fans_run = lab_checks("ventilation-fans").two_fans_run
     t = np.arange(0.0, 10.0, 0.5)
     n = len(t)
     on, off = np.ones(n, bool), np.zeros(n, bool)
@@ -113,7 +107,7 @@ def test_two_fans_run():
 
 
 def test_lamps_show_state():
-    lamps = _checks("ventilation-fans").lamps_show_state
+    lamps = lab_checks("ventilation-fans").lamps_show_state
     t = np.arange(0.0, 3.0, 1.0)
     on, off = np.ones(3, bool), np.zeros(3, bool)
     cols = {"%QX0.0": on, "%QX0.1": off, "%QX0.2": on, "%QX0.3": on, "%IX0.3": off,
@@ -126,7 +120,7 @@ def test_lamps_show_state():
 
 
 def test_stage_and_start_gap():
-    c = _checks("pump-station")
+    c = lab_checks("pump-station")
     t = np.arange(0.0, 300.0, 0.5)
     ns1 = (t >= 10.0) & (t < 250.0)
     sw = np.zeros(len(t), bool)
@@ -146,7 +140,7 @@ def test_stage_and_start_gap():
 
 
 def test_no_saturation_chatter():
-    chk = _checks("heater-pid").no_saturation_chatter
+    chk = lab_checks("heater-pid").no_saturation_chatter
     t = np.arange(0.0, 60.0, 1.0)
     smooth = np.clip(100.0 - 2.0 * t, 0.0, 100.0)
     assert chk(_trace(t, POWER=smooth))[0]
@@ -156,7 +150,7 @@ def test_no_saturation_chatter():
 
 
 def test_two_hand_and_dose():
-    c = _checks("press-safety")
+    c = lab_checks("press-safety")
     t = np.round(np.arange(0.0, 10.0, 0.01), 2)
     left = (t >= 1.0) & (t < 5.0)
     right = (t >= 1.3) & (t < 5.0)
@@ -177,7 +171,7 @@ def test_two_hand_and_dose():
 
 
 def test_pumps_latched_until_low_level():
-    chk = _checks("pump-station").latched
+    chk = lab_checks("pump-station").latched
     t = np.arange(0.0, 100.0, 0.5)
     ny = t < 80.0
     latched = (t >= 10.0) & (t < 80.5)
@@ -188,7 +182,7 @@ def test_pumps_latched_until_low_level():
 
 
 def test_steady_output():
-    chk = _checks("heater-pid").steady_output
+    chk = lab_checks("heater-pid").steady_output
     t = np.arange(0.0, 100.0, 1.0)
     calm = 85.0 + 0.5 * np.sin(t)
     assert chk(_trace(t, POWER=calm, TEMP=t * 0), max_std=3.0, start=10.0)[0]
