@@ -1444,7 +1444,7 @@ class Codegen(FastPaths):
         if t is T.LREAL:  # a REAL operand of an LREAL operation is a REAL value (ADR 0038)
             if lt is T.REAL:
                 left = self.own_value(left, e.left)
-            if rt is T.REAL:
+            if rt is T.REAL and op != "**":  # an exponent is not widened: it keeps its type
                 right = self.own_value(right, e.right)
         if t.kind == "time" and t is T.LTIME:
             if lt is T.TIME:
