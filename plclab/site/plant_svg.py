@@ -13,6 +13,7 @@ class _Still:
 
     def __init__(self, plant: Any) -> None:
         self.columns = {name: [plant.read(name)] for name in plant.signals}
+        self.time = [0.0]  # the one row is at t = 0 (a fan's blades stand still)
         self.meta: dict[str, Any] = {"units": {n: s.unit for n, s in plant.signals.items()
                                                if getattr(s, "unit", "")}}
 
