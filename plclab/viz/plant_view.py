@@ -293,7 +293,7 @@ def _circle(x: float, y: float, r: float, n: int = 48) -> list[tuple[float, floa
 def _fan(trace: Any, name: str, x: float, y: float, r: float, gap: float,
          rev_per_s: float = 0.5):
     """A fan: three blades turning while its contactor is ON (the angle is the time it has
-    run so far), green when on, grey when off; its state written above it."""
+    run so far), green when on, grey when off; its state (ON, off) written under it."""
     import numpy as np
 
     on = np.asarray(trace.columns[name], dtype=bool)
@@ -308,7 +308,7 @@ def _fan(trace: Any, name: str, x: float, y: float, r: float, gap: float,
             (x, y), (x + 0.9 * r * math.cos(a + k * 2 * math.pi / 3),
                      y + 0.9 * r * math.sin(a + k * 2 * math.pi / 3))]) for k in range(3)]
         return blades + [Shape("text", f"{name}/state", TEXT, x, y + r + gap,
-                               label=f"{name} {'runs' if on[i] else 'stopped'}")]
+                               label=f"{name} {'ON' if on[i] else 'off'}")]
     return f
 
 

@@ -361,7 +361,7 @@ def test_fans_turn_while_they_run_and_a_curtain_shows_a_hand():
     assert blades(2) == blades(5)  # stopped: the blades stand still
     assert blades(8) != blades(12)  # running: they turn
     state = {s.label for i in (2, 12) for s in pic.frame(i) if s.name == "FAN1/state"}
-    assert state == {"FAN1 stopped", "FAN1 runs"}
+    assert state == {"FAN1 off", "FAN1 ON"}
     beams_clear = [s for s in pic.frame(2) if s.name == "LIGHT_CURTAIN/beams"]
     beams_cut = [s for s in pic.frame(11) if s.name == "LIGHT_CURTAIN/beams"]
     assert {s.color for s in beams_clear} == {ON} and {s.color for s in beams_cut} == {HOT}
