@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .test_labs16_new_labs import _checks, _pulses, _trace
+from .lab_modules import lab_checks
+from .test_labs16_new_labs import _pulses, _trace
 
 
 def _one_box(belt_after_change: bool):
@@ -22,13 +23,13 @@ def _one_box(belt_after_change: bool):
 
 
 def test_a_belt_that_never_restarts_after_the_change_is_named():
-    ok, msg, t_fail, *_ = _checks("bottle-packing").boxes_of(_one_box(False), size=6, boxes=2)
+    ok, msg, t_fail, *_ = lab_checks("bottle-packing").boxes_of(_one_box(False), size=6, boxes=2)
     assert not ok
     assert "the belt never ran again after the box change that ended at t = 11.60 s" in msg
     assert abs(t_fail - 12.1) < 0.02
 
 
 def test_too_few_bottles_with_a_running_belt_is_not_blamed_on_the_belt():
-    ok, msg, *_ = _checks("bottle-packing").boxes_of(_one_box(True), size=6, boxes=2)
+    ok, msg, *_ = lab_checks("bottle-packing").boxes_of(_one_box(True), size=6, boxes=2)
     assert not ok and "only 1 box change(s)" in msg
     assert "never ran again" not in msg

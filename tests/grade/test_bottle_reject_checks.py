@@ -8,7 +8,8 @@ import numpy as np
 
 from plclab.trace.events import Event
 
-from .test_labs16_new_labs import _checks, _pulses, _trace
+from .lab_modules import lab_checks
+from .test_labs16_new_labs import _pulses, _trace
 
 
 def _run(push_s: float | None, swept: bool):
@@ -22,18 +23,18 @@ def _run(push_s: float | None, swept: bool):
 
 
 def test_a_swept_fallen_bottle_passes():
-    ok, msg, *_ = _checks("bottle-reject").pushes_off(_run(0.3, swept=True))
+    ok, msg, *_ = lab_checks("bottle-reject").pushes_off(_run(0.3, swept=True))
     assert ok, msg
 
 
 def test_a_short_push_is_reported_at_the_push_with_its_length():
-    ok, msg, t_fail, *_ = _checks("bottle-reject").pushes_off(_run(0.05, swept=False))
+    ok, msg, t_fail, *_ = lab_checks("bottle-reject").pushes_off(_run(0.05, swept=False))
     assert not ok
     assert "at t = 3.03 s, lasted 50 ms" in msg
     assert abs(t_fail - 3.43) < 0.02
 
 
 def test_no_push_at_all_is_reported_at_the_end():
-    ok, msg, t_fail, *_ = _checks("bottle-reject").pushes_off(_run(None, swept=False))
+    ok, msg, t_fail, *_ = lab_checks("bottle-reject").pushes_off(_run(None, swept=False))
     assert not ok and "0 fallen bottle(s) pushed off, 1 expected" in msg
     assert t_fail == 10.0
