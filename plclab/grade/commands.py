@@ -126,7 +126,10 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
           f"gradebook {out / 'grades.csv'}")
     lost = [o.result.student for o in outcomes if o.result.status == "infrastructure"]
     if lost:
-        names = ", ".join(lost[:10]) + (f" and {len(lost) - 10} more" if len(lost) > 10 else "")
+        from plclab.errors import printable  # student names come from file names
+
+        names = ", ".join(printable(n) for n in lost[:10]) + (
+            f" and {len(lost) - 10} more" if len(lost) > 10 else "")
         print(f"{len(lost)} submission(s) lost to the grading machine, not graded (PLC5070: "
               f"{names}): their processes were killed from outside (out of memory?). Run the "
               "same command again: it grades these again and keeps the grades already given "
