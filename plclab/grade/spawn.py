@@ -37,6 +37,7 @@ def child_context() -> Any:
     if "forkserver" in methods:
         ctx = multiprocessing.get_context("forkserver")
         ctx.set_forkserver_preload(["__main__", "plclab.grade._preload"])
+        _guard_restarts()
         _start_forkserver()
         return ctx
     return multiprocessing.get_context("spawn")
@@ -92,6 +93,31 @@ def _start_forkserver() -> None:
     tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
     with environ_as(minimal_env(None, "forkserver")):
         forkserver.ensure_running()
+
+
+def _guard_restarts() -> None:
+    """Make every (re)start of the forkserver use the minimal environment, also the one that
+    ``proc.start()`` makes when the server died between :func:`start_child`'s look and the
+    start (a SIGKILL is delivered a moment after ``os.kill`` returns): multiprocessing's
+    ``ensure_running`` is wrapped once per process (ADR 0040)."""
+    from multiprocessing import forkserver
+
+    from .sandbox import environ_as, minimal_env
+
+    server = forkserver._forkserver  # noqa: SLF001
+    if getattr(server, "_plclab_guarded", False):
+        return
+    original = server.ensure_running
+
+    def ensure_running() -> None:
+        if _forkserver_runs():
+            original()  # nothing to start (or it died this very microsecond: reaped, restarted)
+            return
+        with environ_as(minimal_env(None, "forkserver")):
+            original()
+
+    server.ensure_running = ensure_running
+    server._plclab_guarded = True
 
 
 def _forkserver_runs() -> bool:
