@@ -166,31 +166,21 @@ def origin(text: str, file: str = "<input>") -> tuple[str, str] | None:
 
 def explain_choice(text: str, given: str | None, file: str = "<input>") -> tuple[str, str]:
     """A file's dialect and why: its pragma, else ``given``, else the tool that wrote it
-    (:func:`origin`), else :data:`DEFAULT` (PLC0170 if unknown)."""
-    named = dialect_pragma(text)
-    if named:
-        return choose(text, given, file), "its {dialect} pragma"
-    if given:
-        return choose(text, given, file), "chosen by the caller (--dialect or the lab)"
-    found = origin(text, file)
-    if found:
-        return found
-    return DEFAULT, "the default, ADR 0017"
-
-
-def choose(text: str, given: str | None, file: str = "<input>") -> str:
-    """A file's dialect: its pragma, else ``given``, else the tool that wrote it
-    (:func:`origin`), else :data:`DEFAULT` (PLC0170 if unknown)."""
+    (:func:`origin`), else :data:`DEFAULT` (PLC0170 if a pragma or ``given`` is unknown)."""
     named = dialect_pragma(text)
     if not named and not given:
-        found = origin(text, file)
-        if found:
-            return found[0]
+        return origin(text, file) or (DEFAULT, "the default, ADR 0017")
+    why = "its {dialect} pragma" if named else "chosen by the caller (--dialect or the lab)"
     try:
-        return profile(named or given or DEFAULT).name
+        return profile(named or given).name, why
     except PlcError as exc:
         where = None
         if named:
             line = text[:_PRAGMA.search(text).start()].count("\n") + 1
             where = Location(file, line, 1)
         raise PlcError(exc.code, exc.message, where) from None
+
+
+def choose(text: str, given: str | None, file: str = "<input>") -> str:
+    """A file's dialect (:func:`explain_choice` without the reason)."""
+    return explain_choice(text, given, file)[0]
