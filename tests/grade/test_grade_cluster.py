@@ -41,6 +41,16 @@ def _env() -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": str(ROOT), "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
 
 
+def _start_scheduler() -> tuple[str, subprocess.Popen]:
+    """A Dask scheduler on a free loopback port: its address and its process."""
+    port = _free_port()
+    sched = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
+                              "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+                             env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=True)
+    return f"tcp://127.0.0.1:{port}", sched
+
+
 def _start_worker(address: str, *extra: str, tmp: Path | None = None) -> subprocess.Popen:
     """A worker process (its own session); ``tmp``: its temporary folder, where its grading
     children's folders and logs are."""
@@ -69,12 +79,7 @@ def _stop(proc: subprocess.Popen) -> None:
 @pytest.fixture(scope="module")
 def cluster():
     """``tcp://127.0.0.1:PORT`` of a scheduler with two worker processes (one per module)."""
-    port = _free_port()
-    address = f"tcp://127.0.0.1:{port}"
-    sched = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
-                              "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
-                             env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             start_new_session=True)
+    address, sched = _start_scheduler()
     workers = _start_worker(address, "--nworkers", "2")
     try:
         _wait_workers(address, 2)
@@ -264,12 +269,7 @@ def test_a_worker_killed_mid_task_gives_the_clean_gradebook(lab, tmp_path, monke
     shutil.copy(LAB / "mistakes" / "never_stops.st", subs / "bob.st")
     shutil.copy(LAB / "solution" / "tank.il", subs / "carol.il")
     Grader(lab, tmp_path / "clean", jobs=2, timeout=300, media=False).grade_folder(subs)
-    port = _free_port()
-    address = f"tcp://127.0.0.1:{port}"
-    sched = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
-                              "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
-                             env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             start_new_session=True)
+    address, sched = _start_scheduler()
     tmp = {k: tmp_path / k for k in ("doomed", "healthy")}
     workers: dict[str, subprocess.Popen] = {}
 

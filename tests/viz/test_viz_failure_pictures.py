@@ -380,17 +380,9 @@ def test_the_plant_view_shows_the_failure_with_every_shape_logged_there(tmp_path
     info = RunInfo(lab="x", scenario="s", verdicts=[Verdict("c", False, 20.25, "d")])
     rec = recording(tr, info=info, fps=1.0)
     assert 20.25 in [round(t, 6) for t in rec.frame_times]
-    import rerun.blueprint as rrb
+    from test_viz_rerun_layout import blueprint_views
 
-    views = []
-
-    def walk(node):
-        for c in getattr(node, "contents", []) or []:
-            walk(c)
-        if isinstance(node, rrb.View):
-            views.append(node)
-
-    walk(blueprint(rec).root_container)
+    views = blueprint_views(blueprint(rec))
     plant = next(v for v in views if v.origin == "/plant")
     assert plant.name == "plant at the first failure, t = 20.25 s"
     # every moving shape is logged at that moment, so a view of that moment shows them all

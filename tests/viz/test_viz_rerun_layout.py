@@ -138,12 +138,10 @@ def test_summary_puts_failures_first_and_counts_relays(recs):
     assert verdicts and all(e.time >= 0 for e in verdicts)
 
 
-def test_blueprint_shows_the_whole_run_paused(recs):
+def blueprint_views(bp) -> list:
+    """Every view of a rerun blueprint, depth first through its containers."""
     import rerun.blueprint as rrb
 
-    from plclab.viz.recording import blueprint
-
-    bp = blueprint(recs[0])
     views = []
 
     def walk(node):
@@ -153,6 +151,15 @@ def test_blueprint_shows_the_whole_run_paused(recs):
             views.append(node)
 
     walk(bp.root_container)
+    return views
+
+
+def test_blueprint_shows_the_whole_run_paused(recs):
+
+    from plclab.viz.recording import blueprint
+
+    bp = blueprint(recs[0])
+    views = blueprint_views(bp)
     kinds = [type(v).__name__ for v in views]
     assert kinds.count("TimeSeriesView") == len(recs[0].layout.plots)
     assert {"StateTimelineView", "Spatial2DView", "TextDocumentView", "TextLogView"} <= set(kinds)
