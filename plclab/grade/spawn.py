@@ -34,6 +34,7 @@ def child_context() -> Any:
     what they need (:mod:`plclab.grade._preload`), started with the minimal environment;
     *spawn* where there is no fork."""
     methods = multiprocessing.get_all_start_methods()
+    _own_multiprocessing_tempdir()
     if "forkserver" in methods:
         ctx = multiprocessing.get_context("forkserver")
         ctx.set_forkserver_preload(["__main__", "plclab.grade._preload"])
@@ -41,6 +42,29 @@ def child_context() -> Any:
         _start_forkserver()
         return ctx
     return multiprocessing.get_context("spawn")
+
+
+_AF_UNIX_PATH_MAX = 100
+"""The longest socket path this module lets multiprocessing bind (Linux allows 107 bytes)."""
+
+
+def _own_multiprocessing_tempdir() -> None:
+    """Give multiprocessing's temporary folder (the forkserver's socket lives there) a name
+    with :func:`work_prefix`, instead of ``pymp-*``: its own clean-up runs only at a normal
+    exit, so a grader killed with SIGKILL left a ``pymp-*`` folder nobody removed; now
+    :func:`remove_stale_workdirs` removes it with the grader's other folders. Done once per
+    process, before multiprocessing makes its own (``util.get_temp_dir`` reads the same key)."""
+    from multiprocessing import process, util
+
+    config = process.current_process()._config  # noqa: SLF001 - the key get_temp_dir reads
+    if config.get("tempdir") is not None:
+        return
+    if len(os.path.join(tempfile.gettempdir(), work_prefix(), "mp-12345678/listener-12345678")) \
+            > _AF_UNIX_PATH_MAX:
+        return  # a socket path this long cannot be bound: multiprocessing's shorter name
+    tempdir = tempfile.mkdtemp(prefix=work_prefix() + "mp-")
+    util.Finalize(None, shutil.rmtree, args=(tempdir, True), exitpriority=-100)
+    config["tempdir"] = tempdir
 
 
 def start_child(proc: Any) -> None:

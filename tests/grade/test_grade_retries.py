@@ -94,3 +94,38 @@ def test_a_killed_graders_temporary_folders_are_removed(tmp_path):
         (d / "media").mkdir(parents=True)
     assert remove_stale_workdirs(tmp_path) == 1
     assert not stale.exists() and live.exists() and other.exists()
+
+
+def test_a_killed_grader_leaves_no_multiprocessing_folder_behind():
+    """multiprocessing's own temporary folder (the forkserver's socket) carries the grader's
+    prefix: after kill -9 of the grader, the next run's sweep removes it, and no ``pymp-*``
+    folder is left that nothing would ever remove."""
+    import shutil
+    import signal
+    import subprocess
+    import sys
+    import tempfile
+    from pathlib import Path
+
+    from plclab.grade.grader import remove_stale_workdirs
+
+    tmp_path = Path(tempfile.mkdtemp(prefix="mp", dir="/tmp"))  # short: a socket lives in it
+    script = ("import os, signal\n"
+              "from plclab.grade.spawn import child_context\n"
+              "ctx = child_context()\n"
+              "p = ctx.Process(target=int)\n"
+              "p.start(); p.join()\n"
+              "print(p.exitcode, flush=True)\n"
+              "os.kill(os.getpid(), signal.SIGKILL)\n")
+    try:
+        env = {**os.environ, "TMPDIR": str(tmp_path)}
+        done = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True,
+                              text=True, timeout=300)
+        assert done.returncode == -signal.SIGKILL and done.stdout.strip() == "0", done.stderr
+        left = sorted(p.name for p in tmp_path.iterdir())
+        assert left and not any(n.startswith("pymp-") for n in left), left
+        assert all(n.startswith("plclab-grade-") for n in left), left
+        assert remove_stale_workdirs(tmp_path) == len(left)
+        assert not list(tmp_path.iterdir())
+    finally:
+        shutil.rmtree(tmp_path, ignore_errors=True)
