@@ -18,6 +18,7 @@ from typing import Any
 
 from plclab.errors import PlcError
 
+from ..viz.highlight import fence_map
 from . import pages
 from .bundle import copy_pyodide, core_zip
 
@@ -67,7 +68,9 @@ def mkdocs_config(docs: Path, out: Path, nav: list[Any]) -> dict[str, Any]:
         "extra_css": ["playground/playground.css"],
         "markdown_extensions": ["tables", "admonition", "attr_list", "md_in_html",
                                 {"toc": {"permalink": True}},
-                                {"pymdownx.highlight": {"use_pygments": True}},
+                                {"pymdownx.highlight": {
+                                    "use_pygments": True,
+                                    "extend_pygments_lang": fence_map()}},
                                 "pymdownx.superfences"],
         "not_in_nav": "/problems/PLC*/\n/problems/PLC*/index.md\n",
         "validation": {"links": {"not_found": "warn", "absolute_links": "warn",

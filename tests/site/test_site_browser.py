@@ -215,3 +215,18 @@ def test_motor_lab_checked_in_the_page(site, browser):
     m = re.search(r"(\d+) of (\d+) points", page.inner_text("#pg-status"))
     assert m and m.group(1) == m.group(2) and int(m.group(2)) > 0
     assert errors == []
+
+
+def test_course_code_is_highlighted_as_iec_text_not_smalltalk(site):
+    """Every course page's code is coloured by plclab's IEC lexers: ``(* ... *)`` is a comment
+    and nothing is an error token (Pygments' Smalltalk lexer, which owns the name "st", marks
+    ``:`` as an error and colours comments as code)."""
+    out, _, _ = site
+    pages = sorted((out / "course").rglob("index.html"))
+    assert pages
+    comments = 0
+    for page in pages:
+        html = page.read_text("utf-8")
+        assert 'class="err"' not in html, page
+        comments += html.count('<span class="cm">(*')
+    assert comments >= 20
