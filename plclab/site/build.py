@@ -21,6 +21,7 @@ from plclab.errors import PlcError
 from ..viz.highlight import fence_map
 from . import pages
 from .bundle import copy_pyodide, core_zip
+from .links import LinkReport, relink, written_from
 
 REPO = pages.REPO
 SITE_SOURCES = REPO / "site"
@@ -37,7 +38,7 @@ class BuildReport:
     pages: int = 0
     warnings: list[str] = field(default_factory=list)
     course_problems: list[str] = field(default_factory=list)
-    unlinked: int = 0
+    links: LinkReport = field(default_factory=LinkReport)
     playground: bool = True
 
 
@@ -84,10 +85,13 @@ def generate(docs: Path, playground: bool = True, figures: bool = True,
              notebooks: bool = False) -> tuple[list[Any], list[str]]:
     """Write every page (and the playground's assets) into ``docs``; returns the nav and the
     course's problems."""
-    pages.write(docs / "index.md", (SITE_SOURCES / "home.md").read_text("utf-8"))
+    written_from(pages.write(docs / "index.md", (SITE_SOURCES / "home.md").read_text("utf-8")),
+                 "site/home.md")
     course_nav, problems = pages.course_pages(docs, figures=figures)
     pg = docs / "playground"
-    pages.write(pg / "index.md", (SITE_SOURCES / "playground.md").read_text("utf-8"))
+    written_from(pages.write(pg / "index.md",
+                             (SITE_SOURCES / "playground.md").read_text("utf-8")),
+                 "site/playground.md")
     for name in ("playground.js", "playground.css"):
         shutil.copyfile(SITE_SOURCES / "playground" / name, pg / name)
     lab_nav = pages.lab_pages(docs, pg)
@@ -116,7 +120,11 @@ def build(out: str | Path | None = None, playground: bool = True,
     with tempfile.TemporaryDirectory(prefix="plclab-site-src-") as tmp:
         docs = Path(tmp) / "docs"
         nav, rep.course_problems = generate(docs, playground, figures, notebooks)
-        rep.unlinked = pages.unlink_missing(docs)
+        rep.links = relink(docs, figures)
+        if rep.links.broken:
+            raise PlcError("PLC3046", f"{len(rep.links.broken)} link(s) of the sources point "
+                           "to nothing; mend them in the file named (or remove the link):\n  "
+                           + "\n  ".join(rep.links.broken[:20]))
         cfg = Path(tmp) / "mkdocs.yml"
         cfg.write_text(json.dumps(mkdocs_config(docs, out_dir, nav), indent=1), "utf-8")
         done = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--clean", "-f",

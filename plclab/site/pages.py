@@ -13,10 +13,10 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+from .links import written_from
+
 REPO = Path(__file__).resolve().parents[2]
 PLAYGROUND_LANGUAGES = ("st", "il", "ld")
-_LAB_LINK = re.compile(r"\]\(\.\./\.\./labs/([\w-]+)/(?:README\.md)?\)")
-_LINK = re.compile(r"(!?)\[([^\]]*)\]\(([^)\s]+)\)")
 
 
 def write(path: Path, text: str) -> Path:
@@ -80,8 +80,8 @@ def course_pages(docs: Path, figures: bool = True) -> tuple[list[Any], list[str]
         (dest / "chapter.md").unlink()
         for extra in ("quiz.toml", "figures.toml"):
             (dest / extra).unlink(missing_ok=True)
-        text = _LAB_LINK.sub(r"](../../labs/\1/index.md)", ch.text)
-        write(dest / "index.md", _with_try_links(text, depth=2))
+        written_from(write(dest / "index.md", _with_try_links(ch.text, depth=2)),
+                     f"course/{ch.slug}/chapter.md")
         labs = ", ".join(f"[{lab}](../labs/{lab}/index.md)" for lab in ch.lab_refs) or "-"
         rows.append(f"| {ch.number} | [{ch.title}]({ch.slug}/index.md) | {labs} |")
         nav.append(f"course/{ch.slug}/index.md")
@@ -123,12 +123,12 @@ def lab_pages(docs: Path, site_assets: Path) -> list[Any]:
         lab = lab_dir.name
         readme = (lab_dir / "README.md").read_text(encoding="utf-8") \
             if (lab_dir / "README.md").exists() else f"# {data.get('title', lab)}\n"
-        parts = [_LINK.sub(lambda m: m.group(2) if not m.group(3).startswith("http")
-                           else m.group(0), readme).rstrip(), "",
-                 "## I/O table of lab.toml", "", "| name | address | type | description |",
-                 "|---|---|---|---|"]
-        parts += [f"| `{io['name']}` | `{io.get('address', '')}` | {io.get('type', '')} | "
-                  f"{_md_cell(io.get('description', ''))} |" for io in data.get("io", [])]
+        parts = [readme.rstrip()]
+        if not re.search(r"^## I/O table", readme, re.M):  # the README's own, else lab.toml's
+            parts += ["", "## I/O table of lab.toml", "",
+                      "| name | address | type | description |", "|---|---|---|---|"]
+            parts += [f"| `{io['name']}` | `{io.get('address', '')}` | {io.get('type', '')} | "
+                      f"{_md_cell(io.get('description', ''))} |" for io in data.get("io", [])]
         starters = sorted(p for p in lab_dir.glob("starter.*"))
         for st in starters:
             lang = st.suffix[1:]
@@ -142,12 +142,15 @@ def lab_pages(docs: Path, site_assets: Path) -> list[Any]:
         parts += ["", "## Scenarios your program runs in", ""]
         parts += [f"- **{s['name']}** ({s.get('duration', '')}): {s.get('description', '')}"
                   for s in data.get("scenario", [])]
-        parts += ["", "Further scenarios stay hidden until grading.", "", "## Criteria", "",
-                  "| criterion | points | what is checked |", "|---|---:|---|"]
-        parts += [f"| {_md_cell(c['name'])} | {c.get('points', 1)} | "
-                  f"{_md_cell(c.get('description', c.get('message', '')))} |"
-                  for c in data.get("criterion", [])]
-        write(docs / "labs" / lab / "index.md", "\n".join(parts) + "\n")
+        parts += ["", "Further scenarios stay hidden until grading."]
+        if "criteria-table:start" not in readme:  # the README's generated table, else this
+            parts += ["", "## Criteria", "", "| criterion | points | what is checked |",
+                      "|---|---:|---|"]
+            parts += [f"| {_md_cell(c['name'])} | {c.get('points', 1)} | "
+                      f"{_md_cell(c.get('description', c.get('message', '')))} |"
+                      for c in data.get("criterion", [])]
+        written_from(write(docs / "labs" / lab / "index.md", "\n".join(parts) + "\n"),
+                     f"labs/{lab}/README.md")
         assert not any((docs / "labs" / lab / d).exists() for d in PRIVATE_DIRS)
         rows.append(f"| [{_md_cell(data.get('title', lab))}]({lab}/index.md) | "
                     f"{data.get('plant', '')} | {', '.join(data.get('languages', []))} |")
@@ -205,12 +208,14 @@ def reference_pages(docs: Path) -> list[Any]:
 
     from .plant_svg import plant_svg
 
-    write(docs / "reference" / "blocks.md", (REPO / "docs" / "blocks.md").read_text("utf-8"))
+    written_from(write(docs / "reference" / "blocks.md",
+                       (REPO / "docs" / "blocks.md").read_text("utf-8")), "docs/blocks.md")
     readme = (REPO / "README.md").read_text(encoding="utf-8")
     m = re.search(r"^## Language reference \(compliance list\)\n(.*?)(?=^## )", readme,
                   re.S | re.M)
     body = m.group(1) if m else "The compliance list is in the README.\n"
-    write(docs / "reference" / "compliance.md", "# Language compliance list\n" + body)
+    written_from(write(docs / "reference" / "compliance.md",
+                       "# Language compliance list\n" + body), "README.md")
     rows = ["# Plants", "", "The simulated machines a program drives (`plclab plants`). The "
             "playground runs the tank and the motor in the page.", ""]
     nav: list[Any] = ["reference/plants/index.md"]
@@ -237,36 +242,12 @@ def adr_pages(docs: Path) -> list[Any]:
     rows = ["# Decisions (ADRs)", "", "Why plclab is built the way it is.", ""]
     for path in sorted((REPO / "docs" / "adr").glob("[0-9]*.md")):
         text = path.read_text(encoding="utf-8")
-        write(docs / "adr" / path.name, text)
+        written_from(write(docs / "adr" / path.name, text), f"docs/adr/{path.name}")
         title = text.splitlines()[0].lstrip("# ").strip() if text else path.stem
         rows.append(f"- [{title}]({path.name})")
         nav.append(f"adr/{path.name}")
     write(docs / "adr" / "index.md", "\n".join(rows) + "\n")
     return nav
-
-
-def unlink_missing(docs: Path) -> int:
-    """Turn every relative link whose target the site does not have into plain text (a link
-    to a source file of the repository, say); returns how many were changed."""
-    changed = 0
-    for md in docs.rglob("*.md"):
-        text = md.read_text(encoding="utf-8")
-
-        def fix(m: re.Match[str], md: Path = md) -> str:
-            nonlocal changed
-            bang, label, target = m.groups()
-            path = target.split("#", 1)[0]
-            if not path or re.match(r"^[a-z]+:", target) or target.startswith("/"):
-                return m.group(0)
-            if (md.parent / path).exists():
-                return m.group(0)
-            changed += 1
-            return label if not bang else f"*({label})*"
-
-        new = _LINK.sub(fix, text)
-        if new != text:
-            md.write_text(new, encoding="utf-8")
-    return changed
 
 
 def copy_tree(src: Path, dest: Path) -> None:
@@ -337,7 +318,8 @@ def notebook_pages(docs: Path, execute: bool = False) -> list[Any]:
                 for out in cell.get("outputs", []):
                     n += 1
                     lines += _output_md(out, folder, path.stem, n) + [""]
-        write(folder / f"{path.stem}.md", "\n".join(lines))
+        written_from(write(folder / f"{path.stem}.md", "\n".join(lines)),
+                     f"notebooks/{path.name}")
         title = next((c.source.splitlines()[0].lstrip("# ") for c in nb.cells
                       if c.cell_type == "markdown" and c.source.startswith("# ")), path.stem)
         rows.append(f"- [{title}]({path.stem}.md)")

@@ -133,9 +133,10 @@ def test_home_chapter_and_lab_pages(site, browser, shots):
     assert page.locator("a.try-it").count() > 3
     page.screenshot(path=str(shots / "chapter.png"))
     page, errors3 = open_page(browser, urljoin(base, "labs/tank-two-position/"))
-    table = page.locator("xpath=//h2[@id='io-table-of-labtoml']/following::table[1]")
+    table = page.locator("xpath=//h2[@id='io-table']/following::table[1]")
     assert table.count() == 1 and "%IX0.0" in table.inner_text()
     assert "LS1" in table.inner_text() and "PUMP" in table.inner_text()
+    assert page.locator("xpath=//th[normalize-space()='Address']").count() == 1  # once
     page.screenshot(path=str(shots / "lab.png"))
     assert errors == errors2 == errors3 == []
 

@@ -10,6 +10,7 @@ from plclab.errors import PlcError
 from plclab.problems import catalogue
 from plclab.site import build as site_build
 from plclab.site import pages
+from plclab.site.links import relink
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -18,7 +19,8 @@ REPO = Path(__file__).resolve().parents[2]
 def docs(tmp_path_factory):
     d = tmp_path_factory.mktemp("site-src") / "docs"
     site_build.generate(d, playground=False, figures=False)
-    pages.unlink_missing(d)
+    rep = relink(d, figures=False)
+    assert not rep.broken, rep.broken
     return d
 
 
@@ -43,9 +45,11 @@ def test_every_chapter_is_a_page_and_its_examples_open_in_the_playground(docs):
 
 def test_lab_pages_show_the_io_table_and_nothing_private(docs):
     page = (docs / "labs" / "tank-two-position" / "index.md").read_text()
-    assert "## I/O table of lab.toml" in page and "| `LS1` | `%IX0.0` | BOOL |" in page
-    listed = page.split("## Scenarios your program runs in")[1].split("## Criteria")[0]
+    assert page.count("| `LS1` | `%IX0.0` | BOOL |") == 1  # the README's table, not twice
+    assert page.count("| Criterion |") == 1 and "## Criteria" not in page
+    listed = page.split("## Scenarios your program runs in")[1]
     assert "**normal**" in listed and "start-full" not in listed  # the hidden scenario
+    assert "](../../course/" in page  # its links to the course lead to the chapters' pages
     for lab in (REPO / "labs").iterdir():
         if not (lab / "lab.toml").exists():
             continue
