@@ -106,20 +106,35 @@ def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(
     assert broken == []
 
 
-def test_search_finds_ton(site, browser):
-    out, base, _ = site
-    page, errors = open_page(browser, base)
+def search(page, query):
+    """Type ``query`` into the site's search and return the result list's text."""
     page.click("label.md-search__icon, .md-search__input", timeout=5000)
     for _ in range(15):  # the search index loads in a web worker: type again until it answers
         page.fill("input.md-search__input", "")
-        page.type("input.md-search__input", "TON")
+        page.type("input.md-search__input", query)
         try:
             page.wait_for_selector(".md-search-result__item", timeout=2000)
             break
         except Exception:  # noqa: BLE001 - playwright's TimeoutError: not ready yet
             continue
-    titles = page.inner_text(".md-search-result__list")
-    assert re.search(r"\bTON\b", titles)
+    return page.inner_text(".md-search-result__list")
+
+
+def test_search_finds_ton(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, base)
+    assert re.search(r"\bTON\b", search(page, "TON"))
+    assert errors == []
+
+
+@pytest.mark.parametrize("query", ["seal-in", "two-hand", "4-20 mA"])
+def test_search_finds_hyphenated_terms(site, browser, query):
+    """A hyphen inside a word is part of the term, not lunr's "exclude" operator."""
+    out, base, _ = site
+    page, errors = open_page(browser, base)
+    found = search(page, query)
+    assert found.strip() and "No matching" not in found, found
+    assert query.split("-")[0].split()[0].lower() in found.lower()
     assert errors == []
 
 
