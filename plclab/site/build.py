@@ -21,6 +21,7 @@ from plclab.errors import PlcError
 from ..viz.highlight import fence_map
 from . import pages
 from .bundle import copy_pyodide, core_zip
+from .freshness import fingerprint, precompress, record, recorded
 from .links import LinkReport, relink, written_from
 
 REPO = pages.REPO
@@ -40,6 +41,8 @@ class BuildReport:
     course_problems: list[str] = field(default_factory=list)
     links: LinkReport = field(default_factory=LinkReport)
     playground: bool = True
+    reused: bool = False
+    compressed: int = 0
 
 
 def check_out(out: Path) -> Path:
@@ -106,9 +109,11 @@ def generate(docs: Path, playground: bool = True, figures: bool = True,
 
 
 def build(out: str | Path | None = None, playground: bool = True,
-          figures: bool = True, notebooks: bool = False) -> BuildReport:
+          figures: bool = True, notebooks: bool = False, reuse: bool = False) -> BuildReport:
     """Build the site into ``out`` (default: ``plclab-site`` in the temporary directory);
-    ``notebooks=True`` runs the lab notebooks to show their outputs (minutes)."""
+    ``notebooks=True`` runs the lab notebooks to show their outputs (minutes). With ``reuse``
+    a site built before from the same sources and options is kept as it is
+    (:mod:`plclab.site.freshness`)."""
     try:
         import material  # noqa: F401
         import mkdocs  # noqa: F401
@@ -117,6 +122,12 @@ def build(out: str | Path | None = None, playground: bool = True,
                        "'plclab[site]' (or pip install mkdocs-material)") from None
     out_dir = check_out(Path(out) if out is not None else default_out())
     rep = BuildReport(out_dir, playground=playground)
+    print_ = fingerprint({"playground": playground, "figures": figures,
+                          "notebooks": notebooks})
+    if reuse and recorded(out_dir / MARKER) == print_ and (out_dir / "index.html").exists():
+        rep.reused = True
+        rep.pages = sum(1 for _ in out_dir.rglob("index.html"))
+        return rep
     with tempfile.TemporaryDirectory(prefix="plclab-site-src-") as tmp:
         docs = Path(tmp) / "docs"
         nav, rep.course_problems = generate(docs, playground, figures, notebooks)
@@ -135,5 +146,6 @@ def build(out: str | Path | None = None, playground: bool = True,
                            "\n".join(log[-15:]))
         rep.warnings = [line for line in log if line.startswith("WARNING")]
         rep.pages = sum(1 for _ in docs.rglob("*.md"))
-    (out_dir / MARKER).write_text("built by plclab site build\n", "utf-8")
+    rep.compressed = precompress(out_dir)
+    record(out_dir / MARKER, print_)
     return rep

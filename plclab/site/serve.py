@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import functools
 import http.server
+import os
 import threading
 from pathlib import Path
 
@@ -22,6 +23,29 @@ class _Handler(DeadlineMixin, http.server.SimpleHTTPRequestHandler):
 
     def log_message(self, format: str, *args: object) -> None:  # noqa: A002 - the base's name
         pass
+
+    def send_head(self):  # noqa: ANN201 - the base's signature
+        """The file's ``.gz`` copy (written by the build) to a browser that accepts gzip."""
+        path = self.translate_path(self.path)
+        if os.path.isdir(path):
+            if not self.path.split("?", 1)[0].endswith("/"):
+                return super().send_head()  # the base redirects to the folder's URL
+            path = os.path.join(path, "index.html")
+        packed = path + ".gz"
+        accepts = "gzip" in self.headers.get("Accept-Encoding", "")
+        if not (accepts and os.path.isfile(path) and os.path.isfile(packed)):
+            return super().send_head()
+        try:
+            f = open(packed, "rb")  # noqa: SIM115 - the base class closes it after copying
+        except OSError:
+            return super().send_head()
+        self.send_response(200)
+        self.send_header("Content-Type", self.guess_type(path))
+        self.send_header("Content-Encoding", "gzip")
+        self.send_header("Vary", "Accept-Encoding")
+        self.send_header("Content-Length", str(os.fstat(f.fileno()).st_size))
+        self.end_headers()
+        return f
 
     def list_directory(self, path: str):  # noqa: ANN201 - the base's signature
         """No directory listings: a folder without index.html is 404 (ADR 0041)."""

@@ -246,3 +246,16 @@ def test_course_code_is_highlighted_as_iec_text_not_smalltalk(site):
         assert 'class="err"' not in html, page
         comments += html.count('<span class="cm">(*')
     assert comments >= 20
+
+
+def test_serve_reuses_a_site_built_from_the_same_sources(site):
+    """``plclab site serve`` does not build again what is up to date, and the build left
+    gzip copies of the playground's large assets."""
+    from plclab.site.build import build
+
+    out, _, rep = site
+    assert not rep.reused and rep.compressed > 0
+    again = build(out, reuse=True)
+    assert again.reused and again.pages > 0
+    wasm = next(out.rglob("*.wasm"))
+    assert wasm.with_name(wasm.name + ".gz").stat().st_size < wasm.stat().st_size / 2
