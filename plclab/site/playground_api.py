@@ -37,6 +37,12 @@ DIAGRAM: dict[str, list[str]] = {
 # The plants' parameters in the playground: a tank of 0.1 m2 (half the first lab's, so the pump
 # stops within the first minute) and the motor with its defaults.
 PLANT_PARAMS: dict[str, dict[str, Any]] = {"tank": {"area": 0.1}, "motor": {}}
+NO_PLANT = "none"
+"""The plant choice of a program that drives no plant: it runs alone, seen in the watch panel."""
+WATCH_LIMIT = 200
+"""At most this many variables in the watch panel (a program with more shows the first ones)."""
+VALUE_WIDTH = 120
+"""A value longer than this (a big array) is cut, with an ellipsis."""
 
 TANK_EXAMPLE = """\
 (* Two-position level control: the pump starts below LS1 and runs until LS2. *)
@@ -103,7 +109,9 @@ class Session:
         self.scan_s = scan_ms / 1000.0
         self.diagnostics: list[dict[str, Any]] = []
         self.mapped: dict[str, str] = {}
-        self.plant = make_plant(plant)
+        self.trend: list[str] = []
+        self.rows: list[tuple[str, str, str]] = []
+        self.plant = make_plant(plant) if plant != NO_PLANT else None
         self.plc: Any = None
         self.time = 0.0
         self.scans = 0
@@ -116,7 +124,8 @@ class Session:
             return
         self.diagnostics = [diagnostic_dict(d) for d in
                             getattr(self.plc, "diagnostics", None) or []]
-        self.rows: list[tuple[str, str, str]] = []
+        if self.plant is None:
+            return
         for address, signal, direction in WIRING[plant]:
             path = address  # the process image always exists; a variable AT it reads it
             try:
@@ -153,14 +162,23 @@ class Session:
     def sample(self) -> dict[str, Any]:
         """The diagram's signals now (BOOLs as bools, analog values as floats), with ``t``."""
         row: dict[str, Any] = {"t": round(self.time, 6)}
-        for name in DIAGRAM[self.plant_name]:
+        for name in DIAGRAM.get(self.plant_name, []):
             v = self.plant.read(name)
             row[name] = v if isinstance(v, bool) else float(v)
+        for path in self.trend:
+            if self.plc is not None:
+                v = self.plc[path]
+                row[path] = v if isinstance(v, bool) else float(v)
         return row
 
     def scan_once(self) -> None:
         """One scan: plant signals into the inputs, the program, outputs into the plant,
         then the plant moves on by one scan time."""
+        if self.plant is None:
+            self.plc.scan()
+            self.time += self.scan_s
+            self.scans += 1
+            return
         for signal, value in self.forced.items():
             self.plant.write(signal, value)
         for path, signal, direction in self.rows:
@@ -192,6 +210,116 @@ class Session:
             if (i + 1) % step == 0:
                 out.append(self.sample())
         return out
+
+
+    # -- the watch panel ----------------------------------------------------------------------
+    def watch(self) -> list[dict[str, Any]]:
+        """Every variable of the program (at most WATCH_LIMIT) with its type, its value as an
+        IEC literal, whether it is forced, and whether the trend can draw it (BOOL or number)."""
+        if self.plc is None:
+            return []
+        from plclab.lang import types as T
+
+        out = []
+        for path in self.plc.variables()[:WATCH_LIMIT]:
+            try:
+                v = self.plc.var(path)
+                text = self.plc.format(path)
+            except PlcError:
+                continue
+            ty = T.resolve(v.type)
+            if len(text) > VALUE_WIDTH:
+                text = text[:VALUE_WIDTH - 1] + "\u2026"
+            out.append({"path": path, "type": str(ty), "value": text,
+                        "forced": path.upper() in self.plc.forced,
+                        "trendable": getattr(ty, "kind", "") in ("bool", "int", "real", "bits")})
+        return out
+
+    def _value(self, path: str, text: str) -> Any:
+        from plclab.runtime.literals import parse_literal
+
+        return parse_literal(text, self.plc.var(path).type, path)
+
+    def write(self, path: str, text: str) -> list[dict[str, Any]]:
+        """Write an IEC literal to a variable once, at the start of the next scan (modify);
+        returns the diagnostics of a bad value (none when it was accepted)."""
+        return self._guarded(lambda: self.plc.modify(path, self._value(path, text)))
+
+    def force(self, path: str, text: str) -> list[dict[str, Any]]:
+        """Force a variable to an IEC literal every scan, until :meth:`unforce`."""
+        return self._guarded(lambda: self.plc.force(path, self._value(path, text)))
+
+    def unforce(self, path: str) -> None:
+        if self.plc is not None:
+            self.plc.unforce(path)
+
+    def set_trend(self, paths: list[str]) -> None:
+        """The variables the timing diagram draws besides the plant's signals."""
+        self.trend = [str(p) for p in paths][:8]
+
+    def _guarded(self, act: Any) -> list[dict[str, Any]]:
+        if self.plc is None:
+            return []
+        try:
+            act()
+        except PlcError as e:
+            return _error_dicts(e)
+        return []
+
+
+def analyse(text: str, language: str = "st") -> dict[str, Any]:
+    """What a program needs to be shown: the plant its variables fit (``tank`` or ``motor``
+    by the signals' names, ``tank`` for a program that only writes ``%QX0.0``; ``none`` when it
+    drives neither) and how many TEST blocks it has.
+
+    >>> analyse(TANK_EXAMPLE)
+    {'plant': 'tank', 'tests': 0, 'ok': True}
+    >>> analyse("PROGRAM P VAR x : INT; END_VAR x := x + 1; END_PROGRAM")["plant"]
+    'none'
+    """
+    from plclab.project import loads
+
+    try:
+        plc = loads(text, "playground" + LANGUAGE_SUFFIX.get(language, ".st"))
+    except PlcError:
+        return {"plant": NO_PLANT, "tests": text.upper().count("END_TEST"), "ok": False}
+    names: set[str] = set()
+    addresses: set[str] = set()
+    for path in plc.variables():
+        names.add(path.rsplit(".", 1)[-1].upper())
+        try:
+            address = plc.var(path).address
+        except PlcError:
+            continue
+        if address:
+            addresses.add(address.upper())
+    tests = len(getattr(plc.compiled, "tests", []) or [])
+    score = {plant: sum(sig in names for _, sig, _ in rows) for plant, rows in WIRING.items()}
+    best = max(score, key=lambda k: score[k])
+    if score[best] == 0:
+        best = "tank" if "%QX0.0" in addresses else NO_PLANT
+    return {"plant": best, "tests": tests, "ok": True}
+
+
+def run_tests(text: str, language: str = "st") -> dict[str, Any]:
+    """The TEST blocks of a program, run as ``plclab test -v`` runs them: one line a test and
+    the summary line ``N passed, M failed``; a program that does not compile gives its
+    diagnostics instead."""
+    from plclab.project import compile_sources
+    from plclab.testing import run_compiled_tests
+
+    filename = "playground" + LANGUAGE_SUFFIX.get(language, ".st")
+    try:
+        compiled = compile_sources([(text, filename)])
+    except PlcError as e:
+        return {"lines": [], "summary": "", "passed": 0, "failed": 0,
+                "diagnostics": _error_dicts(e)}
+    results = run_compiled_tests(compiled)
+    passed = sum(r.passed for r in results)
+    lines = [str(r) for r in results] or ["no TEST blocks found"]
+    return {"lines": lines, "summary": f"{passed} passed, {len(results) - passed} failed",
+            "passed": passed, "failed": len(results) - passed,
+            "diagnostics": [diagnostic_dict(d) for d in getattr(compiled, "diagnostics", [])]}
 
 
 def session(text: str, language: str, plant: str, scan_ms: float = 20.0) -> Session:

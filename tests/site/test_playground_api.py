@@ -78,3 +78,56 @@ def test_a_runtime_fault_stops_the_session_with_its_code():
     s.advance(1.0)
     assert not s.ok
     assert s.diagnostics[-1]["code"].startswith("PLC2")
+
+
+def test_a_program_without_a_plant_runs_alone_and_shows_its_variables():
+    s = api.Session("PROGRAM P VAR x : INT; w : WORD; t : TON; s : STRING; END_VAR\n"
+                    "t(IN := TRUE, PT := T#1s); x := x + 1; w := 16#F0;\nEND_PROGRAM", "st",
+                    api.NO_PLANT)
+    assert s.ok and not s.diagnostics  # no "drives no plant" warning it did not ask for
+    s.advance(1.0)
+    watch = {w["path"]: w for w in s.watch()}
+    assert watch["P.x"]["value"] == "50" and watch["P.x"]["trendable"]
+    assert watch["P.w"]["value"] == "240" and watch["P.w"]["trendable"]
+    assert not watch["P.t"]["trendable"] and not watch["P.s"]["trendable"]
+    assert s.write("P.x", "1000") == [] and s.force("P.w", "16#0001") == []
+    s.set_trend(["P.x", "P.w"])
+    rows = s.advance(0.04)
+    assert [r["P.x"] for r in rows] == [1001.0, 1002.0]  # written once, then counted on
+    assert [r["P.w"] for r in rows] == [1.0, 1.0]  # forced every scan
+    assert {w["path"]: w["forced"] for w in s.watch()}["P.w"]
+    s.unforce("P.w")
+    assert s.advance(0.02)[-1]["P.w"] == 240.0
+    bad = s.write("P.x", "TRUE OR")
+    assert bad and bad[0]["code"] == "PLC3002"
+
+
+def test_analyse_names_the_plant_a_program_needs_and_its_tests():
+    motor = ("PROGRAM M VAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL;\n"
+             "K1 AT %QX0.0 : BOOL; END_VAR K1 := (START OR K1) AND STOP; END_PROGRAM")
+    assert api.analyse(motor)["plant"] == "motor"
+    assert api.analyse(api.TANK_EXAMPLE)["plant"] == "tank"
+    bare = "PROGRAM P VAR q AT %QX0.0 : BOOL; END_VAR q := TRUE; END_PROGRAM"
+    assert api.analyse(bare)["plant"] == "tank"  # the default plant of %QX0.0
+    tested = ("FUNCTION F : INT F := 1; END_FUNCTION\n"
+              "TEST 'one' ASSERT_EQ(F(), 1); END_TEST\n")
+    assert api.analyse(tested) == {"plant": "none", "tests": 1, "ok": True}
+    assert api.analyse("PROGRAM")["ok"] is False
+
+
+def test_tests_run_in_the_page_print_what_plclab_test_prints(tmp_path, capsys):
+    from plclab.cli import main
+
+    text = ("FUNCTION F : INT F := 1; END_FUNCTION\n"
+            "TEST 'one' ASSERT_EQ(F(), 1); END_TEST\n"
+            "TEST 'two' ASSERT_EQ(F(), 2, 'not two'); END_TEST\n")
+    res = api.run_tests(text)
+    assert res["summary"] == "1 passed, 1 failed" and res["lines"][0] == "PASS one"
+    f = tmp_path / "playground.st"
+    f.write_text(text)
+    main(["test", "-v", str(f)])
+    cli = capsys.readouterr().out.splitlines()
+    assert cli[-1] == res["summary"]
+    assert [ln.replace(str(f), "playground.st") for ln in cli[:-1]] == res["lines"]
+    broken = api.run_tests("TEST 'x' y := ; END_TEST")
+    assert broken["diagnostics"] and broken["summary"] == ""
