@@ -95,7 +95,7 @@ def generate(docs: Path, playground: bool = True, figures: bool = True,
     written_from(pages.write(pg / "index.md",
                              (SITE_SOURCES / "playground.md").read_text("utf-8")),
                  "site/playground.md")
-    for name in ("playground.js", "playground.css"):
+    for name in ("playground.js", "worker.js", "playground.css"):
         shutil.copyfile(SITE_SOURCES / "playground" / name, pg / name)
     lab_nav = pages.lab_pages(docs, pg)
     if playground:

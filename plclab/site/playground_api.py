@@ -241,9 +241,15 @@ class Session:
         return parse_literal(text, self.plc.var(path).type, path)
 
     def write(self, path: str, text: str) -> list[dict[str, Any]]:
-        """Write an IEC literal to a variable once, at the start of the next scan (modify);
-        returns the diagnostics of a bad value (none when it was accepted)."""
-        return self._guarded(lambda: self.plc.modify(path, self._value(path, text)))
+        """Write an IEC literal to a variable now (the watch panel shows it at once) and again
+        once at the start of the next scan, after the inputs are read (modify: so a plant
+        input keeps it for that scan); returns the diagnostics of a bad value (none when it
+        was accepted)."""
+        def act() -> None:
+            value = self._value(path, text)
+            self.plc[path] = value
+            self.plc.modify(path, value)
+        return self._guarded(act)
 
     def force(self, path: str, text: str) -> list[dict[str, Any]]:
         """Force a variable to an IEC literal every scan, until :meth:`unforce`."""

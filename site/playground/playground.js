@@ -1,19 +1,95 @@
-// The playground: plclab's Python core in Pyodide, a plant beside it, a live timing diagram.
-// The Python side is plclab/site/playground_api.py (Session) and plclab/site/lab_check.py.
+// The playground page: an editor, a plant, a live timing diagram and a watch panel. plclab's
+// Python core runs in a Web Worker (worker.js; its Python side is plclab/site/playground_api.py
+// and plclab/site/lab_check.py), so the page answers whatever the program does: Run, Pause,
+// Step and Stop always work, and a call that takes too long is ended by the page (ADR 0028).
 "use strict";
 (function () {
   const $ = (id) => document.getElementById(id);
   const el = {
     lang: $("pg-lang"), plant: $("pg-plant"), lab: $("pg-lab"), code: $("pg-code"),
     gutter: $("pg-gutter"), compile: $("pg-compile"), run60: $("pg-run60"), live: $("pg-live"),
-    check: $("pg-check"), status: $("pg-status"), diags: $("pg-diagnostics"),
-    canvas: $("pg-diagram"), summary: $("pg-summary"), results: $("pg-results"),
-    buttons: $("pg-buttons"),
+    pause: $("pg-pause"), step: $("pg-step"), stop: $("pg-stop"), speed: $("pg-speed"),
+    tests: $("pg-tests"), share: $("pg-share"), check: $("pg-check"), status: $("pg-status"),
+    clock: $("pg-clock"), diags: $("pg-diagnostics"), canvas: $("pg-diagram"),
+    summary: $("pg-summary"), results: $("pg-results"), buttons: $("pg-buttons"),
+    watch: $("pg-watch"), testOut: $("pg-test-output"),
   };
   const MOTOR_BUTTONS = [["START", true], ["STOP", false], ["OL_RESET", true]];
-  const state = { py: null, api: null, labApi: null, labs: {}, session: null, rows: [],
-                  live: false, loadMs: null, errors: [] };
-  const toJs = (p) => p.toJs({ dict_converter: Object.fromEntries });
+  // the page's limit for one silent call of the worker: a run reports every slice, so 10 s
+  // of silence is a scan that does not end; a lab check or the tests report only at the end
+  const BUDGET_MS = { run: 10000, live: 10000, check: 180000, tests: 60000 };
+  const STOP_GRACE_MS = 150;  // Stop waits this long for the worker before ending it
+  const state = { worker: null, nextId: 1, pending: new Map(), busy: null, lastHeard: 0,
+                  labs: {}, rows: [], loadMs: null, example: "", trend: [], watch: [],
+                  compiled: false, scans: 0, t: 0, ok: false, paused: false };
+
+  // ------------------------------------------------------------------ the worker
+  function startWorker() {
+    const w = new Worker("worker.js");
+    state.worker = w;
+    state.pending = new Map();
+    w.onmessage = (e) => {
+      const m = e.data;
+      state.lastHeard = performance.now();
+      if (m.type === "progress") return onProgress(m);
+      if (m.type === "clock") return onClock(m);
+      const p = state.pending.get(m.id);
+      if (!p) return;
+      state.pending.delete(m.id);
+      if (m.type === "failed") p.reject(new Error(m.error)); else p.resolve(m);
+    };
+    w.onerror = (e) => { setStatus("failed", "The playground's worker failed: " + e.message); };
+    return call("init").then((m) => { state.example = m.example; return m; });
+  }
+  function call(type, data) {
+    const id = state.nextId++;
+    return new Promise((resolve, reject) => {
+      state.pending.set(id, { resolve, reject });
+      state.worker.postMessage(Object.assign({ id, type }, data || {}));
+    });
+  }
+  // A long call (run, live, check, tests): the page shows it is busy and watches the worker.
+  function busyCall(type, data, label) {
+    const p = call(type, data);
+    const me = { type, label, promise: p };
+    state.busy = me; state.lastHeard = performance.now(); buttons();
+    const done = () => { if (state.busy === me) { state.busy = null; buttons(); } };
+    p.then(done, done);
+    return p;
+  }
+  setInterval(() => {  // the wall-clock budget, separate from the PLC's own watchdog
+    const budget = state.busy && BUDGET_MS[state.busy.type];
+    if (budget && performance.now() - state.lastHeard > budget) {
+      restart(`Stopped: one call of the program took more than ${budget / 1000} s of real ` +
+        "time (loops that are long for a browser). This is the page's limit, not the PLC's " +
+        "watchdog (PLC2003 counts the PLC's own, virtual, time). Python restarts.");
+    }
+  }, 250);
+  function restart(message) {
+    state.worker.terminate();
+    for (const p of state.pending.values()) p.reject(new Error("stopped"));
+    state.busy = null; state.compiled = false; state.ok = false; buttons();
+    setStatus("stopped", message);
+    const wasReady = ready;
+    ready = startWorker().then(() => {
+      if (el.status.dataset.state === "stopped") el.status.textContent += " Ready again.";
+      buttons();
+    });
+    return wasReady;
+  }
+  async function stop() {
+    if (!state.busy) return;
+    const busy = state.busy;
+    call("stop").catch(() => {});
+    const answered = await Promise.race([busy.promise.then(() => true, () => true),
+      new Promise((r) => setTimeout(() => r(false), STOP_GRACE_MS))]);
+    if (!answered) {
+      restart(`Stopped at t = ${state.t.toFixed(2)} s. Python was inside one long scan, so it ` +
+        "restarts (a few seconds).");
+    } else {
+      setStatus("stopped", `Stopped at t = ${state.t.toFixed(2)} s after ${state.scans} scans.`);
+    }
+  }
 
   // ------------------------------------------------------------------ editor
   function renumber(bad) {
@@ -25,21 +101,49 @@
     el.gutter.innerHTML = lines.join("\n");
     el.gutter.scrollTop = el.code.scrollTop;
   }
-  el.code.addEventListener("input", () => renumber());
+  el.code.addEventListener("input", () => { renumber(); state.compiled = false; });
   el.code.addEventListener("scroll", () => { el.gutter.scrollTop = el.code.scrollTop; });
 
+  function decode(b64) {
+    const s = b64.replace(/-/g, "+").replace(/_/g, "/");
+    const bin = atob(s + "===".slice((s.length + 3) % 4));
+    return new TextDecoder().decode(Uint8Array.from(bin, (c) => c.charCodeAt(0)));
+  }
+  function encode(text) {
+    const bytes = new TextEncoder().encode(text);
+    let bin = "";
+    bytes.forEach((b) => { bin += String.fromCharCode(b); });
+    return btoa(bin).replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
+  }
   function fromHash() {
     const h = new URLSearchParams(location.hash.slice(1));
-    if (h.get("code")) {
-      const b64 = h.get("code").replace(/-/g, "+").replace(/_/g, "/");
-      const bin = atob(b64 + "===".slice((b64.length + 3) % 4));
-      el.code.value = new TextDecoder().decode(Uint8Array.from(bin, (c) => c.charCodeAt(0)));
-    }
+    const has = { code: !!h.get("code"), plant: h.get("plant"), lab: h.get("lab") };
+    if (h.get("code")) el.code.value = decode(h.get("code"));
     if (h.get("lang")) el.lang.value = h.get("lang");
-    if (h.get("lab")) state.wantLab = h.get("lab");
+    if (has.plant && [...el.plant.options].some((o) => o.value === has.plant)) el.plant.value = has.plant;
+    state.wantLab = has.lab;
+    return has;
+  }
+  function shareLink() {
+    const h = new URLSearchParams();
+    h.set("lang", el.lang.value); h.set("plant", el.plant.value);
+    if (el.lab.value) h.set("lab", el.lab.value);
+    h.set("code", encode(el.code.value));
+    return location.href.split("#")[0] + "#" + h.toString();
   }
 
-  // ------------------------------------------------------------------ diagnostics
+  // ------------------------------------------------------------------ messages
+  function setStatus(kind, text) {
+    el.status.textContent = text;
+    el.status.dataset.state = kind;
+  }
+  function escapeHtml(s) {
+    return String(s).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;",
+      '"': "&quot;", "'": "&#39;" })[c]);
+  }
+  function withCode(text) {  // `x` in a message as code, everything else as text
+    return escapeHtml(text).replace(/`([^`]+)`/g, "<code>$1</code>");
+  }
   function showDiagnostics(list) {
     el.diags.innerHTML = "";
     const bad = new Set();
@@ -48,9 +152,13 @@
       li.className = "pg-" + d.severity;
       li.dataset.code = d.code;
       li.dataset.line = d.line;
-      li.textContent = (d.line ? `line ${d.line}${d.col ? ":" + d.col : ""}: ` : "") +
-        `${d.severity} ${d.code}: ${d.message}`;
-      li.addEventListener("click", () => goToLine(d.line));
+      const where = d.line ? `line ${d.line}${d.col ? ":" + d.col : ""}: ` : "";
+      li.innerHTML = `${escapeHtml(where)}${escapeHtml(d.severity)} ` +
+        `<a href="../problems/${encodeURIComponent(d.code)}/">${escapeHtml(d.code)}</a>: ` +
+        withCode(d.message);
+      li.tabIndex = 0;
+      li.addEventListener("click", (e) => { if (e.target.tagName !== "A") goToLine(d.line); });
+      li.addEventListener("keydown", (e) => { if (e.key === "Enter") goToLine(d.line); });
       el.diags.appendChild(li);
       if (d.severity === "error" && d.line) bad.add(d.line);
     }
@@ -63,40 +171,64 @@
     el.code.focus();
     el.code.setSelectionRange(start, start + (lines[line - 1] || "").length);
   }
+  function faultText(diags) {
+    const e = (diags || []).find((d) => d.severity === "error");
+    return e ? `${e.code}: ${e.message}` : "";
+  }
 
   // ------------------------------------------------------------------ timing diagram
+  function fitCanvas() {
+    const c = el.canvas, ratio = window.devicePixelRatio || 1;
+    const w = Math.max(280, Math.round(c.clientWidth || 900));
+    const lanes = Math.max(1, state.rows.length ? Object.keys(state.rows[0]).length - 1 : 1);
+    const h = Math.max(120, Math.min(480, 28 + lanes * 44));
+    c.style.height = h + "px";
+    if (c.width !== Math.round(w * ratio) || c.height !== Math.round(h * ratio)) {
+      c.width = Math.round(w * ratio); c.height = Math.round(h * ratio);
+    }
+    return { w, h, ratio };
+  }
   function draw() {
-    const c = el.canvas, g = c.getContext("2d");
+    const { w, h, ratio } = fitCanvas();
+    const g = el.canvas.getContext("2d");
+    g.setTransform(ratio, 0, 0, ratio, 0, 0);
+    g.fillStyle = "#1e2430"; g.fillRect(0, 0, w, h);
     const rows = state.rows;
-    g.fillStyle = "#1e2430"; g.fillRect(0, 0, c.width, c.height);
-    if (!rows.length) return;
-    const names = Object.keys(rows[0]).filter((k) => k !== "t");
-    const left = 90, lane = (c.height - 24) / names.length;
+    const names = rows.length ? Object.keys(rows[0]).filter((k) => k !== "t") : [];
+    if (!names.length) {
+      g.fillStyle = "#c3ccd8"; g.font = "14px sans-serif";
+      g.fillText(el.plant.value === "none" && state.compiled
+        ? "Tick a variable's trend box below to draw it here." : "", 16, h / 2);
+      return;
+    }
+    const left = Math.min(130, Math.max(70, w * 0.18)), lane = (h - 24) / Math.max(names.length, 1);
     const t1 = rows[rows.length - 1].t, t0 = Math.max(0, t1 - 60);
-    const x = (t) => left + (c.width - left - 10) * (t - t0) / Math.max(t1 - t0, 1e-9);
-    g.font = "12px sans-serif";
+    const x = (t) => left + (w - left - 10) * (t - t0) / Math.max(t1 - t0, 1e-9);
+    g.font = "13px sans-serif";
     names.forEach((name, i) => {
-      const top = 6 + i * lane, h = lane - 8;
-      const vals = rows.map((r) => (typeof r[name] === "boolean" ? (r[name] ? 1 : 0) : r[name]));
+      const top = 6 + i * lane, hh = lane - 8;
+      const isBool = typeof rows[0][name] === "boolean";
+      const vals = rows.map((r) => (isBool ? (r[name] ? 1 : 0) : r[name]));
       const lo = Math.min(...vals), hi = Math.max(...vals);
-      const y = (v) => top + h - h * (typeof rows[0][name] === "boolean" ? v : (v - lo) / Math.max(hi - lo, 1e-9));
-      g.fillStyle = "#cfd8e3"; g.fillText(name, 6, top + h / 2 + 4);
-      g.strokeStyle = typeof rows[0][name] === "boolean" ? "#5fd07a" : "#5ea8ff";
+      const y = (v) => top + hh - hh * (isBool ? v : (v - lo) / Math.max(hi - lo, 1e-9));
+      g.fillStyle = "#e6edf5";
+      g.fillText(name.length > 16 ? "\u2026" + name.slice(-15) : name, 6, top + hh / 2 + 4);
+      g.strokeStyle = isBool ? "#5fd07a" : "#7db7ff";
       g.lineWidth = 2; g.beginPath();
       let first = true, prev = null;
       rows.forEach((r, k) => {
         if (r.t < t0) return;
         const xv = x(r.t), yv = y(vals[k]);
         if (first) { g.moveTo(xv, yv); first = false; }
-        else if (typeof rows[0][name] === "boolean") { g.lineTo(xv, prev); g.lineTo(xv, yv); }
+        else if (isBool) { g.lineTo(xv, prev); g.lineTo(xv, yv); }
         else g.lineTo(xv, yv);
         prev = yv;
       });
       g.stroke();
     });
-    g.fillStyle = "#8a96a8";
-    g.fillText(`${t0.toFixed(0)} s`, left, c.height - 6);
-    g.fillText(`${t1.toFixed(1)} s`, c.width - 60, c.height - 6);
+    g.fillStyle = "#c3ccd8";
+    g.fillText(`${t0.toFixed(0)} s`, left, h - 6);
+    g.fillText(`${t1.toFixed(1)} s`, w - 60, h - 6);
   }
   function switchings(name) {
     let n = 0;
@@ -104,60 +236,178 @@
     return n;
   }
   function summarise() {
-    if (!state.rows.length) { el.summary.textContent = ""; return; }
+    if (!state.rows.length || el.plant.value === "none") {
+      el.summary.textContent = "";  // the clock line says where the run is
+      return;
+    }
     const out = el.plant.value === "tank" ? "PUMP" : "K1";
     const last = state.rows[state.rows.length - 1];
-    el.summary.textContent = `t = ${last.t.toFixed(1)} s, ${state.session.scans} scans: ` +
+    if (!(out in last)) return;
+    el.summary.textContent = `t = ${last.t.toFixed(1)} s, ${state.scans} scans: ` +
       `${out} switched ${switchings(out)} times, now ${last[out] ? "ON" : "OFF"}.`;
     el.summary.dataset.switchings = switchings(out);
   }
-
-  // ------------------------------------------------------------------ running
-  function compile() {
-    stopLive();
-    if (state.session) state.session.destroy();
-    const t = performance.now();
-    state.session = state.api.session(el.code.value, el.lang.value, el.plant.value, 20.0);
-    const ms = performance.now() - t;
-    showDiagnostics(toJs(state.session.diagnostics));
-    state.rows = [state.session.sample().toJs({ dict_converter: Object.fromEntries })];
-    draw(); summarise();
-    const ok = state.session.ok;
-    el.status.textContent = ok ? `Compiled in ${ms.toFixed(0)} ms; the ${el.plant.value} is at t = 0.`
-      : "The program does not compile: see the messages below (click one to go to its line).";
-    el.status.dataset.state = ok ? "compiled" : "error";
-    return ok;
-  }
-  function advance(seconds) {
-    const rows = toJs(state.session.advance(seconds, 0.1));
+  function addRows(rows) {
     state.rows.push(...rows);
     if (state.rows.length > 5000) state.rows.splice(0, state.rows.length - 5000);
-    const diags = toJs(state.session.diagnostics);
-    if (!state.session.ok) showDiagnostics(diags);
-    draw(); summarise();
   }
-  function run(seconds) {
-    if (!compile()) return null;
+  function onProgress(m) {
+    addRows(m.rows); state.t = m.t; state.scans = m.scans;
+    showWatch(m.watch); clock(); draw(); summarise();
+  }
+  function onClock(m) {
+    state.t = m.t;
+    clock(m.behind ? " (the program runs slower than the clock)" : "");
+  }
+  function clock(note) {
+    const live = state.busy && state.busy.type === "live";
+    el.clock.textContent = `t = ${state.t.toFixed(2)} s` +
+      (live ? `, live at ${el.speed.value}x` : "") + (note || "");
+  }
+
+  // ------------------------------------------------------------------ watch panel
+  function showWatch(list) {
+    if (!list) return;
+    const known = state.watch.map((w) => w.path).join("\n");
+    state.watch = list;
+    if (known !== list.map((w) => w.path).join("\n")) buildWatch(list);
+    for (const w of list) {
+      const row = el.watch.querySelector(`tr[data-path="${CSS.escape(w.path)}"]`);
+      if (!row) continue;
+      row.querySelector(".pg-value").textContent = w.value;
+      row.classList.toggle("pg-forced", w.forced);
+    }
+  }
+  function buildWatch(list) {
+    el.watch.innerHTML = "";
+    if (!list.length) return;
+    const head = document.createElement("tr");
+    head.innerHTML = "<th>variable</th><th>type</th><th>value</th><th>new value</th>" +
+      "<th></th><th>trend</th>";
+    el.watch.appendChild(head);
+    for (const w of list) {
+      const tr = document.createElement("tr");
+      tr.dataset.path = w.path;
+      tr.innerHTML = `<td>${escapeHtml(w.path)}</td><td>${escapeHtml(w.type)}</td>` +
+        "<td class=\"pg-value\"></td><td><input class=\"pg-new\" size=\"8\" " +
+        `aria-label="new value of ${escapeHtml(w.path)}"></td><td></td><td></td>`;
+      const input = tr.querySelector(".pg-new");
+      const cells = tr.querySelectorAll("td");
+      const write = document.createElement("button");
+      write.textContent = "Write"; write.className = "md-button pg-small";
+      write.onclick = () => writeVar(w.path, input.value, "write");
+      const force = document.createElement("button");
+      force.textContent = "Force"; force.className = "md-button pg-small";
+      force.onclick = () => (tr.classList.contains("pg-forced")
+        ? unforceVar(w.path) : writeVar(w.path, input.value, "force"));
+      cells[4].append(write, force);
+      if (w.trendable) {
+        const box = document.createElement("input");
+        box.type = "checkbox"; box.checked = state.trend.includes(w.path);
+        box.setAttribute("aria-label", `draw ${w.path} in the diagram`);
+        box.onchange = () => setTrend(w.path, box.checked);
+        cells[5].appendChild(box);
+      }
+      input.addEventListener("keydown", (e) => { if (e.key === "Enter") write.click(); });
+      el.watch.appendChild(tr);
+    }
+  }
+  async function writeVar(path, value, how) {
+    if (!state.compiled) return;
+    const m = await call(how, { path, value });
+    if (m.diagnostics && m.diagnostics.length) showDiagnostics(m.diagnostics);
+    else if (!state.busy) refreshWatch();
+  }
+  async function unforceVar(path) { await call("unforce", { path }); if (!state.busy) refreshWatch(); }
+  async function refreshWatch() { showWatch((await call("watch")).watch); }
+  async function setTrend(path, on) {
+    state.trend = state.trend.filter((p) => p !== path);
+    if (on) state.trend.push(path);
+    await call("trend", { paths: state.trend });
+    state.rows = [];
+  }
+
+  // ------------------------------------------------------------------ running
+  function buttons() {
+    const busy = !!state.busy, up = !!state.example;
+    for (const b of [el.compile, el.run60, el.live, el.check, el.tests, el.step]) b.disabled = !up || busy;
+    el.pause.disabled = !busy || !["run", "live"].includes(state.busy && state.busy.type);
+    el.stop.disabled = !busy;
+    el.live.textContent = "Run live";
+    el.pause.textContent = state.paused ? "Resume" : "Pause";
+  }
+  async function compile() {
+    if (state.busy) await stop();
+    await ready;
+    el.results.innerHTML = ""; el.testOut.textContent = "";
+    const m = await call("compile", { code: el.code.value, lang: el.lang.value,
+                                      plant: el.plant.value, trend: state.trend });
+    state.compiled = true; state.ok = m.ok; state.t = m.t; state.scans = m.scans;
+    state.rows = m.row ? [m.row] : [];
+    state.watch = []; showWatch(m.watch);
+    showDiagnostics(m.diagnostics);
+    draw(); summarise(); clock();
+    const where = el.plant.value === "none" ? "it runs without a plant" : `the ${el.plant.value} is at t = 0`;
+    setStatus(m.ok ? "compiled" : "error", m.ok ? `Compiled in ${m.ms.toFixed(0)} ms; ${where}.`
+      : "The program does not compile: see the messages below (click one to go to its line).");
+    return m.ok;
+  }
+  function endOfRun(m, seconds, ms) {
+    state.t = m.t; state.scans = m.scans;
+    showDiagnostics(m.diagnostics); summarise(); clock();
+    const fault = m.ok ? "" : faultText(m.diagnostics);
+    if (fault) {
+      setStatus("fault", `Stopped at t = ${m.t.toFixed(2)} s (${m.scans} scans) by a run-time ` +
+        `fault: ${fault}`);
+    } else if (m.stopped) {
+      setStatus("stopped", `Stopped at t = ${m.t.toFixed(2)} s after ${m.scans} scans.`);
+    } else {
+      setStatus("ran", `Ran ${seconds} s of virtual time (${m.scans} scans) in ${ms.toFixed(0)} ms.`);
+    }
+  }
+  async function run(seconds) {
+    if (!(await compile())) return null;
     const t = performance.now();
-    advance(seconds);
+    let m;
+    try { m = await busyCall("run", { seconds }, "run"); } catch (e) { return null; }
     const ms = performance.now() - t;
-    const scans = state.session.scans;
-    el.status.textContent = `Ran ${seconds} s of virtual time (${scans} scans) in ${ms.toFixed(0)} ms.`;
-    el.status.dataset.state = "ran";
-    return { ms, scans, scansPerSecond: scans / (ms / 1000) };
+    endOfRun(m, seconds, ms);
+    return { ms, scans: m.scans, scansPerSecond: m.scans / (ms / 1000) };
   }
-  function stopLive() { state.live = false; el.live.textContent = "Run live"; }
-  function liveLoop() {
-    if (!state.live || !state.session || !state.session.ok) { stopLive(); return; }
-    advance(0.2);
-    requestAnimationFrame(liveLoop);
+  async function runLive() {
+    if (!(await compile())) return;
+    state.paused = false;
+    let m;
+    try { m = await busyCall("live", { speed: Number(el.speed.value) }, "live"); } catch (e) { return; }
+    endOfRun(m, m.t, 0);
+  }
+  async function stepOnce() {
+    if (!state.compiled && !(await compile())) return;
+    const m = await call("step");
+    if (m.row) addRows([m.row]);
+    state.t = m.t; state.scans = m.scans; showWatch(m.watch); draw(); summarise(); clock();
+    setStatus(m.ok ? "stepped" : "fault", m.ok ? `One scan: t = ${m.t.toFixed(2)} s.`
+      : `Stopped by a run-time fault: ${faultText(m.diagnostics)}`);
+  }
+  async function pause() {
+    state.paused = !state.paused;
+    await call(state.paused ? "pause" : "resume");
+    buttons();
+    setStatus(state.paused ? "paused" : "running", state.paused
+      ? `Paused at t = ${state.t.toFixed(2)} s.` : "Running.");
   }
   el.compile.onclick = compile;
   el.run60.onclick = () => run(60);
-  el.live.onclick = () => {
-    if (state.live) { stopLive(); return; }
-    if (!compile()) return;
-    state.live = true; el.live.textContent = "Stop"; requestAnimationFrame(liveLoop);
+  el.live.onclick = runLive;
+  el.pause.onclick = pause;
+  el.step.onclick = stepOnce;
+  el.stop.onclick = stop;
+  el.speed.onchange = () => { if (state.busy) call("speed", { speed: Number(el.speed.value) }); };
+  el.share.onclick = async () => {
+    const url = shareLink();
+    history.replaceState(null, "", url);
+    try { await navigator.clipboard.writeText(url); setStatus(el.status.dataset.state, "The link to this program is copied (and in the address bar)."); }
+    catch (e) { setStatus(el.status.dataset.state, "The link to this program is in the address bar."); }
   };
 
   function motorButtons() {
@@ -165,76 +415,113 @@
     if (el.plant.value !== "motor") return;
     for (const [name, pressed] of MOTOR_BUTTONS) {
       const b = document.createElement("button");
-      b.className = "md-button"; b.textContent = name; b.title = `hold to press ${name}`;
-      const down = () => state.session && state.session.set_input(name, pressed);
-      const up = () => state.session && state.session.release(name);
+      b.className = "md-button"; b.textContent = name;
+      b.title = `hold to press ${name} (mouse, touch, Space or Enter)`;
+      const down = () => call("press", { signal: name, value: pressed });
+      const up = () => call("release", { signal: name });
       b.addEventListener("pointerdown", down); b.addEventListener("pointerup", up);
       b.addEventListener("pointerleave", up);
+      b.addEventListener("keydown", (e) => {
+        if ((e.key === " " || e.key === "Enter") && !e.repeat) { e.preventDefault(); down(); }
+      });
+      b.addEventListener("keyup", (e) => {
+        if (e.key === " " || e.key === "Enter") { e.preventDefault(); up(); }
+      });
       el.buttons.appendChild(b);
     }
   }
-  el.plant.onchange = () => { motorButtons(); if (state.api) compile(); };
+  el.plant.onchange = () => { motorButtons(); if (state.example) compile(); };
 
-  // ------------------------------------------------------------------ lab check
-  function checkLab() {
+  // ------------------------------------------------------------------ lab check and tests
+  async function checkLab() {
     const lab = state.labs[el.lab.value];
-    if (!lab) { el.status.textContent = "Choose a lab first."; return null; }
-    stopLive();
-    const t = performance.now();
-    const res = toJs(state.labApi.check_lab(el.code.value, el.lang.value, state.py.toPy(lab)));
+    if (!lab) { setStatus("ready", "Choose a lab first."); return null; }
+    if (state.busy) await stop();
+    state.rows = []; draw(); el.summary.textContent = ""; el.testOut.textContent = "";
+    setStatus("checking", `Checking against ${lab.title}...`);
+    let res;
+    try { res = await busyCall("check", { code: el.code.value, lang: el.lang.value, lab }, "check"); }
+    catch (e) { return null; }
     showDiagnostics(res.diagnostics);
     el.results.innerHTML = "<tr><th>scenario</th><th>criterion</th><th>result</th><th>points</th></tr>";
     for (const r of res.results) {
       const tr = document.createElement("tr");
       tr.className = r.passed === null ? "pg-skip" : r.passed ? "pg-pass" : "pg-fail";
-      for (const v of [r.scenario, r.criterion, r.why, r.passed ? r.points : 0]) {
-        const td = document.createElement("td"); td.textContent = v; tr.appendChild(td);
-      }
+      tr.innerHTML = `<td>${escapeHtml(r.scenario)}</td><td>${withCode(r.criterion)}</td>` +
+        `<td>${withCode(r.why)}</td><td>${r.passed ? r.points : 0}</td>`;
       el.results.appendChild(tr);
     }
-    el.status.textContent = `${lab.title}: ${res.points} of ${res.of} points in the visible ` +
-      `scenarios (${((performance.now() - t) / 1000).toFixed(1)} s). The grader's hidden scenarios may find more.`;
-    el.status.dataset.state = "checked";
+    setStatus("checked", `${lab.title}: ${res.points} of ${res.of} points in the visible ` +
+      `scenarios (${(res.ms / 1000).toFixed(1)} s). The grader's hidden scenarios may find more.`);
+    return res;
+  }
+  async function runTests() {
+    if (state.busy) await stop();
+    el.results.innerHTML = "";
+    let res;
+    try { res = await busyCall("tests", { code: el.code.value, lang: el.lang.value }, "tests"); }
+    catch (e) { return null; }
+    showDiagnostics(res.diagnostics);
+    el.testOut.textContent = res.summary ? res.lines.concat([res.summary]).join("\n") : "";
+    el.testOut.dataset.failed = res.failed;
+    setStatus(res.summary ? "tested" : "error", res.summary
+      ? `TEST blocks: ${res.summary}.` : "The program does not compile: see the messages below.");
     return res;
   }
   el.check.onclick = checkLab;
+  el.tests.onclick = runTests;
   el.lab.onchange = () => {
     const lab = state.labs[el.lab.value];
     if (lab) { el.plant.value = lab.plant; motorButtons(); }
   };
 
+  // ------------------------------------------------------------------ what an example needs
+  async function openExample(asked) {
+    if (!asked.code) { await compile(); return; }
+    const a = await call("analyse", { code: el.code.value, lang: el.lang.value });
+    if (!asked.plant && !asked.lab) { el.plant.value = a.plant; motorButtons(); }
+    if (a.tests > 0 && a.ok) { await compile(); await runTests(); return; }
+    await compile();
+    if (a.ok && el.plant.value === "none") await stepOnce();  // the watch shows its values
+  }
+  window.addEventListener("hashchange", async () => {
+    const asked = fromHash();
+    renumber();
+    if (state.wantLab && state.labs[state.wantLab]) { el.lab.value = state.wantLab; el.lab.onchange(); }
+    await ready;
+    await openExample(asked);
+  });
+
   // ------------------------------------------------------------------ start
+  let ready = null;
   async function start() {
     const t0 = performance.now();
-    fromHash();
-    const [py, zip, labs] = await Promise.all([
-      loadPyodide({ indexURL: new URL("../pyodide/", location.href).href }),
-      fetch("plclab-core.zip").then((r) => r.arrayBuffer()),
-      fetch("labs.json").then((r) => r.json()),
-    ]);
-    py.unpackArchive(zip, "zip", { extractDir: "/home/pyodide/core" });
-    py.runPython("import sys; sys.path.insert(0, '/home/pyodide/core')");
-    state.py = py;
-    state.api = py.pyimport("plclab.site.playground_api");
-    state.labApi = py.pyimport("plclab.site.lab_check");
-    state.labs = labs;
-    for (const [id, lab] of Object.entries(labs)) {
+    const asked = fromHash();
+    const labs = fetch("labs.json").then((r) => r.json());
+    ready = startWorker();
+    state.labs = await labs;
+    for (const [id, lab] of Object.entries(state.labs)) {
       const o = document.createElement("option"); o.value = id; o.textContent = lab.title;
       el.lab.appendChild(o);
     }
-    if (!el.code.value) el.code.value = state.api.TANK_EXAMPLE;
-    if (state.wantLab && labs[state.wantLab]) { el.lab.value = state.wantLab; el.lab.onchange(); }
+    if (state.wantLab && state.labs[state.wantLab]) { el.lab.value = state.wantLab; el.lab.onchange(); }
     renumber(); motorButtons();
+    await ready;
+    if (!el.code.value) el.code.value = state.example;
+    renumber();
     state.loadMs = performance.now() - t0;
-    for (const b of [el.compile, el.run60, el.live, el.check]) b.disabled = false;
-    el.status.textContent = `Ready: Python and plclab loaded in ${(state.loadMs / 1000).toFixed(1)} s.`;
-    el.status.dataset.state = "ready";
+    buttons();
+    if (asked.code) await openExample(asked);
+    if (!["fault", "error", "tested"].includes(el.status.dataset.state)) {
+      setStatus("ready", `Ready: Python and plclab loaded in ${(state.loadMs / 1000).toFixed(1)} s.`);
+    }
   }
-  const ready = start().catch((e) => {
-    el.status.textContent = "The playground could not start: " + e;
-    el.status.dataset.state = "failed";
+  const started = start().catch((e) => {
+    setStatus("failed", "The playground could not start: " + e);
     throw e;
   });
+  window.addEventListener("resize", draw);
   // for the browser tests and the benchmark
-  window.plclabPlayground = { ready, state, compile, run, checkLab };
+  window.plclabPlayground = { ready: started, state, compile, run, checkLab, runTests, stop,
+                              stepOnce, shareLink };
 })();

@@ -158,7 +158,7 @@ def test_home_chapter_and_lab_pages(site, browser, shots):
 
 def wait_state(page, state, timeout=120000):
     page.wait_for_function(
-        f"['{state}', 'failed'].includes(document.getElementById('pg-status').dataset.state)",
+        f"['{state}', 'failed'].includes(document.getElementById('pg-status')?.dataset.state)",
         timeout=timeout)
     assert page.get_attribute("#pg-status", "data-state") == state, page.inner_text("#pg-status")
 
@@ -259,3 +259,146 @@ def test_serve_reuses_a_site_built_from_the_same_sources(site):
     assert again.reused and again.pages > 0
     wasm = next(out.rglob("*.wasm"))
     assert wasm.with_name(wasm.name + ".gz").stat().st_size < wasm.stat().st_size / 2
+
+
+LONG_LOOP = ("PROGRAM Busy\nVAR i : DINT; x : DINT; END_VAR\n"
+             "FOR i := 1 TO 200000 DO x := x + 1; END_FOR;\nEND_PROGRAM\n")
+
+
+def heartbeat(page):
+    """Start a timer in the page that records the longest gap between its ticks (ms): the
+    main thread is blocked for about that long at worst."""
+    page.evaluate("""() => { window.__gap = 0; let last = performance.now();
+        window.__beat = setInterval(() => { const n = performance.now();
+            window.__gap = Math.max(window.__gap, n - last); last = n; }, 10); }""")
+
+
+def test_a_long_legal_loop_never_freezes_the_page_and_stop_answers(site, browser):
+    """The program runs in a worker: a 200,000-iteration loop per scan keeps the page's own
+    thread free, and Stop ends the run at once, even inside one long scan (the worker is
+    replaced). The figures the issue asks for (100 ms, 200 ms) are measured by
+    benchmarks/site_bench.py; this test bounds them loosely (a loaded CI machine)."""
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.fill("#pg-code", LONG_LOOP)
+    heartbeat(page)
+    page.click("#pg-run60")
+    page.wait_for_function("window.plclabPlayground.state.scans > 2", timeout=120000)
+    page.wait_for_timeout(1500)
+    stopped_in = page.evaluate("""async () => { const t = performance.now();
+        await window.plclabPlayground.stop(); return performance.now() - t; }""")
+    gap = page.evaluate("window.__gap")
+    assert page.get_attribute("#pg-status", "data-state") == "stopped"
+    assert stopped_in < 2000 and gap < 1000, (stopped_in, gap)
+    assert "Stopped at t = " in page.inner_text("#pg-status")
+    assert page.is_disabled("#pg-stop")
+    page.wait_for_function("!document.getElementById('pg-run60').disabled", timeout=120000)
+    assert errors == []
+
+
+def test_step_pause_and_live_at_the_clocks_pace(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.click("#pg-compile")
+    wait_state(page, "compiled")
+    for n in (1, 2):
+        page.click("#pg-step")
+        wait_state(page, "stepped")
+        assert page.evaluate("window.plclabPlayground.state.scans") == n
+    page.click("#pg-live")
+    page.wait_for_function("window.plclabPlayground.state.t > 0.5", timeout=60000)
+    t0 = page.evaluate("[window.plclabPlayground.state.t, performance.now()]")
+    page.wait_for_timeout(1500)
+    t1 = page.evaluate("[window.plclabPlayground.state.t, performance.now()]")
+    virtual, wall = t1[0] - t0[0], (t1[1] - t0[1]) / 1000
+    assert 0 < virtual <= wall * 1.0 + 0.6, (virtual, wall)  # 1x: never ahead of the clock
+    assert "live at 1x" in page.inner_text("#pg-clock")
+    page.click("#pg-pause")
+    wait_state(page, "paused")
+    held = page.evaluate("window.plclabPlayground.state.t")
+    page.wait_for_timeout(600)
+    assert page.evaluate("window.plclabPlayground.state.t") - held < 0.25
+    page.click("#pg-stop")
+    wait_state(page, "stopped")
+    assert errors == []
+
+
+def test_watch_panel_writes_and_forces_a_program_without_a_plant(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.select_option("#pg-plant", "none")
+    page.fill("#pg-code", "PROGRAM Count\nVAR n : INT; run : BOOL := TRUE; END_VAR\n"
+              "IF run THEN n := n + 1; END_IF;\nEND_PROGRAM\n")
+    page.click("#pg-compile")
+    wait_state(page, "compiled")
+    assert page.locator("#pg-diagnostics li").count() == 0  # no warning about a plant
+    row = page.locator("#pg-watch tr[data-path='Count.run']")
+    row.locator("input.pg-new").fill("FALSE")
+    row.locator("button", has_text="Force").click()
+    page.wait_for_function("document.querySelector(\"#pg-watch tr[data-path='Count.run']\")"
+                           ".classList.contains('pg-forced')")
+    page.click("#pg-step")
+    wait_state(page, "stepped")
+    assert page.locator("#pg-watch tr[data-path='Count.n'] .pg-value").inner_text() == "0"
+    nrow = page.locator("#pg-watch tr[data-path='Count.n']")
+    nrow.locator("input.pg-new").fill("41")
+    nrow.locator("button", has_text="Write").click()
+    page.wait_for_function("document.querySelector(\"#pg-watch tr[data-path='Count.n'] "
+                           ".pg-value\").textContent === '41'")
+    assert errors == []
+
+
+def test_try_it_opens_what_the_example_needs_and_share_links_round_trip(site, browser):
+    """A try-it link of a program with TEST blocks shows their results as `plclab test` prints
+    them; one that drives no plant opens without a plant and shows its variables; the share
+    link brings back the program, and a changed hash in an open tab is followed."""
+    import base64
+
+    def link(code):
+        data = base64.urlsafe_b64encode(code.encode()).decode().rstrip("=")
+        return urljoin(base, f"playground/#lang=st&code={data}")
+
+    out, base, _ = site
+    tested = ("FUNCTION Twice : INT VAR_INPUT x : INT; END_VAR Twice := 2 * x; END_FUNCTION\n"
+              "TEST 'twice three' ASSERT_EQ(Twice(3), 6); END_TEST\n")
+    page, errors = open_page(browser, link(tested))
+    wait_state(page, "tested")
+    assert page.inner_text("#pg-test-output").splitlines() == ["PASS twice three",
+                                                              "1 passed, 0 failed"]
+    plain = "PROGRAM Avg\nVAR a : REAL := 2.0; b : REAL := 4.0; m : REAL; END_VAR\n" \
+            "m := (a + b) / 2.0;\nEND_PROGRAM\n"
+    page.evaluate(f"location.hash = {link(plain).split('#')[1]!r}")
+    page.wait_for_function("document.querySelector(\"#pg-watch tr[data-path='Avg.m']\") !== null",
+                           timeout=60000)
+    assert page.input_value("#pg-plant") == "none"
+    assert page.locator("#pg-diagnostics li").count() == 0
+    assert page.locator("#pg-watch tr[data-path='Avg.m'] .pg-value").inner_text() == "3.0"
+    url = page.evaluate("window.plclabPlayground.shareLink()")
+    other, errors2 = open_page(browser, url)
+    wait_state(other, "ready")
+    assert other.input_value("#pg-code") == plain
+    assert other.input_value("#pg-plant") == "none"
+    assert errors == errors2 == []
+
+
+def test_motor_buttons_answer_the_keyboard(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "playground/"))
+    wait_state(page, "ready")
+    page.select_option("#pg-plant", "motor")
+    page.fill("#pg-code", "PROGRAM Motor\nVAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL;\n"
+              "K1 AT %QX0.0 : BOOL; END_VAR\nK1 := (START OR K1) AND STOP;\nEND_PROGRAM\n")
+    page.click("#pg-compile")
+    wait_state(page, "compiled")
+    start = page.locator("#pg-buttons button", has_text="START")
+    start.focus()
+    page.keyboard.down(" ")
+    for _ in range(3):
+        page.click("#pg-step")
+        wait_state(page, "stepped")
+    page.keyboard.up(" ")
+    assert page.locator("#pg-watch tr[data-path='Motor.K1'] .pg-value").inner_text() == "TRUE"
+    assert errors == []
