@@ -260,14 +260,23 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
                     me.children.append(v)
                     ms.names[d.name.upper()] = v
             idx.scopes.append(ms)
+    lines = text.splitlines()
+
+    def as_written(name: str, loc: Location | None) -> str:
+        """*name* as the text spells it on *loc*'s line (the AST keeps some names upper-case)."""
+        if loc is None or not 0 < loc.line <= len(lines):
+            return name
+        m = re.search(r"(?<!\w)" + re.escape(name) + r"(?!\w)", lines[loc.line - 1], re.I)
+        return m.group(0) if m else name
+
     for c in own.configs:
-        e = Entry(c.name, CONFIG, c.loc, f"CONFIGURATION {c.name}", node=c, end_line=end_of(c))
+        e = Entry(as_written(c.name, c.loc), CONFIG, c.loc, f"CONFIGURATION {as_written(c.name, c.loc)}", node=c, end_line=end_of(c))
         for d in c.globals:
             v = var_entry(d, c.name)
             e.children.append(v)
             idx.globals.setdefault(d.name.upper(), v)
         for inst in c.instances:
-            v = Entry(inst.name, VARIABLE, inst.loc, f"PROGRAM {inst.name} : {inst.program}",
+            v = Entry(as_written(inst.name, inst.loc), VARIABLE, inst.loc, f"PROGRAM {inst.name} : {inst.program}",
                       inst.program.upper(), inst, container=c.name)
             e.children.append(v)
             idx.globals.setdefault(inst.name.upper(), v)

@@ -23,6 +23,12 @@ LANGUAGE_ID = {".st": "iec-st", ".il": "iec-il", ".ld": "iec-ld", ".xml": "xml"}
 @pytest_lsp.fixture(config=ClientServerConfig(
     server_command=[sys.executable, "-m", "plclab", "lsp", "--stdio"]))
 async def client(lsp_client: LanguageClient):
+    lsp_client.lens_refreshes = []  # the server asks the editor to redraw the lenses
+
+    @lsp_client.feature(T.WORKSPACE_CODE_LENS_REFRESH)
+    def _refresh(params: None) -> None:
+        lsp_client.lens_refreshes.append(params)
+
     await lsp_client.initialize_session(T.InitializeParams(
         capabilities=client_capabilities("visual-studio-code"),
         initialization_options={"docsUrl": DOCS_URL}))
