@@ -23,20 +23,20 @@ from .index import Index, build
 LANGUAGE_SUFFIX = {"st": ".st", "iec-st": ".st", "structured-text": ".st", "structuredtext": ".st",
                    "iec61131": ".st", "il": ".il", "iec-il": ".il", "ld": ".ld", "iec-ld": ".ld",
                    "xml": ".xml", "plcopen": ".xml", "plcopen-xml": ".xml"}
-SUFFIXES = (".st", ".il", ".ld", ".xml", ".iecst", ".scl", ".exp")
 
 
 def filename_for(path: str, language_id: str | None = None) -> str:
-    """The file name the front-end registry sees: the path when its suffix is known, else the
-    path with the suffix of the editor's language (an ``untitled:`` buffer of ST: ``.st``)."""
-    from ..lang.frontends import for_file
+    """The file name the front-end registry sees: the path when its suffix names a front end,
+    else the path with the suffix of the editor's language (an ``untitled:`` buffer of IL:
+    ``.il``; an unknown language: ``.st``)."""
+    import os
 
-    try:
-        for_file(path)
+    from ..lang.frontends.registry import suffixes
+
+    ext = os.path.splitext(path)[1].lower()
+    if ext and ext in suffixes():
         return path
-    except PlcError:
-        suffix = LANGUAGE_SUFFIX.get((language_id or "").lower(), ".st")
-        return path + suffix
+    return path + LANGUAGE_SUFFIX.get((language_id or "").lower(), ".st")
 
 
 @dataclass(eq=False)

@@ -58,7 +58,7 @@ def word_at(text: str, line: int, col: int, *, before_only: bool = False) -> Wor
     k = a
     while k > 0 and s[k - 1] == ".":
         j = k - 1
-        if j > 0 and s[j - 1] == "]":  # a[i].x: skip the index
+        while j > 0 and s[j - 1] == "]":  # a[i].x, a[i][j].x: skip the indexes
             depth = 0
             while j > 0:
                 j -= 1
@@ -127,7 +127,7 @@ def _members_of_typeref(idx: I.Index, t: A.TypeRef, container: str, depth: int
                         ) -> list[I.Entry]:
     if isinstance(t, A.StructTypeRef):
         return [I.Entry(d.spelling or d.name, I.FIELD, d.loc,
-                        f"{d.spelling or d.name} : {I.type_text(d.type)}", I._type_name(d.type), d,
+                        f"{d.spelling or d.name} : {stdlib_docs.type_text(d.type)}", I._type_name(d.type), d,
                         container=container) for d in t.fields]
     if isinstance(t, A.NamedTypeRef):
         return _members_of_type(idx, t.name.upper(), depth + 1)

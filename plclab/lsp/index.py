@@ -17,7 +17,7 @@ from typing import Any
 from ..errors import Location
 from ..lang import ast as A
 from ..lang.unparse import expr as expr_text
-from ..lang.unparse import type_ref
+from .stdlib_docs import pou_signature, type_text
 
 # kinds of entries (the server maps them to LSP SymbolKind and CompletionItemKind)
 VARIABLE, CONSTANT, POU, METHOD, ACTION, STEP, TRANSITION, TYPE, FIELD, ENUM, TEST, CONFIG = (
@@ -101,18 +101,6 @@ def _hidden(name: str) -> bool:
     return name.startswith("__")
 
 
-def type_text(t: A.TypeRef) -> str:
-    """A type as ST text; a STRUCT or an enumeration written out is named by its kind."""
-    if isinstance(t, A.StructTypeRef):
-        return "STRUCT"
-    if isinstance(t, A.EnumTypeRef):
-        return "(" + ", ".join(t.spellings.get(m, m) for m, _, _ in t.members) + ")"
-    try:
-        return type_ref(t)
-    except Exception:  # noqa: BLE001 - a type the unparser does not print
-        return type(t).__name__.removesuffix("TypeRef").upper()
-
-
 def decl_text(d: A.VarDecl) -> str:
     """``VAR_INPUT limit : INT := 10`` (with AT, CONSTANT, RETAIN as declared)."""
     text = d.section + (" CONSTANT" if d.constant else "") + (" RETAIN" if d.retain else "")
@@ -140,8 +128,6 @@ def var_entry(d: A.VarDecl, container: str) -> Entry:
 
 
 def pou_detail(p: A.Pou) -> str:
-    from .stdlib_docs import pou_signature
-
     return pou_signature(p)
 
 

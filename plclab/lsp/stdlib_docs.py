@@ -21,6 +21,7 @@ from functools import cache
 
 from ..lang import ast as A
 from ..lang.builtins import BUILTINS, conversion
+from ..lang.unparse import type_ref
 
 _MATH = {"SQRT": "square root", "LN": "natural logarithm", "LOG": "base-10 logarithm",
          "EXP": "e to the power of IN", "SIN": "sine (radians)", "COS": "cosine (radians)",
@@ -136,19 +137,27 @@ def function_doc(name: str) -> str | None:
     return f"Converts {_article(src)} {src} to {_article(str(dst))} {dst}."
 
 
+def type_text(t: A.TypeRef) -> str:
+    """A type as ST text; a STRUCT or an enumeration written out is named by its kind."""
+    if isinstance(t, A.StructTypeRef):
+        return "STRUCT"
+    if isinstance(t, A.EnumTypeRef):
+        return "(" + ", ".join(t.spellings.get(m, m) for m, _, _ in t.members) + ")"
+    try:
+        return type_ref(t)
+    except Exception:  # noqa: BLE001 - a type the unparser does not print
+        return type(t).__name__.removesuffix("TypeRef").upper()
+
+
 def pou_signature(pou: A.Pou) -> str:
     """``TON(IN : BOOL, PT : TIME) => (Q : BOOL, ET : TIME)``; a function's result after ``:``."""
     def decls(*sections: str) -> str:
-        from .index import type_text
-
         return ", ".join(f"{d.spelling or d.name} : {type_text(d.type)}"
                          for d in pou.decls if d.section in sections)
 
     name = pou.spelling or pou.name
     text = f"{pou.kind} {name}({decls('VAR_INPUT', 'VAR_IN_OUT')})"
     if pou.return_type is not None:
-        from .index import type_text
-
         text += f" : {type_text(pou.return_type)}"
     outs = decls("VAR_OUTPUT")
     if outs:
