@@ -96,7 +96,7 @@ def _pou_members(idx: I.Index, pou: A.Pou, seen: set[str] | None = None) -> list
         if d.name.startswith("__"):
             continue
         if pou.kind == "PROGRAM" or d.section in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT"):
-            out.append(I.var_entry(d, name))
+            out.append(I.var_entry(d, name, idx.spellings))
     for m in pou.methods:
         out.append(I.Entry(m.spelling or m.name, I.ACTION if m.action else I.METHOD, m.loc,
                            I.pou_detail(m), None, m, container=name))

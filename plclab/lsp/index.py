@@ -64,6 +64,7 @@ class Index:
     pous: dict[str, A.Pou] = field(default_factory=dict)  # every POU, the library's too
     types: dict[str, A.TypeDecl] = field(default_factory=dict)
     tests: list[Entry] = field(default_factory=list)
+    spellings: dict[str, str] = field(default_factory=dict)  # POU and TYPE names as declared
     error: str = ""  # why the index is empty (a bug of plclab: the server logs it)
 
     def scope_at(self, line: int) -> Scope | None:
@@ -101,13 +102,13 @@ def _hidden(name: str) -> bool:
     return name.startswith("__")
 
 
-def decl_text(d: A.VarDecl) -> str:
+def decl_text(d: A.VarDecl, spellings: dict[str, str] | None = None) -> str:
     """``VAR_INPUT limit : INT := 10`` (with AT, CONSTANT, RETAIN as declared)."""
     text = d.section + (" CONSTANT" if d.constant else "") + (" RETAIN" if d.retain else "")
     text += f" {d.spelling or d.name}"
     if d.address:
         text += f" AT {d.address}"
-    text += f" : {type_text(d.type)}"
+    text += f" : {type_text(d.type, spellings)}"
     if d.init is not None:
         try:
             text += f" := {expr_text(d.init)}"
@@ -122,9 +123,9 @@ def _type_name(t: A.TypeRef) -> str | None:
     return None
 
 
-def var_entry(d: A.VarDecl, container: str) -> Entry:
+def var_entry(d: A.VarDecl, container: str, spellings: dict[str, str] | None = None) -> Entry:
     return Entry(d.spelling or d.name, CONSTANT if d.constant else VARIABLE, d.loc,
-                 decl_text(d), _type_name(d.type), d, container=container)
+                 decl_text(d, spellings), _type_name(d.type), d, container=container)
 
 
 def pou_detail(p: A.Pou) -> str:
@@ -186,6 +187,11 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
             idx.pous.setdefault(p.name.upper(), p)
         for t in f.types:
             idx.types.setdefault(t.name.upper(), t)
+    for name, p in idx.pous.items():
+        idx.spellings[name] = p.spelling or p.name
+    for name, t in idx.types.items():
+        idx.spellings[name] = t.spelling or t.name
+    sp = idx.spellings
     if own is None:
         return idx
     n_lines = text.count("\n") + 1
@@ -209,7 +215,7 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
                 idx.globals.setdefault(c.name.upper(), c)
     for g in own.globals:
         for d in g.decls:
-            e = var_entry(d, "VAR_GLOBAL")
+            e = var_entry(d, "VAR_GLOBAL", sp)
             idx.top.append(e)
             idx.globals[d.name.upper()] = e
     for p in own.pous:
@@ -223,7 +229,7 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
         for d in p.decls:
             if _hidden(d.name) or d.name.upper() in chart_names:
                 continue
-            v = var_entry(d, name)
+            v = var_entry(d, name, sp)
             e.children.append(v)
             scope.names[d.name.upper()] = v
         for c in chart:
@@ -242,7 +248,7 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
             ms = Scope(me, m.loc.line, me.end_line or scope.end, parent=scope, pou=m)
             for d in m.decls:
                 if not _hidden(d.name):
-                    v = var_entry(d, f"{name}.{mname}")
+                    v = var_entry(d, f"{name}.{mname}", sp)
                     me.children.append(v)
                     ms.names[d.name.upper()] = v
             idx.scopes.append(ms)
@@ -258,7 +264,7 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
     for c in own.configs:
         e = Entry(as_written(c.name, c.loc), CONFIG, c.loc, f"CONFIGURATION {as_written(c.name, c.loc)}", node=c, end_line=end_of(c))
         for d in c.globals:
-            v = var_entry(d, c.name)
+            v = var_entry(d, c.name, sp)
             e.children.append(v)
             idx.globals.setdefault(d.name.upper(), v)
         for inst in c.instances:
@@ -271,7 +277,7 @@ def build(files: list[A.SourceFile], own: A.SourceFile | None, text: str) -> Ind
         e = Entry(t.title, TEST, t.loc, f"TEST '{t.title}'", node=t, end_line=end_of(t))
         scope = Scope(e, t.loc.line, e.end_line or n_lines)
         for d in t.decls:
-            v = var_entry(d, f"TEST '{t.title}'")
+            v = var_entry(d, f"TEST '{t.title}'", sp)
             e.children.append(v)
             scope.names[d.name.upper()] = v
         idx.scopes.append(scope)

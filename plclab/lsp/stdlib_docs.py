@@ -137,8 +137,11 @@ def function_doc(name: str) -> str | None:
     return f"Converts {_article(src)} {src} to {_article(str(dst))} {dst}."
 
 
-def type_text(t: A.TypeRef) -> str:
-    """A type as ST text; a STRUCT or an enumeration written out is named by its kind."""
+def type_text(t: A.TypeRef, spellings: dict[str, str] | None = None) -> str:
+    """A type as ST text; a STRUCT or an enumeration written out is named by its kind. A named
+    type as *spellings* writes it (upper-case name -> as declared: ``Valve``, not ``VALVE``)."""
+    if isinstance(t, A.NamedTypeRef) and spellings:
+        return spellings.get(t.name.upper(), t.name)
     if isinstance(t, A.StructTypeRef):
         return "STRUCT"
     if isinstance(t, A.EnumTypeRef):

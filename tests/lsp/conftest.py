@@ -54,10 +54,15 @@ class Doc:
         return T.Position(line, self.text.splitlines()[line].index(needle) + offset)
 
     async def diagnostics(self) -> list[T.Diagnostic]:
-        while True:
-            p = await self.client.wait_for_notification(T.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
-            if p.uri == self.uri:
-                return p.diagnostics
+        """The next diagnostics published for this document (start waiting before the request
+        that causes them: ``asyncio.ensure_future(doc.diagnostics())``)."""
+        async def wait() -> list[T.Diagnostic]:
+            while True:
+                p = await self.client.wait_for_notification(T.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+                if p.uri == self.uri:
+                    return p.diagnostics
+
+        return await asyncio.wait_for(wait(), 60)
 
     async def replace(self, old: str, new: str) -> list[T.Diagnostic]:
         """An incremental edit: *old* (its first occurrence) becomes *new*; the diagnostics."""

@@ -6,6 +6,7 @@ line of a declaration, the names it declares), not copied from a run.
 
 from __future__ import annotations
 
+import asyncio
 import re
 
 import pytest
@@ -252,7 +253,8 @@ async def test_code_lens_runs_each_test(client, open_doc, name):
 
 async def test_a_failing_test_is_published(client, open_doc):
     doc, _ = await open_doc("demo.st")
-    waiter = doc.diagnostics()
+    waiter = asyncio.ensure_future(doc.diagnostics())
+    await asyncio.sleep(0)
     result = await client.workspace_execute_command_async(T.ExecuteCommandParams(
         command="plclab.runTest", arguments=[doc.uri, "a test that fails"]))
     assert result["passed"] is False and "42.0" in result["message"]

@@ -128,3 +128,10 @@ def test_without_pygls_the_command_says_what_to_install():
     assert done.returncode == 1
     assert "PLC7001" in done.stderr and "plclab[lsp]" in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def test_hover_names_types_as_declared():
+    text = ("FUNCTION_BLOCK Valve VAR_OUTPUT open_ : BOOL; END_VAR END_FUNCTION_BLOCK\n"
+            "PROGRAM P VAR inlet : Valve; END_VAR inlet(); END_PROGRAM")
+    a = analyze(text, "p.st")
+    assert "VAR inlet : Valve" in F.hover(a, 2, 16)
