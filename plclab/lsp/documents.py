@@ -54,6 +54,15 @@ class Analysis:
     project: Any = None  # the checked project (None when there are errors)
 
 
+def is_plc_document(text: str, filename: str) -> bool:
+    """False for an XML file that is not PLCopen (an editor may send every ``.xml``: a Maven
+    ``pom.xml`` gets no diagnostics from plclab)."""
+    if not filename.lower().endswith(".xml"):
+        return True
+    head = text[:4000].lower()
+    return "plcopen" in head or "<project" in head
+
+
 def digest(filename: str, text: str, dialect: str | None) -> str:
     h = hashlib.sha256()
     for part in (filename, dialect or "", text):
@@ -68,6 +77,9 @@ def analyze(text: str, filename: str, dialect: str | None = None, lint: bool = T
     from ..project import check_parsed, parse_sources
 
     start = time.perf_counter()
+    if not is_plc_document(text, filename):
+        return Analysis(filename, text, digest(filename, text, dialect), [], [],
+                        Index(filename), True)
     files: list[Any] = []
     syntax_ok = True
     project = None

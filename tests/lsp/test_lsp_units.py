@@ -135,3 +135,11 @@ def test_hover_names_types_as_declared():
             "PROGRAM P VAR inlet : Valve; END_VAR inlet(); END_PROGRAM")
     a = analyze(text, "p.st")
     assert "VAR inlet : Valve" in F.hover(a, 2, 16)
+
+
+def test_other_xml_files_are_left_alone():
+    a = analyze('<?xml version="1.0"?><settings><x>1</x></settings>', "pom.xml")
+    assert a.diagnostics == [] and a.index.top == []
+    a = analyze('<?xml version="1.0"?><project xmlns="http://www.plcopen.org/xml/tc6_0201">'
+                "<types><pous></pous></types>", "broken.xml")
+    assert a.diagnostics  # a PLCopen file is checked (here: cut short)
