@@ -12,7 +12,7 @@ import re
 import pytest
 from lsprotocol import types as T
 
-pytestmark = pytest.mark.asyncio
+pytestmark = [pytest.mark.asyncio, pytest.mark.slow]  # a server process per test
 
 # per document: a use of a variable (needle, offset of the name in it), its declaration's
 # line (a needle), its type; an edit that misspells a name; a member access (the text up to
