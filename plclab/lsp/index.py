@@ -174,7 +174,7 @@ def _type_entries(t: A.TypeDecl) -> Entry:
                             f"{d.spelling or d.name} : {type_text(d.type)}", _type_name(d.type),
                             d, container=name) for d in t.type.fields]
     elif isinstance(t.type, A.EnumTypeRef):
-        e.children = [Entry(t.type.spellings.get(m, m), ENUM, loc, f"{name}#{m}", node=t,
+        e.children = [Entry(t.type.spellings.get(m, m), ENUM, loc, f"{name}#{t.type.spellings.get(m, m)}", node=t,
                             container=name) for m, _, loc in t.type.members]
     return e
 

@@ -143,3 +143,21 @@ def test_other_xml_files_are_left_alone():
     a = analyze('<?xml version="1.0"?><project xmlns="http://www.plcopen.org/xml/tc6_0201">'
                 "<types><pous></pous></types>", "broken.xml")
     assert a.diagnostics  # a PLCopen file is checked (here: cut short)
+
+
+def test_steps_and_enumeration_values_resolve_to_their_declarations():
+    text = ("TYPE Mode : (Idle, Filling); END_TYPE\n"
+            "PROGRAM P VAR m : Mode; go : BOOL; END_VAR\n"
+            "INITIAL_STEP Wait: END_STEP\n"
+            "STEP Fill: END_STEP\n"
+            "TRANSITION FROM Wait TO Fill := go; END_TRANSITION\n"
+            "TRANSITION FROM Fill TO Wait := Fill.T > T#1s; END_TRANSITION\n"
+            "END_PROGRAM")
+    a = analyze(text, "p.st")
+    assert not [d for d in a.diagnostics if d.severity == "error"]
+    loc = F.definition(a, 5, 18)  # Wait in FROM Wait
+    assert (loc.line, loc.col) == (3, 14)
+    assert "INITIAL_STEP Wait" in F.hover(a, 5, 18)
+    assert "Mode#Filling" in F.hover(a, 1, 21)
+    flags = [c.label for c in F.completions(a, text, 6, 38)]  # after "Fill."
+    assert flags == ["X", "T"]
