@@ -75,6 +75,8 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                           "check", "plclab.course.commands"),
     "quiz": CommandInfo("take a chapter's quiz in the terminal (plclab quiz 10); --check "
                         "validates every key", "plclab.course.commands"),
+    "lsp": CommandInfo("a language server for editors (LSP over stdio): diagnostics, hover, "
+                       "completion, outline, run a TEST", "plclab.lsp.commands"),
     "site": CommandInfo("the web site: build [--out DIR] (course, labs, codes, reference, "
                         "playground) or serve it on 127.0.0.1", "plclab.site.commands"),
 }

@@ -98,9 +98,17 @@ def check_sources(sources: list[tuple[str, str]], dialect: str | None = None, *,
     ``dialect``: of the files without a ``{dialect}`` pragma (ADR 0017). ``lint=True`` adds the
     beginner warnings (:mod:`plclab.lang.check.lint`, PLC0210..), with a lab's ``io_table``
     (rows with ``name`` and ``address``) also the addresses that contradict it."""
+    files, diags = parse_sources(sources, dialect)
+    return check_parsed(files, diags, sources, dialect, lint=lint, io_table=io_table)
+
+
+def check_parsed(files: list[A.SourceFile], diags: list[Diagnostic],
+                 sources: list[tuple[str, str]], dialect: str | None = None, *,
+                 lint: bool = False, io_table: Any = None):
+    """The checker's half of :func:`check_sources`, on the result of :func:`parse_sources`
+    (the language server keeps the parsed files for its index)."""
     from .lang.check import Checker
 
-    files, diags = parse_sources(sources, dialect)
     ck = Checker(files)
     project = ck.run()
     all_diags = diags + ck.diags

@@ -48,12 +48,15 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     # the web site: pages from the course, labs, catalogue and plants; the playground's Python
     # side (plclab.site.playground_api, lab_check) itself needs only the core and the plants.
     [("site", ("plclab.site",))],
+    # the language server: the core's front ends and checker for editors (pygls only in
+    # plclab.lsp.server, imported by `plclab lsp`; docs/adr/0054-language-server.md).
+    [("lsp", ("plclab.lsp",))],
     # the command line: every `commands` module is a CLI front end of its package.
     [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
               "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",
               "plclab.viz.diagram_commands",
               "plclab.course.commands", "plclab.scada.commands",
-              "plclab.site.commands"))],
+              "plclab.site.commands", "plclab.lsp.commands"))],
 ]
 
 # Layers that must import nothing outside the standard library and plclab (the PLC runs
