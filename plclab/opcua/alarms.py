@@ -107,12 +107,12 @@ class AlarmNodes:
 
         alarm_id = self.by_node.get(parent.to_string())
         if alarm_id is None:
-            return [ua.Variant(ua.StatusCode(ua.StatusCodes.BadNodeIdInvalid))]
+            return ua.StatusCode(ua.StatusCodes.BadNodeIdInvalid)
         runner = self.server.runner
         with runner.lock:
             done = self.alarms.acknowledge(alarm_id, t=runner.sim.time, user="opcua")
-        if not done:
-            raise ua.uaerrors.BadConditionBranchAlreadyAcked
+        if not done:  # acknowledged already, or a class that needs no acknowledgement
+            return ua.StatusCode(ua.StatusCodes.BadConditionBranchAlreadyAcked)
         self.acked += 1
         self.server.on_message(f"alarm {alarm_id} acknowledged over OPC UA")
         return []

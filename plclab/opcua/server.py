@@ -75,6 +75,9 @@ class OpcUaServer:
         self.idx = 0
         self.nodes: dict[str, Tag] = {}  # NodeId string -> tag
         self._last: dict[str, tuple[Any, str]] = {}
+        # client writes per tag: a sync whose snapshot is older than a write skips the tag, so
+        # a subscriber never sees the old value come back for a moment
+        self._written: dict[str, int] = {}
         self._t0 = _dt.datetime.now(_dt.UTC)
         self._stop: asyncio.Event | None = None
         self.alarms: Any = None
@@ -125,6 +128,8 @@ class OpcUaServer:
                            f"({exc.strerror or exc}); is another server running there? choose "
                            "another --port") from None
         self._stop = asyncio.Event()
+        with self.runner.lock:  # source timestamps: PLC time 0 is now minus what has run
+            self._t0 = _dt.datetime.now(_dt.UTC) - _dt.timedelta(seconds=self.plc.time)
         self.runner.start()
 
     def request_stop(self) -> None:
@@ -227,12 +232,15 @@ class OpcUaServer:
         """Copy the PLC into the nodes: changed values and status codes, PLC-clock stamps."""
         from asyncua import ua
 
+        written = dict(self._written)
         rows, info = self.snapshot()
         stamp = self.stamp(info["time"])
         now = _dt.datetime.now(_dt.UTC)
         srv = self.server
         for tag, v, status in rows:
             key = tag.path
+            if self._written.get(key) != written.get(key):
+                continue  # written by a client since the snapshot: the next sync sends it
             last = self._last.get(key)
             if last is not None and last[0] == v and last[1] == status:
                 continue
@@ -291,10 +299,11 @@ class OpcUaServer:
                 plc_value = [from_ua(e, _scalar(tag)) for e in value]
             with self.runner.lock:
                 tag.var.set(plc_value)
+            self._written[tag.path] = self._written.get(tag.path, 0) + 1
+            self._last.pop(tag.path, None)  # re-send what the PLC holds now
             self.writes += 1
             who = getattr(event.user, "name", None) or "anonymous"
             self.on_message(f"{who} wrote {tag.path} = {value!r}")
-        self._last.clear()  # re-send what the PLC holds now
 
 
 def _scalar(tag: Tag) -> Any:
