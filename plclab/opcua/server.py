@@ -78,6 +78,7 @@ class OpcUaServer:
         # client writes per tag: a sync whose snapshot is older than a write skips the tag, so
         # a subscriber never sees the old value come back for a moment
         self._written: dict[str, int] = {}
+        self._state: str | None = None
         self._t0 = _dt.datetime.now(_dt.UTC)
         self._stop: asyncio.Event | None = None
         self.alarms: Any = None
@@ -214,9 +215,11 @@ class OpcUaServer:
     # ------------------------------------------------------------------ PLC -> nodes
     def snapshot(self) -> tuple[list[tuple[Tag, Any, str]], dict[str, Any]]:
         """Every tag's value and status, and the PLC's state, taken under the runner's lock."""
+        thread = getattr(self.runner, "_thread", None)
+        alive = thread is None or thread.is_alive()  # a dead runner: its values are stale
         with self.runner.lock:
             plc = self.plc
-            running = plc.state == "RUN"
+            running = plc.state == "RUN" and alive
             bad = bad_keys(self.sim) if running else set()
             rows = []
             for tag in self.tree.tags:
@@ -224,7 +227,9 @@ class OpcUaServer:
                 if tag.dims is not None:
                     v = list(v)
                 rows.append((tag, v, tag_status(tag, running, bad)))
-            info = {"state": plc.state, "time": plc.time, "scans": plc.scan_count,
+            fault = getattr(plc, "fault", None)
+            info = {"state": plc.state if alive else "STOP", "time": plc.time,
+                    "scans": plc.scan_count, "fault": str(fault) if fault is not None else "",
                     "alarms": self.alarms.take() if self.alarms is not None else []}
         return rows, info
 
@@ -258,6 +263,13 @@ class OpcUaServer:
                 ua.Variant(value, vt), SourceTimestamp=stamp, ServerTimestamp=now))
         if self.alarms is not None and info["alarms"]:
             await self.alarms.publish(info["alarms"])
+        if info["state"] != self._state:
+            if self._state is not None:
+                why = f": {info['fault']}" if info["fault"] else ""
+                self.on_message(f"the PLC is in {info['state']}{why}; every tag is "
+                                + ("Good again" if info["state"] == "RUN" else
+                                   "BadOutOfService"))
+            self._state = info["state"]
         self.syncs += 1
 
     # ------------------------------------------------------------------ client writes

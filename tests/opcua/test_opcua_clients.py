@@ -311,6 +311,7 @@ def test_a_stopped_plc_makes_every_tag_bad_out_of_service(tmp_path):
         assert read(url, "ns=2;s=PLC:Status.State") != "RUN"
     finally:
         p.stop()
+    assert "every tag is BadOutOfService" in p.output and "PLC2" in p.output, p.output
 
 
 WIRE_BREAK = """\
