@@ -64,6 +64,9 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
                          "acknowledgement, recipes, users (plclab.scada)", "plclab.scada.commands"),
     "serve": CommandInfo("run programs in real time behind a Modbus TCP server",
                          "plclab.modbus.commands"),
+    "opcua": CommandInfo("run programs in real time behind an OPC UA server (tags with quality, "
+                         "subscriptions, alarms; read-only unless configured)",
+                         "plclab.opcua.commands"),
     "plant-serve": CommandInfo("run a plant in real time as a Modbus TCP server (remote I/O)",
                                "plclab.modbus.commands"),
     "render": CommandInfo("draw a program: LD/FBD networks, SFC charts, ST/IL listings as SVG or "

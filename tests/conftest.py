@@ -18,6 +18,7 @@ FOLDER_MARKERS = {
     "fuzz": ("slow",),
     "notebooks": ("slow", "notebooks"),
     "modbus": ("slow", "modbus"),
+    "opcua": ("slow",),
     "grade": ("slow",),
     "runtime/control": ("control",),
     "security/test_escape_cli.py": ("slow",),

@@ -41,6 +41,8 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     # SCADA around a run (watch tables, alarms, archives, recipes, the operator panel): reads
     # the runtime and the Trace and joins a Simulation as a hook, so sim never imports it.
     [("scada", ("plclab.scada",))],
+    # the PLC behind an OPC UA server (asyncua, lazily): the panel's runner, scada's alarms.
+    [("opcua", ("plclab.opcua",))],
     # labs and the autograder: run simulations, draw the diagrams of failures.
     [("grade", ("plclab.grade",))],
     # the course: chapters, their examples, figures from real runs and quizzes.
@@ -56,7 +58,7 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
               "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",
               "plclab.viz.diagram_commands",
               "plclab.course.commands", "plclab.scada.commands",
-              "plclab.site.commands", "plclab.lsp.commands"))],
+              "plclab.site.commands", "plclab.lsp.commands", "plclab.opcua.commands"))],
 ]
 
 # Layers that must import nothing outside the standard library and plclab (the PLC runs
