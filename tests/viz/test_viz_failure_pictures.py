@@ -460,3 +460,43 @@ def test_a_failure_judged_at_the_end_is_drawn_over_the_whole_run():
     student_picture(lab, res, "run", ns, _test("run", "counts good bottles", 20.0))
     a, _, b = ns.window.partition("..")
     assert float(a.rstrip("s")) > 0.0 and float(b.rstrip("s")) < 40.0  # around 20 s
+
+
+def test_a_spawned_viewer_gets_its_cursor_at_the_failure_in_the_right_recording():
+    """ADR 0050: only a live viewer can be told where the cursor stands; ``place_cursor``
+    waits for the recording to arrive, picks it by its id and pauses there."""
+    from types import SimpleNamespace as NS
+
+    from plclab.viz.recording import place_cursor
+
+    calls, polls = [], []
+
+    class Viewer:
+        def __init__(self, arrived_after):
+            self.arrived_after = arrived_after
+
+        def get_state(self):
+            polls.append(1)
+            recs = [NS(store_id="Recording:a:lab/other/f.st")]
+            if len(polls) > self.arrived_after:
+                recs.append(NS(store_id="Recording:b:lab/cold/f.st"))
+            return NS(recordings=recs)
+
+        def set_time(self, timeline, **kw):
+            calls.append((timeline, kw))
+
+    viewer = Viewer(arrived_after=2)
+    assert place_cursor(12.5, "lab/cold/f.st", connect=lambda url: viewer, pause=0.0)
+    assert calls == [("sim_time", {"duration": 12.5, "play_state": "paused",
+                                   "recording": "Recording:b:lab/cold/f.st"})]
+    assert len(polls) == 3, "it waited for the recording"
+
+    def refused(url):
+        raise ConnectionError(url)
+
+    calls.clear()
+    assert not place_cursor(3.0, "x", connect=refused, tries=3, pause=0.0) and calls == []
+    polls.clear()
+    never = Viewer(arrived_after=99)
+    assert not place_cursor(3.0, "lab/cold/f.st", connect=lambda url: never, tries=4,
+                            pause=0.0) and calls == []
