@@ -500,3 +500,16 @@ def test_a_spawned_viewer_gets_its_cursor_at_the_failure_in_the_right_recording(
     never = Viewer(arrived_after=99)
     assert not place_cursor(3.0, "lab/cold/f.st", connect=lambda url: never, tries=4,
                             pause=0.0) and calls == []
+
+
+def test_a_labs_own_check_with_a_signal_and_a_set_point_draws_its_band():
+    """heater-pid's own checks name TEMP, a target and a band: the band is drawn on TEMP;
+    without a signal (or without a target) the numbers stay words."""
+    got = _kinds(limits_of("", {"signal": "TEMP", "target": 60.0, "band": 0.5, "after": 720.0}))
+    assert ("band", "TEMP", 59.5, 60.5) in got
+    assert ("target", "TEMP", 60.0, None) in _kinds(limits_of("", {"signal": "TEMP",
+                                                                   "target": 60.0}))
+    assert ("level", "TEMP", 45.0, None) in _kinds(limits_of("", {"signal": "TEMP",
+                                                                  "level": 45.0}))
+    assert [k for k, *_ in _kinds(limits_of("", {"target": 60.0, "band": 0.5}))] == ["count"]
+    assert [k for k, *_ in _kinds(limits_of("", {"signal": "TEMP", "band": 0.5}))] == ["count"]
