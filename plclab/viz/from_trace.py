@@ -164,7 +164,10 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         elif not v.passed:
             rec.events.append(Event(t, "verdict", "", f"FAILED {v.name}: {v.detail}", "ERROR"))
             if v.time is not None and inside(v.time):
-                sig = next((s for s in v.signals if lay.lane_of(s) or lay.plot_of(s)), "")
+                # on the signal its limits are drawn on (TEMP's band), else its first signal
+                lim_sigs = [lim.signal for lim in v.limits if getattr(lim, "signal", "")]
+                sig = next((s for s in [*lim_sigs, *v.signals]
+                            if lay.lane_of(s) or lay.plot_of(s)), "")
                 rec.markers += _markers(lay, sig, "fails", v.time, None, f"FAILED {v.name}")
         else:
             rec.events.append(Event(t, "verdict", "", f"passed {v.name}", "INFO"))

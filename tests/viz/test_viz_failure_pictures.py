@@ -513,3 +513,31 @@ def test_a_labs_own_check_with_a_signal_and_a_set_point_draws_its_band():
                                                                   "level": 45.0}))
     assert [k for k, *_ in _kinds(limits_of("", {"target": 60.0, "band": 0.5}))] == ["count"]
     assert [k for k, *_ in _kinds(limits_of("", {"signal": "TEMP", "band": 0.5}))] == ["count"]
+
+
+def test_the_failure_is_crossed_on_the_signal_its_limits_are_drawn_on():
+    """heater-pid: the criterion reads SP, TEMP and POWER, its band is on TEMP: the cross goes
+    on TEMP's line at the failure (not on SP, the first signal it reads)."""
+    import numpy as np
+
+    from plclab.trace import Trace
+    from plclab.viz.from_trace import recording
+    from plclab.viz.layout import RunInfo, Verdict
+
+    t = np.arange(0.0, 100.0, 0.5)
+    trace = Trace(t, {"SP": np.where(t < 50, 50.0, 60.0), "TEMP": 50.0 + 0.01 * np.sin(t)},
+                  {"SP": "float", "TEMP": "float"},
+                  meta={"t_end": 100.0, "units": {"SP": "%", "TEMP": "degC"},
+                        "signals": ["SP", "TEMP"]})
+    lims = limits_of("", {"signal": "TEMP", "target": 60.0, "band": 0.5})
+    info = RunInfo(lab="x", scenario="step", verdicts=[
+        Verdict("follows the step", False, 80.0, "left the band", ["SP", "TEMP"], lims)])
+    rec = recording(trace, info=info, fps=1.0)
+    [cross] = [m for m in rec.markers if m.kind == "fails" and m.plot is not None]
+    plot = next(p for p in rec.layout.plots if p.key == cross.plot)
+    assert [ln.series.name for ln in plot.lines] == ["TEMP"] and abs(cross.value - 50.0) < 0.1
+    no_limits = RunInfo(lab="x", scenario="step", verdicts=[
+        Verdict("follows the step", False, 80.0, "left the band", ["SP", "TEMP"], [])])
+    [first] = [m for m in recording(trace, info=no_limits, fps=1.0).markers
+               if m.kind == "fails" and m.plot is not None]
+    assert first.value == 60.0, "without limits: its first signal, SP"
