@@ -130,13 +130,15 @@ def main(argv: list[str] | None = None) -> int:
                 png, rrd = out / f"{tag}.png", Path(tmp) / f"{tag}.rrd"
                 text = check(lab, program, png, rrd)
                 m = re.search(r"timing diagram: \S+ \((.*)\)", text)
-                drew = m.group(1) if m else "no --png (" + (
-                    "passed" if "score:" in text and not png.exists() else "?") + ")"
+                score = re.findall(r"score: (\S+)/(\S+)", text)
+                full = bool(score) and score[-1][0] == score[-1][1]
+                drew = m.group(1) if m else ("passed the visible scenarios (no failure to draw)"
+                                             if full else "no failure picture")
                 seen = "-"
                 if not ns.no_viewer and rrd.exists():
                     seen = default_view(rrd, out / f"{tag}--viewer.png", env, ns.wait)
-                score = re.findall(r"score: (\S+)", text)
-                line = "\t".join([lab, program.name, score[-1] if score else "?", drew, seen])
+                line = "\t".join([lab, program.name, "/".join(score[-1]) if score else "?", drew,
+                                  seen])
                 with index.open("a", encoding="utf-8") as f:
                     f.write(line + "\n")
                 print(line, flush=True)
