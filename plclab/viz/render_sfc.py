@@ -383,6 +383,8 @@ def _bars(nodes: dict[str, _Node], chart: Any, o: dict[str, Any]) -> dict[int, f
                 before = chart.transitions[owner[last]]
                 room = _width(_cond_label(before, o["transitions"][owner[last]])) + 64
                 x = last + min(max(SIDE, room), 2 * SIDE)
+                while any(abs(x - m.cx) < 12 for m in nodes.values() if m is not n):
+                    x += 12  # not beside another column's wire, which may pass this row
             taken.append(x)
             owner[x] = k
             out[k] = x
@@ -397,6 +399,8 @@ def _bars(nodes: dict[str, _Node], chart: Any, o: dict[str, Any]) -> dict[int, f
                    max((nodes[m].row for m, _ in u.sources if m in nodes), default=0) == low]
             while any(abs(x - u) < SIDE for u in row):  # not on a bar of the same row
                 x = max(u for u in row if abs(x - u) < SIDE) + SIDE + 1
+                while any(0.5 < abs(x - m.cx) < 12 for m in nodes.values()):
+                    x += 12  # nor beside another column's wire, which may pass this row
             out[k] = x
     return out
 
