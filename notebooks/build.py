@@ -287,23 +287,32 @@ def starter_text(lab_dir: Path) -> str:
 # ---------------------------------------------------------------------------- cells
 
 SETUP = '''\
-# Set-up: plclab, the lab, and three helpers. Nothing to change here.
+# Set-up: plclab, the lab, and four helpers. Nothing to change here.
 import io
 import logging
 import os
+import re
+import tempfile
 import warnings
 from pathlib import Path
+from types import SimpleNamespace
 
 import matplotlib
+import numpy as np
 from IPython.display import Image, Markdown, display
 
 import plclab
 from plclab.errors import PlcError
 from plclab.grade import check, load_lab
+from plclab.grade.commands import failure_picture, first_failure
+from plclab.grade.criteria import criterion_limits
 from plclab.grade.engine import guess_language
+from plclab.grade.feedback import criterion_picture
 from plclab.sim import run
 from plclab.viz import timing_diagram
-from plclab.viz.from_trace import series
+from plclab.viz.from_trace import plant_limits, series
+from plclab.viz.layout import signal_labels
+from plclab.viz.series import Series
 
 warnings.simplefilter("ignore", DeprecationWarning)
 warnings.simplefilter("ignore", PendingDeprecationWarning)
@@ -334,12 +343,61 @@ def simulate(program, scenario, duration=None):
         return None
 
 
-def show_timing(trace, signals=None, t0=None, t1=None, title=""):
-    """A timing diagram of the trace, shown as a PNG image."""
+def what_is_checked(trace, scenario, names):
+    """What the scenario's criteria check, on the diagram's rows: set points and levels
+    (dashed lines), bands (shaded), and each counted switching as a counter row with the
+    most it may reach (as `plclab lab check --png` draws a failure)."""
+    lines, bands, rows = {{}}, {{}}, []
+    for crit in lab.criteria_for(scenario):
+        drawing = criterion_picture(trace, crit, names)
+        for row, found in drawing.thresholds.items():
+            have = lines.setdefault(row, [])
+            have += [x for x in found if all(abs(x[0] - y) > 1e-9 for y, _ in have)]
+        for row, found in drawing.bands.items():
+            have = bands.setdefault(row, [])
+            have += [b for b in found if b not in have]
+        for lim in criterion_limits(crit):
+            if lim.kind != "count" or not lim.signal or lim.value is None \\
+                    or lim.signal not in trace:
+                continue
+            col = trace.resolve(lim.signal)
+            t, v = np.asarray(trace.time, float), np.asarray(trace[col], float)
+            n = np.concatenate([[0], np.cumsum(np.abs(np.diff(v)) > 0.5)])
+            per = re.search(r"in ([\\d.]+) s", lim.label)
+            name = f"{{col}} switchings"
+            if per:  # a count over a sliding window: the switchings of the last W s
+                w = float(per.group(1))
+                n = n - n[np.clip(np.searchsorted(t, t - w), 0, len(n) - 1)]
+                name += f" in {{per.group(1)}} s"
+            if all(r.name != name for r in rows):
+                rows.append(Series(name, t, n.astype(float), "real"))  # a step plot
+            words = "at most" if lim.label.startswith("at most") else "fewer than"
+            lines.setdefault(name, []).append((float(lim.value), words))
+    return lines, bands, rows
+
+
+def show_timing(trace, signals=None, t0=None, t1=None, title="", scenario=None):
+    """A timing diagram of the trace, shown as a PNG image, with what the scenario's
+    criteria check drawn on it."""
     if trace is None:
         return
-    names = [s for s in (signals or lab.diagram_signals) if s in trace]
-    fig = timing_diagram(series(trace, names), t0=t0, t1=t1, title=title, width=9.0)
+    names = [trace.resolve(s) for s in (signals or lab.diagram_signals) if s in trace]
+    lines, bands, counts = what_is_checked(trace, scenario, names) if scenario else ({{}}, {{}}, [])
+    for row, found in plant_limits(trace).items():  # switch heights, rims
+        have = lines.setdefault(row, [])
+        have += [x for x in found if all(abs(x[0] - y) > 1e-9 for y, _ in have)]
+    labels = signal_labels(lab.io, trace)  # PUMP %QX0.0: the program's name and address
+    rows = []
+    for s in series(trace, names) + counts:  # a wire's plant and PLC side: one row
+        shown = labels.get(s.name, s.name)
+        if any(r.name == shown for r in rows):
+            continue
+        lines = {{(shown if k == s.name else k): v for k, v in lines.items()}}
+        bands = {{(shown if k == s.name else k): v for k, v in bands.items()}}
+        s.name = shown
+        rows.append(s)
+    fig = timing_diagram(rows, t0=t0, t1=t1, title=title, width=9.0, thresholds=lines,
+                         bands=bands, fixed_layout=True)
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=80)
     import matplotlib.pyplot as plt
@@ -348,11 +406,29 @@ def show_timing(trace, signals=None, t0=None, t1=None, title=""):
     display(Image(data=buf.getvalue()))
 
 
+def show_first_failure(result):
+    """The first failing scenario around the moment of its first failure, the failed
+    criterion's limits drawn: the picture `plclab lab check FILE --png F` draws."""
+    first = first_failure(lab, result.tests, result.traces) if result.traces else None
+    if first is None:
+        print("every visible scenario passed: no failure to show")
+        return None
+    with tempfile.TemporaryDirectory() as tmp:
+        png = Path(tmp) / "first-failure.png"
+        said = failure_picture(lab, result.traces[first.scenario], first,
+                               SimpleNamespace(png=str(png), window=None, signals=None))
+        display(Image(data=png.read_bytes()))
+    print("first failure:", said.rsplit(" (", 1)[-1].rstrip(")"))
+    return first
+
+
 def grade(program):
     """The lab's visible scenarios and criteria on the program: feedback and score."""
     result = check(LAB, program)
     display(Markdown(result.feedback_markdown))
     print(f"score: {{result.score:g}}/{{result.max_score:g}}")
+    if result.score < result.max_score:
+        show_first_failure(result)
     return result
 
 
@@ -362,23 +438,28 @@ print(lab)
 EXPLORE = '''\
 # A run of the scenario `{scenario}`{dur_text} on the simulated plant, with the lab's wiring.
 trace = simulate(PROGRAM, {scenario!r}, duration={duration!r})
-show_timing(trace, t0={t0!r}, t1={t1!r}, title={title!r})
+show_timing(trace, t0={t0!r}, t1={t1!r}, title={title!r}, scenario={scenario!r})
 if trace is not None:
     print("events (kind: count, first time):", trace.event_counts())
 '''
 
 GRADE = '''\
-# The visible scenarios and criteria of the lab: what passed, what failed, hints.
+# The visible scenarios and criteria of the lab: what passed, what failed, hints; after a
+# failure, the first failing scenario at the moment it failed, with the criterion's limits.
 result = grade(PROGRAM)
 '''
 
-RERUN = '''\
-# The run above in rerun's viewer: plots per unit, the I/O lanes, the plant, chatter and
-# faults marked (rerun-notebook 0.41 serves its viewer from your machine: works offline).
+RERUN = '''\\
+# In rerun's viewer: after a failed check the graded run (one viewer per scenario, the first
+# failure first, its cursor at the failure, the criteria's limits drawn), else the run above.
+# rerun-notebook 0.41 serves its viewer from your machine: works offline.
 from plclab.viz import notebook as rerun_view
 
-if trace is not None and rerun_view.available():
-    rerun_view.show(trace, lab=lab, scenario={scenario!r})
+if rerun_view.available() and result is not None and result.score < result.max_score:
+    rerun_view.show(result, lab=lab, limits={{c.name: criterion_limits(c) for c in lab.criteria}})
+elif trace is not None and rerun_view.available():
+    rerun_view.show(trace, lab=lab, scenario={scenario!r},
+                    limits={{c.name: criterion_limits(c) for c in lab.criteria}})
 elif trace is not None:
     print("To see the run in rerun here: pip install 'rerun-notebook==0.41.*'")
 '''
@@ -455,9 +536,10 @@ def build_notebook(lab_id: str) -> nbformat.NotebookNode:
         "with the feedback a grader gives. The last line is your score."))
     cells.append(new_code_cell(GRADE))
     cells.append(new_markdown_cell(
-        "## The run in rerun\n\nThe same run as an interactive timeline (the view of "
-        f"`plclab lab check {lab_id} FILE --rrd run.rrd`): scrub the time, zoom into a "
-        "moment, watch the plant."))
+        "## The run in rerun\n\nAn interactive timeline (the view of "
+        f"`plclab lab check {lab_id} FILE --rrd run.rrd`): after a failed check it opens on "
+        "the first failing scenario at its first failure, else it shows the run above. "
+        "Scrub the time, zoom into a moment, watch the plant."))
     cells.append(new_code_cell(RERUN.format(scenario=cfg["scenario"])))
     if "Grading" in sec:
         cells.append(new_markdown_cell("## What is graded\n\n" + sec["Grading"]))

@@ -403,6 +403,7 @@ def lab_check(ns: argparse.Namespace) -> int:
             if first is not None and ns.scenario and first.scenario != ns.scenario:
                 first = None
             student_picture(lab, again, name, ns, first)
+            ns.cursor = first.t_fail if first is not None else None  # --spawn: the failure
             from plclab.viz.layout import signal_labels
 
             ns.labels = signal_labels(lab.io, again.traces[name])  # PUMP %QX0.0

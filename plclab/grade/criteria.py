@@ -1004,6 +1004,19 @@ def limits_of(check_name: str, params: Mapping[str, Any]) -> list[Limit]:
     else:  # a lab's own Python check: its numeric parameters, as they are named
         nums = [(k, v) for k, v in p.items() if isinstance(v, int | float)
                 and not isinstance(v, bool) and k not in ("from", "to")]
+        sig = p.get("signal") if isinstance(p.get("signal"), str) else ""
+        num = dict(nums)
+        if sig and "target" in num:  # a set point on its signal (heater-pid's own checks)
+            target = float(num["target"])
+            if "band" in num:  # "60 ± 0.5" says the set point too: one label, not two
+                band = float(num["band"])
+                out.append(Limit("band", sig, f"{target:g} ± {band:g}", target - band,
+                                 target + band))
+            else:
+                out.append(Limit("target", sig, f"set point {target:g}", target))
+        elif sig and "level" in num:
+            out.append(Limit("level", sig, f"level {float(num['level']):g}",
+                             float(num["level"])))
         if nums:
             out.append(Limit("count", "", ", ".join(f"{k} = {v:g}" for k, v in nums)))
     win = _window(p) if check_name not in ("value",) else None

@@ -212,7 +212,14 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
         cv.text((cv.w / 2, (0.32 if title else 0.12) * cv.k), note, 8, ORANGE, "mt")
     img = cv.img.reduce(SCALE)
     buf = io.BytesIO()
-    img.save(buf, format="PNG", compress_level=6)
+    from PIL.PngImagePlugin import PngInfo
+
+    info = PngInfo()  # the title and the note as PNG text too, for readers and tests
+    if title:
+        info.add_text("Title", title)
+    if note:
+        info.add_text("Description", note)
+    img.save(buf, format="PNG", compress_level=6, pnginfo=info)
     data = buf.getvalue()
     if path is not None:
         Path(path).write_bytes(data)

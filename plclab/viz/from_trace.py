@@ -164,7 +164,10 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         elif not v.passed:
             rec.events.append(Event(t, "verdict", "", f"FAILED {v.name}: {v.detail}", "ERROR"))
             if v.time is not None and inside(v.time):
-                sig = next((s for s in v.signals if lay.lane_of(s) or lay.plot_of(s)), "")
+                # on the signal its limits are drawn on (TEMP's band), else its first signal
+                lim_sigs = [lim.signal for lim in v.limits if getattr(lim, "signal", "")]
+                sig = next((s for s in [*lim_sigs, *v.signals]
+                            if lay.lane_of(s) or lay.plot_of(s)), "")
                 rec.markers += _markers(lay, sig, "fails", v.time, None, f"FAILED {v.name}")
         else:
             rec.events.append(Event(t, "verdict", "", f"passed {v.name}", "INFO"))
@@ -453,24 +456,25 @@ def write_lab_rrd(lab, result, path: str | Path, student_file: str = "", ns: Any
 def to_rerun(trace, path: str | Path | None = "run.rrd", spawn: bool = False,
              names: list[str] | None = None,
              window: tuple[float | None, float | None] = (None, None), fps: float = 10.0,
-             info: RunInfo | None = None, scan: bool = False):
+             info: RunInfo | None = None, scan: bool = False, cursor: float | None = None):
     """Write a trace as a rerun recording (``spawn=True`` opens the viewer instead); ``fps``
     is the frame rate of the plant animation (the signals keep every scan); ``info`` names
-    the run and carries the lab's I/O table and verdicts; ``scan`` adds scan durations."""
+    the run and carries the lab's I/O table and verdicts; ``scan`` adds scan durations;
+    ``cursor`` is where a spawned viewer's time cursor stands (default: the first failure)."""
     try:
         import rerun  # noqa: F401
     except ImportError:
         raise PlcError("PLC3005", "rerun recordings need the viz extra: pip install "
                        "'plclab[viz]'") from None
     rec = recording(trace, names, *window, fps=fps, info=info, scan=scan)
-    return write_rrd(rec, None if spawn else path, spawn=spawn)
+    return write_rrd(rec, None if spawn else path, spawn=spawn, cursor=cursor)
 
 
 def export(trace, *, rrd: str | None = None, vcd: str | None = None,
            wavedrom: str | None = None, png: str | None = None, csv: str | None = None,
            signals: list[str] | None = None, window: str | None = None,
            spawn: bool = False, scan: bool = False, info: RunInfo | None = None,
-           labels: dict[str, str] | None = None) -> list[str]:
+           labels: dict[str, str] | None = None, cursor: float | None = None) -> list[str]:
     """Write every requested file; returns lines saying what was written where. ``labels``
     names columns for the timing diagram (``%QX0.0`` -> ``PUMP %QX0.0``; default: the
     wiring's signal names, :func:`plclab.viz.layout.signal_labels`)."""
@@ -494,7 +498,8 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
             seen.add(label)
             ss_png.append(s.__class__(label, s.times, s.values, s.kind, s.unit, s.labels))
     if rrd or spawn:
-        to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan)
+        to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan,
+                 cursor=cursor)
         done.append("rerun viewer opened" if spawn else f"timeline: {rrd}")
     if vcd:
         from .exports import write_vcd
@@ -541,4 +546,4 @@ def run_exports(trace, ns: Any) -> list[str]:
                   wavedrom=getattr(ns, "wavedrom", None), png=getattr(ns, "png", None),
                   signals=sig, window=getattr(ns, "window", None),
                   spawn=getattr(ns, "spawn", False), scan=getattr(ns, "scan_times", False),
-                  labels=getattr(ns, "labels", None))
+                  labels=getattr(ns, "labels", None), cursor=getattr(ns, "cursor", None))

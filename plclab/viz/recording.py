@@ -562,11 +562,51 @@ def _box_slices(s: Shape, n: int = 6) -> list[tuple[list[tuple[float, float]], f
 
 
 def write_rrd(rec: Recording, path: str | Path | None = "run.rrd", spawn: bool = False,
-              send_blueprint: bool = True) -> Path | None:
-    """Write ``rec`` to ``path`` (headless), or open a viewer with ``spawn=True``."""
+              send_blueprint: bool = True, cursor: float | None = None) -> Path | None:
+    """Write ``rec`` to ``path`` (headless), or open a viewer with ``spawn=True``: its time
+    cursor then stands at ``cursor`` (default: the recording's first failure, if any)."""
     w = RrdWriter(rec, path, spawn, send_blueprint)
     w.send(rec)
-    return w.close()
+    out = w.close()
+    if spawn:
+        info = rec.layout.info
+        fails = [v.time for v in info.verdicts if not v.passed and v.time is not None]
+        t = cursor if cursor is not None else (min(fails) if fails else None)
+        if t is not None:
+            place_cursor(t, info.recording_id())
+    return out
+
+
+def place_cursor(t: float, recording_id: str = "", connect: Any = None,
+                 url: str = "rerun+http://127.0.0.1:9876/proxy", tries: int = 20,
+                 pause: float = 0.5) -> bool:
+    """Move the time cursor of a viewer plclab spawned to ``t`` s on ``sim_time``, paused, in
+    the recording ``recording_id`` once it has arrived (ADR 0050: a blueprint or a file
+    cannot set the cursor; only a live viewer, through ``rerun.experimental.ViewerClient``).
+    Best effort: False when no viewer answers in ``tries`` x ``pause`` s."""
+    import time
+
+    if connect is None:
+        try:
+            from rerun.experimental import ViewerClient
+        except ImportError:
+            return False
+        connect = ViewerClient.connect
+    for _ in range(tries):
+        try:
+            client = connect(url)
+            state = client.get_state()
+            rec = next((r for r in state.recordings
+                        if not recording_id or str(r.store_id).endswith(":" + recording_id)),
+                       None)
+            if rec is not None:
+                client.set_time("sim_time", duration=float(t), play_state="paused",
+                                recording=rec.store_id)
+                return True
+        except Exception:  # noqa: BLE001 - the viewer not up yet, or an older one
+            pass
+        time.sleep(pause)
+    return False
 
 
 def write_many(recs: list[Recording], path: str | Path) -> Path:

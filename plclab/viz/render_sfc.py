@@ -127,24 +127,23 @@ def render_sfc_svg(pou: Any, *, values: dict[str, Any] | None = None) -> str:
         key = str(k).upper()
         vals[key[len(prefix):] if key.startswith(prefix) else key] = v
     o = outline(chart)
-    nodes = [_Node(s.name, s.text, s.initial, o["steps"][k]["actions"])
-             for k, s in enumerate(chart.steps)]
-    by_name = {n.name: n for n in nodes}
-    for n in nodes:
-        n.active = bool(vals.get(f"{n.text}.X".upper(), vals.get(f"{n.name}.X", False)))
-    _place(nodes, chart, o)
-    bars = _bars(by_name, chart, o)
-    svg = _Svg()
-    for n in nodes:
-        _step(svg, n)
-    labels: list[tuple[float, float, str, str]] = []
-    jumps: list[tuple[float, float, _Node, float]] = []
-    for k, t in enumerate(chart.transitions):
-        _transition(svg, t, o["transitions"][k], by_name, vals, bars[k], labels, jumps)
-    lines = _conditions(svg, labels)
-    for x, y, n, bar_y in jumps:  # below the condition written beside the arrow
-        lines_here = lines.get((round(x), round(bar_y)), 0) if abs(y - bar_y) < 0.5 else 0
-        _jump(svg, x, y, n, max(JUMP_H, 14 * lines_here + 6))
+    # a jump arrow hanging from one bar must not end on the double line of another bar of the
+    # same row, nor two double lines or two arrows' names lie on each other: such a line goes
+    # lower (and the row's gap grows) until it is clear
+    drops: dict[int, float] = {}
+    extra: dict[int, float] = {}
+    for _ in range(8):
+        svg, doubles, hung = _draw(chart, o, vals, drops, extra)
+        clash = _clash(doubles, hung)
+        if clash is None:
+            break
+        k, need = clash
+        row, lowered = next((d[1], d[5]) for d in doubles if d[0] == k)
+        if lowered:  # under its bar: lower it, and the next row with it
+            drops[k] = drops.get(k, 0.0) + need
+            extra[row] = max(extra.get(row, 0.0), drops[k])
+        else:  # just above its steps: they go down
+            extra[row] = extra.get(row, 0.0) + need
     from plclab.viz.render_network import merge_segments
 
     svg.parts[:0] = [f'<line class="wire" x1="{x1:g}" y1="{y1:g}" x2="{x2:g}" y2="{y2:g}"/>'
@@ -165,6 +164,73 @@ def render_sfc_svg(pou: Any, *, values: dict[str, Any] | None = None) -> str:
     return "\n".join([head, f"<title>{title}</title>", style, *svg.parts, "</svg>"]) + "\n"
 
 
+
+
+def _clash(doubles: list, hung: list) -> tuple[int, float] | None:
+    """In one row's gap: a jump arrow (its tip or its target's name) on another bar's double
+    line, two double lines on each other, or two arrows' names on each other; the transition
+    whose double line goes lower, and by how much."""
+    lines = {d[0]: d for d in doubles}
+    for k, row, y, lo, hi, lowered in doubles:
+        for owner, jrow, x, tip, width in hung:
+            if owner != k and jrow == row and lo - 6 <= x + 10 + width and x <= hi + 6 \
+                    and tip - 20 <= y <= tip + 8:
+                return k, tip + 12 - y
+        for k2, row2, y2, lo2, hi2, lowered2 in doubles:
+            if k2 > k and row2 == row and abs(y2 - y) < 8 and min(hi, hi2) - max(lo, lo2) > -6:
+                if lowered2:  # the later one under the earlier
+                    return k2, y + 10 - y2
+                if lowered:
+                    return k, y2 + 10 - y
+    for i, (k, row, x, tip, width) in enumerate(hung):
+        for k2, row2, x2, tip2, width2 in hung[i + 1:]:
+            if k2 != k and row2 == row and abs(tip2 - tip) < 16 and x - 8 < x2 + 10 + width2 \
+                    and x2 - 8 < x + 10 + width:
+                later = max((j for j in (k, k2) if j in lines), default=None)
+                if later is not None:
+                    return later, 24.0
+    return None
+
+def _draw(chart: Any, o: dict[str, Any], vals: dict[str, Any], drops: dict[int, float],
+          extra: dict[int, float]) -> tuple[_Svg, list, list]:
+    """The chart drawn with the double lines of ``drops`` lowered and the rows' gaps grown
+    by ``extra``; its double lines (transition, row, y, x from, x to, hung under its bar) and
+    hanging jump
+    arrows (transition, row, x, tip y, width of the target's name)."""
+    nodes = [_Node(s.name, s.text, s.initial, o["steps"][k]["actions"])
+             for k, s in enumerate(chart.steps)]
+    by_name = {n.name: n for n in nodes}
+    for n in nodes:
+        n.active = bool(vals.get(f"{n.text}.X".upper(), vals.get(f"{n.name}.X", False)))
+    _place(nodes, chart, o, extra)
+    for _ in range(len(nodes)):  # a step's bars spread right must stop before the next step
+        bars = _bars(by_name, chart, o)
+        crowded = _crowded(by_name, chart, bars)
+        if crowded is None:
+            break
+        m, dx = crowded
+        for n in nodes:  # that step's column and every column right of it move right
+            if n.cx >= m.cx - 0.5:
+                n.cx += dx
+    svg = _Svg()
+    for n in nodes:
+        _step(svg, n)
+    labels: list[tuple[float, float, str, str]] = []
+    jumps: list[tuple[float, float, _Node, float, int, int]] = []
+    doubles: list[tuple[int, int, float, float, float, int]] = []
+    for k, t in enumerate(chart.transitions):
+        _transition(svg, t, o["transitions"][k], by_name, vals, bars[k], labels, jumps,
+                    k, drops.get(k, 0.0), doubles)
+    lines = _conditions(svg, labels)
+    hung = []
+    for x, y, n, bar_y, k, row in jumps:  # below the condition written beside the arrow
+        lines_here = lines.get((round(x), round(bar_y)), 0) if abs(y - bar_y) < 0.5 else 0
+        length = max(JUMP_H, 14 * lines_here + 6)
+        _jump(svg, x, y, n, length)
+        hung.append((k, row, x, y + length, _width(n.text, bold=True)))
+    return svg, doubles, hung
+
+
 def _chart_of(pou: Any) -> Any:
     chart = getattr(pou, "sfc", None)
     if chart is None:
@@ -179,7 +245,8 @@ def _chart_of(pou: Any) -> Any:
     return chart
 
 
-def _place(nodes: list[_Node], chart: Any, o: dict[str, Any]) -> None:
+def _place(nodes: list[_Node], chart: Any, o: dict[str, Any],
+           extra: dict[int, float] | None = None) -> None:
     """Rows: breadth first from the initial step; columns: in the order the steps are
     reached, each row starting under the leftmost step that leads to it."""
     by_name = {n.name: n for n in nodes}
@@ -268,7 +335,7 @@ def _place(nodes: list[_Node], chart: Any, o: dict[str, Any]) -> None:
         tall = max((n.h for n in row), default=STEP_H)
         for n in row:
             n.y, n.row_h = y, tall
-        y += tall + GAP
+        y += tall + GAP + (extra or {}).get(r, 0.0)
 
 
 def _reach(n: _Node, chart: Any, o: dict[str, Any], nodes: dict[str, _Node]) -> float:
@@ -316,6 +383,8 @@ def _bars(nodes: dict[str, _Node], chart: Any, o: dict[str, Any]) -> dict[int, f
                 before = chart.transitions[owner[last]]
                 room = _width(_cond_label(before, o["transitions"][owner[last]])) + 64
                 x = last + min(max(SIDE, room), 2 * SIDE)
+                while any(abs(x - m.cx) < 12 for m in nodes.values() if m is not n):
+                    x += 12  # not beside another column's wire, which may pass this row
             taken.append(x)
             owner[x] = k
             out[k] = x
@@ -330,9 +399,30 @@ def _bars(nodes: dict[str, _Node], chart: Any, o: dict[str, Any]) -> dict[int, f
                    max((nodes[m].row for m, _ in u.sources if m in nodes), default=0) == low]
             while any(abs(x - u) < SIDE for u in row):  # not on a bar of the same row
                 x = max(u for u in row if abs(x - u) < SIDE) + SIDE + 1
+                while any(0.5 < abs(x - m.cx) < 12 for m in nodes.values()):
+                    x += 12  # nor beside another column's wire, which may pass this row
             out[k] = x
     return out
 
+
+
+def _crowded(nodes: dict[str, _Node], chart: Any, bars: dict[int, float]
+             ) -> tuple[_Node, float] | None:
+    """A step standing on or just right of a bar of another step of its row (a step's
+    further transitions spread right past the column of a step it leads to), and how far
+    it must move right; None when every bar has room for its condition."""
+    for k, t in enumerate(chart.transitions):
+        srcs = [nodes[s] for s, _ in t.sources if s in nodes]
+        if len(srcs) != 1:
+            continue
+        n = srcs[0]
+        for m in nodes.values():
+            if m.row != n.row or m.cx <= n.cx + 0.5 or bars[k] < m.cx - m.w / 2 - 400:
+                continue
+            room = m.cx - m.w / 2 - (bars[k] + 100)
+            if room < 0 and bars[k] > n.cx + 0.5:
+                return m, -room
+    return None
 
 def _x(n: _Node) -> float:
     return n.cx
@@ -399,7 +489,8 @@ def _action_label(a: dict[str, Any]) -> str:
 
 
 def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
-                vals: dict[str, Any], bar_x: float, labels: list, jumps: list) -> None:
+                vals: dict[str, Any], bar_x: float, labels: list, jumps: list, k: int = 0,
+                drop: float = 0.0, doubles: list | None = None) -> None:
     srcs = [nodes[s] for s, _ in t.sources if s in nodes]
     tgts = [nodes[s] for s, _ in t.targets if s in nodes]
     if not srcs:
@@ -439,7 +530,7 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
         label += f" = {'TRUE' if value else 'FALSE'}"
     labels.append((bar_x, bar_y, label, "cond enabled" if enabled else "cond"))
     # from the bar down to the following steps
-    below = bar_y + 16
+    below = bar_y + 16 + drop
     if forward and not back:  # a simultaneous divergence's double line just above its steps,
         below = min(_y(n) for n in forward) - 20  # clear of jumps hanging from other bars
     if len(forward) == 1 and not back:
@@ -447,7 +538,7 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
         if abs(_x(n) - bar_x) < 0.5:
             svg.line(bar_x, bar_y, bar_x, _y(n))
         else:  # an alternative convergence: a single line above the step
-            top = _y(n) - 14
+            top = _y(n) - 8  # below a simultaneous double line (-20, -17) before it
             svg.line(bar_x, bar_y, bar_x, top)
             svg.line(bar_x, top, _x(n), top)
             svg.line(_x(n), top, _x(n), _y(n))
@@ -462,12 +553,14 @@ def _transition(svg: _Svg, t: Any, ot: dict[str, Any], nodes: dict[str, _Node],
         svg.line(bar_x, bar_y, bar_x, below)
         svg.line(lo, below, hi, below)
         svg.line(lo, below + 3, hi, below + 3)
+        if doubles is not None:
+            doubles.append((k, row, below, lo, hi, bool(back)))
         for n in forward:
             svg.line(_x(n), below + 3, _x(n), _y(n))
         for j, n in enumerate(back):
-            jumps.append((spots[j][0], below + 3, n, bar_y))
+            jumps.append((spots[j][0], below + 3, n, bar_y, k, row))
     if not forward and len(back) == 1:
-        jumps.append((bar_x, bar_y, back[0], bar_y))
+        jumps.append((bar_x, bar_y, back[0], bar_y, k, row))
 
 
 def _cond_label(t: Any, ot: dict[str, Any]) -> str:

@@ -160,3 +160,37 @@ def test_no_stderr_on_a_fresh_machine(tmp_path, monkeypatch):
     assert not stderr, f"output on stderr: {stderr}"
     assert images >= 1
     assert (tmp_path / "mpl").is_dir()
+
+
+def test_a_mistake_opens_on_its_first_failure_with_the_criterions_limits():
+    """After a failed check the notebook draws the first failing scenario at its first failure
+    (what ``lab check --png`` draws: the scenario and criterion named, the failure's red line)."""
+    import base64
+    import io
+
+    from PIL import Image
+
+    from plclab.grade import check, load_lab
+    from plclab.grade.commands import first_failure
+
+    mistake = (LABS / "tank-two-position" / "mistakes" / "follows_ls1.st").read_text("utf-8")
+    nb, _ = _execute("tank-two-position", mistake)
+    stderr, errors, texts, images = _outputs(nb)
+    assert not errors, errors
+    assert not stderr, f"output on stderr: {stderr}"
+    res = check("tank-two-position", mistake)
+    first = first_failure(load_lab("tank-two-position"), res.tests, res.traces)
+    assert first is not None, "the mistake fails"
+    said = next(t for t in texts if "first failure:" in t)
+    assert f"scenario '{first.scenario}'" in said and f"criterion '{first.criterion}'" in said
+    grade_cell = next(c for c in nb.cells if "result = grade(PROGRAM)" in c.source)
+    pngs = [base64.b64decode(o["data"]["image/png"]) for o in grade_cell.outputs
+            if "image/png" in o.get("data", {})]
+    assert len(pngs) == 1, "the first failure's picture"
+    img = Image.open(io.BytesIO(pngs[0])).convert("RGB")
+    assert f"{first.scenario}: {first.criterion} (FAILED)" == Image.open(
+        io.BytesIO(pngs[0])).text.get("Title")
+    px, (w, h) = img.load(), img.size
+    red = [x for x in range(w) if sum(px[x, y][0] - px[x, y][1] > 45 and
+                                      abs(px[x, y][1] - px[x, y][2]) < 30 for y in range(h)) > 30]
+    assert red, "the failure's red line"

@@ -460,3 +460,84 @@ def test_a_failure_judged_at_the_end_is_drawn_over_the_whole_run():
     student_picture(lab, res, "run", ns, _test("run", "counts good bottles", 20.0))
     a, _, b = ns.window.partition("..")
     assert float(a.rstrip("s")) > 0.0 and float(b.rstrip("s")) < 40.0  # around 20 s
+
+
+def test_a_spawned_viewer_gets_its_cursor_at_the_failure_in_the_right_recording():
+    """ADR 0050: only a live viewer can be told where the cursor stands; ``place_cursor``
+    waits for the recording to arrive, picks it by its id and pauses there."""
+    from types import SimpleNamespace as NS
+
+    from plclab.viz.recording import place_cursor
+
+    calls, polls = [], []
+
+    class Viewer:
+        def __init__(self, arrived_after):
+            self.arrived_after = arrived_after
+
+        def get_state(self):
+            polls.append(1)
+            recs = [NS(store_id="Recording:a:lab/other/f.st")]
+            if len(polls) > self.arrived_after:
+                recs.append(NS(store_id="Recording:b:lab/cold/f.st"))
+            return NS(recordings=recs)
+
+        def set_time(self, timeline, **kw):
+            calls.append((timeline, kw))
+
+    viewer = Viewer(arrived_after=2)
+    assert place_cursor(12.5, "lab/cold/f.st", connect=lambda url: viewer, pause=0.0)
+    assert calls == [("sim_time", {"duration": 12.5, "play_state": "paused",
+                                   "recording": "Recording:b:lab/cold/f.st"})]
+    assert len(polls) == 3, "it waited for the recording"
+
+    def refused(url):
+        raise ConnectionError(url)
+
+    calls.clear()
+    assert not place_cursor(3.0, "x", connect=refused, tries=3, pause=0.0) and calls == []
+    polls.clear()
+    never = Viewer(arrived_after=99)
+    assert not place_cursor(3.0, "lab/cold/f.st", connect=lambda url: never, tries=4,
+                            pause=0.0) and calls == []
+
+
+def test_a_labs_own_check_with_a_signal_and_a_set_point_draws_its_band():
+    """heater-pid's own checks name TEMP, a target and a band: the band is drawn on TEMP;
+    without a signal (or without a target) the numbers stay words."""
+    got = _kinds(limits_of("", {"signal": "TEMP", "target": 60.0, "band": 0.5, "after": 720.0}))
+    assert ("band", "TEMP", 59.5, 60.5) in got
+    assert ("target", "TEMP", 60.0, None) in _kinds(limits_of("", {"signal": "TEMP",
+                                                                   "target": 60.0}))
+    assert ("level", "TEMP", 45.0, None) in _kinds(limits_of("", {"signal": "TEMP",
+                                                                  "level": 45.0}))
+    assert [k for k, *_ in _kinds(limits_of("", {"target": 60.0, "band": 0.5}))] == ["count"]
+    assert [k for k, *_ in _kinds(limits_of("", {"signal": "TEMP", "band": 0.5}))] == ["count"]
+
+
+def test_the_failure_is_crossed_on_the_signal_its_limits_are_drawn_on():
+    """heater-pid: the criterion reads SP, TEMP and POWER, its band is on TEMP: the cross goes
+    on TEMP's line at the failure (not on SP, the first signal it reads)."""
+    import numpy as np
+
+    from plclab.trace import Trace
+    from plclab.viz.from_trace import recording
+    from plclab.viz.layout import RunInfo, Verdict
+
+    t = np.arange(0.0, 100.0, 0.5)
+    trace = Trace(t, {"SP": np.where(t < 50, 50.0, 60.0), "TEMP": 50.0 + 0.01 * np.sin(t)},
+                  {"SP": "float", "TEMP": "float"},
+                  meta={"t_end": 100.0, "units": {"SP": "%", "TEMP": "degC"},
+                        "signals": ["SP", "TEMP"]})
+    lims = limits_of("", {"signal": "TEMP", "target": 60.0, "band": 0.5})
+    info = RunInfo(lab="x", scenario="step", verdicts=[
+        Verdict("follows the step", False, 80.0, "left the band", ["SP", "TEMP"], lims)])
+    rec = recording(trace, info=info, fps=1.0)
+    [cross] = [m for m in rec.markers if m.kind == "fails" and m.plot is not None]
+    plot = next(p for p in rec.layout.plots if p.key == cross.plot)
+    assert [ln.series.name for ln in plot.lines] == ["TEMP"] and abs(cross.value - 50.0) < 0.1
+    no_limits = RunInfo(lab="x", scenario="step", verdicts=[
+        Verdict("follows the step", False, 80.0, "left the band", ["SP", "TEMP"], [])])
+    [first] = [m for m in recording(trace, info=no_limits, fps=1.0).markers
+               if m.kind == "fails" and m.plot is not None]
+    assert first.value == 60.0, "without limits: its first signal, SP"

@@ -1,0 +1,153 @@
+"""What a student sees after a failed check, for every lab and each of its mistakes.
+
+    PYTHONPATH=$PWD python tools/lab_pictures.py --out /tmp/pics [--labs a,b] [--first] [--no-viewer]
+
+For each mistake (``labs/*/mistakes/*``; ``--first``: the first of each lab) it runs, as a
+student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenarios) and keeps:
+
+- ``LAB--MISTAKE.png``: the ``--png`` timing diagram (the first failure, its criterion's limits);
+- ``LAB--MISTAKE--viewer.png``: the real rerun viewer's *default* view of ``R`` (no clicks, no
+  cursor moved: under Xvfb at 1600x1000, saved with ``ViewerClient.save_screenshot``);
+- a line in ``index.tsv``: lab, mistake, the scenario and criterion ``--png`` drew, and what the
+  viewer opened (its recording, where its time cursor stood).
+
+Not run by the test suite (minutes per lab). ``docs/figures/rerun/`` holds a chosen few.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import io
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def mistakes(labs: list[str] | None, first: bool) -> list[tuple[str, Path]]:
+    out = []
+    for d in sorted((ROOT / "labs").iterdir()):
+        if not (d / "lab.toml").exists() or (labs and d.name not in labs):
+            continue
+        ms = sorted(p for p in (d / "mistakes").glob("*.*")) if (d / "mistakes").is_dir() else []
+        out += [(d.name, m) for m in (ms[:1] if first else ms)]
+    return out
+
+
+def check(lab: str, program: Path, png: Path, rrd: Path) -> str:
+    """``plclab lab check`` in process; its output."""
+    from plclab.cli import main
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        main(["lab", "check", lab, str(program), "--png", str(png), "--rrd", str(rrd)])
+    return buf.getvalue()
+
+
+def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
+    """Open ``rrd`` in a viewer of its own and save its first view untouched; what it opened."""
+    from rerun.experimental import ViewerClient
+
+    from plclab.grade.screenshots import free_port, shrink
+
+    port = free_port()
+    viewer = subprocess.Popen([sys.executable, "-m", "rerun_cli", str(rrd), "--port", str(port),
+                               "--window-size", "1600x1000"],
+                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        client, state = None, None
+        deadline = time.monotonic() + 180
+        while time.monotonic() < deadline:
+            try:
+                client = ViewerClient.connect(f"rerun+http://127.0.0.1:{port}/proxy")
+                state = client.get_state()
+                if state.recordings and not state.loading:
+                    break
+            except Exception:  # noqa: BLE001 - not up yet
+                pass
+            time.sleep(1.0)
+        if client is None or state is None:
+            return "viewer did not come up"
+        if shutil.which("xdotool"):  # the pointer on the menu bar: no hover tooltip
+            subprocess.run(["xdotool", "mousemove", "5", "5"], env=env, check=False)
+        time.sleep(wait)
+        for attempt in range(3):  # a loaded machine: the viewer may answer late
+            try:
+                client.save_screenshot(str(png))
+                state = client.get_state()
+                break
+            except Exception as e:  # noqa: BLE001 - TimeoutError from the viewer's gRPC
+                if attempt == 2:
+                    return f"no screenshot: {e}"
+                time.sleep(5.0)
+        shrink(png)
+        act = next((r for r in state.recordings if r.store_id == state.active_recording), None)
+        if act is None:
+            return f"opened {state.active_recording}"
+        t = act.current_time
+        when = f"{t / 1e9:.2f} s" if t is not None else "unset"
+        return f"opened {act.store_id.split(':')[-1]}, cursor at {when}"
+    finally:
+        viewer.terminate()
+        try:
+            viewer.wait(10)
+        except subprocess.TimeoutExpired:
+            viewer.kill()
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--labs", default=None, help="comma separated lab ids (default: all)")
+    ap.add_argument("--first", action="store_true", help="only the first mistake of each lab")
+    ap.add_argument("--no-viewer", action="store_true", help="only the --png pictures")
+    ap.add_argument("--wait", type=float, default=10.0, help="seconds to let the viewer draw")
+    ns = ap.parse_args(argv)
+    out = Path(ns.out)
+    out.mkdir(parents=True, exist_ok=True)
+    env = {**os.environ, "RUST_LOG": "warn", "RERUN_ANALYTICS": "0"}
+    xvfb = None
+    if not ns.no_viewer and (not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB")):
+        from plclab.grade.screenshots import free_display
+
+        n = free_display()
+        xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x1000x24"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        env["DISPLAY"] = f":{n}"
+        time.sleep(1.0)
+    index = out / "index.tsv"
+    try:
+        with tempfile.TemporaryDirectory(prefix="plclab-pics-") as tmp:
+            for lab, program in mistakes(ns.labs.split(",") if ns.labs else None, ns.first):
+                tag = f"{lab}--{program.stem.replace('_', '-')}"
+                png, rrd = out / f"{tag}.png", Path(tmp) / f"{tag}.rrd"
+                text = check(lab, program, png, rrd)
+                m = re.search(r"timing diagram: \S+ \((.*)\)", text)
+                score = re.findall(r"score: (\S+)/(\S+)", text)
+                full = bool(score) and score[-1][0] == score[-1][1]
+                drew = m.group(1) if m else ("passed the visible scenarios (no failure to draw)"
+                                             if full else "no failure picture")
+                seen = "-"
+                if not ns.no_viewer and rrd.exists():
+                    seen = default_view(rrd, out / f"{tag}--viewer.png", env, ns.wait)
+                line = "\t".join([lab, program.name, "/".join(score[-1]) if score else "?", drew,
+                                  seen])
+                with index.open("a", encoding="utf-8") as f:
+                    f.write(line + "\n")
+                print(line, flush=True)
+    finally:
+        if xvfb is not None:
+            xvfb.terminate()
+            xvfb.wait(10)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
