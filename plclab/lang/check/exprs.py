@@ -217,7 +217,12 @@ class Expressions(Pass, NodeVisitor):
         return self.binary(e, expected)
 
     def visit_Call(self, e: A.Call, expected: T.Type | None, write: bool) -> T.Type:
-        return self.cx.calls.call(e, statement=False)
+        calls = self.cx.calls
+        outer, calls.expected = calls.expected, expected  # TRUNC is typed by its context
+        try:
+            return calls.call(e, statement=False)
+        finally:
+            calls.expected = outer
 
     def visit_ArrayInit(self, e: A.Expr, expected: T.Type | None, write: bool) -> T.Type:
         self.err("PLC0103", "an aggregate initial value is only allowed in a declaration",

@@ -1,0 +1,66 @@
+"""Issue 40's gaps between the dialects, the refusals and warnings side: what the TEST blocks
+of tests/st/ed2_matiec_gaps.st accept in one dialect is refused (or warned about) in another."""
+
+from __future__ import annotations
+
+import pytest
+
+from plclab.project import check_sources
+
+
+def diags(text: str, dialect: str) -> list[tuple[str, str, int]]:
+    """(code, severity, line) of every diagnostic of ``text`` read in ``dialect``."""
+    return [(d.code, d.severity, d.location.line if d.location else 0)
+            for d in check_sources([(text, "f.st")], dialect)[1]]
+
+
+def errors(text: str, dialect: str) -> list[str]:
+    return [c for c, sev, _ in diags(text, dialect) if sev == "error"]
+
+
+TRUNC_INT = """PROGRAM P VAR r : REAL := 2.5; i : INT; w : WORD; END_VAR
+i := TRUNC(r) + 1;
+w := INT_TO_WORD(TRUNC(r));
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("dialect", ["iec", "matiec"])
+def test_trunc_takes_its_type_from_the_context_in_ed2_dialects(dialect):
+    assert diags(TRUNC_INT, dialect) == []
+
+
+def test_trunc_is_dint_in_codesys_and_s7():
+    # CODESYS: a DINT stored in an INT, accepted with its warning, but INT_TO_WORD of a DINT
+    # is refused; S7: both refused
+    assert [(c, s) for c, s, _ in diags(TRUNC_INT, "codesys")] == [
+        ("PLC0107", "error"), ("PLC0285", "warning")]
+    assert errors(TRUNC_INT, "s7") == ["PLC0118", "PLC0107"]
+
+
+@pytest.mark.parametrize("target", ["WORD", "BOOL", "TIME"])
+def test_trunc_into_a_type_that_is_no_integer_is_refused_in_iec(target):
+    # ANY_INT is no bit string: the context does not make TRUNC a WORD
+    text = f"PROGRAM P VAR r : REAL; x : {target}; END_VAR x := TRUNC(r); END_PROGRAM"
+    assert errors(text, "iec") == ["PLC0118"]
+
+
+def test_round_is_not_typed_by_context():
+    # ROUND is not an IEC function: it stays DINT (as in CODESYS and OSCAT's own ROUND)
+    text = "PROGRAM P VAR r : REAL; i : INT; END_VAR i := ROUND(r); END_PROGRAM"
+    assert errors(text, "iec") == ["PLC0118"]
+
+
+MULTIME = "PROGRAM P VAR t : TIME; END_VAR t := MULTIME(T#1s, 2) + DIVTIME(T#1s, 2); END_PROGRAM"
+
+
+@pytest.mark.parametrize("dialect", ["iec", "codesys", "s7"])
+def test_ed2_time_names_are_refused_outside_matiec(dialect):
+    assert errors(MULTIME, dialect) == ["PLC0320", "PLC0320"]
+    assert errors(MULTIME, "matiec") == []
+
+
+def test_a_user_function_called_multime_wins_over_the_ed2_name():
+    text = ("FUNCTION MULTIME : TIME VAR_INPUT a : TIME; b : INT; END_VAR MULTIME := a; "
+            "END_FUNCTION\nPROGRAM P VAR t : TIME; END_VAR t := MULTIME(T#1s, 2); END_PROGRAM")
+    assert errors(text, "codesys") == []
