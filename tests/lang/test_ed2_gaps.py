@@ -64,3 +64,26 @@ def test_a_user_function_called_multime_wins_over_the_ed2_name():
     text = ("FUNCTION MULTIME : TIME VAR_INPUT a : TIME; b : INT; END_VAR MULTIME := a; "
             "END_FUNCTION\nPROGRAM P VAR t : TIME; END_VAR t := MULTIME(T#1s, 2); END_PROGRAM")
     assert errors(text, "codesys") == []
+
+
+CONST_NO_VALUE = """VAR_GLOBAL CONSTANT G : INT; END_VAR
+PROGRAM P VAR CONSTANT K : DINT; END_VAR VAR a : ARRAY[K..2] OF INT; x : DINT; END_VAR
+x := K + G + a[0];
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("dialect", ["iec", "matiec"])
+def test_a_constant_without_a_value_has_its_default_in_iec_and_matiec(dialect):
+    assert errors(CONST_NO_VALUE, dialect) == []
+
+
+@pytest.mark.parametrize("dialect", ["codesys", "s7"])
+def test_a_constant_without_a_value_is_refused_where_the_vendor_requires_one(dialect):
+    found = [(c, line) for c, sev, line in diags(CONST_NO_VALUE, dialect) if sev == "error"]
+    assert found == [("PLC0109", 1), ("PLC0109", 2)]  # the global's and the local's
+
+
+def test_a_constant_without_a_value_is_still_read_only():
+    text = "PROGRAM P VAR CONSTANT K : INT; END_VAR K := 1; END_PROGRAM"
+    assert errors(text, "iec") != []

@@ -45,6 +45,7 @@ class Declarations(Pass):
                         for d in ds}
         for d in table.global_decls:
             self.decl_type(d)
+            self.constant_value(d)
             if id(d) not in per_resource:
                 table.declare_global(d, self.cx.report)
         for c in table.configs:  # after the configuration's: a name in both is reported
@@ -269,15 +270,22 @@ class Declarations(Pass):
             if d.address and p.kind != "PROGRAM" and not d.address.endswith("*"):
                 self.err("PLC0120", f"{d.name}: located variables (AT {d.address}) belong in a "
                          "PROGRAM or VAR_GLOBAL, not in a function or function block", d.loc)
-            if d.constant and d.init is None and d.section not in ("VAR_EXTERNAL", "VAR_IN_OUT"):
-                self.err("PLC0109", f"constant {d.name} needs a value: {d.name} : "
-                         f"{d.ty} := ...;", d.loc)
+            self.constant_value(d)
         self.check_scope(p)
         self.cx.scope = self.table.scope(p)
         for d in p.decls:
             if d.section != "VAR_EXTERNAL":
                 self.check_init(d, self.cx.scope)
         self.cx.scope = Scope()
+
+    def constant_value(self, d: A.VarDecl) -> None:
+        """A constant without a value: its type's default in iec and matiec (ed.2 2.4.2, ed.3
+        6.5.1.3 make the value optional), PLC0109 where the vendor requires one."""
+        if d.constant and d.init is None and d.section not in ("VAR_EXTERNAL", "VAR_IN_OUT") \
+                and not self.cx.dialect(d.loc).constant_default:
+            self.err("PLC0109", f"constant {d.name} needs a value: {d.name} : {d.ty} := ...; "
+                     "(CODESYS and TIA Portal require one; IEC and MATIEC give it its type's "
+                     "default: {dialect 'iec'} or {dialect 'matiec'})", d.loc)
 
     def check_init(self, d: A.VarDecl, scope: Scope) -> None:
         if d.init is None:
