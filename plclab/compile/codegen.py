@@ -680,10 +680,9 @@ class Codegen(FastPaths):
             self.emit(f"{code}.set({val})")
             return
         if isinstance(target, A.Member) and target.field_name.startswith("%"):
-            bit = int(target.field_name[1:])
-            obj = self.ex(target.obj)
+            code = self.store_code(target, val)
             self.flush_pre()
-            self.emit(f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})")
+            self.emit(code)
             return
         if isinstance(target, A.DirectAddr):
             self.emit(self.addr_write(target.address, val))
@@ -1352,8 +1351,12 @@ class Codegen(FastPaths):
         if e.field_name == "^":  # r^ (ADR 0021)
             return f"{oop_emit.deref(self, e)}.get()"
         obj = self.ex(e.obj)
-        if e.field_name.startswith("%"):
-            return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"
+        part = A.partial_access(e.field_name)
+        if part is not None and part[0] == "X":
+            return f"({obj} >> {part[1]} & 1 != 0)"
+        if part is not None:  # x.%B1: a byte of x (IEC 61131-3 ed.3 Table 17)
+            width = A.PARTIAL_WIDTHS[part[0]]
+            return f"({obj} >> {part[1] * width} & {(1 << width) - 1})"
         return f"{obj}.{ident(e.field_name)}"
 
     def e_Index(self, e: A.Index) -> str:
@@ -1514,10 +1517,17 @@ class Codegen(FastPaths):
 
     def store_code(self, target: A.Expr, val: str) -> str:
         """One line storing ``val`` (a BOOL) into ``target`` (see :meth:`assign_to`)."""
-        if isinstance(target, A.Member) and target.field_name.startswith("%"):
-            bit = int(target.field_name[1:])
+        part = A.partial_access(target.field_name) if isinstance(target, A.Member) else None
+        if part is not None:  # x.3 := v, x.%B1 := v (IEC 61131-3 ed.3 Table 17): x changes
             obj = self.ex(target.obj)
-            return f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})"
+            kind, n = part
+            if kind == "X":
+                whole = f"(({obj}) | {1 << n}) if {val} else (({obj}) & ~{1 << n})"
+            else:
+                width = A.PARTIAL_WIDTHS[kind]
+                mask, shift = (1 << width) - 1, n * width
+                whole = f"(({obj}) & ~{mask << shift}) | ((({val}) & {mask}) << {shift})"
+            return self.store_code(target.obj, whole)  # x.%W1.%B0 := v stores x.%W1
         if isinstance(target, A.DirectAddr):
             return self.addr_write(target.address, val)
         return f"{self.ex(target)} = {val}"

@@ -22,6 +22,20 @@ def annotation(default: Any = None) -> Any:
     not shown in ``repr``."""
     return field(default=default, init=False, compare=False, repr=False)
 
+PARTIAL_WIDTHS = {"B": 8, "W": 16, "D": 32, "L": 64}  # x.%B1, x.%W0, ... (ed.3 Table 17)
+PARTIAL_TYPES = {"B": "BYTE", "W": "WORD", "D": "DWORD", "L": "LWORD"}
+
+
+def partial_access(field_name: str) -> tuple[str, int] | None:
+    """The partial access a :class:`Member`'s ``field_name`` names: ("X", n) for the bit access
+    ``x.n`` / ``x.%Xn`` (field ``%n``), ("B", n) for the byte ``x.%Bn`` (field ``%Bn``), "W",
+    "D", "L" likewise; None for a member name or a dereference."""
+    if not field_name.startswith("%"):
+        return None
+    if field_name[1:2] in PARTIAL_WIDTHS:
+        return field_name[1], int(field_name[2:])
+    return "X", int(field_name[1:])
+
 # ---------------------------------------------------------------------------------------------
 # Type expressions as written in source
 

@@ -73,7 +73,10 @@ def expr(e: A.Expr | None) -> str:
         return f"{_operand(e.obj, _TOP)}^"
     if isinstance(e, A.Member):
         field = _spelled(e.text, e.field_name)
-        return f"{_operand(e.obj, _TOP)}.{field[1:] if field.startswith('%') else field}"
+        part = A.partial_access(e.field_name)
+        if part is not None:  # x.3, x.%B1
+            field = str(part[1]) if part[0] == "X" else e.field_name
+        return f"{_operand(e.obj, _TOP)}.{field}"
     if isinstance(e, A.Index):
         return f"{_operand(e.obj, _TOP)}[{', '.join(expr(i) for i in e.indices)}]"
     if isinstance(e, A.Unary):

@@ -87,3 +87,19 @@ def test_a_constant_without_a_value_is_refused_where_the_vendor_requires_one(dia
 def test_a_constant_without_a_value_is_still_read_only():
     text = "PROGRAM P VAR CONSTANT K : INT; END_VAR K := 1; END_PROGRAM"
     assert errors(text, "iec") != []
+
+
+@pytest.mark.parametrize("access, ok", [
+    ("d.%B3", True), ("d.%B4", False), ("d.%W1", True), ("d.%W2", False), ("d.%D0", True),
+    ("d.%D1", False), ("d.%L0", False), ("w.%B1", True), ("w.%B2", False), ("w.%D0", False),
+    ("l.%D1", True), ("l.%B7", True), ("l.%B8", False), ("i.%B0", False), ("r.%B0", False),
+    ("x.%B0", False), ("b.%B0", True), ("b.%W0", False)])
+def test_partial_access_is_bounded_by_the_variable(access, ok):
+    text = (f"PROGRAM P VAR d : DWORD; w : WORD; l : LWORD; i : INT; r : REAL; x : BOOL; "
+            f"b : BYTE; v : LWORD; END_VAR v := {access}; {access} := 0; END_PROGRAM")
+    assert errors(text, "iec") == ([] if ok else ["PLC0176", "PLC0176"])  # read and write
+
+
+def test_a_part_has_its_own_type():
+    text = "PROGRAM P VAR d : DWORD; b : BYTE; END_VAR b := d.%W0; END_PROGRAM"
+    assert errors(text, "iec") == ["PLC0118"]  # a WORD does not fit a BYTE

@@ -394,8 +394,8 @@ class ObjectChecks(Pass):
         root = x
         while isinstance(root, A.Member | A.Index):
             if isinstance(root, A.Member) and root.field_name.startswith("%"):
-                self.err("PLC0240", f"{name} cannot point at a single bit; point at the whole "
-                         "variable", x.loc)
+                self.err("PLC0240", f"{name} cannot point at a single bit or a part of a "
+                         "variable (.%B1); point at the whole variable", x.loc)
                 return T.ANY
             root = root.obj
         if isinstance(root, A.Name) and isinstance(root.sym, VarSym) and root is x and (

@@ -1117,14 +1117,11 @@ class Parser:
                     bit = self.advance()
                     e = A.Member(self.loc(dot), e, f"%{bit.value}")
                     continue
-                if self.at("PARTIAL"):  # x.%X3 is x.3 (IEC ed.3 Table 17)
+                if self.at("PARTIAL"):  # x.%X3 is x.3, x.%B1 a byte of x (IEC ed.3 Table 17)
                     part = self.advance()
-                    if part.value[1] != "X":
-                        self.error("PLC0176", f"partial access {part.text} to a byte, word or "
-                                   "double word is not supported; use bit access .%Xn or SHR "
-                                   "and a conversion", part)
-                        raise ParseAbort
-                    e = A.Member(self.loc(dot), e, f"%{int(part.value[2:])}")
+                    kind, n = part.value[1], int(part.value[2:])
+                    field = f"%{n}" if kind == "X" else f"%{kind}{n}"
+                    e = A.Member(self.loc(dot), e, field, field)
                     continue
                 n = self.expect("IDENT", "a member name after '.'")
                 e = A.Member(self.loc(n), e, n.value, n.text)
