@@ -103,3 +103,24 @@ def test_partial_access_is_bounded_by_the_variable(access, ok):
 def test_a_part_has_its_own_type():
     text = "PROGRAM P VAR d : DWORD; b : BYTE; END_VAR b := d.%W0; END_PROGRAM"
     assert errors(text, "iec") == ["PLC0118"]  # a WORD does not fit a BYTE
+
+
+HOLDER = """FUNCTION_BLOCK Holder
+VAR i : INT; d : DINT; p : POINTER TO INT; pd : POINTER TO DINT;
+    pp : POINTER TO POINTER TO INT; q : POINTER TO POINTER TO INT;
+    r : REF_TO INT; rr : REF_TO REF_TO INT; rr2 : REF_TO REF_TO INT; rd : REF_TO DINT; END_VAR
+{body}
+END_FUNCTION_BLOCK
+"""
+
+
+@pytest.mark.parametrize("body", ["p := ADR(i); pp := ADR(p); q := pp; i := q^^;",
+                                  "r := REF(i); rr := REF(r); rr2 := rr; rr2^^ := 7;"])
+def test_pointers_to_pointers_are_equal_by_structure(body):
+    assert errors(HOLDER.format(body=body), "codesys") == []
+
+
+@pytest.mark.parametrize("body", ["pp := ADR(i);", "pp := ADR(pd);", "rr := REF(i);",
+                                  "rr := REF(rd);", "q := ADR(pp);", "p := pp;"])
+def test_pointers_to_pointers_of_another_target_are_refused(body):
+    assert errors(HOLDER.format(body=body), "codesys") == ["PLC0241"]
