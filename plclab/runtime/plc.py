@@ -116,20 +116,36 @@ def check_cycle_ns(ns: int, what: str, location: Location | None = None) -> int:
 MAX_SHOWN = 1000  # elements of an array that format_typed writes out
 
 
-def format_typed(v: Any, ty: Any) -> str:
+_SHOWN_SECTIONS = ("VAR_INPUT", "VAR_OUTPUT", "VAR")  # a block instance's state, shown
+MAX_DEPTH = 4  # block instances inside block instances that format_typed writes out
+
+
+def format_typed(v: Any, ty: Any, members: Any = None, depth: int = 0) -> str:
     """``v`` as an IEC literal of its declared type: arrays as ``[1, 2]`` (flat, as an array
     initializer; the first :data:`MAX_SHOWN` elements), structures as ``(X := 1, S := 'a')``,
-    every element formatted by its own type (``T#1s``, ``'a$N'``), never a Python repr."""
+    block instances as a structure of their inputs, outputs and variables (``(IN := TRUE,
+    PT := T#1s, Q := FALSE, ET := T#0ms)``; VAR_IN_OUT and VAR_TEMP are not state), every
+    element formatted by its own type (``T#1s``, ``'a$N'``), never a Python repr.
+    ``members(pou)``: a block's variables with the inherited ones (the symbol table's)."""
     r = T.resolve(ty) if ty is not None else None
     if isinstance(r, T.ArrayType) and isinstance(v, list):
-        shown = [format_typed(e, r.elem) for e in v[:MAX_SHOWN]]
+        shown = [format_typed(e, r.elem, members, depth) for e in v[:MAX_SHOWN]]
         if len(v) > MAX_SHOWN:
             shown.append(f"... {len(v) - MAX_SHOWN} more")
         return "[" + ", ".join(shown) + "]"
     if isinstance(r, T.StructType) and hasattr(type(v), "__slots__"):
         return "(" + ", ".join(
-            f"{getattr(d, 'spelling', None) or n} := {format_typed(getattr(v, n.upper(), None), d.ty)}"
+            f"{getattr(d, 'spelling', None) or n} := "
+            f"{format_typed(getattr(v, n.upper(), None), d.ty, members, depth)}"
             for n, d in r.fields.items()) + ")"
+    if isinstance(r, T.FBType) and r.pou is not None and hasattr(type(v), "__slots__") and \
+            depth < MAX_DEPTH:
+        decls = members(r.pou).values() if members is not None else r.pou.decls
+        return "(" + ", ".join(
+            f"{d.spelling or d.name} := "
+            f"{format_typed(getattr(v, d.name.upper()), d.ty, members, depth + 1)}"
+            for d in decls if d.section in _SHOWN_SECTIONS and not d.constant and
+            d.ty is not None and hasattr(v, d.name.upper())) + ")"
     return format_value(v, kind_name(ty))
 
 
@@ -736,7 +752,7 @@ class Plc:
     def get(self, path: str, iec: bool = False) -> Any:
         v = self.var(path)
         val = v.get()
-        return format_typed(val, v.type) if iec else val
+        return format_typed(val, v.type, self.project.symbols.members) if iec else val
 
     def format(self, path: str) -> str:
         """The value as an IEC literal (``T#1s``, ``TRUE``, ``7.8``)."""
