@@ -325,6 +325,9 @@ class Pou:
     # a CODESYS action of a PROGRAM or FUNCTION_BLOCK (kind METHOD, no declarations of its
     # own: it runs on its POU's data, and a call passes the POU's inputs and outputs; ADR 0035)
     action: bool = False
+    # a PROGRAM's VAR_ACCESS (IEC 61131-3 ed.2 and ed.3 B.1.5.3, program_access_decls): names
+    # under which it publishes its own variables, ``path`` relative to the program
+    access_paths: list[AccessPath] = field(default_factory=list)
 
     # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
     return_decl: VarDecl | None = annotation()

@@ -87,11 +87,15 @@ class Dialect:
     # initial value (IEC 61131-3 ed.2 2.4.2, ed.3 6.5.1.3: the grammar makes the value optional;
     # MATIEC compiles it); CODESYS and TIA Portal require a value (PLC0109)
     constant_default: bool = False
+    # the largest task PRIORITY: CODESYS 0..31; IEC 61131-3 bounds it by nothing but the
+    # integer (0 the most urgent) and MATIEC takes any, e.g. PRIORITY := 90: 0..65535 (UINT)
+    max_priority: int = 31
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False,
-            hierarchical_words=True, trunc_by_context=True, constant_default=True),
+            hierarchical_words=True, trunc_by_context=True, constant_default=True,
+            max_priority=65535),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
             end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
             implicit_int_conversion=True,
@@ -99,7 +103,7 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
             hierarchical_words=True, input_writes=True, trunc_by_context=True,
-            ed2_time_names=True, constant_default=True),
+            ed2_time_names=True, constant_default=True, max_priority=65535),
 )}
 DEFAULT = "codesys"
 

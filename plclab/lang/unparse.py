@@ -270,6 +270,7 @@ class _Writer:
         inst = {A.method_inst_name(p.name, m.name, d.name) for m in p.methods for d in m.decls
                 if d.section == "VAR_INST"}
         self.decls([d for d in p.decls if d.name not in inst])
+        self.access_paths(p.access_paths, None)
         self.members(p)
         self.stmts(p.body)
         self.line(f"END_{p.kind}")
@@ -330,17 +331,22 @@ class _Writer:
             self.depth -= 1
             self.line("END_RESOURCE")
         self.config_vars(c.config_vars, None if scoped else set(c.resources))
-        if c.access_paths:
-            self.line("VAR_ACCESS")
-            self.depth += 1
-            for a in c.access_paths:
-                mode = "READ_ONLY" if a.read_only else "READ_WRITE"
-                self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, None if scoped else c.resources)} : "
-                          f"{type_ref(a.type)} {mode};")
-            self.depth -= 1
-            self.line("END_VAR")
+        self.access_paths(c.access_paths, None if scoped else c.resources)
         self.depth -= 1
         self.line("END_CONFIGURATION")
+
+    def access_paths(self, paths: list[A.AccessPath], resources: list[str] | None) -> None:
+        """A VAR_ACCESS section (a configuration's or a PROGRAM's), if there are paths."""
+        if not paths:
+            return
+        self.line("VAR_ACCESS")
+        self.depth += 1
+        for a in paths:
+            mode = "READ_ONLY" if a.read_only else "READ_WRITE"
+            self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, resources)} : "
+                      f"{type_ref(a.type)} {mode};")
+        self.depth -= 1
+        self.line("END_VAR")
 
     def config_vars(self, lines: list[A.ConfigVar], resources: set[str] | None) -> None:
         """VAR_CONFIG, its paths written from the one resource this printer names (Cpu)."""

@@ -19,6 +19,7 @@ import math
 import re
 import sys
 from dataclasses import dataclass
+from dataclasses import replace as _replace
 from typing import Any
 
 from ..compile.codegen import Compiled, kind_name
@@ -765,8 +766,7 @@ class Plc:
             return Var(path, v.type, v.get, v.set, v.address)
 
         def refuse(_value: Any) -> None:
-            raise PlcError("PLC3013", f"{access.spelling} is a READ_ONLY access path of the "
-                           f"configuration; write {access.target} itself, or declare the access "
+            raise PlcError("PLC3013", f"{access.spelling} is a READ_ONLY access path; write {access.target} itself, or declare the access "
                            "path READ_WRITE")
 
         return Var(path, v.type, v.get, refuse, v.address)
@@ -809,6 +809,12 @@ class Plc:
             if idx:
                 raise PlcError("PLC3001", f"{head} is a program, not an array")
             pou = progs[head_u]
+            own = self.project.symbols.program_access.get(pou.name, {})
+            if len(parts) == 2 and not parts[1][1] and parts[1][0].upper() in own:
+                # Inst.ax: the program's own VAR_ACCESS (ed.2/ed.3 program_access_decls)
+                ap = own[parts[1][0].upper()]
+                return self._access_var(path, _replace(
+                    ap, target=f"{head}.{ap.target}"))
             return self._walk(path, program(head_u), T.FBType(pou.name, pou), parts[1:])
         if head_u in self.project.globals:
             return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project), parts)

@@ -124,3 +124,70 @@ def test_pointers_to_pointers_are_equal_by_structure(body):
                                   "rr := REF(rd);", "q := ADR(pp);", "p := pp;"])
 def test_pointers_to_pointers_of_another_target_are_refused(body):
     assert errors(HOLDER.format(body=body), "codesys") == ["PLC0241"]
+
+
+PROGRAM_ACCESS = """PROGRAM P
+VAR x : INT; t : TON; END_VAR
+VAR_ACCESS
+  ax : x : INT READ_WRITE;
+  et : t.ET : TIME;
+END_VAR
+x := x + 1;
+t(IN := TRUE, PT := T#1s);
+END_PROGRAM
+CONFIGURATION C
+RESOURCE R ON PLC
+TASK T1(INTERVAL := T#10ms, PRIORITY := {prio});
+PROGRAM I WITH T1 : P;
+END_RESOURCE
+END_CONFIGURATION
+"""
+
+
+def test_a_programs_var_access_names_its_variables_in_iec_and_matiec(tmp_path):
+    import plclab
+    from plclab.errors import PlcError
+
+    f = tmp_path / "p.st"
+    f.write_text(PROGRAM_ACCESS.format(prio=90), encoding="utf-8")
+    plc = plclab.load(str(f), dialect="matiec")
+    plc.scan()
+    plc.scan()
+    assert plc["I.ax"] == plc["I.x"] == 2
+    assert plc.format("I.et") == plc.format("I.t.ET")
+    plc["I.ax"] = 40
+    assert plc["I.x"] == 40
+    with pytest.raises(PlcError) as e:  # READ_ONLY, the default
+        plc["I.et"] = 0
+    assert e.value.code == "PLC3013"
+    assert errors(PROGRAM_ACCESS.format(prio=1), "iec") == []
+
+
+@pytest.mark.parametrize("dialect", ["codesys", "s7"])
+def test_a_programs_var_access_is_refused_where_the_vendor_has_none(dialect):
+    assert errors(PROGRAM_ACCESS.format(prio=1), dialect) == ["PLC0321", "PLC0321"]
+
+
+@pytest.mark.parametrize("section, code", [
+    ("VAR_ACCESS ax : y : INT; END_VAR", "PLC0100"),  # no such variable
+    ("VAR_ACCESS ax : x : DINT; END_VAR", "PLC0103"),  # not its type
+    ("VAR_ACCESS x : x : INT; END_VAR", "PLC0101"),  # the name of a variable
+    ("VAR_ACCESS ax : x : INT; ax : x : INT; END_VAR", "PLC0101"),
+    ("VAR_ACCESS ax : %IX0.0 : BOOL; END_VAR", "PLC0010")])  # a path, not an address
+def test_a_programs_var_access_is_checked(section, code):
+    text = f"PROGRAM P VAR x : INT; END_VAR {section} x := 1; END_PROGRAM"
+    assert errors(text, "iec") == [code]
+
+
+def test_var_access_in_a_function_block_is_refused():
+    text = "FUNCTION_BLOCK F VAR x : INT; END_VAR VAR_ACCESS a : x : INT; END_VAR END_FUNCTION_BLOCK"
+    assert errors(text, "iec") == ["PLC0321"]
+
+
+@pytest.mark.parametrize("dialect, prio, ok", [
+    ("matiec", 90, True), ("iec", 65535, True), ("iec", 65536, False), ("codesys", 31, True),
+    ("codesys", 90, False), ("s7", 32, False), ("matiec", -1, False)])
+def test_task_priority_range_per_dialect(dialect, prio, ok):
+    text = PROGRAM_ACCESS.format(prio=prio).replace("VAR_ACCESS", "VAR").replace(
+        "  ax : x : INT READ_WRITE;\n  et : t.ET : TIME;\n", "")
+    assert errors(text, dialect) == ([] if ok else ["PLC0129"])

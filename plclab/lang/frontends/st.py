@@ -286,10 +286,14 @@ class Parser:
         end_kw = _END_OF[kind]
         extends, implements = oop.header(self, kind) if kind == "FUNCTION_BLOCK" else ([], [])
         decls: list[A.VarDecl] = []
-        while self.tok.kind in _VAR_SECTIONS:
+        access: list[A.AccessPath] = []
+        while self.tok.kind in _VAR_SECTIONS or self.at("VAR_ACCESS"):
             start = self.i
             try:
-                decls.extend(self.var_section())
+                if self.at("VAR_ACCESS"):  # a PROGRAM's access paths (ed.2 B.1.5.3, ed.3 B.1.5.3)
+                    access.extend(self.access_section())
+                else:
+                    decls.extend(self.var_section())
             except ParseAbort:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
@@ -297,6 +301,7 @@ class Parser:
         pou = A.Pou(self.loc(head), kind, name_tok.value, decls, [], ret, name_tok.text,
                     native=self._native_for(head.line), extends=extends,
                     implements=implements, modifiers=mods)
+        pou.access_paths = access
         if kind == "FUNCTION_BLOCK":  # METHODs before the body (ADR 0021)
             oop.members(self, pou, end_kw)
         body, language, pending = self.pou_body(end_kw)
