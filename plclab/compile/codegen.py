@@ -710,6 +710,8 @@ class Codegen(FastPaths):
             self.fb_call(c, info)
             self.emit("pass")
             self.ind -= 1
+            for code in self.eno_false(info, en):
+                self.emit(code)
             if info.eno is not None:
                 self.assign_to(info.eno, en)
             return
@@ -1509,11 +1511,19 @@ class Codegen(FastPaths):
         del self.pre[mark:]
         if inner:  # the call's own statements (outputs, spilled temporaries) run only if EN
             self.pre.append(f"if {en}: " + "; ".join(inner))
+        self.pre.extend(self.eno_false(info, en))
         if info.eno is not None:
             self.pre.append(self.store_code(info.eno, en))
         default = self.default_code(e.ty) if e.ty is not None and e.ty is not T.VOID \
             else "None"
         return f"({code} if {en} else {default})"
+
+    def eno_false(self, info: CallInfo, en: str) -> list[str]:
+        """``ENO => ok`` bound to a callee's own ENO output (declared, or the implicit one a
+        body assigns, :mod:`plclab.lang.lower.implicit_eno`): FALSE when EN was FALSE and the
+        body did not run (IEC 61131-3 ed.3 6.6.1.6)."""
+        return [f"if not {en}: {self.store_code(tgt, 'False')}" for d, tgt, neg in info.outputs
+                if getattr(d, "name", None) == "ENO" and not neg]
 
     def store_code(self, target: A.Expr, val: str) -> str:
         """One line storing ``val`` (a BOOL) into ``target`` (see :meth:`assign_to`)."""

@@ -191,3 +191,30 @@ def test_task_priority_range_per_dialect(dialect, prio, ok):
     text = PROGRAM_ACCESS.format(prio=prio).replace("VAR_ACCESS", "VAR").replace(
         "  ax : x : INT READ_WRITE;\n  et : t.ET : TIME;\n", "")
     assert errors(text, dialect) == ([] if ok else ["PLC0129"])
+
+
+@pytest.mark.parametrize("dialect", ["iec", "codesys", "matiec"])
+def test_assigning_eno_in_a_body_declares_the_implicit_output(dialect):
+    text = ("FUNCTION F : INT VAR_INPUT g : INT; END_VAR IF g < 0 THEN ENO := FALSE; RETURN; "
+            "END_IF; F := g; END_FUNCTION\nPROGRAM P VAR ok : BOOL; r : INT; END_VAR "
+            "r := F(g := 1, ENO => ok); END_PROGRAM")
+    assert errors(text, dialect) == []
+
+
+@pytest.mark.parametrize("body, code", [
+    ("ENO := 5;", "PLC0118"),  # ENO is a BOOL
+    ("ENO := 'x';", "PLC0103")])
+def test_eno_keeps_its_type(body, code):
+    text = f"FUNCTION_BLOCK B VAR_INPUT g : INT; END_VAR {body} END_FUNCTION_BLOCK"
+    assert errors(text, "iec") == [code]
+
+
+def test_eno_is_no_variable_of_a_program():
+    text = "PROGRAM P VAR x : INT; END_VAR ENO := FALSE; x := 1; END_PROGRAM"
+    assert errors(text, "iec") == ["PLC0100"]
+
+
+def test_a_caller_binds_eno_to_a_bool_only():
+    text = ("FUNCTION_BLOCK B ENO := FALSE; END_FUNCTION_BLOCK\n"
+            "PROGRAM P VAR b : B; n : INT; END_VAR b(ENO => n); END_PROGRAM")
+    assert errors(text, "iec") != []
