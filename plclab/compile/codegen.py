@@ -161,6 +161,11 @@ class Codegen(FastPaths):
         """``lhs = <initial value of d>`` (or of ``init`` when given), after the temporaries
         the value needs."""
         code = self.init_code(init if init is not None else d.init, d.ty)
+        bound = getattr(d.type, "bound", None)
+        if bound and init is None and d.init is None:  # a : FB(k := 3): FB_init's inputs
+            code = code[:-1] + ", ".join(
+                self.coerce(self.ex(v), v.ty, x.ty, v) if v is not None else
+                self.init_code(x.init, x.ty) for x, v in bound) + ")"
         self.flush_pre()
         self.emit(f"{lhs} = {code}")
 
@@ -334,7 +339,7 @@ class Codegen(FastPaths):
         self.ind += 1
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
         oop_emit.interfaces_line(self, pou)
-        self.emit("def __init__(self):")
+        self.emit("def __init__(self, *_init):")  # _init: FB_init's further inputs, a : FB(3)
         self.ind += 1
         self.forward_defaults(members, lambda d: f"self.{ident(d.name)}")
         for d in members:

@@ -48,6 +48,10 @@ class TypeRef:
 @dataclass(eq=False, slots=True, repr=False)
 class NamedTypeRef(TypeRef):
     name: str
+    # ``a : FB(k := 3);``: arguments for the block's FB_init (CODESYS; ADR 0052), None if none
+    args: list[Arg] | None = None
+    # check.declarations: (FB_init input, value) for each FB_init input after the two BOOLs
+    bound: Any = annotation()
 
 
 @dataclass(eq=False, slots=True, repr=False)

@@ -191,7 +191,7 @@ def _path(spelled: str, resources: set[str] | list[str] | None) -> str:
 def type_ref(t: A.TypeRef) -> str:
     """A type as written in a declaration."""
     if isinstance(t, A.NamedTypeRef):
-        return t.name
+        return t.name if t.args is None else f"{t.name}({', '.join(_arg(a) for a in t.args)})"
     if isinstance(t, A.StringTypeRef):
         name = "WSTRING" if t.wide else "STRING"
         return f"{name}[{expr(t.length)}]" if t.length is not None else name

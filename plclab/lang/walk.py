@@ -48,7 +48,7 @@ def _body(*bodies: list[A.Stmt] | None) -> list[Any]:
 
 CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     # type expressions
-    A.NamedTypeRef: lambda n: [],
+    A.NamedTypeRef: lambda n: [a.value for a in n.args or ()],
     A.StringTypeRef: lambda n: flat([n.length]),
     A.ArrayTypeRef: lambda n: flat(n.ranges) + [n.elem],
     A.SubrangeTypeRef: lambda n: [n.base, n.lo, n.hi],

@@ -218,3 +218,44 @@ def test_a_caller_binds_eno_to_a_bool_only():
     text = ("FUNCTION_BLOCK B ENO := FALSE; END_FUNCTION_BLOCK\n"
             "PROGRAM P VAR b : B; n : INT; END_VAR b(ENO => n); END_PROGRAM")
     assert errors(text, "iec") != []
+
+
+AXIS = """FUNCTION_BLOCK Axis
+VAR_OUTPUT k : INT; END_VAR
+METHOD FB_init : BOOL
+VAR_INPUT bInitRetains : BOOL; bInCopyCode : BOOL; gain : INT; END_VAR
+k := gain;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM P VAR {decl} END_VAR END_PROGRAM
+"""
+
+
+def test_fb_init_arguments_in_a_declaration_are_codesys():
+    assert errors(AXIS.format(decl="a : Axis(gain := 3); b : Axis(4);"), "codesys") == []
+    for dialect in ("iec", "matiec", "s7"):
+        assert errors(AXIS.format(decl="a : Axis(gain := 3);"), dialect) == ["PLC0322"]
+
+
+@pytest.mark.parametrize("decl, code", [
+    ("t : TON(PT := T#1s);", "PLC0322"),  # no FB_init: inputs take a : TON := (PT := ...)
+    ("a : Axis(speed := 3);", "PLC0322"),  # not an input of FB_init
+    ("a : Axis(3, 4);", "PLC0322"),  # one too many
+    ("a : Axis(gain := 3, gain := 4);", "PLC0322"),
+    ("a : Axis(gain := 'x');", "PLC0103"),
+    ("a : Axis(gain := 100000);", "PLC0111")])
+def test_fb_init_arguments_are_checked(decl, code):
+    assert errors(AXIS.format(decl=decl), "codesys") == [code]
+
+
+@pytest.mark.parametrize("decl", ["x : INT (1..5);", "x : INT (-1..5);", "e : INT (A, B);"])
+def test_subranges_and_typed_enumerations_are_no_fb_init_arguments(decl):
+    assert errors(AXIS.format(decl=decl), "iec") == []
+
+
+def test_fb_init_arguments_survive_the_round_trip():
+    from plclab.lang.frontends.st import parse_st
+    from plclab.lang.unparse import unparse
+
+    printed = unparse(parse_st(AXIS.format(decl="a : Axis(gain := 3); b : Axis(4);"), "a.st"))
+    assert "A : AXIS(GAIN := 3);" in printed.upper() and "B : AXIS(4);" in printed.upper()

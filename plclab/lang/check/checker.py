@@ -82,6 +82,7 @@ class Checker:
         reference_to.rewrite(self.files)  # REFERENCE TO: r is r^, r REF= x is r := REF(x)
         cx.decls.run()
         cx.oop.declarations()
+        cx.decls.fb_init_arguments()  # a : FB(k := 3), once FB_init's inputs have types
         cx.oop.bodies()  # methods first: they use their block's variables (PLC0200)
         for p in table.pous.values():
             cx.stmts.check_pou_body(p)

@@ -29,6 +29,7 @@ from ..library import STDLIB_FILES, stdlib_filename, stdlib_text
 from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
 from ..lower import has_pending, lower_pending
 from ..parsing import ParseAbort
+from ..types import lookup_elementary
 from . import oop
 from .il_lines import is_il_body, parse_il_body
 from .sfc_text import is_sfc_body, parse_sfc_body
@@ -735,6 +736,11 @@ class Parser:
         if t.kind == "IDENT":
             self.advance()
             base = A.NamedTypeRef(loc, t.value)
+            if self.at("(") and self._fb_init_args(t.value):
+                # a : FB(k := 3): the arguments of the block's FB_init (CODESYS; ADR 0052)
+                self.advance()
+                base.args = self.call_args()
+                return base
             if self.at("(") and self.peek().kind != "IDENT" or (
                 self.at("(") and self.peek(2).kind == ".."
             ):
@@ -1144,6 +1150,16 @@ class Parser:
                 e = A.Member(self.loc(self.advance()), e, "^", "^")
             else:
                 return e
+
+    def _fb_init_args(self, name: str) -> bool:
+        """After ``name (``: arguments of an FB_init (``FB(k := 3)``, ``FB(inst)``), not a
+        subrange (``INT (1..5)``) nor a typed enumeration (``INT (A, B)``), which take an
+        elementary base type."""
+        if lookup_elementary(name) is not None or self.peek(2).kind == "..":
+            return False
+        nxt, after = self.peek().kind, self.peek(2).kind
+        return nxt == ")" or (nxt == "IDENT" and after in (":=", ",", ")")) or (
+            nxt in ("INT", "REAL", "-") and after != ".." and self.peek(3).kind != "..")
 
     def call_args(self) -> list[A.Arg]:
         args: list[A.Arg] = []
