@@ -339,7 +339,9 @@ class Codegen(FastPaths):
         self.ind += 1
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
         oop_emit.interfaces_line(self, pou)
-        self.emit("def __init__(self, *_init):")  # _init: FB_init's further inputs, a : FB(3)
+        # _fbinit: the values of FB_init's further inputs (a : FB(3)), for a block that has them
+        self.emit("def __init__(self, *_fbinit):" if oop_emit.fb_init_inputs(self, pou) else
+                  "def __init__(self):")
         self.ind += 1
         self.forward_defaults(members, lambda d: f"self.{ident(d.name)}")
         for d in members:
