@@ -62,9 +62,12 @@ def _atan2(m: Emission) -> str:
     return m.real32(f"_math.atan2({m.codes[0]}, {m.codes[1]})")
 
 
-def _to_dint(m: Emission) -> str:  # TRUNC, ROUND: a conversion to DINT, wraps like TRUNC_DINT
+def _to_dint(m: Emission) -> str:
+    """TRUNC, ROUND: a conversion to DINT (or the integer type the context gave, in iec and
+    matiec), wraps like TRUNC_DINT (TRUNC_INT)."""
     arg = m.cg.own_value(m.codes[0], m.args[0])  # a REAL argument is a REAL (ADR 0038)
-    return m.cg.wrap(f"{m.native}({arg})", T.DINT)
+    t = m.t if isinstance(m.t, T.Elementary) and m.t.kind == "int" else T.DINT
+    return m.cg.wrap(f"{m.native}({arg})", t)
 
 
 def _operator(m: Emission) -> str:  # ADD, MUL, SUB; AND, OR, XOR

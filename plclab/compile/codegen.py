@@ -161,6 +161,11 @@ class Codegen(FastPaths):
         """``lhs = <initial value of d>`` (or of ``init`` when given), after the temporaries
         the value needs."""
         code = self.init_code(init if init is not None else d.init, d.ty)
+        bound = getattr(d.type, "bound", None)
+        if bound and init is None and d.init is None:  # a : FB(k := 3): FB_init's inputs
+            code = code[:-1] + ", ".join(
+                self.coerce(self.ex(v), v.ty, x.ty, v) if v is not None else
+                self.init_code(x.init, x.ty) for x, v in bound) + ")"
         self.flush_pre()
         self.emit(f"{lhs} = {code}")
 
@@ -334,7 +339,9 @@ class Codegen(FastPaths):
         self.ind += 1
         self.emit("__slots__ = (" + "".join(f"{ident(d.name)!r}, " for d in members) + ")")
         oop_emit.interfaces_line(self, pou)
-        self.emit("def __init__(self):")
+        # _fbinit: the values of FB_init's further inputs (a : FB(3)), for a block that has them
+        self.emit("def __init__(self, *_fbinit):" if oop_emit.fb_init_inputs(self, pou) else
+                  "def __init__(self):")
         self.ind += 1
         self.forward_defaults(members, lambda d: f"self.{ident(d.name)}")
         for d in members:
@@ -680,10 +687,9 @@ class Codegen(FastPaths):
             self.emit(f"{code}.set({val})")
             return
         if isinstance(target, A.Member) and target.field_name.startswith("%"):
-            bit = int(target.field_name[1:])
-            obj = self.ex(target.obj)
+            code = self.store_code(target, val)
             self.flush_pre()
-            self.emit(f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})")
+            self.emit(code)
             return
         if isinstance(target, A.DirectAddr):
             self.emit(self.addr_write(target.address, val))
@@ -711,6 +717,8 @@ class Codegen(FastPaths):
             self.fb_call(c, info)
             self.emit("pass")
             self.ind -= 1
+            for code in self.eno_false(info, en):
+                self.emit(code)
             if info.eno is not None:
                 self.assign_to(info.eno, en)
             return
@@ -1352,8 +1360,12 @@ class Codegen(FastPaths):
         if e.field_name == "^":  # r^ (ADR 0021)
             return f"{oop_emit.deref(self, e)}.get()"
         obj = self.ex(e.obj)
-        if e.field_name.startswith("%"):
-            return f"({obj} >> {int(e.field_name[1:])} & 1 != 0)"
+        part = A.partial_access(e.field_name)
+        if part is not None and part[0] == "X":
+            return f"({obj} >> {part[1]} & 1 != 0)"
+        if part is not None:  # x.%B1: a byte of x (IEC 61131-3 ed.3 Table 17)
+            width = A.PARTIAL_WIDTHS[part[0]]
+            return f"({obj} >> {part[1] * width} & {(1 << width) - 1})"
         return f"{obj}.{ident(e.field_name)}"
 
     def e_Index(self, e: A.Index) -> str:
@@ -1506,18 +1518,33 @@ class Codegen(FastPaths):
         del self.pre[mark:]
         if inner:  # the call's own statements (outputs, spilled temporaries) run only if EN
             self.pre.append(f"if {en}: " + "; ".join(inner))
+        self.pre.extend(self.eno_false(info, en))
         if info.eno is not None:
             self.pre.append(self.store_code(info.eno, en))
         default = self.default_code(e.ty) if e.ty is not None and e.ty is not T.VOID \
             else "None"
         return f"({code} if {en} else {default})"
 
+    def eno_false(self, info: CallInfo, en: str) -> list[str]:
+        """``ENO => ok`` bound to a callee's own ENO output (declared, or the implicit one a
+        body assigns, :mod:`plclab.lang.lower.implicit_eno`): FALSE when EN was FALSE and the
+        body did not run (IEC 61131-3 ed.3 6.6.1.6)."""
+        return [f"if not {en}: {self.store_code(tgt, 'False')}" for d, tgt, neg in info.outputs
+                if getattr(d, "name", None) == "ENO" and not neg]
+
     def store_code(self, target: A.Expr, val: str) -> str:
         """One line storing ``val`` (a BOOL) into ``target`` (see :meth:`assign_to`)."""
-        if isinstance(target, A.Member) and target.field_name.startswith("%"):
-            bit = int(target.field_name[1:])
+        part = A.partial_access(target.field_name) if isinstance(target, A.Member) else None
+        if part is not None:  # x.3 := v, x.%B1 := v (IEC 61131-3 ed.3 Table 17): x changes
             obj = self.ex(target.obj)
-            return f"{obj} = ({obj} | {1 << bit}) if {val} else ({obj} & ~{1 << bit})"
+            kind, n = part
+            if kind == "X":
+                whole = f"(({obj}) | {1 << n}) if {val} else (({obj}) & ~{1 << n})"
+            else:
+                width = A.PARTIAL_WIDTHS[kind]
+                mask, shift = (1 << width) - 1, n * width
+                whole = f"(({obj}) & ~{mask << shift}) | ((({val}) & {mask}) << {shift})"
+            return self.store_code(target.obj, whole)  # x.%W1.%B0 := v stores x.%W1
         if isinstance(target, A.DirectAddr):
             return self.addr_write(target.address, val)
         return f"{self.ex(target)} = {val}"

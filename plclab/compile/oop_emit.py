@@ -63,13 +63,27 @@ def emit_methods(cg: Codegen, pou: A.Pou) -> None:
     cg.pou = outer
 
 
+def fb_init_inputs(cg: Codegen, pou: A.Pou) -> list[A.VarDecl]:
+    """The inputs of the block's nearest FB_init after bInitRetains and bInCopyCode: what a
+    declaration ``a : FB(k := 3)`` gives (CODESYS)."""
+    for b in [pou, *cg.p.symbols.bases(pou)]:
+        for m in b.methods:
+            if m.name == "FB_INIT" and not m.action:
+                return [x for x in m.decls if x.section == "VAR_INPUT"][2:]
+    return []
+
+
 def init_calls(cg: Codegen, pou: A.Pou) -> None:
     """In ``__init__``: the FB_init of the block's bases, then its own (CODESYS order), with
     bInitRetains TRUE except in a warm restart (``_INIT_RETAINS``) and bInCopyCode FALSE."""
     chain = [*reversed(cg.p.symbols.bases(pou)), pou]
-    for b in chain:
-        if any(m.name == "FB_INIT" and not m.action for m in b.methods):  # not an ACTION
-            cg.emit(f"P_{ident(b.name)}.m_FB_INIT(self, _INIT_RETAINS, False)")
+    inits = [(b, m) for b in chain for m in b.methods if m.name == "FB_INIT" and not m.action]
+    for b, m in inits:  # (not an ACTION called FB_init)
+        extra = [x for x in m.decls if x.section == "VAR_INPUT"][2:]
+        args = "".join(f", {cg.init_code(x.init, x.ty)}" for x in extra)
+        if extra and m is inits[-1][1]:  # the nearest FB_init takes a : FB(k := 3)'s values
+            args = f", *(_fbinit or ({args[2:]},))"
+        cg.emit(f"P_{ident(b.name)}.m_FB_INIT(self, _INIT_RETAINS, False{args})")
 
 
 def inherit_methods(cg: Codegen) -> None:

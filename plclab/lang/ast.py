@@ -22,6 +22,20 @@ def annotation(default: Any = None) -> Any:
     not shown in ``repr``."""
     return field(default=default, init=False, compare=False, repr=False)
 
+PARTIAL_WIDTHS = {"B": 8, "W": 16, "D": 32, "L": 64}  # x.%B1, x.%W0, ... (ed.3 Table 17)
+PARTIAL_TYPES = {"B": "BYTE", "W": "WORD", "D": "DWORD", "L": "LWORD"}
+
+
+def partial_access(field_name: str) -> tuple[str, int] | None:
+    """The partial access a :class:`Member`'s ``field_name`` names: ("X", n) for the bit access
+    ``x.n`` / ``x.%Xn`` (field ``%n``), ("B", n) for the byte ``x.%Bn`` (field ``%Bn``), "W",
+    "D", "L" likewise; None for a member name or a dereference."""
+    if not field_name.startswith("%"):
+        return None
+    if field_name[1:2] in PARTIAL_WIDTHS:
+        return field_name[1], int(field_name[2:])
+    return "X", int(field_name[1:])
+
 # ---------------------------------------------------------------------------------------------
 # Type expressions as written in source
 
@@ -34,6 +48,10 @@ class TypeRef:
 @dataclass(eq=False, slots=True, repr=False)
 class NamedTypeRef(TypeRef):
     name: str
+    # ``a : FB(k := 3);``: arguments for the block's FB_init (CODESYS; ADR 0052), None if none
+    args: list[Arg] | None = None
+    # check.declarations: (FB_init input, value) for each FB_init input after the two BOOLs
+    bound: Any = annotation()
 
 
 @dataclass(eq=False, slots=True, repr=False)
@@ -311,6 +329,9 @@ class Pou:
     # a CODESYS action of a PROGRAM or FUNCTION_BLOCK (kind METHOD, no declarations of its
     # own: it runs on its POU's data, and a call passes the POU's inputs and outputs; ADR 0035)
     action: bool = False
+    # a PROGRAM's VAR_ACCESS (IEC 61131-3 ed.2 and ed.3 B.1.5.3, program_access_decls): names
+    # under which it publishes its own variables, ``path`` relative to the program
+    access_paths: list[AccessPath] = field(default_factory=list)
 
     # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
     return_decl: VarDecl | None = annotation()

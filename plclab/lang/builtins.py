@@ -146,6 +146,9 @@ _add(
           ("SUB_DT_DT", ("DT", "DT"), "TIME", "-"),
           ("MUL_TIME", ("TIME", "NUM"), "TIME", "*"),
           ("DIV_TIME", ("TIME", "NUM"), "TIME", "/"),
+          # the ed.2 names (Table 30) of the two above: the matiec dialect only (PLC0320)
+          ("MULTIME", ("TIME", "NUM"), "TIME", "*"),
+          ("DIVTIME", ("TIME", "NUM"), "TIME", "/"),
           ("CONCAT_DATE_TOD", ("DATE", "TOD"), "DT", "date+tod"))),
 )
 
@@ -201,6 +204,9 @@ BLOCKS: dict[str, Block] = {b.name: b for b in (
 POWER_PINS: dict[str, tuple[str, str]] = {b.name: b.power for b in BLOCKS.values() if b.power}
 FB_INPUT_OPS: tuple[str, ...] = tuple(dict.fromkeys(op for b in BLOCKS.values()
                                                     for op in b.il_inputs))
+
+# the ed.2 name of a function -> its ed.3 name, known only where ``Dialect.ed2_time_names``
+ED2_NAMES: dict[str, str] = {"MULTIME": "MUL_TIME", "DIVTIME": "DIV_TIME"}
 
 CONVERTIBLE = [n for n in T.ELEMENTARY] + ["STRING", "WSTRING"]
 

@@ -75,18 +75,35 @@ class Dialect:
     # input is a variable of the process image to its C code) and the next input read
     # overwrites the value: the warning PLC0284; elsewhere the error PLC0105 (ADR 0037)
     input_writes: bool = False
+    # ``i := TRUNC(r) + 1`` with ``i : INT``: TRUNC (and ROUND) return ANY_INT typed by their
+    # context, as IEC 61131-3 ed.2 Table 22 gives ``ANY_REAL -> ANY_INT`` and MATIEC infers
+    # it (INT here, the conversion's source in ``INT_TO_WORD(TRUNC(r))``); DINT where the
+    # context names no integer. CODESYS and TIA Portal: always DINT (ADR 0052)
+    trunc_by_context: bool = False
+    # ``MULTIME`` / ``DIVTIME``: the ed.2 names (Table 30) of MUL_TIME / DIV_TIME, which MATIEC
+    # and OSCAT use; ed.3 and CODESYS know only MUL_TIME / DIV_TIME
+    ed2_time_names: bool = False
+    # ``VAR CONSTANT N : INT; END_VAR``: a constant without a value has its type's default
+    # initial value (IEC 61131-3 ed.2 2.4.2, ed.3 6.5.1.3: the grammar makes the value optional;
+    # MATIEC compiles it); CODESYS and TIA Portal require a value (PLC0109)
+    constant_default: bool = False
+    # the largest task PRIORITY: CODESYS 0..31; IEC 61131-3 bounds it by nothing but the
+    # integer (0 the most urgent) and MATIEC takes any, e.g. PRIORITY := 90: 0..65535 (UINT)
+    max_priority: int = 31
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("iec", "IEC 61131-3 ed.3, strict", False, False, False, True, False,
-            hierarchical_words=True),
+            hierarchical_words=True, trunc_by_context=True, constant_default=True,
+            max_priority=65535),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
             end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
             implicit_int_conversion=True,
             sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
-            hierarchical_words=True, input_writes=True),
+            hierarchical_words=True, input_writes=True, trunc_by_context=True,
+            ed2_time_names=True, constant_default=True, max_priority=65535),
 )}
 DEFAULT = "codesys"
 

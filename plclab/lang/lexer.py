@@ -123,7 +123,7 @@ _TOKEN_RE = re.compile(
   | (?P<real>[0-9][0-9_]*\.[0-9][0-9_]*(?:[eE][+-]?[0-9]+)?|[0-9][0-9_]*[eE][+-]?[0-9]+)
   | (?P<int>[0-9][0-9_]*)
   | (?P<addr>%[IQM][XBWDL]?[0-9]+(?:\.[0-9]+)*|%[IQM]\*)
-  | (?P<partial>%[XBWDxbwd][0-9]+)
+  | (?P<partial>%[XBWDLxbwdl][0-9]+)
   | (?P<sstring>')
   | (?P<dstring>")
     )
@@ -329,7 +329,7 @@ class Lexer:
                 append(Token("REAL", self._real(s, s, line, col), s, line, col))
             elif kind == "addr":
                 append(Token("ADDR", s.upper(), s, line, col))
-            else:  # partial: w.%X15, partial access to a bit (IEC ed.3 Table 17)
+            else:  # partial: w.%X15, w.%B1 (IEC ed.3 Table 17)
                 append(Token("PARTIAL", s.upper(), s, line, col))
         append(Token("EOF", None, "", line, pos - line_start + 1))
         return _test_as_name(out)

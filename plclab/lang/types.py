@@ -332,6 +332,8 @@ def same_type(a: Type, b: Type) -> bool:
         return a.wide == b.wide
     if isinstance(a, ArrayType) and isinstance(b, ArrayType):
         return a.dims == b.dims and same_type(a.elem, b.elem)
+    if isinstance(a, RefType) and isinstance(b, RefType):  # POINTER TO POINTER TO INT: by
+        return same_type(a.target, b.target)  # structure, as anonymous types have no name
     return False
 
 

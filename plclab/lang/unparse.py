@@ -73,7 +73,10 @@ def expr(e: A.Expr | None) -> str:
         return f"{_operand(e.obj, _TOP)}^"
     if isinstance(e, A.Member):
         field = _spelled(e.text, e.field_name)
-        return f"{_operand(e.obj, _TOP)}.{field[1:] if field.startswith('%') else field}"
+        part = A.partial_access(e.field_name)
+        if part is not None:  # x.3, x.%B1
+            field = str(part[1]) if part[0] == "X" else e.field_name
+        return f"{_operand(e.obj, _TOP)}.{field}"
     if isinstance(e, A.Index):
         return f"{_operand(e.obj, _TOP)}[{', '.join(expr(i) for i in e.indices)}]"
     if isinstance(e, A.Unary):
@@ -188,7 +191,7 @@ def _path(spelled: str, resources: set[str] | list[str] | None) -> str:
 def type_ref(t: A.TypeRef) -> str:
     """A type as written in a declaration."""
     if isinstance(t, A.NamedTypeRef):
-        return t.name
+        return t.name if t.args is None else f"{t.name}({', '.join(_arg(a) for a in t.args)})"
     if isinstance(t, A.StringTypeRef):
         name = "WSTRING" if t.wide else "STRING"
         return f"{name}[{expr(t.length)}]" if t.length is not None else name
@@ -267,6 +270,7 @@ class _Writer:
         inst = {A.method_inst_name(p.name, m.name, d.name) for m in p.methods for d in m.decls
                 if d.section == "VAR_INST"}
         self.decls([d for d in p.decls if d.name not in inst])
+        self.access_paths(p.access_paths, None)
         self.members(p)
         self.stmts(p.body)
         self.line(f"END_{p.kind}")
@@ -327,17 +331,22 @@ class _Writer:
             self.depth -= 1
             self.line("END_RESOURCE")
         self.config_vars(c.config_vars, None if scoped else set(c.resources))
-        if c.access_paths:
-            self.line("VAR_ACCESS")
-            self.depth += 1
-            for a in c.access_paths:
-                mode = "READ_ONLY" if a.read_only else "READ_WRITE"
-                self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, None if scoped else c.resources)} : "
-                          f"{type_ref(a.type)} {mode};")
-            self.depth -= 1
-            self.line("END_VAR")
+        self.access_paths(c.access_paths, None if scoped else c.resources)
         self.depth -= 1
         self.line("END_CONFIGURATION")
+
+    def access_paths(self, paths: list[A.AccessPath], resources: list[str] | None) -> None:
+        """A VAR_ACCESS section (a configuration's or a PROGRAM's), if there are paths."""
+        if not paths:
+            return
+        self.line("VAR_ACCESS")
+        self.depth += 1
+        for a in paths:
+            mode = "READ_ONLY" if a.read_only else "READ_WRITE"
+            self.line(f"{_spelled(a.spelling, a.name)} : {_path(a.spelled, resources)} : "
+                      f"{type_ref(a.type)} {mode};")
+        self.depth -= 1
+        self.line("END_VAR")
 
     def config_vars(self, lines: list[A.ConfigVar], resources: set[str] | None) -> None:
         """VAR_CONFIG, its paths written from the one resource this printer names (Cpu)."""

@@ -48,7 +48,7 @@ def _body(*bodies: list[A.Stmt] | None) -> list[Any]:
 
 CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     # type expressions
-    A.NamedTypeRef: lambda n: [],
+    A.NamedTypeRef: lambda n: [a.value for a in n.args or ()],
     A.StringTypeRef: lambda n: flat([n.length]),
     A.ArrayTypeRef: lambda n: flat(n.ranges) + [n.elem],
     A.SubrangeTypeRef: lambda n: [n.base, n.lo, n.hi],
@@ -84,7 +84,8 @@ CHILDREN: dict[type, Callable[[Any], list[Any]]] = {
     A.Jump: lambda n: flat([n.cond]),
     # declarations
     A.VarDecl: lambda n: [n.type] + flat([n.init]),
-    A.Pou: lambda n: flat([*n.decls, n.return_type]) + n.body + list(n.methods),
+    A.Pou: lambda n: flat([*n.decls, n.return_type]) + n.body + list(n.methods) + list(
+        n.access_paths),
     # a body the lowering has not translated yet: front-end data (IL instructions, network
     # elements), not AST nodes; the lowering empties Pou.pending before any pass walks a tree
     A.PendingBody: lambda n: [],

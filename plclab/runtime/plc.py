@@ -19,6 +19,7 @@ import math
 import re
 import sys
 from dataclasses import dataclass
+from dataclasses import replace as _replace
 from typing import Any
 
 from ..compile.codegen import Compiled, kind_name
@@ -116,20 +117,36 @@ def check_cycle_ns(ns: int, what: str, location: Location | None = None) -> int:
 MAX_SHOWN = 1000  # elements of an array that format_typed writes out
 
 
-def format_typed(v: Any, ty: Any) -> str:
+_SHOWN_SECTIONS = ("VAR_INPUT", "VAR_OUTPUT", "VAR")  # a block instance's state, shown
+MAX_DEPTH = 4  # block instances inside block instances that format_typed writes out
+
+
+def format_typed(v: Any, ty: Any, members: Any = None, depth: int = 0) -> str:
     """``v`` as an IEC literal of its declared type: arrays as ``[1, 2]`` (flat, as an array
     initializer; the first :data:`MAX_SHOWN` elements), structures as ``(X := 1, S := 'a')``,
-    every element formatted by its own type (``T#1s``, ``'a$N'``), never a Python repr."""
+    block instances as a structure of their inputs, outputs and variables (``(IN := TRUE,
+    PT := T#1s, Q := FALSE, ET := T#0ms)``; VAR_IN_OUT and VAR_TEMP are not state), every
+    element formatted by its own type (``T#1s``, ``'a$N'``), never a Python repr.
+    ``members(pou)``: a block's variables with the inherited ones (the symbol table's)."""
     r = T.resolve(ty) if ty is not None else None
     if isinstance(r, T.ArrayType) and isinstance(v, list):
-        shown = [format_typed(e, r.elem) for e in v[:MAX_SHOWN]]
+        shown = [format_typed(e, r.elem, members, depth) for e in v[:MAX_SHOWN]]
         if len(v) > MAX_SHOWN:
             shown.append(f"... {len(v) - MAX_SHOWN} more")
         return "[" + ", ".join(shown) + "]"
     if isinstance(r, T.StructType) and hasattr(type(v), "__slots__"):
         return "(" + ", ".join(
-            f"{getattr(d, 'spelling', None) or n} := {format_typed(getattr(v, n.upper(), None), d.ty)}"
+            f"{getattr(d, 'spelling', None) or n} := "
+            f"{format_typed(getattr(v, n.upper(), None), d.ty, members, depth)}"
             for n, d in r.fields.items()) + ")"
+    if isinstance(r, T.FBType) and r.pou is not None and hasattr(type(v), "__slots__") and \
+            depth < MAX_DEPTH:
+        decls = members(r.pou).values() if members is not None else r.pou.decls
+        return "(" + ", ".join(
+            f"{d.spelling or d.name} := "
+            f"{format_typed(getattr(v, d.name.upper()), d.ty, members, depth + 1)}"
+            for d in decls if d.section in _SHOWN_SECTIONS and not d.constant and
+            d.ty is not None and hasattr(v, d.name.upper())) + ")"
     return format_value(v, kind_name(ty))
 
 
@@ -736,7 +753,7 @@ class Plc:
     def get(self, path: str, iec: bool = False) -> Any:
         v = self.var(path)
         val = v.get()
-        return format_typed(val, v.type) if iec else val
+        return format_typed(val, v.type, self.project.symbols.members) if iec else val
 
     def format(self, path: str) -> str:
         """The value as an IEC literal (``T#1s``, ``TRUE``, ``7.8``)."""
@@ -749,8 +766,7 @@ class Plc:
             return Var(path, v.type, v.get, v.set, v.address)
 
         def refuse(_value: Any) -> None:
-            raise PlcError("PLC3013", f"{access.spelling} is a READ_ONLY access path of the "
-                           f"configuration; write {access.target} itself, or declare the access "
+            raise PlcError("PLC3013", f"{access.spelling} is a READ_ONLY access path; write {access.target} itself, or declare the access "
                            "path READ_WRITE")
 
         return Var(path, v.type, v.get, refuse, v.address)
@@ -793,6 +809,12 @@ class Plc:
             if idx:
                 raise PlcError("PLC3001", f"{head} is a program, not an array")
             pou = progs[head_u]
+            own = self.project.symbols.program_access.get(pou.name, {})
+            if len(parts) == 2 and not parts[1][1] and parts[1][0].upper() in own:
+                # Inst.ax: the program's own VAR_ACCESS (ed.2/ed.3 program_access_decls)
+                ap = own[parts[1][0].upper()]
+                return self._access_var(path, _replace(
+                    ap, target=f"{head}.{ap.target}"))
             return self._walk(path, program(head_u), T.FBType(pou.name, pou), parts[1:])
         if head_u in self.project.globals:
             return self._walk(path, lambda: self.ns["_G"], _GlobalsType(self.project), parts)

@@ -43,7 +43,8 @@ def test_run_print_shows_iec_values(tmp_path, capsys):
     assert main(["run", str(f), "--cycles", "1"]) == 0
     out = capsys.readouterr().out
     assert _raw(out) == [] and " object at 0x" not in out
-    assert "Main.t = (TON instance)" in out
+    # a block instance: a structured literal of its inputs and outputs (issue 40)
+    assert "Main.t = (IN := TRUE, PT := T#1s, Q := FALSE, ET := T#0ms)" in out
     assert "Main.w = '$D800'" in out and "Main.s = 'a$1B[2Kb'" in out
 
 

@@ -126,6 +126,8 @@ class StGen:
             return f"{f}({sub()}, {rng.randint(0, 9)})"
         if k == 7 and ty in ("INT", "DINT", "SINT", "LINT"):
             return f"ABS({sub()})"
+        if k == 8 and ty == "WORD":  # partial access (IEC 61131-3 ed.3 Table 17)
+            return "w0.%W0" if rng.random() < 0.5 else f"BYTE_TO_WORD(w0.%B{rng.randint(0, 1)})"
         return f"LIMIT({_int_lit(rng, ty)}, {sub()}, {_int_lit(rng, ty)})"
 
     def real_expr(self, ty: str, depth: int, leaf: bool) -> str:

@@ -113,3 +113,19 @@ def test_long_chains_do_not_recurse():
     assert not [d for d in diags if d.severity == "error"]
     printed = unparse(parse_st(text, "long.st"))
     assert printed.count(" + ") == 9_999
+
+
+def test_partial_access_survives_the_round_trip():
+    text = ("PROGRAM P VAR d : DWORD; b : BYTE; x : BOOL; END_VAR\n"
+            "b := d.%B1; d.%W1.%B0 := b; d.3 := TRUE; x := d.%X4; d.%D0 := 0; END_PROGRAM\n")
+    before, after, printed = round_trip(text)
+    assert before == after, printed
+    assert "d.%W1.%B0 := b" in printed and "d.3 := TRUE" in printed and "x := d.4" in printed
+
+
+def test_a_programs_var_access_survives_the_round_trip():
+    text = ("PROGRAM P VAR x : INT; t : TON; END_VAR\nVAR_ACCESS ax : x : INT READ_WRITE; "
+            "et : t.ET : TIME; END_VAR\nx := 1; END_PROGRAM\n")
+    before, after, printed = round_trip(text)
+    assert before == after, printed
+    assert "et : t.ET : TIME READ_ONLY;" in printed

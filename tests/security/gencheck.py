@@ -31,7 +31,8 @@ TEMPS = re.compile(r"^_(?:r|c|f|t|test_)\d+$")
 RUNTIME_NAMES = {"_B", "_CTX", "_F32", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc", "n", "self",
                  "__slots__", "_Globals", "_Programs", "_sync_in", "_sync_out", "__init__",
                  "_body", "_copy", "_math",
-                 "_itf", "_INIT_RETAINS"}  # ADR 0021: a block's interfaces, FB_init's flag
+                 "_itf", "_INIT_RETAINS",  # ADR 0021: a block's interfaces, FB_init's flag
+                 "_fbinit"}  # ADR 0052: the values a : FB(k := 3) gives FB_init
 BUILTINS = {"abs", "float", "int", "len", "list", "max", "min", "range", "bool", "str", "round"}
 METHODS = {"__new__", "_body", "_copy", "advance_ns", "from_bytes", "to_bytes", "left", "start",
            "step", "now", "now_ns", "first_scan", "scan_count", "limit",

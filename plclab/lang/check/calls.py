@@ -10,7 +10,7 @@ from ...errors import Location
 from .. import ast as A
 from .. import types as T
 from ..ast import expr_text
-from ..builtins import BUILTINS, Builtin, conversion
+from ..builtins import BUILTINS, ED2_NAMES, Builtin, conversion
 from ..lower import reference_to
 from ..sizeof import sizeof, sizeof_type
 from .context import Pass, close_hint
@@ -35,6 +35,8 @@ class CallInfo:
 
 class Calls(Pass):
     """Checks calls, sets ``Call.target`` and records the call graph (for recursion)."""
+
+    expected: T.Type | None = None  # the type the context of the call being checked expects
 
     def call(self, c: A.Call, statement: bool) -> T.Type:
         f = c.func
@@ -286,6 +288,7 @@ class Calls(Pass):
         return T.VOID
 
     def call_builtin(self, c: A.Call, name: str, statement: bool) -> T.Type:
+        expected, self.expected = self.expected, None  # this call's context, not its arguments'
         conv = conversion(name)
         args = self.plain_args(c)
         if conv is not None and name not in BUILTINS:
@@ -294,8 +297,10 @@ class Calls(Pass):
                 self._args_only(c)
                 return conv[1]
             a = args[0]
-            at = self.cx.exprs.expr(a.value, None)
             src, dst = conv
+            # INT_TO_WORD(TRUNC(r)): TRUNC's context is INT (a call's only: a literal stays one)
+            at = self.cx.exprs.expr(a.value, T.lookup_elementary(src) if isinstance(
+                a.value, A.Call) and src not in (None, "__TRUNC__") else None)
             ra = T.base_of(at)
             if src not in (None, "__TRUNC__") and ra is not T.ANY:
                 want = T.lookup_elementary(src)
@@ -310,6 +315,10 @@ class Calls(Pass):
             self.en_eno(c, c.target)
             return dst
         b: Builtin = BUILTINS[name]
+        if name in ED2_NAMES and not self.cx.dialect(c.loc).ed2_time_names:
+            self.err("PLC0320", f"{name} is the IEC 61131-3 ed.2 name (MATIEC, OSCAT) of "
+                     f"{ED2_NAMES[name]}; write {ED2_NAMES[name]}(...), or choose "
+                     "{dialect 'matiec'} for an ed.2 program", c.func.loc)
         if b.test_only and not self.cx.in_test:
             self.err("PLC0106", f"{name} is only available inside TEST ... END_TEST blocks",
                      c.loc)
@@ -350,9 +359,10 @@ class Calls(Pass):
         c.target = CallInfo("builtin", b, list(enumerate(vals)))
         if not b.test_only:
             self.en_eno(c, c.target)
-        return self.builtin_type(name, vals, c)
+        return self.builtin_type(name, vals, c, expected)
 
-    def builtin_type(self, name: str, vals: list[A.Expr], c: A.Call) -> T.Type:
+    def builtin_type(self, name: str, vals: list[A.Expr], c: A.Call,
+                     expected: T.Type | None = None) -> T.Type:
         """Type the arguments, then apply the function's typing rule (its ``Builtin.typing``,
         :mod:`.typing_rules`)."""
         spec = BUILTINS[name]
@@ -360,4 +370,4 @@ class Calls(Pass):
         bs = [T.base_of(t) for t in ts]
         if any(t is T.ANY for t in bs):
             return T.BOOL if spec.typing == "compare" else T.ANY
-        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c, vals))
+        return TYPING_RULES[spec.typing](Typing(self, spec, ts, bs, c, vals, expected))

@@ -22,7 +22,7 @@ from ...errors import Diagnostic, Location, PlcError
 from .. import ast as A
 from .. import types as T
 from ..limits import compiler_guard
-from ..lower import reference_to
+from ..lower import implicit_eno, reference_to
 from .calls import Calls
 from .configvars import ConfigVars
 from .consts import Constants
@@ -77,10 +77,12 @@ class Checker:
 
     def _run(self) -> Project:
         cx = self.cx
+        implicit_eno.add(self.files)  # ENO := FALSE in a body declares the implicit output
         table = cx.table = SymbolTable.collect(self.files, cx.report, with_globals=False)
         reference_to.rewrite(self.files)  # REFERENCE TO: r is r^, r REF= x is r := REF(x)
         cx.decls.run()
         cx.oop.declarations()
+        cx.decls.fb_init_arguments()  # a : FB(k := 3), once FB_init's inputs have types
         cx.oop.bodies()  # methods first: they use their block's variables (PLC0200)
         for p in table.pous.values():
             cx.stmts.check_pou_body(p)

@@ -47,6 +47,42 @@ class ConfigVars(Pass):
                     self.connections(inst, self.instances[inst.key])
             for ap in c.access_paths:
                 self.access_path(ap)
+        for pou in self.table.pous.values():
+            for ap in pou.access_paths:
+                self.program_access_path(pou, ap)
+
+    # -- VAR_ACCESS of a PROGRAM (ed.2 and ed.3 B.1.5.3, program_access_decls) ---------------
+    def program_access_path(self, pou: A.Pou, ap: A.AccessPath) -> None:
+        """``VAR_ACCESS ax : x : INT READ_WRITE; END_VAR`` inside a PROGRAM: ``Inst.ax`` is
+        ``Inst.x`` (IEC and MATIEC; CODESYS and TIA Portal have no such section: PLC0321)."""
+        if pou.kind != "PROGRAM":
+            self.err("PLC0321", f"VAR_ACCESS belongs in a PROGRAM or a CONFIGURATION, not in a "
+                     f"{pou.kind}; declare the access path in the program that holds the "
+                     "instance", ap.loc)
+            return
+        d = self.cx.dialect(ap.loc)
+        if d.name not in ("iec", "matiec"):
+            self.err("PLC0321", f"VAR_ACCESS inside a PROGRAM is IEC 61131-3 (program_access_"
+                     f"decls, MATIEC accepts it); the dialect '{d.name}' has none: declare "
+                     "the access path in a CONFIGURATION's VAR_ACCESS, or choose "
+                     "{dialect 'iec'} or {dialect 'matiec'}", ap.loc)
+            return
+        own = self.table.members(pou)
+        taken = self.table.program_access.setdefault(pou.name, {})
+        if ap.name in own or ap.name in taken:
+            self.err("PLC0101", f"access path {ap.spelling} has the name of a variable or "
+                     f"another access path of {pou.name}; choose another name", ap.loc)
+            return
+        if ap.path[-1].startswith("%"):
+            self.err("PLC0100", f"{ap.spelled}: a program's access path names one of its "
+                     "variables; publish a direct address in the CONFIGURATION's VAR_ACCESS",
+                     ap.loc)
+            return
+        chain = self.walk(pou, ap.path, ap.spelled, ap.loc)
+        if chain is None or not self.same_type(ap.type, chain[-1].ty, ap.spelled, ap.loc):
+            return
+        taken[ap.name] = AccessBinding(ap.name, ap.spelling or ap.name, ".".join(
+            d.spelling or d.name for d in chain), chain[-1].ty, ap.read_only)
 
     # -- PROGRAM P1 : Prog(x := %IX1.1, y => g) ----------------------------------------------
     def connections(self, inst: A.ProgramInstance, pou: A.Pou) -> None:

@@ -8,6 +8,7 @@ from typing import Any
 
 from ...errors import Location
 from .. import ast as A
+from .. import types as T
 from .context import Pass
 from .symbols import EnumSym, Scope, VarSym
 
@@ -130,7 +131,7 @@ class Constants(Pass):
         old, before = self.cx.scope, (len(self.cx.diags), self._broken_hits)
         self.cx.scope = scope
         try:
-            v = self.const_value(d.init) if d.init is not None else None
+            v = self.const_value(d.init) if d.init is not None else _default(d)
         finally:
             self.cx.scope = old
             self.leave()
@@ -155,7 +156,7 @@ class Constants(Pass):
                 scope = Scope() if sym.storage == "global" else self.cx.scope
             else:
                 d, scope = self.table.globals.get(e.name) or self.global_consts.get(e.name), Scope()
-            if d is not None and d.constant and d.init is not None:
+            if d is not None and d.constant and (d.init is not None or _default(d) is not None):
                 d.used = True
                 return self.const_of(d, scope)
             if e.name not in self.table.enum_members and e.name in self.enum_index:
@@ -229,3 +230,16 @@ class Constants(Pass):
                      "VAR CONSTANT)", e.loc)
             return None
         return v
+
+
+def _default(d: A.VarDecl) -> Any:
+    """The value of a constant declared without one (the iec and matiec dialects): its type's
+    default initial value, for a number or a BOOL; None (not foldable) for other types."""
+    if not d.constant or d.ty is None:
+        return None
+    if isinstance(T.resolve(d.ty), T.Subrange):
+        return T.resolve(d.ty).lo  # a subrange starts at its lower bound
+    t = T.base_of(d.ty)
+    if t is T.BOOL:
+        return False
+    return {"int": 0, "bits": 0, "real": 0.0}.get(t.kind) if isinstance(t, T.Elementary) else None

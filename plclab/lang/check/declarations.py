@@ -45,6 +45,7 @@ class Declarations(Pass):
                         for d in ds}
         for d in table.global_decls:
             self.decl_type(d)
+            self.constant_value(d)
             if id(d) not in per_resource:
                 table.declare_global(d, self.cx.report)
         for c in table.configs:  # after the configuration's: a name in both is reported
@@ -269,15 +270,81 @@ class Declarations(Pass):
             if d.address and p.kind != "PROGRAM" and not d.address.endswith("*"):
                 self.err("PLC0120", f"{d.name}: located variables (AT {d.address}) belong in a "
                          "PROGRAM or VAR_GLOBAL, not in a function or function block", d.loc)
-            if d.constant and d.init is None and d.section not in ("VAR_EXTERNAL", "VAR_IN_OUT"):
-                self.err("PLC0109", f"constant {d.name} needs a value: {d.name} : "
-                         f"{d.ty} := ...;", d.loc)
+            self.constant_value(d)
         self.check_scope(p)
         self.cx.scope = self.table.scope(p)
         for d in p.decls:
             if d.section != "VAR_EXTERNAL":
                 self.check_init(d, self.cx.scope)
         self.cx.scope = Scope()
+
+    def fb_init_arguments(self) -> None:
+        """``a : FB(k := 3);``: CODESYS passes the arguments to the block's FB_init, to its
+        inputs after bInitRetains and bInCopyCode (CODESYS online help, "FB_init"); each
+        argument is checked as an input of a call, in the scope of the declaration, and bound
+        on the type reference (``NamedTypeRef.bound``) for the compiler. PLC0322 elsewhere, or
+        for a block without such an FB_init."""
+        table = self.table
+        owners: list[tuple[A.VarDecl, Scope]] = [(d, Scope()) for d in table.global_decls]
+        for p in [*table.pous.values(), *(m for q in table.pous.values() for m in q.methods)]:
+            if any(isinstance(d.type, A.NamedTypeRef) and d.type.args is not None
+                   for d in p.decls):
+                scope = table.scope(p)
+                owners += [(d, scope) for d in p.decls]
+        for d, scope in owners:
+            tref = d.type
+            if isinstance(tref, A.NamedTypeRef) and tref.args is not None:
+                old, self.cx.scope = self.cx.scope, scope
+                try:
+                    self.bind_fb_init(d, tref)
+                finally:
+                    self.cx.scope = old
+
+    def bind_fb_init(self, d: A.VarDecl, tref: A.NamedTypeRef) -> None:
+        assert tref.args is not None
+        dialect = self.cx.dialect(d.loc)
+        t = T.resolve(d.ty) if d.ty is not None else T.ANY
+        init = None
+        if isinstance(t, T.FBType) and t.pou is not None:
+            init = next((m for b in [t.pou, *self.table.bases(t.pou)] for m in b.methods
+                         if m.name == "FB_INIT" and not m.action), None)
+        extra = [x for x in init.decls if x.section == "VAR_INPUT"][2:] if init else []
+        if dialect.name != "codesys" or not extra:
+            why = (f"the dialect '{dialect.name}' has no FB_init: choose {{dialect 'codesys'}}, "
+                   "or give the block's inputs initial values, a : FB := (k := 3)"
+                   if dialect.name != "codesys" else
+                   f"{t} has no FB_init method with inputs after bInitRetains and bInCopyCode"
+                   " to take them; to set the block's inputs write a : FB := (k := 3)")
+            self.err("PLC0322", f"{d.spelling or d.name} : {tref.name}(...) passes arguments "
+                     f"to the block's FB_init (a CODESYS extension); {why}", d.loc)
+            for a in tref.args:
+                if a.value is not None:
+                    self.cx.exprs.expr(a.value, None)
+            return
+        bound: list[tuple[A.VarDecl, A.Expr]] = []
+        by_name = {x.name: x for x in extra}
+        for i, a in enumerate(tref.args):
+            target = by_name.get(a.name) if a.name else (extra[i] if i < len(extra) else None)
+            if target is None or a.output or a.value is None or any(
+                    target is b for b, _ in bound):
+                self.err("PLC0322", f"{tref.name}'s FB_init takes " + ", ".join(
+                    f"{x.spelling or x.name} : {x.ty}" for x in extra) + ", each once; "
+                    f"not {a.name or f'a value number {i + 1}'}", a.loc)
+                continue
+            at = self.cx.exprs.expr(a.value, target.ty)
+            self.cx.exprs.check_assignable(at, target.ty, a.value, a.loc)
+            bound.append((target, a.value))
+        given = {id(x): v for x, v in bound}
+        tref.bound = [(x, given.get(id(x))) for x in extra]  # in FB_init's order
+
+    def constant_value(self, d: A.VarDecl) -> None:
+        """A constant without a value: its type's default in iec and matiec (ed.2 2.4.2, ed.3
+        6.5.1.3 make the value optional), PLC0109 where the vendor requires one."""
+        if d.constant and d.init is None and d.section not in ("VAR_EXTERNAL", "VAR_IN_OUT") \
+                and not self.cx.dialect(d.loc).constant_default:
+            self.err("PLC0109", f"constant {d.name} needs a value: {d.name} : {d.ty} := ...; "
+                     "(CODESYS and TIA Portal require one; IEC and MATIEC give it its type's "
+                     "default: {dialect 'iec'} or {dialect 'matiec'})", d.loc)
 
     def check_init(self, d: A.VarDecl, scope: Scope) -> None:
         if d.init is None:

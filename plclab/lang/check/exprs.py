@@ -101,6 +101,24 @@ class Expressions(Pass, NodeVisitor):
         self.err("PLC0118" if hint else "PLC0103",
                  f"cannot assign {T.concrete(rs)} to {rd} without a conversion{hint}", loc)
 
+    def partial(self, e: A.Member, ot: T.Type, kind: str, n: int) -> T.Type:
+        """``x.%B1``, ``x.%W0``, ``x.%D1``, ``x.%L0``: a byte, word, double or long word of a bit
+        string (IEC 61131-3 ed.3 Table 17, item 1b), numbered from the least significant."""
+        pt = T.lookup_elementary(A.PARTIAL_TYPES[kind])
+        width = A.PARTIAL_WIDTHS[kind]
+        bt = T.base_of(ot)
+        if bt.kind != "bits" or not isinstance(bt, T.Elementary) or bt is T.BOOL:
+            self.err("PLC0176", f"partial access .%{kind}{n} needs a bit string (WORD, DWORD, "
+                     f"LWORD), not {ot}" + (f"; convert first, e.g. {bt.name}_TO_DWORD(x)"
+                                           f".%{kind}{n}" if bt.kind == "int" else ""), e.loc)
+        elif (n + 1) * width > bt.bits:
+            count = bt.bits // width
+            self.err("PLC0176", f"{bt.name} has no {pt.name} {n}: " + (
+                f"its {pt.name}s are .%{kind}0 to .%{kind}{count - 1}" if count > 1 else
+                f"it is one {pt.name}, .%{kind}0" if count else
+                f"it is smaller than a {pt.name}"), e.loc)
+        return pt
+
     def lookup(self, name: str) -> Any:
         sym = self.cx.scope.local(name)
         if sym is not None:
@@ -217,7 +235,12 @@ class Expressions(Pass, NodeVisitor):
         return self.binary(e, expected)
 
     def visit_Call(self, e: A.Call, expected: T.Type | None, write: bool) -> T.Type:
-        return self.cx.calls.call(e, statement=False)
+        calls = self.cx.calls
+        outer, calls.expected = calls.expected, expected  # TRUNC is typed by its context
+        try:
+            return calls.call(e, statement=False)
+        finally:
+            calls.expected = outer
 
     def visit_ArrayInit(self, e: A.Expr, expected: T.Type | None, write: bool) -> T.Type:
         self.err("PLC0103", "an aggregate initial value is only allowed in a declaration",
@@ -360,8 +383,11 @@ class Expressions(Pass, NodeVisitor):
         f = e.field_name
         if ot is T.ANY:
             return T.ANY
-        if f.startswith("%"):
-            bit = int(f[1:])
+        part = A.partial_access(f)
+        if part is not None and part[0] != "X":
+            return self.partial(e, ot, *part)
+        if part is not None:
+            bit = part[1]
             bt = T.base_of(ot)
             if bt.kind not in ("bits", "int") or not isinstance(bt, T.Elementary):
                 self.err("PLC0116", f"bit access .{bit} needs a BYTE/WORD/DWORD/LWORD or integer, "

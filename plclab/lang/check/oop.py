@@ -148,10 +148,14 @@ class ObjectChecks(Pass):
         if want is not None and m.owner is not None and m.owner.kind == "FUNCTION_BLOCK":
             got = [(d.section, d.name, str(T.resolve(d.ty))) for d in m.decls
                    if d.section in _PARAMS]
+            if m.name == "FB_INIT":  # more inputs: given where an instance is declared, a :
+                got = got[:2] + [g for g in got[2:] if g[0] != "VAR_INPUT"]  # FB(k := 3)
             if got != [("VAR_INPUT", n, "BOOL") for n in want]:
                 ins = ", ".join(f"{n} : BOOL" for n in want) or "none"
                 self.err("PLC0237", f"{m.name} is called by the runtime with fixed inputs "
-                         f"({ins}); declare exactly those, no outputs or in-outs", m.loc)
+                         f"({ins}); declare exactly those" + (
+                             " first, then any inputs an instance's declaration gives"
+                             if m.name == "FB_INIT" else "") + ", no outputs or in-outs", m.loc)
 
     def check_overrides(self, p: A.Pou) -> None:
         bases = self.table.bases(p)
@@ -394,8 +398,8 @@ class ObjectChecks(Pass):
         root = x
         while isinstance(root, A.Member | A.Index):
             if isinstance(root, A.Member) and root.field_name.startswith("%"):
-                self.err("PLC0240", f"{name} cannot point at a single bit; point at the whole "
-                         "variable", x.loc)
+                self.err("PLC0240", f"{name} cannot point at a single bit or a part of a "
+                         "variable (.%B1); point at the whole variable", x.loc)
                 return T.ANY
             root = root.obj
         if isinstance(root, A.Name) and isinstance(root.sym, VarSym) and root is x and (

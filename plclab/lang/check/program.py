@@ -11,8 +11,6 @@ from ..datasize import DataSizes
 from ..limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
 from .context import Pass
 
-_MAX_PRIORITY = 31  # task priorities 0..31 (CODESYS)
-
 
 class ProgramChecks(Pass):
     """Checks what needs every POU checked first."""
@@ -84,7 +82,8 @@ class ProgramChecks(Pass):
         return list(seen.values())
 
     def check_task(self, t: A.TaskDecl) -> None:
-        """INTERVAL a TIME constant > 0, PRIORITY an integer constant 0..31 (PLC0129); both are
+        """INTERVAL a TIME constant > 0, PRIORITY an integer constant 0..31 (CODESYS; 0..65535 in
+        iec and matiec, ``Dialect.max_priority``) (PLC0129); both are
         replaced by their folded literal, which is what the runtime reads."""
         if t.interval is not None:
             e = t.interval
@@ -110,10 +109,14 @@ class ProgramChecks(Pass):
             e = t.priority
             ty = T.resolve(self.cx.exprs.expr(e, None))
             v = self.cx.consts.const_value(e)
+            top = self.cx.dialect(e.loc).max_priority
             if ty.kind != "int" or isinstance(v, bool) or not isinstance(v, int) or \
-                    not 0 <= v <= _MAX_PRIORITY:
+                    not 0 <= v <= top:
                 self.err("PLC0129", f"the PRIORITY of task {t.name} must be an integer constant "
-                         f"0..{_MAX_PRIORITY} (0 is the most urgent)", e.loc)
+                         f"0..{top} (0 is the most urgent)" + (
+                             "; IEC and MATIEC take larger ones ({dialect 'matiec'})"
+                             if top < 65535 and isinstance(v, int) and 0 <= v <= 65535 else ""),
+                         e.loc)
             else:
                 t.priority = A.Literal(e.loc, v, "INT", None, str(v))
                 t.priority.ty = ty

@@ -72,6 +72,8 @@ class Statements(Pass, NodeVisitor):
         self.cx.scope = scope
         for d in t.decls:
             self.cx.decls.check_init(d, scope)
+            if isinstance(d.type, A.NamedTypeRef) and d.type.args is not None:
+                self.cx.decls.bind_fb_init(d, d.type)  # a : FB(k := 3)
         self.checked_body(t.body, t.loc)
         self.cx.scope = Scope()
         self.cx.in_test = False

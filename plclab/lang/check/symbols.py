@@ -182,6 +182,8 @@ class SymbolTable:
     resources: set[str] = field(default_factory=set)  # the configurations' resource names
     config_bindings: list[ConfigBinding] = field(default_factory=list)  # by the checker
     access_paths: dict[str, AccessBinding] = field(default_factory=dict)  # by the checker
+    # a PROGRAM's own VAR_ACCESS, by program (POU) name and access name (check.configvars)
+    program_access: dict[str, dict[str, AccessBinding]] = field(default_factory=dict)
     # the VAR_GLOBAL of each resource of a configuration with two or more (ADR 0037), by
     # resource and name; their declarations are in global_decls too (for their types)
     resource_globals: dict[str, dict[str, A.VarDecl]] = field(default_factory=dict)

@@ -30,6 +30,7 @@ class Typing:
     bs: list[T.Type]
     call: A.Call
     vals: list[A.Expr]
+    expected: T.Type | None = None  # the type the call's context expects, if it says
 
     def need(self, ok: bool, what: str) -> None:
         if not ok:
@@ -67,8 +68,14 @@ def _atan2(t: Typing) -> T.Type:
     return t.common(t.bs) if t.kinds("real") else T.LREAL
 
 
-def _to_dint(t: Typing) -> T.Type:  # TRUNC, ROUND give DINT, as in CODESYS
+def _to_dint(t: Typing) -> T.Type:
+    """TRUNC, ROUND: DINT, as in CODESYS; where ``Dialect.trunc_by_context`` (iec, matiec) the
+    integer type the context expects (ed.2 Table 22: ANY_REAL -> ANY_INT), else DINT."""
     t.need(t.bs[0].kind == "real", "a REAL or LREAL")
+    want = T.base_of(t.expected) if t.expected is not None else None
+    if t.spec.name == "TRUNC" and isinstance(want, T.Elementary) and want.kind == "int" \
+            and want is not T.ANY_INT_LIT and t.cx.cx.dialect(t.call.loc).trunc_by_context:
+        return want
     return T.DINT
 
 

@@ -29,6 +29,7 @@ from ..library import STDLIB_FILES, stdlib_filename, stdlib_text
 from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, compiler_guard, too_deep_message
 from ..lower import has_pending, lower_pending
 from ..parsing import ParseAbort
+from ..types import lookup_elementary
 from . import oop
 from .il_lines import is_il_body, parse_il_body
 from .sfc_text import is_sfc_body, parse_sfc_body
@@ -286,10 +287,14 @@ class Parser:
         end_kw = _END_OF[kind]
         extends, implements = oop.header(self, kind) if kind == "FUNCTION_BLOCK" else ([], [])
         decls: list[A.VarDecl] = []
-        while self.tok.kind in _VAR_SECTIONS:
+        access: list[A.AccessPath] = []
+        while self.tok.kind in _VAR_SECTIONS or self.at("VAR_ACCESS"):
             start = self.i
             try:
-                decls.extend(self.var_section())
+                if self.at("VAR_ACCESS"):  # a PROGRAM's access paths (ed.2 B.1.5.3, ed.3 B.1.5.3)
+                    access.extend(self.access_section())
+                else:
+                    decls.extend(self.var_section())
             except ParseAbort:
                 self.sync({"END_VAR", end_kw} | set(_VAR_SECTIONS))
                 self.accept("END_VAR")
@@ -297,6 +302,7 @@ class Parser:
         pou = A.Pou(self.loc(head), kind, name_tok.value, decls, [], ret, name_tok.text,
                     native=self._native_for(head.line), extends=extends,
                     implements=implements, modifiers=mods)
+        pou.access_paths = access
         if kind == "FUNCTION_BLOCK":  # METHODs before the body (ADR 0021)
             oop.members(self, pou, end_kw)
         body, language, pending = self.pou_body(end_kw)
@@ -730,6 +736,11 @@ class Parser:
         if t.kind == "IDENT":
             self.advance()
             base = A.NamedTypeRef(loc, t.value)
+            if self.at("(") and self._fb_init_args(t.value):
+                # a : FB(k := 3): the arguments of the block's FB_init (CODESYS; ADR 0052)
+                self.advance()
+                base.args = self.call_args()
+                return base
             if self.at("(") and self.peek().kind != "IDENT" or (
                 self.at("(") and self.peek(2).kind == ".."
             ):
@@ -1117,14 +1128,11 @@ class Parser:
                     bit = self.advance()
                     e = A.Member(self.loc(dot), e, f"%{bit.value}")
                     continue
-                if self.at("PARTIAL"):  # x.%X3 is x.3 (IEC ed.3 Table 17)
+                if self.at("PARTIAL"):  # x.%X3 is x.3, x.%B1 a byte of x (IEC ed.3 Table 17)
                     part = self.advance()
-                    if part.value[1] != "X":
-                        self.error("PLC0176", f"partial access {part.text} to a byte, word or "
-                                   "double word is not supported; use bit access .%Xn or SHR "
-                                   "and a conversion", part)
-                        raise ParseAbort
-                    e = A.Member(self.loc(dot), e, f"%{int(part.value[2:])}")
+                    kind, n = part.value[1], int(part.value[2:])
+                    field = f"%{n}" if kind == "X" else f"%{kind}{n}"
+                    e = A.Member(self.loc(dot), e, field, field)
                     continue
                 n = self.expect("IDENT", "a member name after '.'")
                 e = A.Member(self.loc(n), e, n.value, n.text)
@@ -1142,6 +1150,16 @@ class Parser:
                 e = A.Member(self.loc(self.advance()), e, "^", "^")
             else:
                 return e
+
+    def _fb_init_args(self, name: str) -> bool:
+        """After ``name (``: arguments of an FB_init (``FB(k := 3)``, ``FB(inst)``), not a
+        subrange (``INT (1..5)``) nor a typed enumeration (``INT (A, B)``), which take an
+        elementary base type."""
+        if lookup_elementary(name) is not None or self.peek(2).kind == "..":
+            return False
+        nxt, after = self.peek().kind, self.peek(2).kind
+        return nxt == ")" or (nxt == "IDENT" and after in (":=", ",", ")")) or (
+            nxt in ("INT", "REAL", "-") and after != ".." and self.peek(3).kind != "..")
 
     def call_args(self) -> list[A.Arg]:
         args: list[A.Arg] = []

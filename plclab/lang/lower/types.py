@@ -210,8 +210,9 @@ class DeclarationTypes:
                 return Composite("FB", p)
             return None
         if isinstance(e, A.Member):
-            if e.field_name.startswith("%"):
-                return T.BOOL
+            part = A.partial_access(e.field_name)
+            if part is not None:
+                return T.BOOL if part[0] == "X" else T.lookup_elementary(A.PARTIAL_TYPES[part[0]])
             ot = self.expr_type(e.obj, pou)
             if isinstance(ot, Composite) and ot.category == "FB":
                 d = self.table.members(ot.target).get(e.field_name)
