@@ -154,7 +154,7 @@ def test_two_tons_in_a_loop_blink():
     assert runs[0] == (False, per)  # the first rise after exactly 50 ms
     full = runs[1:-1]
     assert len(full) >= 3, runs
-    for value, n in full:
+    for _value, n in full:
         assert per <= n <= per + 2, runs  # 50 ms each, give or take the fed-back scan
 
 
