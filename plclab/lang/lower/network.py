@@ -492,13 +492,12 @@ _BOOL_BOXES = {"AND", "OR", "XOR", "NOT", "GT", "GE", "EQ", "NE", "LE", "LT"}
 Cut = tuple[int, str, int, str, Any]  # consumer id, its pin, index of the ref, how, var
 
 
-def _holder(s: Elem, pin: str, elems: list[Elem]) -> tuple[int, str, Any] | None:
+def _holder(s: Elem, pin: str, written: dict[Ref, A.Expr]) -> tuple[int, str, Any] | None:
     """How the previous value of output ``pin`` of ``s`` is read when a loop is cut on a wire
-    leaving it: (preference, how, expression); None when nothing holds it."""
-    for o in elems:  # the feedback variable: an output variable written from this wire
-        if o.kind == "outvar" and not o.neg_in and o.inputs.get("") == [(s.id, pin)] and \
-                isinstance(o.var, A.Name | A.Member):
-            return (0, "var", o.var)
+    leaving it: (preference, how, expression); None when nothing holds it. ``written``: the
+    variables output variables write straight from a wire (feedback variables)."""
+    if (s.id, pin) in written:
+        return (0, "var", written[(s.id, pin)])
     if s.kind == "fb" and s.instance is not None and pin not in ("", "ENO") and \
             pin not in s.inout_pins:
         v: A.Expr = A.Member(s.loc, copy.deepcopy(s.instance), pin)
@@ -519,15 +518,32 @@ def plan_feedback(elems: list[Elem]) -> tuple[list[Cut], Elem | None]:
     BOOL holds it); among equals, the consumer first top to bottom, left to right. Returns the
     cuts, and an element of a loop nothing can hold (no cut) or None."""
     by_id = {e.id: e for e in elems}
-    srcs = {e.id: {i for i in _feeds_of(e, by_id)} for e in elems}
-    left = {e.id for e in elems}
+    srcs = {e.id: set(_feeds_of(e, by_id)) for e in elems}
+    readers: dict[int, set[int]] = {}
+    for e in elems:
+        for i in srcs[e.id]:
+            readers.setdefault(i, set()).add(e.id)
+    waiting = {i: len(ss) for i, ss in srcs.items()}
+    written: dict[Ref, A.Expr] = {}
+    for o in elems:  # output variables written straight from one wire
+        src = o.inputs.get("", [])
+        if o.kind == "outvar" and not o.neg_in and len(src) == 1 and \
+                isinstance(o.var, A.Name | A.Member):
+            written.setdefault(src[0], o.var)
+    ready = [i for i, n in waiting.items() if n == 0]
+    left = set(by_id)
     cuts: list[Cut] = []
-    cut_edges: set[tuple[int, str, int]] = set()
     while left:
-        ready = [i for i in left if not (srcs[i] & left)]
-        if ready:
-            left.difference_update(ready)
-            continue
+        while ready:  # Kahn: linear in the size of the network
+            i = ready.pop()
+            left.discard(i)
+            for r in readers.get(i, ()):
+                waiting[r] -= 1
+                if waiting[r] == 0:
+                    ready.append(r)
+        if not left:
+            break
+        # stalled: the first strongly connected part found is fed by nothing else left
         comp = _loop_members(left, srcs)
         best = None
         for cid in comp:
@@ -536,10 +552,9 @@ def plan_feedback(elems: list[Elem]) -> tuple[list[Cut], Elem | None]:
             worst = -1
             for pin, refs in c.inputs.items():
                 for k, (sid, spin) in enumerate(refs):
-                    if sid not in comp or (cid, pin, k) in cut_edges or \
-                            by_id[sid].kind == "inoutvar":
+                    if sid not in comp or by_id[sid].kind == "inoutvar":
                         continue
-                    h = _holder(by_id[sid], spin, elems)
+                    h = _holder(by_id[sid], spin, written)
                     if h is None:
                         worst = 9
                         break
@@ -553,14 +568,16 @@ def plan_feedback(elems: list[Elem]) -> tuple[list[Cut], Elem | None]:
                     best = (key, plan)
         if best is None:
             return cuts, by_id[min(comp, key=lambda i: by_id[i].order)]
-        for cut in best[1]:
-            cuts.append(cut)
-            cut_edges.add(cut[:3])
+        cuts.extend(best[1])
         cid = best[1][0][0]
-        srcs[cid] = {sid for pin, refs in by_id[cid].inputs.items()
-                     for k, (sid, _) in enumerate(refs)
-                     if sid >= 0 and (cid, pin, k) not in cut_edges and
-                     by_id[sid].kind != "inoutvar"}
+        for sid in srcs[cid] & comp:  # its in-loop sources no longer hold it back
+            readers[sid].discard(cid)
+        srcs[cid] -= comp
+        waiting[cid] = len(srcs[cid] & left)
+        if waiting[cid] == 0:
+            ready.append(cid)
+        else:  # cannot happen (the part is fed by nothing left); stay safe
+            return cuts, by_id[cid]
     return cuts, None
 
 
