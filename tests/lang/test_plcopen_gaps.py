@@ -230,3 +230,68 @@ def test_fbd_condition_in_an_sfc_body_is_called_fbd():
     errs = errors(project(sfc, var("n", "INT")))
     msg = " ".join(e.message for e in errs)
     assert "FBD network" in msg and "LD network" not in msg, msg
+
+
+# -- item 14: one initial step per SFC network, in PLCopen too ----------------------------------
+def sfc_network(base: int, first: str, second: str, cond: str, back: str, linked: str = ""):
+    """Two steps and two inline-ST transitions, localIds from ``base``."""
+    b = base
+    return f"""
+      <step localId="{b}" name="{first}" initialStep="true"><position x="{b}" y="0"/><connectionPointIn>{linked}</connectionPointIn><connectionPointOut formalParameter=""/></step>
+      <transition localId="{b + 1}"><position x="{b}" y="50"/><connectionPointIn><connection refLocalId="{b}"/></connectionPointIn><connectionPointOut/>
+        <condition><inline name=""><ST><xhtml:p>{cond}</xhtml:p></ST></inline></condition></transition>
+      <step localId="{b + 2}" name="{second}"><position x="{b}" y="100"/><connectionPointIn><connection refLocalId="{b + 1}"/></connectionPointIn><connectionPointOut formalParameter=""/></step>
+      <transition localId="{b + 3}"><position x="{b}" y="150"/><connectionPointIn><connection refLocalId="{b + 2}"/></connectionPointIn><connectionPointOut/>
+        <condition><inline name=""><ST><xhtml:p>{back}</xhtml:p></ST></inline></condition></transition>
+      <jumpStep localId="{b + 4}" targetName="{first}"><position x="{b}" y="200"/><connectionPointIn><connection refLocalId="{b + 3}"/></connectionPointIn></jumpStep>"""
+
+
+def test_plcopen_sfc_body_with_two_networks_each_initial():
+    body = "<SFC>" + sfc_network(10, "Idle", "Run", "go", "NOT go") + \
+        sfc_network(30, "Empty", "Filling", "fill", "NOT fill") + "</SFC>"
+    text = project(body, var("go") + var("fill"))
+    assert not errors(text), errors(text)
+    plc = plclab.loads(text, "two.xml")
+    assert plc["Idle.X"] and plc["Empty.X"]
+    plc["fill"] = True
+    plc.scan()
+    assert plc["Idle.X"] and plc["Filling.X"]
+
+
+def test_plcopen_two_initial_steps_in_one_network_are_plc0152():
+    body = "<SFC>" + sfc_network(10, "Idle", "Run", "go", "NOT go") + \
+        sfc_network(30, "Empty", "Filling", "fill", "NOT fill") \
+        .replace('<jumpStep localId="34" targetName="Empty">', '<jumpStep localId="34" targetName="Run">') \
+        + "</SFC>"
+    errs = errors(project(body, var("go") + var("fill")))
+    assert [e.code for e in errs] == ["PLC0152"] and "EMPTY" in errs[0].message.upper()
+
+
+def test_unconnected_in_out_variable_is_only_read():
+    body = """<FBD>
+      <inOutVariable localId="1"><position x="0" y="0"/><connectionPointIn/><connectionPointOut/><expression>keep</expression></inOutVariable>
+      <outVariable localId="2"><position x="200" y="0"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><expression>copy</expression></outVariable>
+    </FBD>"""
+    text = project(body, var("keep", "INT", "42") + var("copy", "INT"))
+    ds = diags(text)
+    assert [d.code for d in ds if d.code == "PLC0331"] == ["PLC0331"], ds
+    plc = plclab.loads(text, "io.xml")
+    plc.scan(2)
+    assert (plc["keep"], plc["copy"]) == (42, 42)
+
+
+def test_feedback_with_explicit_execution_order():
+    """Every acting element numbered (executionOrderId): the order is followed, the loop cut."""
+    text = sr_latch(False)
+    for lid, n in ((3, 2), (4, 1), (6, 3), (5, 4)):
+        text = text.replace(f'localId="{lid}"', f'localId="{lid}" executionOrderId="{n}"', 1)
+    assert not errors(text), errors(text)
+    plc = plclab.loads(text, "eo.xml")
+    plc["s"] = True
+    plc.scan()
+    plc["s"] = False
+    plc.scan(3)
+    assert plc["q"] is True
+    plc["r"] = True
+    plc.scan(2)
+    assert plc["q"] is False
