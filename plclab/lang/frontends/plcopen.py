@@ -890,7 +890,8 @@ class _Wrap:
 
 def _box_depth(elems: list[Elem]) -> int:
     """The longest chain of function boxes feeding each other (connectors pass through;
-    other elements start a new chain). Iterative: the network is acyclic when this runs."""
+    other elements start a new chain). Iterative; an element met again while its chain is
+    being measured (a feedback loop, ADR 0053) counts as the start of a chain."""
     depth: dict[int, int] = {}
     for root in elems:
         stack = [(root.id, False)]
