@@ -113,10 +113,14 @@ def cmd_test(ns: argparse.Namespace) -> int:
      help="a watch table (TOML: rows, formats, trigger, modify/force): print its samples")
 @arg("--dialect", default=None, choices=DIALECTS,
      help="dialect of files without a {dialect} pragma (default codesys; ADR 0017)")
+@arg("--image-size", type=int, default=None, metavar="BYTES",
+     help="bytes of each process image area, 8 to 65536 (default: sized from the program's "
+     "addresses, at least 1024)")
 def cmd_run(ns: argparse.Namespace) -> int:
     from .project import load
 
-    plc = load(*ns.files, dialect=ns.dialect, cycle_time=ns.cycle_time)
+    plc = load(*ns.files, dialect=ns.dialect, cycle_time=ns.cycle_time,
+               image_size=ns.image_size)
     for item in ns.set:
         if "=" not in item:
             raise PlcError("PLC3002", f"--set {item}: write NAME=VALUE, e.g. --set Start=TRUE")

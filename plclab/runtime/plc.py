@@ -197,10 +197,24 @@ def check_address(addr: str, image_size: int, location: Location | None = None,
     return area, size, byte, bit
 
 
+DEFAULT_IMAGE = 1024  # bytes of each process image area unless the program needs more
+
+
+def auto_image_size(need: int) -> int:
+    """The process image for a program whose located variables end at byte ``need``: 1024
+    bytes, or the next multiple of 1024 (at most MAX_IMAGE; the checker refuses more).
+
+    >>> auto_image_size(0), auto_image_size(1024), auto_image_size(1033), auto_image_size(65536)
+    (1024, 1024, 2048, 65536)
+    """
+    return min(MAX_IMAGE, max(DEFAULT_IMAGE, -(-need // 1024) * 1024))
+
+
 def _check_image_size(size: Any) -> int:
     if isinstance(size, bool) or not isinstance(size, int) or not 8 <= size <= MAX_IMAGE:
         raise PlcError("PLC3012", f"image_size={size!r}: the process image is a whole number of "
-                       f"bytes from 8 to {MAX_IMAGE} (default 1024)")
+                       f"bytes from 8 to {MAX_IMAGE} (default: sized from the program's addresses, at least "
+                       "1024)")
     return size
 
 
@@ -234,8 +248,12 @@ class Plc:
         The default cyclic task's period (``"10ms"``, ``0.01``), 0.1 ms to 1 day.
     watchdog : int
         Loop iterations allowed per scan before a scan-overrun fault (deterministic).
-    image_size : int
-        Bytes of each process image area (%I, %Q, %M), 8 to 65536.
+    image_size : int | None
+        Bytes of each process image area (%I, %Q, %M), 8 to 65536. By default (None) the
+        image is sized from the program's addresses: 1024 bytes, or the next multiple of 1024
+        that holds its highest located variable (``AT %MW2000``: 3072); the checker refuses
+        addresses beyond 65535 (PLC0127). A smaller explicit size than the program needs is
+        PLC0127.
     task_intervals : mapping, optional
         Run the tasks configured at one interval at another, ``{"10ms": "20ms"}``: the same
         program on a controller whose tasks are scheduled differently (a lab checks that a
@@ -244,7 +262,7 @@ class Plc:
     """
 
     def __init__(self, compiled: Compiled, cycle_time: Any = "10ms",
-                 watchdog: int = 2_000_000, image_size: int = 1024,
+                 watchdog: int = 2_000_000, image_size: int | None = None,
                  system_memory_byte: int | None = None,
                  clock_memory_byte: int | None = None,
                  task_intervals: Any = None) -> None:
@@ -255,12 +273,15 @@ class Plc:
             raise PlcError("PLC3012", f"watchdog={watchdog!r}: give the loop iterations allowed "
                            "per scan as a positive whole number (default 2000000)")
         self.watchdog = watchdog
-        self.image_size = _check_image_size(image_size)
         need = getattr(self.project, "image_needed", None)
+        if image_size is None:  # sized from the program (ADR 0053)
+            image_size = auto_image_size(need[0] if need is not None else 0)
+        self.image_size = _check_image_size(image_size)
         if need is not None and need[0] > image_size:
             raise PlcError("PLC0127", f"{need[1]} lies beyond the process image of {image_size} "
-                           f"bytes; use a smaller address or Plc(..., image_size={need[0]})",
-                           need[2])
+                           f"bytes; use a smaller address, a larger image (Plc(..., "
+                           f"image_size={need[0]}), --image-size {need[0]}), or leave the "
+                           "size out: it is then sized from the program", need[2])
         # S7-style system and clock memory bytes (001 lines 2494-2540), off unless asked for
         self.system_memory_byte = _check_memory_byte(system_memory_byte, image_size,
                                                      "system_memory_byte")

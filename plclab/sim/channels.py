@@ -361,7 +361,8 @@ def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: 
         return
     n = max(1, _SIZES[size])
     if byte + n > plc.image_size:
-        bad("PLC4004", f"{row.plc} is beyond the process image ({plc.image_size} bytes)", "plc")
+        bad("PLC4004", f"{row.plc} is beyond the process image ({plc.image_size} bytes; "
+            "give a larger one: --image-size, Plc(..., image_size=...))", "plc")
         return
     mod = row.module
     if mod in ("di", "do") or (mod == "direct" and is_bool):

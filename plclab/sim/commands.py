@@ -40,6 +40,9 @@ def _param(text: str) -> tuple[str, object]:
 @arg("--scan", default=None, help="PLC scan (cycle) time, e.g. 10ms (default)")
 @arg("--dt", default=None, help="plant sub-step (default: min(scan, plant max_dt))")
 @arg("--seed", type=int, default=None, help="random seed (default: the scenario's, else 0)")
+@arg("--image-size", type=int, default=None, metavar="BYTES",
+     help="bytes of each process image area, 8 to 65536 (default: sized from the program's "
+     "addresses, at least 1024)")
 @arg("--watch", default=None, metavar="A,B", help="PLC variables to record")
 @arg("--watch-table", default=None, metavar="FILE",
      help="a watch table (TOML) sampled at its trigger point into the trace (plclab.scada)")
@@ -75,7 +78,8 @@ def cmd_sim(ns: argparse.Namespace) -> int:
         parse_ns(scan, "--scan", allow_zero=False)
     if ns.duration is not None:
         parse_ns(ns.duration, "--duration", allow_zero=False)
-    plc = load_plc(ns.programs, cycle_time=scan if scan is not None else "10ms")
+    plc = load_plc(ns.programs, cycle_time=scan if scan is not None else "10ms",
+                   image_size=ns.image_size)
     for d in getattr(plc.compiled, "diagnostics", []):
         if d.severity != "error":
             print(str(d), file=sys.stderr)

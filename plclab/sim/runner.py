@@ -18,7 +18,7 @@ def _is_text(s: str) -> bool:
     return "\n" in s or s.lstrip().upper().startswith(_TEXT_STARTS) or ";" in s
 
 
-def load_plc(program: Any, cycle_time: Any = "10ms") -> Any:
+def load_plc(program: Any, cycle_time: Any = "10ms", image_size: int | None = None) -> Any:
     """A PLC from program text, a path, a list of paths/texts, or a PLC as it is.
 
     >>> plc = load_plc("PROGRAM P VAR n : INT; END_VAR n := n + 1; END_PROGRAM", "100ms")
@@ -45,7 +45,7 @@ def load_plc(program: Any, cycle_time: Any = "10ms") -> Any:
             raise sim_error("PLC4020", f"{it!r} is neither program text nor a path")
     if not sources:
         raise sim_error("PLC4020", "no program given")
-    return Plc(compile_sources(sources), cycle_time=cycle_time)
+    return Plc(compile_sources(sources), cycle_time=cycle_time, image_size=image_size)
 
 
 def run(program: Any, plant: Any = None, duration: Any = None, scenario: Any = None,

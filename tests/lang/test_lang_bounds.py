@@ -409,13 +409,15 @@ def test_located_variables_beyond_the_image_are_compile_errors(decl, code):
 def test_the_plc_checks_addresses_against_its_image_size():
     src = "PROGRAM P VAR v AT %MW5000 : WORD; x : WORD; END_VAR\nv := 1; x := %IW6000; END_PROGRAM"
     with pytest.raises(PlcError) as ei:
-        plclab.loads(src)
+        plclab.loads(src, image_size=1024)  # an explicit size smaller than the program needs
     e = ei.value
     assert e.code == "PLC0127" and "image_size=6002" in e.message
     assert e.location is not None and e.location.line == 2
     plc = plclab.loads(src, image_size=6002)
     plc.scan()
     assert plc["%MW5000"] == 1
+    plc = plclab.loads(src)  # by default, sized from the program's addresses (ADR 0053)
+    assert plc.image_size == 6144 and len(plc.memory) == 6144
     plclab.loads(ADDR.format("x := %IW1022;"))  # the last word of the default image
 
 

@@ -124,7 +124,9 @@ END_TEST
 @pytest.mark.parametrize("snippet, code, line", [
     ("TRANSITION FROM Idle TO Rnu := go; END_TRANSITION", "PLC0150", 9),
     ("STEP Spare: END_STEP", "PLC0151", 9),
-    ("INITIAL_STEP Two: END_STEP", "PLC0152", 9),
+    # a second initial step linked to the chart (a separate network may have its own)
+    ("INITIAL_STEP Two: END_STEP TRANSITION FROM Two TO Run := go; END_TRANSITION", "PLC0152",
+     9),
 ])
 def test_structural_checks_point_at_the_element(snippet, code, line):
     text = CHART.replace("END_PROGRAM", snippet + "\nEND_PROGRAM")
@@ -269,3 +271,42 @@ def test_a_chart_in_a_function_and_jumps_in_an_il_action_are_errors_at_their_pla
                        "ACTION Count:\n  LD n\n  JMPC skip\nskip:\nEND_ACTION")
     found = [d for d in diags(il) if d.code == "PLC0145"]
     assert found and found[0].location.line == 10 and "IL action" in found[0].message
+
+
+TWO_NETWORKS = """
+PROGRAM Main
+VAR go, back, fill, full : BOOL; END_VAR
+INITIAL_STEP Idle: END_STEP
+STEP Run: END_STEP
+TRANSITION FROM Idle TO Run := go; END_TRANSITION
+TRANSITION FROM Run TO Idle := back; END_TRANSITION
+INITIAL_STEP Empty: END_STEP
+STEP Filling: END_STEP
+TRANSITION FROM Empty TO Filling := fill; END_TRANSITION
+TRANSITION FROM Filling TO Empty := full; END_TRANSITION
+END_PROGRAM
+"""
+
+
+def test_one_initial_step_per_sfc_network():
+    """Two networks in one body (Annex F's gravel example has two), each with its own initial
+    step: both start active and evolve independently (ADR 0053)."""
+    assert not [d for d in diags(TWO_NETWORKS) if d.severity == "error"]
+    plc = plclab.loads(TWO_NETWORKS, "two.st")
+    assert plc["Main.Idle.X"] and plc["Main.Empty.X"]
+    plc["Main.fill"] = True
+    plc.scan()
+    assert plc["Main.Idle.X"] and plc["Main.Filling.X"] and not plc["Main.Empty.X"]
+    plc["Main.go"] = True
+    plc.scan()
+    assert plc["Main.Run.X"] and plc["Main.Filling.X"]
+
+
+@pytest.mark.parametrize("link", [
+    "TRANSITION FROM Run TO Filling := back; END_TRANSITION",    # joins the two networks
+    "TRANSITION FROM (Run, Filling) TO Idle := back; END_TRANSITION",
+])
+def test_two_initial_steps_in_one_connected_chart_are_refused(link):
+    text = TWO_NETWORKS.replace("END_PROGRAM", link + "\nEND_PROGRAM")
+    found = [d for d in diags(text) if d.code == "PLC0152"]
+    assert len(found) == 1 and "Empty" in found[0].message and found[0].location.line == 8

@@ -43,7 +43,7 @@ from ..addresses import canonical
 from ..datasize import NESTING_LIMIT
 from ..dialect import current as current_dialect
 from ..lexer import identifier_problem
-from ..lower.network import Elem
+from ..lower.network import Elem, plan_feedback
 from ..parsing import ParseAbort
 from .il_lines import parse_il_body
 from .st import Parser, lower_alone
@@ -354,21 +354,29 @@ class _Importer:
         self.fail("PLC0181", f"the type <{tag}> is not supported by plclab", t)
         raise AssertionError
 
-    def init_value(self, iv: ET.Element) -> A.Expr:
+    def init_value(self, iv: ET.Element, tref: A.TypeRef | None = None) -> A.Expr:
         kids = self.kids(iv)
         if not kids:
             self.fail("PLC0183", "<initialValue> is empty", iv)
         v = kids[0]
         tag = _local(v.tag)
+        if isinstance(tref, A.ArrayTypeRef):
+            tref = tref.elem
         if tag == "simpleValue":
-            return self.expr(v.get("value"), v, "value")
+            value = v.get("value")
+            if isinstance(tref, A.StringTypeRef) and value is not None and \
+                    not re.match(r"^\s*(['\"]|W?STRING#)", value, re.I):
+                # Beremiz writes a STRING's initial value unquoted (value="hello") and quotes
+                # it when it generates ST: read it as the string it is (ADR 0053)
+                value = _quote(value, tref.wide)
+            return self.expr(value, v, "value")
         if tag == "arrayValue":
             items: list[tuple[A.Expr | None, A.Expr]] = []
             for item in self.kids(v, "value"):
                 rep = item.get("repetitionValue")
                 rep_e = A.Literal(self.loc(item), int(rep), "INT", None, rep) if rep and \
                     rep.isdigit() else None
-                items.append((rep_e, self.init_value(item)))
+                items.append((rep_e, self.init_value(item, tref)))
             return A.ArrayInit(self.loc(v), items)
         if tag == "structValue":
             fields = []
@@ -387,7 +395,7 @@ class _Importer:
             self.fail("PLC0183", f"variable {name} has no <type>", v)
         tref = self.type_ref(t)
         iv = self.kid(v, "initialValue")
-        init = self.init_value(iv) if iv is not None else None
+        init = self.init_value(iv, tref) if iv is not None else None
         addr = v.get("address")
         if addr is not None:
             addr = canonical(addr, current_dialect().hierarchical_words)
@@ -611,7 +619,16 @@ class _Importer:
                                       x if x is not None else el, "expression")
                     self.variable_pins(el, e, k)
                     if k != "inVariable":
-                        pending.append((e, "", self.refs(self.kid(el, "connectionPointIn"))))
+                        refs = self.refs(self.kid(el, "connectionPointIn"))
+                        if not refs:
+                            self.unconnected(el, k, x)
+                            if k == "outVariable":
+                                elems.pop()  # nothing reads it: it is left out
+                                by_id.pop(el.get("localId"), None)
+                                continue
+                            e.kind = "invar"  # still read by what it feeds, never written
+                        else:
+                            pending.append((e, "", refs))
                 elif k in ("jump", "label", "return"):
                     if tag not in ("FBD", "LD"):
                         self.fail("PLC0181", f"{self.describe(el)} belongs in an LD or FBD body",
@@ -669,16 +686,31 @@ class _Importer:
                     self.err("PLC0182", f"the right power rail is connected to localId {rid}, "
                              "which does not exist", cel)
                     ok = False
-        if ok and not self.acyclic(elems):
-            self.err("PLC0182", f"the {tag} network of this POU has a feedback loop; plclab "
-                     "evaluates networks without feedback (store the value in a variable)", lang)
-            ok = False
+        if ok:
+            stuck = plan_feedback(elems)[1]
+            if stuck is not None:
+                self.diags.append(Diagnostic(
+                    "PLC0330", f"the {tag} network of this POU has a feedback loop through "
+                    f"{stuck.text} that nothing holds: a wire fed back must leave a function "
+                    "block output, a BOOL box, or an output whose value an output variable "
+                    "also receives (the feedback variable); wire that output to a variable "
+                    "too", stuck.loc))
+                ok = False
         if ok and _box_depth(elems) > MAX_BOX_CHAIN:
             self.err("PLC0181", f"the {tag} network of this POU chains more than {MAX_BOX_CHAIN} "
                      "function boxes, each feeding the next; store an intermediate result in a "
                      "variable (an outVariable, then an inVariable) to split the chain", lang)
             ok = False
         return elems if ok else None
+
+    def unconnected(self, el: ET.Element, k: str, x: ET.Element | None) -> None:
+        """An output (or in-out) variable with nothing wired into it: no assignment (writing
+        FALSE or 0 every scan would be a silent miscompile; Beremiz generates nothing)."""
+        what = (x.text or "").strip() if x is not None else "?"
+        self.diags.append(Diagnostic(
+            "PLC0331", f"{self.describe(el)} writes {what} but nothing is wired into it; it is "
+            "left out (no assignment): connect its input or delete it", self.loc(el),
+            "warning"))
 
     def dead_elements(self, pending, skipped: set[str], by_id: dict[str, Elem]) -> set[int]:
         """The elements wired (directly or through others) to a skipped Beremiz-only block:
@@ -777,32 +809,6 @@ class _Importer:
         seen.add(pin)
         return pin
 
-    def acyclic(self, elems: list[Elem]) -> bool:
-        """True when no element feeds itself (an iterative depth-first search: a rung of
-        thousands of contacts in series must not exhaust Python's stack). A path through an
-        in-out variable is no loop: the variable holds the value (Beremiz counters are drawn
-        so: ``Cnt`` -> ADD -> SEL -> ``Cnt``)."""
-        state: dict[int, int] = {}
-        for root in elems:
-            if root.id in state:
-                continue
-            state[root.id] = 1
-            stack = [(root.id, _feeds(root, elems))]
-            while stack:
-                eid, it = stack[-1]
-                nxt = next(it, None)
-                if nxt is None:
-                    state[eid] = 2
-                    stack.pop()
-                    continue
-                s = state.get(nxt)
-                if s == 1:
-                    return False
-                if s is None:
-                    state[nxt] = 1
-                    stack.append((nxt, _feeds(elems[nxt], elems)))
-        return True
-
     # -- configurations -------------------------------------------------------------------------
     def configuration(self, c: ET.Element) -> None:
         name = self.ident(c.get("name"), c, "configuration name")
@@ -884,7 +890,8 @@ class _Wrap:
 
 def _box_depth(elems: list[Elem]) -> int:
     """The longest chain of function boxes feeding each other (connectors pass through;
-    other elements start a new chain). Iterative: the network is acyclic when this runs."""
+    other elements start a new chain). Iterative; an element met again while its chain is
+    being measured (a feedback loop, ADR 0053) counts as the start of a chain."""
     depth: dict[int, int] = {}
     for root in elems:
         stack = [(root.id, False)]
@@ -908,6 +915,27 @@ def _feeds(e: Elem, elems: list[Elem] | None = None):
     variables (reading one reads the variable: a loop through one is not a feedback loop)."""
     return (i for refs in e.inputs.values() for i, _ in refs
             if i >= 0 and (elems is None or elems[i].kind != "inoutvar"))
+
+
+def _quote(text: str, wide: bool) -> str:
+    """``hello`` -> ``'hello'`` (``"hello"`` for a WSTRING), with IEC escapes for ``$``, the
+    quote and control characters, so the ST lexer reads back exactly ``text``."""
+    q = '"' if wide else "'"
+    out = []
+    for ch in text:
+        if ch in ("$", q):
+            out.append("$" + ch)
+        elif ch == "\n":
+            out.append("$N")
+        elif ch == "\t":
+            out.append("$T")
+        elif ch == "\r":
+            out.append("$R")
+        elif ord(ch) < 32:
+            out.append(f"${ord(ch):02X}")
+        else:
+            out.append(ch)
+    return q + "".join(out) + q
 
 
 def _num(s: str | None) -> float:

@@ -427,19 +427,22 @@ class _SfcReader:
         """LD or FBD elements of the SFC body wired into the transition's condition: a network
         of its own, ending in an output variable that writes the hidden condition."""
         hidden = self.hidden()
-        tag = "LD" if any(_tag(g) in ("contact", "coil", "leftPowerRail") for g in graphics) \
-            else "FBD"
         by_id = {g.get("localId"): g for g in graphics}
-        net = ET.Element(tag)
-        todo, seen = [cpi], set()
+        todo, seen, mine = [cpi], set(), []
         while todo:  # the LD/FBD elements this condition reads, and nothing else
             for c in todo.pop().iter():
                 g = by_id.get(c.get("refLocalId")) if _tag(c) == "connection" else None
                 if g is not None and id(g) not in seen:
                     seen.add(id(g))
-                    net.append(g)
+                    mine.append(g)
                     todo.append(g)
-        net.extend(g for g in graphics if _tag(g) == "leftPowerRail" and id(g) not in seen)
+        # the condition's own elements say whether it is LD or FBD (not the rest of the body)
+        tag = "LD" if any(_tag(g) in ("contact", "coil", "leftPowerRail") for g in mine) \
+            else "FBD"
+        net = ET.Element(tag)
+        net.extend(mine)
+        if tag == "LD":
+            net.extend(g for g in graphics if _tag(g) == "leftPowerRail" and id(g) not in seen)
         out = ET.SubElement(net, "outVariable", {"localId": f"{hidden}-out"})
         out.append(cpi)
         expr = ET.SubElement(out, "expression")

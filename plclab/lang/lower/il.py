@@ -74,6 +74,8 @@ class _Lowering:
         self.labels = {x.target: k for k, x in enumerate(instrs) if x.op == "LABEL"}
         self.label_ty: dict[str, tuple[str, Instr]] = {}  # label -> (temp type name, source)
         self.label_undef: dict[str, Instr] = {}
+        self.label_lit: dict[str, list] = {}
+        self.pos = {id(x): k for k, x in enumerate(instrs)}  # label -> literals carried ahead, type unknown
         self.reachable = True
 
     # -- helpers ----------------------------------------------------------------------------
@@ -245,6 +247,30 @@ class _Lowering:
         return self.diags
 
     # -- operators --------------------------------------------------------------------------
+    def bool_literal(self) -> bool:
+        """``LD 0`` / ``LD 1`` used as a BOOL (stored into one, S/R, carried to a label a BOOL
+        reaches): the literal is typed by its context, as ST accepts ``b := 1`` (ADR 0053)."""
+        cr = self.cr
+        if self.cty is T.ANY_INT_LIT and isinstance(cr, A.Literal) and cr.kind == "INT" and \
+                cr.value in (0, 1):
+            self.set_cr(A.Literal(cr.loc, cr.value == 1, "BOOL", None, cr.text), T.BOOL,
+                        self.csrc)
+            return True
+        return False
+
+    def literal_fits(self, tname: str) -> bool:
+        """The CR is a literal that takes the type ``tname`` of another path into a label."""
+        if not isinstance(self.cr, A.Literal) or self.cty not in (T.ANY_INT_LIT,
+                                                                  T.ANY_REAL_LIT):
+            return False
+        ty = self.type_of_temp(tname)
+        cat = category(ty)
+        if cat == "BOOL":
+            return self.bool_literal()
+        if self.cty is T.ANY_REAL_LIT:
+            return cat == "REAL"
+        return cat in _NUM
+
     def op_ld(self, x: Instr) -> None:
         e = x.args[0]
         ty = self.typeof(e)
@@ -265,6 +291,8 @@ class _Lowering:
             return
         self.check_input(target, x)
         tty = self.typeof(target)
+        if category(tty) == "BOOL":
+            self.bool_literal()
         a, b = category(self.cty), category(tty)
         if x.op == "STN" and a not in ("BOOL", "BITS", None):
             self.mismatch(x, "but STN stores its negation, which needs a BOOL or a bit string")
@@ -292,6 +320,7 @@ class _Lowering:
             self.err("PLC0146", f"{x.text} needs a BOOL variable, not '{x.operand}'", x.loc)
             return
         self.check_input(target, x)
+        self.bool_literal()
         if category(self.cty) not in ("BOOL", None):
             self.mismatch(x, f"but {x.op} {'sets' if x.op == 'S' else 'resets'} its operand "
                           "only when the current result is a BOOL TRUE")
@@ -387,6 +416,19 @@ class _Lowering:
         if self.cr is None:
             self.label_undef.setdefault(label, x)
             return
+        prev = self.label_ty.get(label)
+        if prev is not None and self.literal_fits(prev[0]):
+            d = self.temps[prev[0]]  # LD 0 reaching a label an INT reaches: an INT 0
+            self.emit(A.Assign(x.loc, A.Name(x.loc, d.name), self.cr))
+            self.cr = A.Name(x.loc, d.name)
+            return
+        if prev is None and self.labels[label] > self.pos.get(id(x), -1) and \
+                isinstance(self.cr, A.Literal) and self.cty in (T.ANY_INT_LIT, T.ANY_REAL_LIT):
+            # a literal reaching a label ahead: typed by the other paths, known later
+            st = A.Assign(x.loc, A.Name(x.loc, "__CR_?"), A.copy_expr(self.cr))
+            self.emit(st)
+            self.label_lit.setdefault(label, []).append((st, self.cr, self.cty, self.csrc, x))
+            return
         d = self.temp(self.cty, x.loc)
         if d is None:
             self.err("PLC0147", f"the current result{self.cr_from()} is "
@@ -394,7 +436,9 @@ class _Lowering:
                      f"value again with LD after {label}:", x.loc)
             return
         tname = d.name[5:]
-        prev = self.label_ty.get(label)
+        if prev is None and label in self.label_lit:
+            self.settle_literals(label, tname, x)
+            prev = self.label_ty.get(label)
         if prev is not None and prev[0] != tname:
             self.err("PLC0147", f"the current result reaching label {label} is {tname} here but "
                      f"{prev[0]} from line {prev[1].loc.line}; load the value with LD after "
@@ -405,6 +449,28 @@ class _Lowering:
             self.emit(A.Assign(x.loc, A.Name(x.loc, d.name), self.cr))
             self.cr = A.Name(x.loc, d.name)
 
+    def settle_literals(self, label: str, tname: str | None, x: Instr) -> None:
+        """Give the literals carried ahead to ``label`` the type ``tname`` of another path
+        (None: no other path, their own type: DINT or LREAL)."""
+        saved = (self.cr, self.cty, self.csrc)
+        for st, lit, lty, src, jx in self.label_lit.pop(label, []):
+            self.set_cr(lit, lty, src)
+            want = tname
+            if want is None or not self.literal_fits(want):
+                d = self.temp(lty, jx.loc)
+                want = d.name[5:] if d is not None else want
+            if want is not None and want not in self.temps:
+                self.temp(self.type_of_temp(want), jx.loc)
+            st.target.name = f"__CR_{want}"
+            st.value = A.copy_expr(self.cr)  # a BOOL literal where 0/1 became one
+            prev = self.label_ty.get(label)
+            if prev is not None and prev[0] != want:
+                self.err("PLC0147", f"the current result reaching label {label} is {want} "
+                         f"here but {prev[0]} from line {prev[1].loc.line}; load the value "
+                         f"with LD after {label}:", jx.loc)
+            self.label_ty.setdefault(label, (want or "", jx))
+        self.set_cr(*saved)
+
     def label(self, k: int, x: Instr) -> None:
         name = x.target or ""
         if self.stack:
@@ -413,6 +479,8 @@ class _Lowering:
                      "with ')' before the label", x.loc)
         if self.reachable:
             self.carry(name, x)
+        if name in self.label_lit:  # only literals reach it: they keep their own type
+            self.settle_literals(name, None, x)
         self.emit(A.Label(x.loc, name))
         self.reachable = True
         lt = self.label_ty.get(name)

@@ -89,15 +89,16 @@ _CHAIN = 32  # series elements lowered into one expression before a temporary sp
 class _NetLowering:
     def __init__(self, pou: A.Pou, elems: list[Elem], types: LoweringTypes) -> None:
         self.pou = pou
-        self.elems = {e.id: e for e in elems}
-        self.order = execution_order(elems)
         self.types = types
         self.diags: list[Diagnostic] = []
+        self.decls: list[A.VarDecl] = []
+        self.n = 0
+        elems = self.cut_feedback(elems)
+        self.elems = {e.id: e for e in elems}
+        self.order = execution_order(elems)
         self.out: list[A.Stmt] = []
         self.memo: dict[Ref, A.Expr] = {}
-        self.decls: list[A.VarDecl] = []
         self.uses: dict[Ref, int] = {}
-        self.n = 0
         self.conds: dict[int, A.Expr] = {}
         self.pins: dict[int, tuple[str, str]] = {}
         self.edges: dict[tuple[int, str], A.Expr] = {}  # (box, input pin) -> its edge pulse
@@ -109,6 +110,38 @@ class _NetLowering:
 
     def err(self, code: str, msg: str, loc: Location) -> None:
         self.diags.append(Diagnostic(code, msg, loc))
+
+    def cut_feedback(self, elems: list[Elem]) -> list[Elem]:
+        """Break each feedback loop at the wire :func:`plan_feedback` chooses: the consumer
+        reads the value of the previous evaluation (a new in-variable element), held by the
+        feedback variable, the function block's output, or a hidden BOOL written at the end
+        of the network (ADR 0053)."""
+        cuts, stuck = plan_feedback(elems)
+        if stuck is not None:
+            return elems  # the front end refused the network (PLC0330)
+        elems = list(elems)
+        by_id = {e.id: e for e in elems}
+        held: dict[Ref, A.Expr] = {}
+        last = max((e.order for e in elems), default=())
+        for cid, pin, k, how, var in cuts:
+            c = by_id[cid]
+            src = c.inputs[pin][k]
+            s = by_id[src[0]]
+            if src not in held:
+                if how == "hidden":
+                    name = self.hidden("F", s.loc, "VAR", f"feedback value of {s.text}")
+                    w = Elem(len(elems), "outvar", s.loc, order=(float("inf"),) + tuple(last),
+                             inputs={"": [src]}, var=copy.deepcopy(name),
+                             text=f"feedback of {s.text}", explicit_order=True)
+                    elems.append(w)
+                    held[src] = name
+                else:
+                    held[src] = var
+            r = Elem(len(elems), "invar", c.loc, order=c.order, var=copy.deepcopy(held[src]),
+                     text=f"previous value of {s.text}")
+            elems.append(r)
+            c.inputs[pin][k] = (r.id, "")
+        return elems
 
     def hidden(self, stem: str, loc: Location, section: str, what: str) -> A.Name:
         self.n += 1
@@ -452,6 +485,152 @@ def execution_order(elems: list[Elem]) -> list[Elem]:
     done = {e.id for e in out}
     out.extend(sorted((e for e in elems if e.id not in done), key=lambda e: e.order))
     return out
+
+
+_BOOL_BOXES = {"AND", "OR", "XOR", "NOT", "GT", "GE", "EQ", "NE", "LE", "LT"}
+
+Cut = tuple[int, str, int, str, Any]  # consumer id, its pin, index of the ref, how, var
+
+
+def _holder(s: Elem, pin: str, written: dict[Ref, A.Expr]) -> tuple[int, str, Any] | None:
+    """How the previous value of output ``pin`` of ``s`` is read when a loop is cut on a wire
+    leaving it: (preference, how, expression); None when nothing holds it. ``written``: the
+    variables output variables write straight from a wire (feedback variables)."""
+    if (s.id, pin) in written:
+        return (0, "var", written[(s.id, pin)])
+    if s.kind == "fb" and s.instance is not None and pin not in ("", "ENO") and \
+            pin not in s.inout_pins:
+        v: A.Expr = A.Member(s.loc, copy.deepcopy(s.instance), pin)
+        return (1, "var", A.Unary(s.loc, "NOT", v) if pin in s.neg_out else v)
+    if s.kind in ("contact", "coil", "cmp") or (s.kind == "func" and (
+            pin == "ENO" or (s.type_name in _BOOL_BOXES and not s.targets))):
+        return (2, "hidden", None)
+    return None
+
+
+def plan_feedback(elems: list[Elem]) -> tuple[list[Cut], Elem | None]:
+    """Where each feedback loop of a network is cut (IEC 61131-3 ed.3, FBD feedback paths: a
+    value fed back is the one of the previous evaluation). Elements are taken in the IEC order
+    (no element before those wired into it); when none is ready, the elements left form loops,
+    and one wire inside a loop is cut: a wire whose value a variable holds is preferred (the
+    feedback variable: an output variable wired from the same output), then a function block
+    output (``T1.Q`` keeps the previous value, as Beremiz reads it), then a BOOL box (a hidden
+    BOOL holds it); among equals, the consumer first top to bottom, left to right. Returns the
+    cuts, and an element of a loop nothing can hold (no cut) or None."""
+    by_id = {e.id: e for e in elems}
+    srcs = {e.id: set(_feeds_of(e, by_id)) for e in elems}
+    readers: dict[int, set[int]] = {}
+    for e in elems:
+        for i in srcs[e.id]:
+            readers.setdefault(i, set()).add(e.id)
+    waiting = {i: len(ss) for i, ss in srcs.items()}
+    written: dict[Ref, A.Expr] = {}
+    for o in elems:  # output variables written straight from one wire
+        src = o.inputs.get("", [])
+        if o.kind == "outvar" and not o.neg_in and len(src) == 1 and \
+                isinstance(o.var, A.Name | A.Member):
+            written.setdefault(src[0], o.var)
+    ready = [i for i, n in waiting.items() if n == 0]
+    left = set(by_id)
+    cuts: list[Cut] = []
+    while left:
+        while ready:  # Kahn: linear in the size of the network
+            i = ready.pop()
+            left.discard(i)
+            for r in readers.get(i, ()):
+                waiting[r] -= 1
+                if waiting[r] == 0:
+                    ready.append(r)
+        if not left:
+            break
+        # stalled: the first strongly connected part found is fed by nothing else left
+        comp = _loop_members(left, srcs)
+        best = None
+        for cid in comp:
+            c = by_id[cid]
+            plan = []
+            worst = -1
+            for pin, refs in c.inputs.items():
+                for k, (sid, spin) in enumerate(refs):
+                    if sid not in comp or by_id[sid].kind == "inoutvar":
+                        continue
+                    h = _holder(by_id[sid], spin, written)
+                    if h is None:
+                        worst = 9
+                        break
+                    worst = max(worst, h[0])
+                    plan.append((cid, pin, k, h[1], h[2]))
+                if worst == 9:
+                    break
+            if plan and worst < 9:
+                key = (worst, c.order)
+                if best is None or key < best[0]:
+                    best = (key, plan)
+        if best is None:
+            return cuts, by_id[min(comp, key=lambda i: by_id[i].order)]
+        cuts.extend(best[1])
+        cid = best[1][0][0]
+        for sid in srcs[cid] & comp:  # its in-loop sources no longer hold it back
+            readers[sid].discard(cid)
+        srcs[cid] -= comp
+        waiting[cid] = len(srcs[cid] & left)
+        if waiting[cid] == 0:
+            ready.append(cid)
+        else:  # cannot happen (the part is fed by nothing left); stay safe
+            return cuts, by_id[cid]
+    return cuts, None
+
+
+def _feeds_of(e: Elem, by_id: dict[int, Elem]):
+    """The elements wired into ``e``; not in-out variables (reading one reads the variable: a
+    path through one is no loop)."""
+    return (i for refs in e.inputs.values() for i, _ in refs
+            if i >= 0 and i in by_id and by_id[i].kind != "inoutvar")
+
+
+def _loop_members(left: set[int], srcs: dict[int, set[int]]) -> set[int]:
+    """The elements of ``left`` on a loop (a strongly connected part with more than one
+    element or feeding itself), first found; iterative Tarjan."""
+    index: dict[int, int] = {}
+    low: dict[int, int] = {}
+    on: set[int] = set()
+    stack: list[int] = []
+    n = 0
+    for root in sorted(left):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(srcs[root] & left)))]
+        index[root] = low[root] = n
+        n += 1
+        stack.append(root)
+        on.add(root)
+        while work:
+            v, it = work[-1]
+            w = next(it, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = n
+                    n += 1
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(sorted(srcs[w] & left))))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                comp = set()
+                while True:
+                    x = stack.pop()
+                    on.discard(x)
+                    comp.add(x)
+                    if x == v:
+                        break
+                if len(comp) > 1 or v in srcs[v]:
+                    return comp
+    return set(left)
 
 
 _ACTING = {"fb", "func", "outvar", "inoutvar", "coil", "jump", "label", "return"}

@@ -22,7 +22,7 @@ from ..limits import MAX_SFC_STEPS
 from .types import LoweringTypes
 
 if TYPE_CHECKING:
-    from .sfc import Chart
+    from .sfc import Chart, Step
 
 MAX_SITUATIONS = 4096  # explored situations; beyond, the structural checks are skipped
 _TIMED = ("L", "D", "SD", "DS", "SL")
@@ -48,10 +48,15 @@ def check_chart(chart: Chart, pou: A.Pou, types: LoweringTypes) -> list[Diagnost
     if not initial:
         err("PLC0152", f"the chart of {pou.spelling or pou.name} has no INITIAL_STEP; mark the "
             "step the sequence starts in with INITIAL_STEP", chart.loc)
-    for s in initial[1:]:
-        err("PLC0152", f"second initial step {s.text} (the first is {initial[0].text} at line "
-            f"{initial[0].loc.line}); a chart has exactly one INITIAL_STEP: make this a STEP",
-            s.loc)
+    first: dict[str, Step] = {}  # one initial step per connected network (ADR 0053)
+    part = _networks(chart)
+    for s in initial:
+        f = first.setdefault(part[s.name], s)
+        if f is not s:
+            err("PLC0152", f"second initial step {s.text} in the same SFC network (the first "
+                f"is {f.text} at line {f.loc.line}); a network of steps and transitions has "
+                "exactly one INITIAL_STEP: make this a STEP (separate networks, not linked "
+                "by any transition, each have their own)", s.loc)
     for t in chart.transitions:
         for n, loc in t.sources + t.targets:
             if n not in steps:
@@ -69,6 +74,27 @@ def check_chart(chart: Chart, pou: A.Pou, types: LoweringTypes) -> list[Diagnost
     if not any(d.severity == "error" for d in out) and initial:
         _structure(chart, err)
     return out
+
+
+def _networks(chart: Chart) -> dict[str, str]:
+    """Step name -> a representative of its SFC network: the steps linked by transitions
+    (IEC 61131-3: a POU body may hold several networks, each with its own initial step, as
+    Annex F's gravel example does)."""
+    parent = {s.name: s.name for s in chart.steps}
+
+    def find(n: str) -> str:
+        while parent[n] != n:
+            parent[n] = parent[parent[n]]
+            n = parent[n]
+        return n
+
+    for t in chart.transitions:
+        names = [n for n, _ in t.sources + t.targets if n in parent]
+        for n in names[1:]:
+            a, b = find(names[0]), find(n)
+            if a != b:
+                parent[b] = a
+    return {n: find(n) for n in parent}
 
 
 def _assigns(body: list[A.Stmt], name: str | None) -> bool:
