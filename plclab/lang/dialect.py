@@ -75,6 +75,10 @@ class Dialect:
     # input is a variable of the process image to its C code) and the next input read
     # overwrites the value: the warning PLC0284; elsewhere the error PLC0105 (ADR 0037)
     input_writes: bool = False
+    # ``r := EXPT(n, 1.5) * 0.836;`` with ``r : REAL``: an expression that is LREAL only through
+    # untyped real literals is stored in REAL with the warning PLC0290 (CODESYS types a literal
+    # by its context; ADR 0051); elsewhere PLC0118 (IEC: an untyped real literal is LREAL)
+    literal_context: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
@@ -82,7 +86,7 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
             hierarchical_words=True),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
             end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
-            implicit_int_conversion=True,
+            implicit_int_conversion=True, literal_context=True,
             sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,

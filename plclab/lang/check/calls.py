@@ -301,6 +301,13 @@ class Calls(Pass):
                 want = T.lookup_elementary(src)
                 ok = T.can_widen(ra, want) or T.same_type(ra, want) or (
                     isinstance(ra, T.EnumType) and want.kind == "int")
+                if not ok and ra.kind in ("int", "bits") and want.kind in ("int", "bits") \
+                        and self.cx.dialect(a.loc).implicit_int_conversion:
+                    sn = T.concrete(ra).name
+                    self.warn("PLC0285", f"{sn} passed to {name}, which takes {src} (accepted "
+                              f"as in CODESYS): it wraps to {src} first as {sn}_TO_{src} "
+                              f"wraps; write {sn}_TO_{dst.name}(...) to convert directly", a.loc)
+                    ok = True
                 if not ok:
                     self.err("PLC0107", f"{name} expects {src}, but the argument is "
                              f"{T.concrete(ra)}" + (f"; use {T.concrete(ra).name}_TO_"

@@ -8,12 +8,13 @@ from typing import Any
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
-from ..walk import NodeVisitor
+from ..walk import NodeVisitor, walk
 from .context import Pass, close_hint
 from .declarations import split_address
 from .symbols import EnumSym, ProgSym, VarSym
 
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
+_UNSIGNED = {"BYTE": "USINT", "WORD": "UINT", "DWORD": "UDINT", "LWORD": "ULINT"}
 
 
 def as_bool_literal(e: A.Expr) -> bool:
@@ -23,6 +24,27 @@ def as_bool_literal(e: A.Expr) -> bool:
         e.kind, e.value, e.ty = "BOOL", bool(e.value), T.BOOL
         return True
     return False
+
+
+def _lreal_from_literals(e: A.Expr) -> bool:
+    """``EXPT(BFT, 1.5) * 0.836``: the expression is LREAL only through untyped real literals
+    (no LREAL variable, typed literal ``LREAL#``, conversion or user function returning LREAL),
+    so CODESYS, which types a literal by its context, computes it as REAL."""
+    seen = False
+    for n in walk(e):
+        if isinstance(n, A.Literal) and n.kind == "REAL" and n.prefix is None:
+            seen = True
+            continue
+        if not isinstance(n, A.Expr) or n.ty is None or T.base_of(n.ty) is not T.LREAL:
+            continue
+        if isinstance(n, A.Literal):
+            return False
+        elif isinstance(n, A.Call):
+            if n.target is None or n.target.kind != "builtin":
+                return False
+        elif not isinstance(n, A.Binary | A.Unary):
+            return False
+    return seen
 
 
 class Expressions(Pass, NodeVisitor):
@@ -83,6 +105,14 @@ class Expressions(Pass, NodeVisitor):
             self.warn("PLC0283", f"{sn} stored in {dn} without a conversion (accepted as in "
                       f"CODESYS): it is rounded as {sn}_TO_{dn} rounds (2.5 -> 3, -2.5 -> -3); "
                       f"write {sn}_TO_{dn}(...) to say so, or TRUNC(...) to drop the fraction",
+                      loc)
+            return
+        if T.base_of(rs) is T.LREAL and T.base_of(rd) is T.REAL and \
+                self.cx.dialect(loc).literal_context and _lreal_from_literals(e):
+            self.warn("PLC0290", "a real literal here is REAL, as CODESYS types a literal by "
+                      "the variable it goes to (accepted as in CODESYS); IEC 61131-3 reads "
+                      "an untyped real literal as LREAL, so a strict compiler refuses LREAL "
+                      "stored in REAL: write REAL#1.5 or LREAL_TO_REAL(...) to be portable",
                       loc)
             return
         if rs.kind in ("int", "bits") and rd.kind in ("int", "bits") and not isinstance(
@@ -486,6 +516,8 @@ class Expressions(Pass, NodeVisitor):
             if isinstance(rt, T.Elementary) and rt.kind == "int" and not rt.signed:
                 self.warn("PLC0204", f"negating an unsigned {rt.name} wraps around", e.loc)
             return t
+        if self.bits_accepted(t, "unary '-'", e.loc):  # CODESYS: -step of a BYTE (OSCAT)
+            return t
         self.err("PLC0104", f"unary '-' needs a number or a TIME, not {t}", e.loc)
         return T.ANY
 
@@ -566,6 +598,12 @@ class Expressions(Pass, NodeVisitor):
             return T.ANY
         if ka in ("int", "real", "bits") and kb in ("int", "real", "bits"):
             c = T.common_type(a, b)
+            if c is None and "bits" in (ka, kb) and "real" in (ka, kb):
+                # CODESYS: ``r * x`` with x a BYTE computes in REAL (OSCAT BYTE_TO_RANGE)
+                bits = a if ka == "bits" else b
+                if self.bits_accepted(bits, f"arithmetic '{op}'", e.loc):
+                    return T.common_type(T.ELEMENTARY[_UNSIGNED[T.base_of(bits).name]],
+                                         b if ka == "bits" else a) or T.ANY
             if c is not None and c.kind != "bits":
                 return c
             if c is not None and c.kind == "bits":

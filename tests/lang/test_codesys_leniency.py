@@ -1,0 +1,143 @@
+"""CODESYS leniency of the ``codesys`` dialect (issue 33, ADR 0051): OSCAT code as CODESYS
+compiles it, each accepted construct with its warning; ``iec`` refuses the same text."""
+
+from __future__ import annotations
+
+import struct
+
+import pytest
+
+import plclab
+from plclab.project import check_sources
+
+
+def codes(src: str, dialect: str | None = None) -> tuple[list[str], list[str]]:
+    """(error codes, warning codes) of ``src`` read in ``dialect`` (default: codesys)."""
+    _, diags = check_sources([(src, "p.st")], dialect)
+    return ([d.code for d in diags if d.severity == "error"],
+            [d.code for d in diags if d.severity != "error"])
+
+
+def f32(x: float) -> float:
+    return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+BFT = """
+FUNCTION BFT_TO_MS : REAL
+VAR_INPUT BFT : INT; END_VAR
+BFT_TO_MS := EXPT(BFT, 1.5) * 0.836;
+END_FUNCTION
+PROGRAM Main
+VAR r : REAL; END_VAR
+r := BFT_TO_MS(4);
+END_PROGRAM
+"""
+
+
+def test_real_literal_typed_by_context_in_codesys_only():
+    errors, warnings = codes(BFT)
+    assert errors == [] and "PLC0290" in warnings
+    assert codes(BFT, "iec")[0] == ["PLC0118"]
+    plc = plclab.loads(BFT)
+    plc.scan(1)
+    assert plc["Main.r"] == f32(4 ** 1.5 * 0.836)
+
+
+@pytest.mark.parametrize("rhs", [
+    "lr * 0.5",                  # an LREAL variable: not a literal's doing
+    "LREAL#0.5 * 2.0",           # a typed literal says LREAL
+    "INT_TO_LREAL(i) * 0.5",     # a conversion to LREAL
+    "Twice(0.5)",                # a function returning LREAL
+])
+def test_lreal_that_is_not_only_literals_still_refused(rhs):
+    src = f"""
+FUNCTION Twice : LREAL
+VAR_INPUT x : LREAL; END_VAR
+Twice := x * 2.0;
+END_FUNCTION
+PROGRAM Main
+VAR r : REAL; lr : LREAL := 1.0; i : INT := 3; END_VAR
+r := {rhs};
+END_PROGRAM
+"""
+    errors, warnings = codes(src)
+    assert errors == ["PLC0118"] and "PLC0290" not in warnings
+
+
+OSCAT_COUNT = """
+FUNCTION INC : INT
+VAR_INPUT X : INT; D : INT; M : INT; END_VAR
+INC := X + D;
+IF INC > M THEN INC := 0; ELSIF INC < 0 THEN INC := M; END_IF;
+END_FUNCTION
+FUNCTION_BLOCK COUNT_BR
+VAR_INPUT up, dn, set : BOOL; in : BYTE; step : BYTE := 1; mx : BYTE := 255; END_VAR
+VAR_OUTPUT cnt : BYTE; END_VAR
+VAR last_up, last_dn : BOOL; END_VAR
+IF set THEN
+    cnt := LIMIT(0, in, mx);
+ELSIF up AND NOT last_up THEN
+    cnt := INT_TO_BYTE(INC(cnt, step, mx));
+ELSIF dn AND NOT last_dn THEN
+    cnt := INT_TO_BYTE(INC(cnt, -step, mx));
+END_IF;
+last_up := up;
+last_dn := dn;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR c : COUNT_BR; n0, n1, n2, n3 : BYTE; END_VAR
+c(set := TRUE, in := 200, mx := 100);
+n0 := c.cnt;
+c(set := FALSE, dn := TRUE, step := 3);
+n1 := c.cnt;
+c(dn := FALSE);
+c(dn := TRUE);
+n2 := c.cnt;
+c(dn := FALSE, up := TRUE, step := 5);
+n3 := c.cnt;
+END_PROGRAM
+"""
+
+
+def test_negated_byte_and_byte_int_mixes_as_codesys_computes_them():
+    errors, warnings = codes(OSCAT_COUNT)
+    assert errors == [] and "PLC0173" in warnings
+    assert "PLC0104" in codes(OSCAT_COUNT, "iec")[0]
+    plc = plclab.loads(OSCAT_COUNT)
+    plc.scan(1)
+    # LIMIT clamps 200 to 100; -step is -3 (not the BYTE 253) when it reaches INC's INT input
+    assert [plc[f"Main.n{k}"] for k in range(4)] == [100, 97, 94, 99]
+
+
+def test_bit_string_times_real_computes_in_real():
+    src = """
+FUNCTION BYTE_TO_RANGE : REAL
+VAR_INPUT X : BYTE; LOW : REAL; HIGH : REAL; END_VAR
+BYTE_TO_RANGE := (HIGH - LOW) * X / 255.0 + LOW;
+END_FUNCTION
+PROGRAM Main
+VAR r : REAL; END_VAR
+r := BYTE_TO_RANGE(51, 10.0, 20.0);
+END_PROGRAM
+"""
+    errors, warnings = codes(src)
+    assert errors == [] and "PLC0173" in warnings
+    assert "PLC0104" in codes(src, "iec")[0]
+    plc = plclab.loads(src)
+    plc.scan(1)
+    assert plc["Main.r"] == pytest.approx(12.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("decl,arg,want", [
+    ("d : DINT := 100000", "INT_TO_DINT(d)", 100000 - 131072),  # wraps to INT first
+    ("d : DINT := 100000", "INT_TO_BYTE(d)", 100000 & 0xFF),
+    ("d : DINT := -1", "UINT_TO_DINT(d)", 65535),
+])
+def test_typed_conversion_of_a_wider_integer_wraps_to_its_input_type(decl, arg, want):
+    src = f"PROGRAM Main\nVAR {decl}; x : DINT; END_VAR\nx := {arg};\nEND_PROGRAM\n"
+    errors, warnings = codes(src)
+    assert errors == [] and "PLC0285" in warnings
+    assert "PLC0107" in codes(src, "iec")[0]
+    plc = plclab.loads(src)
+    plc.scan(1)
+    assert plc["Main.x"] == want
