@@ -79,6 +79,12 @@ class Dialect:
     # untyped real literals is stored in REAL with the warning PLC0290 (CODESYS types a literal
     # by its context; ADR 0051); elsewhere PLC0118 (IEC: an untyped real literal is LREAL)
     literal_context: bool = False
+    # ``pt := REF(X); REAL_TO_DW := pt^;`` in a FUNCTION (OSCAT): REF of a local of the call,
+    # kept in a local reference that does not outlive it, and a REF_TO DWORD to a REAL reading
+    # its bits (PLC0291; ADR 0051); elsewhere PLC0240 and PLC0241 (IEC ed.3 6.4.4.10: no REF
+    # of a temporary, a reference of its own type only)
+    local_refs: bool = False
+    reinterpret_refs: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
@@ -87,6 +93,7 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
             end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
             implicit_int_conversion=True, literal_context=True,
+            local_refs=True, reinterpret_refs=True,
             sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,

@@ -141,3 +141,101 @@ def test_typed_conversion_of_a_wider_integer_wraps_to_its_input_type(decl, arg, 
     plc = plclab.loads(src)
     plc.scan(1)
     assert plc["Main.x"] == want
+
+
+REINTERPRET = """
+FUNCTION REAL_TO_DW : DWORD
+VAR_INPUT X : REAL; END_VAR
+VAR pt : REF_TO DWORD; END_VAR
+pt := REF(X);
+REAL_TO_DW := pt^;
+END_FUNCTION
+FUNCTION DW_TO_REAL : REAL
+VAR_INPUT X : DWORD; END_VAR
+VAR pt : REF_TO REAL; END_VAR
+pt := REF(X);
+DW_TO_REAL := pt^;
+END_FUNCTION
+FUNCTION LW_TO_LREAL : LREAL
+VAR_INPUT X : LWORD; END_VAR
+VAR pt : REF_TO LREAL; END_VAR
+pt := REF(X);
+LW_TO_LREAL := pt^;
+END_FUNCTION
+FUNCTION SET_BITS : REAL
+VAR_INPUT b : DWORD; END_VAR
+VAR r : REAL; pt : REF_TO DWORD; END_VAR
+pt := REF(r);
+IF __ISVALIDREF(pt) AND pt <> NULL THEN pt^ := b; END_IF;
+SET_BITS := r;
+END_FUNCTION
+PROGRAM Main
+VAR x : REAL; w : DWORD; back : REAL; lw : LWORD; lr : LREAL; set : REAL; END_VAR
+w := REAL_TO_DW(x);
+back := DW_TO_REAL(w);
+lr := LW_TO_LREAL(lw);
+set := SET_BITS(w);
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("x", [1.0, -2.5, 3.1415927, 1e-40, 6.5e37])
+def test_reference_to_a_function_local_reads_the_bits_of_another_type(x):
+    errors, warnings = codes(REINTERPRET)
+    assert errors == [] and warnings.count("PLC0291") == 4
+    strict = codes(REINTERPRET, "iec")[0]
+    assert set(strict) == {"PLC0240"} and len(strict) == 4
+    plc = plclab.loads(REINTERPRET)
+    plc["Main.x"] = x
+    plc["Main.lw"] = struct.unpack("<Q", struct.pack("<d", -x / 3))[0]
+    plc.scan(1)
+    bits = struct.unpack("<I", struct.pack("<f", x))[0]
+    assert plc["Main.w"] == bits
+    assert plc["Main.back"] == f32(x) == plc["Main.set"]
+    assert plc["Main.lr"] == -x / 3
+
+
+@pytest.mark.parametrize("escape", [
+    "out := pt;",                        # an output outlives the call
+    "g := pt;",                          # a global
+    "F := pt;",                          # the result
+    "Keep(pt);",                         # passed on: the callee may keep it
+    "other := pt;",                      # copied into another reference
+])
+def test_a_reference_to_a_local_that_could_outlive_the_call_is_refused(escape):
+    src = f"""
+VAR_GLOBAL g : REF_TO INT; END_VAR
+FUNCTION Keep : BOOL
+VAR_INPUT r : REF_TO INT; END_VAR
+g := r;
+END_FUNCTION
+FUNCTION F : REF_TO INT
+VAR_OUTPUT out : REF_TO INT; END_VAR
+VAR x : INT; pt, other : REF_TO INT; END_VAR
+pt := REF(x);
+{escape}
+END_FUNCTION
+"""
+    assert "PLC0240" in codes(src)[0]
+
+
+def test_ref_of_a_local_not_kept_in_a_local_reference_is_refused():
+    src = """
+FUNCTION F : INT
+VAR_IN_OUT r : REF_TO INT; END_VAR
+VAR x : INT; END_VAR
+r := REF(x);
+END_FUNCTION
+"""
+    assert "PLC0240" in codes(src)[0]
+
+
+@pytest.mark.parametrize("decl", ["pt : REF_TO INT", "pt : REF_TO LREAL", "pt : REF_TO STRING"])
+def test_a_reference_to_another_size_or_kind_is_still_refused(decl):
+    src = f"""
+FUNCTION F : INT
+VAR x : REAL; {decl}; END_VAR
+pt := REF(x);
+END_FUNCTION
+"""
+    assert "PLC0241" in codes(src)[0]

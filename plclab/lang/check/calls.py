@@ -31,6 +31,7 @@ class CallInfo:
     inouts: list[tuple[Any, A.Expr]] = field(default_factory=list)
     en: A.Expr | None = None  # EN := c (IEC 61131-3 ed.3 6.6.1.6): call only when TRUE
     eno: A.Expr | None = None  # ENO => ok: TRUE when the body ran
+    pun: tuple[str, str] | None = None  # REF(x) read as another type of its size (PLC0291)
 
 
 class Calls(Pass):

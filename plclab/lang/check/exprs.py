@@ -58,6 +58,8 @@ class Expressions(Pass, NodeVisitor):
             self.cx.oop.interface_assign(rs, rd, loc)
             return
         if isinstance(rd, T.RefType) or isinstance(rs, T.RefType):  # REF_TO (ADR 0021)
+            if self.reinterpreted_ref(rs, rd, e, loc):
+                return
             self.cx.oop.ref_assign(rs, rd, loc)
             return
         if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
@@ -130,6 +132,27 @@ class Expressions(Pass, NodeVisitor):
             hint = f"; convert explicitly with {sn}_TO_{dn}(...)"
         self.err("PLC0118" if hint else "PLC0103",
                  f"cannot assign {T.concrete(rs)} to {rd} without a conversion{hint}", loc)
+
+    def reinterpreted_ref(self, rs: T.Type, rd: T.Type, e: A.Expr, loc: Location) -> bool:
+        """``pt := REF(x)`` with ``pt : REF_TO DWORD`` and ``x : REAL`` (OSCAT ``REAL_TO_DW``):
+        in the codesys dialect, a reference to another elementary number or bit string of
+        the same size reads and writes ``x``'s bits (PLC0291); elsewhere PLC0241."""
+        if not (isinstance(rs, T.RefType) and isinstance(rd, T.RefType) and
+                isinstance(e, A.Call) and e.target is not None and
+                e.target.kind == "reference" and e.target.callee in ("REF", "ADR")):
+            return False
+        a, b = T.resolve(rs.target), T.resolve(rd.target)
+        kinds = ("int", "bits", "real")
+        if not (isinstance(a, T.Elementary) and isinstance(b, T.Elementary) and a is not b and
+                a.kind in kinds and b.kind in kinds and a is not T.BOOL and b is not T.BOOL and
+                a.bits == b.bits and self.cx.dialect(loc).reinterpret_refs):
+            return False
+        self.warn("PLC0291", f"a REF_TO {b.name} to a {a.name} reads and writes its bits as "
+                  f"{b.name} (accepted as in CODESYS; IEEE 754, little-endian); IEC 61131-3 "
+                  f"refuses a reference of another type: convert the value, or keep the "
+                  f"bits in a {b.name} variable", loc)
+        e.target.pun = (a.name, b.name)
+        return True
 
     def lookup(self, name: str) -> Any:
         sym = self.cx.scope.local(name)

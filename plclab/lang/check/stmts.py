@@ -23,6 +23,7 @@ class Statements(Pass, NodeVisitor):
         self.cx.scope = self.table.scope(p)
         self.cx.call_graph.setdefault(p.name, set())
         self.checked_body(p.body, p.loc)
+        self.cx.oop.check_local_refs(p.body)
         self.check_labels(p.body)
         if p.kind == "FUNCTION" and p.native is None and p.return_type is not None:
             assigned = any(
@@ -73,6 +74,7 @@ class Statements(Pass, NodeVisitor):
         for d in t.decls:
             self.cx.decls.check_init(d, scope)
         self.checked_body(t.body, t.loc)
+        self.cx.oop.check_local_refs(t.body)
         self.cx.scope = Scope()
         self.cx.in_test = False
 
