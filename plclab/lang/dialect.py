@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from ..errors import Location, PlcError
 
 __all__ = ["Dialect", "PROFILES", "DEFAULT", "profile", "current", "using", "dialect_pragma",
-           "choose", "explain_choice", "origin"]
+           "choose", "explain_choice", "origin", "without_pragma"]
 
 
 @dataclass(frozen=True)
@@ -128,6 +128,11 @@ def using(name: str):
         yield
     finally:
         _CURRENT.reset(token)
+
+
+def without_pragma(text: str) -> str:
+    """``text`` with its ``{dialect}`` pragmas blanked (same lines and columns)."""
+    return _PRAGMA.sub(lambda m: " " * len(m.group(0)), text)
 
 
 def dialect_pragma(text: str) -> str | None:

@@ -239,3 +239,42 @@ pt := REF(x);
 END_FUNCTION
 """
     assert "PLC0241" in codes(src)[0]
+
+
+def test_the_ref_of_a_local_has_its_warning():
+    errors, warnings = codes(REINTERPRET)
+    assert warnings.count("PLC0292") == 4
+
+
+def test_explain_dialect_lists_each_rule_with_what_iec_says(tmp_path, capsys):
+    from plclab.cli import main
+
+    f = tmp_path / "oscat.st"
+    f.write_text(BFT + REINTERPRET.replace("PROGRAM Main", "PROGRAM Main2"), encoding="utf-8")
+    assert main(["check", "--explain-dialect", str(f)]) == 0
+    out = capsys.readouterr().out
+    rules = [ln for ln in out.splitlines() if ln.startswith(str(f) + ":") and "(codesys)" in ln]
+    assert {ln.split()[1] for ln in rules} == {"PLC0290", "PLC0291", "PLC0292"}
+    line = BFT.splitlines().index("BFT_TO_MS := EXPT(BFT, 1.5) * 0.836;") + 1
+    lit = next(i for i, ln in enumerate(out.splitlines()) if f"oscat.st:{line}:" in ln and
+               "PLC0290" in ln)
+    assert out.splitlines()[lit + 1].strip().startswith("iec: PLC0118")
+    # a file that is strict IEC already: nothing fires
+    g = tmp_path / "plain.st"
+    g.write_text("{dialect 'iec'}\nPROGRAM P VAR n : INT; END_VAR n := n + 1; END_PROGRAM\n",
+                 encoding="utf-8")
+    main(["check", "--explain-dialect", str(g)])
+    assert "0 dialect rule(s) fired" in capsys.readouterr().out
+
+
+def test_explain_dialect_names_silent_syntax_leniency(tmp_path, capsys):
+    """A CODESYS form accepted without a warning (Color.Red) still shows, with iec's error."""
+    from plclab.cli import main
+
+    f = tmp_path / "enum.st"
+    f.write_text("TYPE Color : (Red, Green); END_TYPE\nPROGRAM P VAR c : Color; END_VAR\n"
+                 "c := Color.Green;\nEND_PROGRAM\n", encoding="utf-8")
+    main(["check", "--explain-dialect", str(f)])
+    out = capsys.readouterr().out
+    assert f"{f}:3:" in out and "accepted by codesys without a warning" in out
+    assert "iec: PLC0174" in out

@@ -444,7 +444,12 @@ class ObjectChecks(Pass):
                 stored.add(id(n.value))
                 holders.add(n.target.sym.decl.name)
         for c, x, name in pending:
-            if id(c) not in stored:
+            if id(c) in stored:
+                self.warn("PLC0292", f"{name}({expr_text(x)}) points at a local of this call "
+                          "(accepted as in CODESYS: the reference is only used inside the "
+                          "call); IEC 61131-3 ed.3 refuses REF of a temporary variable: copy "
+                          "the value, or make the variable one of a block or a global", x.loc)
+            else:
                 self.err("PLC0240", f"{name}({expr_text(x)}): the variable lives only during "
                          "one call (a local of a FUNCTION, METHOD or TEST, or a VAR_TEMP); "
                          "store the reference in a local REF_TO variable of the same call and "
