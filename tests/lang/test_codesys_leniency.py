@@ -278,3 +278,21 @@ def test_explain_dialect_names_silent_syntax_leniency(tmp_path, capsys):
     out = capsys.readouterr().out
     assert f"{f}:3:" in out and "accepted by codesys without a warning" in out
     assert "iec: PLC0174" in out
+
+
+@pytest.mark.parametrize("inp,want_n,want_cnt", [(300, 200, 200), (-5, 0, 0), (77, 77, 77)])
+def test_limit_of_int_and_byte_takes_the_common_type_then_narrows(inp, want_n, want_cnt):
+    src = f"""
+PROGRAM Main
+VAR cnt : BYTE; in : INT := {inp}; mx : BYTE := 200; n : INT; m : INT; END_VAR
+cnt := LIMIT(0, in, mx);
+n := LIMIT(0, in, mx);
+m := MAX(in, mx);
+END_PROGRAM
+"""
+    errors, warnings = codes(src)
+    assert errors == [] and "PLC0173" in warnings and "PLC0285" in warnings
+    assert codes(src, "iec")[0].count("PLC0107") == 3
+    plc = plclab.loads(src)
+    plc.scan(1)
+    assert (plc["Main.n"], plc["Main.cnt"], plc["Main.m"]) == (want_n, want_cnt, max(inp, 200))
