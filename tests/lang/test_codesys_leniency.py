@@ -296,3 +296,35 @@ END_PROGRAM
     plc = plclab.loads(src)
     plc.scan(1)
     assert (plc["Main.n"], plc["Main.cnt"], plc["Main.m"]) == (want_n, want_cnt, max(inp, 200))
+
+
+METHOD_AND_TEST_LOCALS = """FUNCTION_BLOCK Fb
+METHOD Bits : DWORD
+VAR_INPUT x : REAL; END_VAR
+VAR p : REF_TO DWORD; i : INT; END_VAR
+FOR i := 1 TO 2 DO
+  p := REF(x);
+END_FOR;
+Bits := p^;
+END_METHOD
+END_FUNCTION_BLOCK
+TEST 'method and test locals'
+  VAR f : Fb; r : REAL := 1.0; q : REF_TO REAL; w : DWORD; pw : REF_TO DWORD; END_VAR
+  ASSERT_EQ(f.Bits(1.0), 16#3F800000);
+  q := REF(r);
+  q^ := 2.0;
+  ASSERT_EQ(r, 2.0);
+  pw := REF(r);
+  ASSERT_EQ(pw^, 16#40000000);
+  pw^ := 16#3F800000;
+  ASSERT_EQ(r, 1.0);
+END_TEST
+"""
+
+
+def test_references_to_locals_of_a_method_and_a_test_read_and_write_through():
+    from plclab.testing import run_test_sources
+
+    results = run_test_sources([(METHOD_AND_TEST_LOCALS, "m.st")])
+    assert [r.passed for r in results] == [True], [str(r) for r in results]
+    assert struct.unpack("<I", struct.pack("<f", 2.0))[0] == 0x40000000  # the test's constant
