@@ -48,9 +48,17 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
      "table of this lab")
 @arg("-v", "--verbose", action="store_true", help="also say in which dialect each file is read "
      "and why (its pragma, --dialect, the tool that wrote it, or the default)")
+@arg("--explain-dialect", action="store_true", help="list the dialect rules that fired: "
+     "each leniency with its warning code and location, and what a strict iec compiler says "
+     "there (what is not portable)")
 def cmd_check(ns: argparse.Namespace) -> int:
     from .project import check_sources, read_sources
 
+    if ns.explain_dialect:
+        from .lang.explain_dialect import report
+
+        text, _ = report(read_sources(ns.files), ns.dialect, check_sources)
+        print(text)
     io_table = None
     if ns.lab:
         from .grade.lab import load_lab

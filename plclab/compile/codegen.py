@@ -1623,6 +1623,10 @@ class Codegen(FastPaths):
         code = self.own_value(self.ex(x), x)
         s = T.base_of(x.ty)
         d = T.resolve(dst)
+        want = T.lookup_elementary(src_name) if src_name not in (None, "__TRUNC__") else None
+        if want is not None and want.kind in ("int", "bits") and s.kind in ("int", "bits") and \
+                s is not T.BOOL and not T.can_widen(s, want) and s is not want:
+            code, s = self.wrap(code, want), want  # INT_TO_BYTE(d) of a DINT (PLC0285)
         if src_name == "__TRUNC__":
             return self.wrap(f"_trunc({code})", d) if d.kind in ("int", "bits") else code
         if isinstance(d, T.StringType):

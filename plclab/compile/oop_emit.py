@@ -112,7 +112,10 @@ def interfaces_line(cg: Codegen, pou: A.Pou) -> None:
 def reference_operator(cg: Codegen, e: A.Call, info: CallInfo) -> str:
     """``REF(x)``, ``ADR(x)``, ``__ISVALIDREF(x)`` and ``__QUERYINTERFACE(x, y)``."""
     if info.callee in ("REF", "ADR"):
-        return ref_code(cg, info.inputs[0][1])
+        code = ref_code(cg, info.inputs[0][1])
+        if info.pun is not None:  # REF_TO DWORD := REF(real): the bits (PLC0291)
+            return f"_RefPun({code}, {info.pun[0]!r}, {info.pun[1]!r})"
+        return code
     if info.callee == "__ISVALIDREF":
         return f"({cg.ex(info.inputs[0][1])} is not None)"
     src, dst = info.inputs[0][1], info.inputs[1][1]
@@ -139,6 +142,10 @@ def ref_code(cg: Codegen, x: A.Expr) -> str:
     """A reference to the variable ``x``: the object that holds it and its key (an attribute
     name or a list index); the checker let only instance, program and global data through."""
     code = cg.ex(x)
+    if code.isidentifier():  # a local of this call (PLC0240 keeps it inside the call)
+        setter = cg.new_tmp("_rs")
+        cg.pre.extend([f"def {setter}(_v):", f"    nonlocal {code}", f"    {code} = _v"])
+        return f"_RefCell(lambda: {code}, {setter})"
     if code.endswith("]"):  # obj[flat index]: split at the bracket that matches the last one
         depth = 0
         for i in range(len(code) - 1, -1, -1):

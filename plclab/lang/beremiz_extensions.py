@@ -14,8 +14,15 @@ import os
 import re
 from dataclasses import replace
 
-from ..errors import Diagnostic
-from .dialect import origin
+from ..errors import Diagnostic, PlcError
+from .dialect import choose, origin
+
+
+def _chosen(text: str, given: str | None, filename: str) -> str | None:
+    try:
+        return choose(text, given, filename)
+    except PlcError:  # an unknown pragma is reported elsewhere (PLC0170)
+        return None
 
 EXTENSIONS = {
     "py_ext": "Python (py_ext)", "svghmi": "SVG HMI (svghmi)", "wxglade_hmi": "wxGlade HMI",
@@ -47,9 +54,11 @@ def extensions_of(filename: str) -> list[str]:
 def explain(diags: list[Diagnostic], sources: list[tuple[str, str]],
             given: str | None) -> list[Diagnostic]:
     """``diags`` with PLC0100/PLC0102 of names a Beremiz extension declares turned into
-    PLC0246 naming the extension (files read as Beremiz's by :func:`dialect.origin`)."""
+    PLC0246 naming the extension: files Beremiz wrote (:func:`dialect.origin`) and read in
+    the dialect they are in (``matiec``, whether chosen by their origin, a ``{dialect}``
+    pragma or ``given``); a pragma or option naming another dialect turns it off."""
     beremiz = {f: extensions_of(f) for text, f in sources
-               if not given and origin(text, f) is not None}
+               if origin(text, f) is not None and _chosen(text, given, f) == "matiec"}
     if not beremiz:
         return diags
     out = []

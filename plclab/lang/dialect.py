@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from ..errors import Location, PlcError
 
 __all__ = ["Dialect", "PROFILES", "DEFAULT", "profile", "current", "using", "dialect_pragma",
-           "choose", "explain_choice", "origin"]
+           "choose", "explain_choice", "origin", "without_pragma"]
 
 
 @dataclass(frozen=True)
@@ -90,6 +90,16 @@ class Dialect:
     # the largest task PRIORITY: CODESYS 0..31; IEC 61131-3 bounds it by nothing but the
     # integer (0 the most urgent) and MATIEC takes any, e.g. PRIORITY := 90: 0..65535 (UINT)
     max_priority: int = 31
+    # ``r := EXPT(n, 1.5) * 0.836;`` with ``r : REAL``: an expression that is LREAL only through
+    # untyped real literals is stored in REAL with the warning PLC0290 (CODESYS types a literal
+    # by its context; ADR 0051); elsewhere PLC0118 (IEC: an untyped real literal is LREAL)
+    literal_context: bool = False
+    # ``pt := REF(X); REAL_TO_DW := pt^;`` in a FUNCTION (OSCAT): REF of a local of the call,
+    # kept in a local reference that does not outlive it, and a REF_TO DWORD to a REAL reading
+    # its bits (PLC0291; ADR 0051); elsewhere PLC0240 and PLC0241 (IEC ed.3 6.4.4.10: no REF
+    # of a temporary, a reference of its own type only)
+    local_refs: bool = False
+    reinterpret_refs: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
@@ -98,7 +108,8 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
             max_priority=65535),
     Dialect("codesys", "CODESYS V3 (the textbook's examples)", True, True, True, True, False,
             end_keyword_optional=True, system_time=True, implicit_real_to_int=True,
-            implicit_int_conversion=True,
+            implicit_int_conversion=True, literal_context=True,
+            local_refs=True, reinterpret_refs=True,
             sizeof=True, pou_actions=True, reference_to=True),
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
@@ -134,6 +145,11 @@ def using(name: str):
         yield
     finally:
         _CURRENT.reset(token)
+
+
+def without_pragma(text: str) -> str:
+    """``text`` with its ``{dialect}`` pragmas blanked (same lines and columns)."""
+    return _PRAGMA.sub(lambda m: " " * len(m.group(0)), text)
 
 
 def dialect_pragma(text: str) -> str | None:

@@ -22,6 +22,7 @@ from ..lang.builtins import BLOCKS
 # the blocks are listed once, in the standard library's specification (plclab.lang.builtins)
 STANDARD_BLOCKS = tuple(b.name for b in BLOCKS.values() if b.library == "stdlib.st")
 CONTROL_BLOCKS = tuple(b.name for b in BLOCKS.values() if b.library == "ctrllib.st")
+SFC_BLOCKS = ("SFC_TIMER",)  # sfclib.st: a step's elapsed time (ADR 0016, addendum 2026-11)
 
 
 @cache
@@ -30,12 +31,13 @@ def _table() -> dict[str, type]:
 
     table = {name: getattr(stdfb, name) for name in STANDARD_BLOCKS}
     table.update({name: getattr(ctrlfb, name) for name in CONTROL_BLOCKS})
+    table.update({name: getattr(stdfb, name) for name in SFC_BLOCKS})
     return table
 
 
 def names() -> frozenset[str]:
     """The names a library ``{native 'NAME'}`` pragma may use."""
-    return frozenset(STANDARD_BLOCKS + CONTROL_BLOCKS)
+    return frozenset(STANDARD_BLOCKS + CONTROL_BLOCKS + SFC_BLOCKS)
 
 
 def resolve(name: str) -> type:

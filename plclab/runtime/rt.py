@@ -142,6 +142,43 @@ class _RefItem(_RefAttr):
         self.obj[self.key] = v
 
 
+class _RefCell:
+    """A reference to a local of the running FUNCTION, METHOD or TEST (a Python local): read
+    and written through two closures; the checker lets it live only during the call (PLC0240,
+    ADR 0051)."""
+
+    __slots__ = ("get", "set")
+
+    def __init__(self, get, set) -> None:  # noqa: A002
+        self.get, self.set = get, set
+
+
+_PUN = {"REAL": "<f", "LREAL": "<d", "SINT": "<b", "USINT": "<B", "BYTE": "<B", "INT": "<h",
+        "UINT": "<H", "WORD": "<H", "DINT": "<i", "UDINT": "<I", "DWORD": "<I", "LINT": "<q",
+        "ULINT": "<Q", "LWORD": "<Q"}
+
+
+class _RefPun:
+    """``pt : REF_TO DWORD; pt := REF(x)`` with ``x : REAL``: reads and writes ``x``'s bits as
+    the other elementary type of the same size (IEEE 754, little-endian as on x86 and ARM PLCs;
+    the codesys dialect, PLC0291, ADR 0051)."""
+
+    __slots__ = ("ref", "src", "dst")
+
+    def __init__(self, ref, src: str, dst: str) -> None:
+        self.ref, self.src, self.dst = ref, _PUN[src], _PUN[dst]
+
+    def get(self):
+        import struct
+
+        return struct.unpack(self.dst, struct.pack(self.src, self.ref.get()))[0]
+
+    def set(self, v) -> None:
+        import struct
+
+        self.ref.set(struct.unpack(self.src, struct.pack(self.dst, v))[0])
+
+
 def _deref(ref, where: int):
     """``ref`` for r^, or the fault PLC9111 when it is NULL."""
     if ref is None:

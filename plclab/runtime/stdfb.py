@@ -109,6 +109,39 @@ class TON(NativeBlock):
             self.ET = 0
 
 
+class SFC_TIMER(NativeBlock):
+    """A chart step's elapsed time ``S.T`` (sfclib.st; ADR 0016): ET counts while IN is TRUE
+    from the rising edge of IN, and from the instance's creation when IN is TRUE at its first
+    call (the initial step is active from the POU's initialisation, IEC 61131-3 ed.2 2.6.2,
+    ed.3 6.7.2); IN FALSE resets ET. No preset: ET saturates at the largest TIME."""
+
+    __slots__ = ("IN", "ET", "_start", "_timing", "_called")
+
+    def __init__(self, ctx) -> None:
+        self._ctx = ctx
+        self.IN = False
+        self.ET = 0
+        self._start = ctx.now
+        self._timing = False
+        self._called = False
+
+    def _body(self) -> None:
+        now = self._ctx.now
+        if self.IN:
+            if not self._timing:
+                self._timing = True
+                if self._called:  # activated now; else active since creation (_start)
+                    self._start = now
+            self.ET = min(now - self._start, _MAX_TIME)
+        else:
+            self._timing = False
+            self.ET = 0
+        self._called = True
+
+
+_MAX_TIME = 2147483647  # T#24d20h31m23s647ms (TIME counts milliseconds here)
+
+
 class TOF(NativeBlock):
     """Off-delay: Q follows IN up at once and falls PT after IN falls; IN TRUE restarts it.
     PT is taken when IN falls (a change during the delay has no effect, Table 11)."""

@@ -95,6 +95,15 @@ def test_a_name_from_an_extension_is_plc0246_naming_it(tmp_path):
     assert [d.code for d in errors(plain)] != ["PLC0246"]
 
 
+def test_extension_names_follow_the_chosen_dialect_not_the_mere_option(tmp_path):
+    f = write(tmp_path, externals=PYVAR, beremiz=True)
+    (tmp_path / "py_ext_0@py_ext").mkdir()
+    # --dialect matiec (what the origin would choose anyway): still the extension's name
+    assert [d.code for d in errors(f, "matiec")] == ["PLC0246"]
+    # read as another dialect on purpose: the ordinary error of that dialect
+    assert "PLC0246" not in [d.code for d in errors(f, "iec")]
+
+
 def test_check_verbose_says_which_dialect_and_why(tmp_path, capsys):
     f = write(tmp_path)
     assert main(["check", "-v", str(f)]) == 0

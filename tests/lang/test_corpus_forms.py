@@ -266,14 +266,18 @@ def test_an_unbound_reference_to_faults_when_used():
     assert exc.value.code == "PLC9111"
 
 
-def test_reference_to_a_function_local_is_refused():
+def test_reference_to_a_function_local_only_inside_the_call():
     src = """FUNCTION F : INT
 VAR x : INT; r : REFERENCE TO INT; END_VAR
 r REF= x;
 F := r;
 END_FUNCTION
 """
-    assert ("PLC0240", "error") in codes(src, "codesys")
+    # read inside the call only: accepted with its warning (issue 33, ADR 0051)
+    assert ("PLC0292", "warning") in codes(src, "codesys")
+    kept = src.replace("VAR x : INT; r : REFERENCE TO INT; END_VAR",
+                       "VAR_OUTPUT r : REFERENCE TO INT; END_VAR VAR x : INT; END_VAR")
+    assert ("PLC0240", "error") in codes(kept, "codesys")  # an output outlives the call
 
 
 @pytest.mark.parametrize("dialect", ["iec", "s7", "matiec"])

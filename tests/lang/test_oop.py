@@ -391,8 +391,10 @@ def test_reference_checks(body, code):
 
 
 def test_reference_to_a_function_local_and_reference_to_type():
-    assert "PLC0240" in codes("""FUNCTION F : INT VAR x : INT; r : REF_TO INT; END_VAR
-r := REF(x); F := r^; END_FUNCTION""")
+    local = """FUNCTION F : INT VAR x : INT; r : REF_TO INT; END_VAR
+r := REF(x); F := r^; END_FUNCTION"""
+    assert "PLC0240" in codes("{dialect 'iec'}\n" + local)  # IEC: no REF of a temporary
+    assert "PLC0240" not in codes(local)  # codesys: it does not outlive the call (issue 33)
     # REFERENCE TO is CODESYS's (ADR 0035): PLC0239 in the other dialects
     assert "PLC0239" in codes("{dialect 'iec'}\nPROGRAM P VAR r : REFERENCE TO INT; END_VAR "
                               "END_PROGRAM")

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 import plclab
 from plclab.project import check_sources
-from plclab.testing import run_test_files
+from plclab.testing import run_test_files, run_test_sources
 
 ROOT = Path(__file__).parent.parent.parent
 
@@ -310,3 +310,61 @@ def test_two_initial_steps_in_one_connected_chart_are_refused(link):
     text = TWO_NETWORKS.replace("END_PROGRAM", link + "\nEND_PROGRAM")
     found = [d for d in diags(text) if d.code == "PLC0152"]
     assert len(found) == 1 and "Empty" in found[0].message and found[0].location.line == 8
+
+
+
+STEP_TIME_FROM_CREATION = """
+FUNCTION_BLOCK Seq
+VAR_INPUT go : BOOL; END_VAR
+INITIAL_STEP S0: END_STEP
+STEP S1: END_STEP
+TRANSITION FROM S0 TO S1 := go; END_TRANSITION
+TRANSITION FROM S1 TO S0 := NOT go; END_TRANSITION
+END_FUNCTION_BLOCK
+"""
+
+
+def test_initial_step_time_counts_from_the_instance_creation_in_a_test():
+    """IEC 61131-3 ed.2 2.6.2 / ed.3 6.7.2: the initial step is active from the POU's
+    initialisation, so its elapsed time is counted from there, not from the first call."""
+    text = STEP_TIME_FROM_CREATION + """
+TEST 'S0.T from creation'
+  VAR s : Seq; END_VAR
+  ADVANCE_TIME(T#1s);
+  s();
+  ASSERT_EQ(s.S0.T, T#1s);
+  ADVANCE_TIME(T#500ms);
+  s(go := TRUE);
+  ASSERT_TRUE(s.S1.X); ASSERT_EQ(s.S1.T, T#0s); ASSERT_EQ(s.S0.T, T#1500ms);
+  ADVANCE_TIME(T#200ms);
+  s(go := TRUE);
+  ASSERT_EQ(s.S1.T, T#200ms);
+  s(go := FALSE);
+  ADVANCE_TIME(T#300ms);
+  s(go := FALSE);
+  ASSERT_TRUE(s.S0.X); ASSERT_EQ(s.S0.T, T#300ms);
+END_TEST
+"""
+    results = run_test_sources([(text, "seq.st")])
+    assert [r.passed for r in results] == [True], [str(r) for r in results]
+
+
+def test_initial_step_time_of_a_chart_first_called_after_a_second_of_scans():
+    text = """
+FUNCTION_BLOCK Seq
+VAR_OUTPUT t : TIME; END_VAR
+INITIAL_STEP S0: Rec(N); END_STEP
+STEP S1: END_STEP
+TRANSITION FROM S0 TO S1 := FALSE; END_TRANSITION
+ACTION Rec: t := S0.T; END_ACTION
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR s : Seq; n : INT; t : TIME; END_VAR
+n := n + 1;
+IF n > 100 THEN s(); t := s.t; END_IF;
+END_PROGRAM
+"""
+    plc = plclab.loads(text, "seq.st", cycle_time="10ms")
+    plc.scan(101)
+    assert plc["Main.n"] == 101
+    assert plc["Main.t"] == 100 * 10  # ms: the 101st scan runs 100 cycles of 10 ms after start

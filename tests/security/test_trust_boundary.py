@@ -95,6 +95,10 @@ def test_library_blocks_bind_only_through_the_registry():
                              "p.st")])
     assert rtc is not None and rtc.pous["RTC"].native == "RTC"
     bound["RTC"] = rtc.pous["RTC"].native
+    # SFC_TIMER comes with the SFC library, loaded only for a project with a chart (ADR 0016)
+    sfc, _ = check_sources([("PROGRAM P\nINITIAL_STEP S0: END_STEP\nEND_PROGRAM", "p.st")])
+    assert sfc is not None and sfc.pous["SFC_TIMER"].native == "SFC_TIMER"
+    bound["SFC_TIMER"] = sfc.pous["SFC_TIMER"].native
     assert set(bound.values()) == natives.names()
     assert all(name == key for name, key in bound.items())
     for key in bound.values():

@@ -31,6 +31,7 @@ class CallInfo:
     inouts: list[tuple[Any, A.Expr]] = field(default_factory=list)
     en: A.Expr | None = None  # EN := c (IEC 61131-3 ed.3 6.6.1.6): call only when TRUE
     eno: A.Expr | None = None  # ENO => ok: TRUE when the body ran
+    pun: tuple[str, str] | None = None  # REF(x) read as another type of its size (PLC0291)
 
 
 class Calls(Pass):
@@ -306,6 +307,13 @@ class Calls(Pass):
                 want = T.lookup_elementary(src)
                 ok = T.can_widen(ra, want) or T.same_type(ra, want) or (
                     isinstance(ra, T.EnumType) and want.kind == "int")
+                if not ok and ra.kind in ("int", "bits") and want.kind in ("int", "bits") \
+                        and self.cx.dialect(a.loc).implicit_int_conversion:
+                    sn = T.concrete(ra).name
+                    self.warn("PLC0285", f"{sn} passed to {name}, which takes {src} (accepted "
+                              f"as in CODESYS): it wraps to {src} first as {sn}_TO_{src} "
+                              f"wraps; write {sn}_TO_{dst.name}(...) to convert directly", a.loc)
+                    ok = True
                 if not ok:
                     self.err("PLC0107", f"{name} expects {src}, but the argument is "
                              f"{T.concrete(ra)}" + (f"; use {T.concrete(ra).name}_TO_"

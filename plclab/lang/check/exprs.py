@@ -8,12 +8,13 @@ from typing import Any
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
-from ..walk import NodeVisitor
+from ..walk import NodeVisitor, walk
 from .context import Pass, close_hint
 from .declarations import split_address
 from .symbols import EnumSym, ProgSym, VarSym
 
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
+_UNSIGNED = {"BYTE": "USINT", "WORD": "UINT", "DWORD": "UDINT", "LWORD": "ULINT"}
 
 
 def as_bool_literal(e: A.Expr) -> bool:
@@ -23,6 +24,27 @@ def as_bool_literal(e: A.Expr) -> bool:
         e.kind, e.value, e.ty = "BOOL", bool(e.value), T.BOOL
         return True
     return False
+
+
+def _lreal_from_literals(e: A.Expr) -> bool:
+    """``EXPT(BFT, 1.5) * 0.836``: the expression is LREAL only through untyped real literals
+    (no LREAL variable, typed literal ``LREAL#``, conversion or user function returning LREAL),
+    so CODESYS, which types a literal by its context, computes it as REAL."""
+    seen = False
+    for n in walk(e):
+        if isinstance(n, A.Literal) and n.kind == "REAL" and n.prefix is None:
+            seen = True
+            continue
+        if not isinstance(n, A.Expr) or n.ty is None or T.base_of(n.ty) is not T.LREAL:
+            continue
+        if isinstance(n, A.Literal):
+            return False
+        elif isinstance(n, A.Call):
+            if n.target is None or n.target.kind != "builtin":
+                return False
+        elif not isinstance(n, A.Binary | A.Unary):
+            return False
+    return seen
 
 
 class Expressions(Pass, NodeVisitor):
@@ -36,6 +58,8 @@ class Expressions(Pass, NodeVisitor):
             self.cx.oop.interface_assign(rs, rd, loc)
             return
         if isinstance(rd, T.RefType) or isinstance(rs, T.RefType):  # REF_TO (ADR 0021)
+            if self.reinterpreted_ref(rs, rd, e, loc):
+                return
             self.cx.oop.ref_assign(rs, rd, loc)
             return
         if rd is T.BOOL and isinstance(e, A.Literal) and e.kind == "INT" and e.prefix is None \
@@ -85,6 +109,14 @@ class Expressions(Pass, NodeVisitor):
                       f"write {sn}_TO_{dn}(...) to say so, or TRUNC(...) to drop the fraction",
                       loc)
             return
+        if T.base_of(rs) is T.LREAL and T.base_of(rd) is T.REAL and \
+                self.cx.dialect(loc).literal_context and _lreal_from_literals(e):
+            self.warn("PLC0290", "a real literal here is REAL, as CODESYS types a literal by "
+                      "the variable it goes to (accepted as in CODESYS); IEC 61131-3 reads "
+                      "an untyped real literal as LREAL, so a strict compiler refuses LREAL "
+                      "stored in REAL: write REAL#1.5 or LREAL_TO_REAL(...) to be portable",
+                      loc)
+            return
         if rs.kind in ("int", "bits") and rd.kind in ("int", "bits") and not isinstance(
                 rd, T.Subrange) and self.cx.dialect(loc).implicit_int_conversion:
             sn, dn = T.base_of(T.concrete(rs)).name, T.base_of(rd).name
@@ -118,6 +150,28 @@ class Expressions(Pass, NodeVisitor):
                 f"it is one {pt.name}, .%{kind}0" if count else
                 f"it is smaller than a {pt.name}"), e.loc)
         return pt
+
+
+    def reinterpreted_ref(self, rs: T.Type, rd: T.Type, e: A.Expr, loc: Location) -> bool:
+        """``pt := REF(x)`` with ``pt : REF_TO DWORD`` and ``x : REAL`` (OSCAT ``REAL_TO_DW``):
+        in the codesys dialect, a reference to another elementary number or bit string of
+        the same size reads and writes ``x``'s bits (PLC0291); elsewhere PLC0241."""
+        if not (isinstance(rs, T.RefType) and isinstance(rd, T.RefType) and
+                isinstance(e, A.Call) and e.target is not None and
+                e.target.kind == "reference" and e.target.callee in ("REF", "ADR")):
+            return False
+        a, b = T.resolve(rs.target), T.resolve(rd.target)
+        kinds = ("int", "bits", "real")
+        if not (isinstance(a, T.Elementary) and isinstance(b, T.Elementary) and a is not b and
+                a.kind in kinds and b.kind in kinds and a is not T.BOOL and b is not T.BOOL and
+                a.bits == b.bits and self.cx.dialect(loc).reinterpret_refs):
+            return False
+        self.warn("PLC0291", f"a REF_TO {b.name} to a {a.name} reads and writes its bits as "
+                  f"{b.name} (accepted as in CODESYS; IEEE 754, little-endian); IEC 61131-3 "
+                  f"refuses a reference of another type: convert the value, or keep the "
+                  f"bits in a {b.name} variable", loc)
+        e.target.pun = (a.name, b.name)
+        return True
 
     def lookup(self, name: str) -> Any:
         sym = self.cx.scope.local(name)
@@ -512,6 +566,8 @@ class Expressions(Pass, NodeVisitor):
             if isinstance(rt, T.Elementary) and rt.kind == "int" and not rt.signed:
                 self.warn("PLC0204", f"negating an unsigned {rt.name} wraps around", e.loc)
             return t
+        if self.bits_accepted(t, "unary '-'", e.loc):  # CODESYS: -step of a BYTE (OSCAT)
+            return t
         self.err("PLC0104", f"unary '-' needs a number or a TIME, not {t}", e.loc)
         return T.ANY
 
@@ -592,6 +648,12 @@ class Expressions(Pass, NodeVisitor):
             return T.ANY
         if ka in ("int", "real", "bits") and kb in ("int", "real", "bits"):
             c = T.common_type(a, b)
+            if c is None and "bits" in (ka, kb) and "real" in (ka, kb):
+                # CODESYS: ``r * x`` with x a BYTE computes in REAL (OSCAT BYTE_TO_RANGE)
+                bits = a if ka == "bits" else b
+                if self.bits_accepted(bits, f"arithmetic '{op}'", e.loc):
+                    return T.common_type(T.ELEMENTARY[_UNSIGNED[T.base_of(bits).name]],
+                                         b if ka == "bits" else a) or T.ANY
             if c is not None and c.kind != "bits":
                 return c
             if c is not None and c.kind == "bits":

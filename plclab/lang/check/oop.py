@@ -8,6 +8,8 @@ Codes PLC0220-PLC0249. Inherited variables reach the other passes through the sy
 
 from __future__ import annotations
 
+from typing import Any
+
 from .. import ast as A
 from .. import types as T
 from ..ast import expr_text
@@ -403,6 +405,12 @@ class ObjectChecks(Pass):
                 return T.ANY
             root = root.obj
         if isinstance(root, A.Name) and isinstance(root.sym, VarSym) and root is x and (
+                root.sym.storage == "local" or root.sym.decl.section in ("VAR_TEMP", "RETURN")) \
+                and root.sym.decl.section != "RETURN" and root.sym.storage == "local" and \
+                self.cx.dialect(x.loc).local_refs:
+            # allowed if the reference cannot outlive the call: check_local_refs decides
+            self.__dict__.setdefault("local_refs", []).append((c, x, name))
+        elif isinstance(root, A.Name) and isinstance(root.sym, VarSym) and root is x and (
                 root.sym.storage == "local" or root.sym.decl.section in ("VAR_TEMP", "RETURN")):
             self.err("PLC0240", f"{name}({expr_text(x)}): the variable lives only during one "
                      "call (a local of a FUNCTION, METHOD or TEST, or a VAR_TEMP); point at a "
@@ -414,6 +422,61 @@ class ObjectChecks(Pass):
             return T.ANY
         c.target = CallInfo("reference", name, [(0, x)])
         return T.RefType(t, pointer=name == "ADR")
+
+    def check_local_refs(self, body: list[A.Stmt]) -> None:
+        """REF(x) of a local of a FUNCTION, METHOD or TEST (OSCAT ``REAL_TO_DW``: ``pt :=
+        REF(X); REAL_TO_DW := pt^;``) is allowed when the reference cannot outlive the call: it
+        goes straight into a local reference variable of the same call, and that variable is
+        only dereferenced (``pt^``), compared or assigned, never stored or passed anywhere
+        (an output, a global, a VAR_IN_OUT, a member of a block, the result). Else PLC0240."""
+        pending = self.__dict__.pop("local_refs", [])
+        if not pending:
+            return
+        from ..walk import CHILDREN
+
+        calls = {id(c) for c, _, _ in pending}
+        parent: dict[int, Any] = {}
+        holders: set[str] = set()
+        stored: set[int] = set()
+        for n in (n for st in body for n in walk(st)):
+            for ch in CHILDREN[type(n)](n):
+                parent[id(ch)] = n
+            if isinstance(n, A.Assign) and id(n.value) in calls and isinstance(
+                    n.target, A.Name) and isinstance(n.target.sym, VarSym) and \
+                    n.target.sym.storage == "local" and n.target.sym.decl.section in (
+                        "VAR", "VAR_TEMP"):
+                stored.add(id(n.value))
+                holders.add(n.target.sym.decl.name)
+        for c, x, name in pending:
+            if id(c) in stored:
+                self.warn("PLC0292", f"{name}({expr_text(x)}) points at a local of this call "
+                          "(accepted as in CODESYS: the reference is only used inside the "
+                          "call); IEC 61131-3 ed.3 refuses REF of a temporary variable: copy "
+                          "the value, or make the variable one of a block or a global", x.loc)
+            else:
+                self.err("PLC0240", f"{name}({expr_text(x)}): the variable lives only during "
+                         "one call (a local of a FUNCTION, METHOD or TEST, or a VAR_TEMP); "
+                         "store the reference in a local REF_TO variable of the same call and "
+                         "only dereference it, or point at a variable of a block, a program "
+                         "or a global", x.loc)
+        for n in (n for st in body for n in walk(st)):
+            if not (isinstance(n, A.Name) and isinstance(n.sym, VarSym) and
+                    n.sym.storage == "local" and n.sym.decl.name in holders):
+                continue
+            up = parent.get(id(n))
+            if isinstance(up, A.Assign) and up.target is n or \
+                    isinstance(up, A.Member) and up.field_name == "^" or \
+                    isinstance(up, A.Binary) and up.op in ("=", "<>"):
+                continue
+            if isinstance(up, A.Arg):
+                call = parent.get(id(up))
+                if isinstance(call, A.Call) and isinstance(call.func, A.Name) and \
+                        call.func.name == "__ISVALIDREF":
+                    continue
+            self.err("PLC0240", f"{n.text or n.name} holds a reference to a local of this "
+                     "call, which ends with the call; here it could be kept beyond it (stored "
+                     "or passed on): copy the value (x := " + (n.text or n.name) + "^) instead",
+                     n.loc)
 
     def deref(self, e: A.Member) -> T.Type:
         t = T.resolve(self.cx.exprs.expr(e.obj, None))

@@ -23,6 +23,7 @@ class Statements(Pass, NodeVisitor):
         self.cx.scope = self.table.scope(p)
         self.cx.call_graph.setdefault(p.name, set())
         self.checked_body(p.body, p.loc)
+        self.cx.oop.check_local_refs(p.body)
         self.check_labels(p.body)
         if p.kind == "FUNCTION" and p.native is None and p.return_type is not None:
             assigned = any(
@@ -75,6 +76,7 @@ class Statements(Pass, NodeVisitor):
             if isinstance(d.type, A.NamedTypeRef) and d.type.args is not None:
                 self.cx.decls.bind_fb_init(d, d.type)  # a : FB(k := 3)
         self.checked_body(t.body, t.loc)
+        self.cx.oop.check_local_refs(t.body)
         self.cx.scope = Scope()
         self.cx.in_test = False
 

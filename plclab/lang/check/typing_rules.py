@@ -19,6 +19,9 @@ from .exprs import as_bool_literal
 __all__ = ["TYPING_RULES", "Typing"]
 
 
+_UNSIGNED = {"BYTE": "USINT", "WORD": "UINT", "DWORD": "UDINT", "LWORD": "ULINT"}
+
+
 @dataclass(eq=False)
 class Typing:
     """One call being typed: the pass (to report), the function, the argument types ``ts``,
@@ -42,11 +45,27 @@ class Typing:
         for x in items[1:]:
             nxt = T.common_type(cur, x)
             if nxt is None:
+                nxt = self.bits_as_unsigned(cur, x)
+            if nxt is None:
                 self.cx.err("PLC0107", f"{self.spec.name}: the arguments {T.concrete(cur)} and "
                             f"{T.concrete(x)} have no common type", self.call.loc)
                 return T.ANY
             cur = nxt
         return cur
+
+    def bits_as_unsigned(self, a: T.Type, b: T.Type) -> T.Type | None:
+        """CODESYS: ``LIMIT(0, in, mx)`` with an INT and a BYTE takes the BYTE as the unsigned
+        integer of its size (USINT), so the common type is INT (PLC0173; ADR 0051)."""
+        ra, rb = T.base_of(a), T.base_of(b)
+        kinds = {ra.kind, rb.kind}
+        if "bits" not in kinds or not kinds <= {"bits", "int", "real"} or T.BOOL in (ra, rb):
+            return None
+        bits = ra if ra.kind == "bits" else rb
+        if not self.cx.cx.exprs.bits_accepted(bits, f"{self.spec.name} of a bit string and a "
+                                              "number", self.call.loc):
+            return None
+        u = T.ELEMENTARY[_UNSIGNED[bits.name]]
+        return T.common_type(u, rb if bits is ra else ra) if kinds != {"bits"} else None
 
     def kinds(self, *kinds: str) -> bool:
         return all(b.kind in kinds for b in self.bs)

@@ -5,8 +5,9 @@ A chart comes from the textual SFC of a PROGRAM or FUNCTION_BLOCK body
 ``"SFC"`` holding one :class:`Chart`. Lowering checks it (:mod:`.sfc_checks`) and writes plain
 statements, in this order every scan (docs/adr/0016-sfc-semantics.md):
 
-0. **step times**: ``S.T`` of every active step follows a hidden TON started when ``S``
-   was activated (the virtual clock, sampled once per scan);
+0. **step times**: ``S.T`` of every active step follows a hidden ``SFC_TIMER`` started when
+   ``S`` was activated, the initial step's at the POU instance's creation (the virtual clock,
+   sampled once per scan; IEC 61131-3 ed.2 2.6.2, ed.3 6.7.2);
 1. **transitions** on the step flags at the start of the scan: ``__SFC_TR<k>`` is TRUE when all
    preceding steps are active, no transition of higher precedence took one of them, and the
    condition is TRUE (precedence: ``PRIORITY`` ascending, then declaration order);
@@ -172,7 +173,7 @@ class _Lowering:
             init = (A.StructInit(s.loc, [("X", _bool(True, s.loc), s.loc)]) if s.initial
                     else None)
             self.decls.append(_decl(s.name, "SFC_STEP", s.loc, init, s.text))
-            self.decls.append(_decl(f"__SFC_TMR_{s.name}", "TON", s.loc))
+            self.decls.append(_decl(f"__SFC_TMR_{s.name}", "SFC_TIMER", s.loc))
         self.text = {s.name: s.text for s in ch.steps}
         order = transition_order(ch)
         self.step_times()
@@ -245,16 +246,14 @@ class _Lowering:
                 act.append(A.Assign(l, self.flag(n, "X", l), _bool(True, l)))
                 act.append(A.Assign(l, self.flag(n, "T", l), _time(0, l)))
                 act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(False, l))], l))
-                act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(True, l)),
-                                                    ("PT", _time(MAX_TIME_NS, l))], l))
+                act.append(_call(f"__SFC_TMR_{n}", [("IN", _bool(True, l))], l))
             self.out.append(A.If(t.loc, [(_name(f"__SFC_TR{k}", t.loc), act)]))
 
     def step_times(self) -> None:
         for s in self.chart.steps:
             loc = s.loc
             tmr = f"__SFC_TMR_{s.name}"
-            self.out.append(_call(tmr, [("IN", self.flag(s.name, "X", loc)),
-                                        ("PT", _time(MAX_TIME_NS, loc))], loc))
+            self.out.append(_call(tmr, [("IN", self.flag(s.name, "X", loc))], loc))
             self.out.append(A.If(loc, [(self.flag(s.name, "X", loc), [
                 A.Assign(loc, self.flag(s.name, "T", loc),
                          A.Member(loc, _name(tmr, loc), "ET", text="ET"))])]))
