@@ -16,6 +16,12 @@ change does not change behaviour) and is not counted; one that does not compile 
 So is one whose signals differ only by the PLC's own resolution, one scan (see
 :func:`within_one_scan`): a ``>=`` turned into ``>`` on a step time makes the phase one scan
 longer, which no requirement stated in seconds can tell from the solution (ADR 0049).
+
+In a lab whose criteria state a control performance specification (``performance_spec =
+true``: settling time, overshoot, steady-state error, recovery after a disturbance), a changed
+constant that still meets every criterion is another valid *tuning* (a gain doubled, an
+integral time halved): it is listed but not counted. A constant change that fails any part of
+the specification, and every other operator, counts as before.
 The **mutation score** is the share of behaviour-changing mutants that score at most
 :data:`CAUGHT` of the lab's points. See docs/adr/0042-critical-criteria-and-mutation-audit.md.
 """
@@ -54,7 +60,7 @@ class Mutant:
     text: str
     score: float | None = None
     max_score: float = 0.0
-    status: str = ""  # caught, survived, equivalent, invalid
+    status: str = ""  # caught, survived, equivalent, tuning, invalid
     equivalence: str = ""  # for an equivalent mutant: "identical" or "one scan"
 
     @property
@@ -98,12 +104,16 @@ class AuditReport:
             mark = "ok " if score >= VARIANT_MIN * self.max_score - 1e-9 else "TOO LOW"
             lines.append(f"  variant  {f}: {score:g} {mark}")
         by = {s: [m for m in self.mutants if m.status == s]
-              for s in ("caught", "survived", "equivalent", "invalid")}
+              for s in ("caught", "survived", "equivalent", "tuning", "invalid")}
         scan = sum(m.equivalence == "one scan" for m in by["equivalent"])
         lines.append(f"  mutants: {len(self.mutants)} ({len(by['caught'])} caught, "
                      f"{len(by['survived'])} survived, {len(by['equivalent'])} equivalent"
                      + (f" ({scan} within one scan)" if scan else "") +
+                     (f", {len(by['tuning'])} other valid tunings" if by["tuning"] else "") +
                      f", {len(by['invalid'])} invalid)")
+        for m in by["tuning"]:
+            lines.append(f"  valid tuning, line {m.line}: [{m.operator}] {m.description} "
+                         f"(meets the performance specification: {m.score:g}/{m.max_score:g})")
         for m in by["equivalent"]:
             if m.equivalence == "one scan":
                 lines.append(f"  within one scan, line {m.line}: [{m.operator}] "
@@ -520,6 +530,20 @@ def _grade_mutant(k: int) -> tuple[int, str, float, float]:
     return k, "caught" if caught else "survived", res.score, res.max_score
 
 
+def classify(m: Mutant, status: str, score: float, top: float,
+             performance_spec: bool = False) -> None:
+    """Record a graded mutant's outcome (``status`` as :func:`_grade_mutant` gives it, e.g.
+    ``equivalent:one scan``). In a lab with a performance specification a constant change
+    that meets every criterion is another valid tuning (``tuning``), not a survivor."""
+    status, _, how = status.partition(":")
+    m.status, m.score, m.max_score = status, score, top
+    if status == "equivalent":
+        m.equivalence = how or "identical"
+    elif status == "survived" and performance_spec and m.operator == "constant" and \
+            score >= top - 1e-9:
+        m.status = "tuning"
+
+
 def audit(lab: Any, *, limit: int | None = 60, seed: int = 0, jobs: int = 1,
           solutions: list[Path] | None = None) -> AuditReport:
     """Audit ``lab`` (see the module text). ``limit`` caps the mutants of each solution."""
@@ -553,9 +577,6 @@ def audit(lab: Any, *, limit: int | None = 60, seed: int = 0, jobs: int = 1,
         finally:
             _JOB.clear()
         for k, status, score, top in results:
-            status, _, how = status.partition(":")
-            ms[k].status, ms[k].score, ms[k].max_score = status, score, top
-            if status == "equivalent":
-                ms[k].equivalence = how or "identical"
+            classify(ms[k], status, score, top, getattr(lab, "performance_spec", False))
         report.mutants += ms
     return report

@@ -94,3 +94,75 @@ def test_holds_diagnosed_counts_the_share_in_the_band():
     late = np.where(T < 700.0, 49.0, 50.0)  # 100 of 600 s outside: 83 %
     ok, msg = C.holds_diagnosed(_trace(TEMP=late), start=start)[:2]
     assert not ok and "83 %" in msg
+
+
+# ---------------------------------------------------------------------------- damping (R8)
+
+
+def _step_response(zeta, step=2.0, at=360.0, wn=0.02):
+    """A second-order response to a set-point step at ``at`` s: damping ``zeta``."""
+    tt = np.maximum(T - at, 0.0)
+    wd = wn * np.sqrt(1.0 - zeta ** 2)
+    y = 1.0 - np.exp(-zeta * wn * tt) * (np.cos(wd * tt) + zeta / np.sqrt(1 - zeta ** 2)
+                                         * np.sin(wd * tt))
+    return 50.0 + step * y, np.where(T < at, 50.0, 50.0 + step)
+
+
+def test_a_well_damped_small_step_passes_and_a_swinging_one_fails():
+    # overshoot exp(-pi zeta / sqrt(1 - zeta^2)): zeta 0.6 -> 9 %, 0.45 -> 21 %, 0.3 -> 37 %,
+    # 0.15 -> 62 %
+    for zeta, ok in ((0.6, True), (0.45, True), (0.3, False), (0.15, False)):
+        temp, sp = _step_response(zeta)
+        res = C.damped_step(_trace(TEMP=temp, SP=sp), at=360.0, max_overshoot=0.3)
+        assert res[0] is ok, (zeta, res[1])
+        if not ok:
+            assert "swings" in res[1] and res[2] > 360.0
+    # a step down is judged the same way, by the undershoot
+    temp, sp = _step_response(0.15, step=-2.0)
+    assert not C.damped_step(_trace(TEMP=temp, SP=sp), at=360.0)[0]
+    temp, sp = _step_response(0.6, step=-2.0)
+    assert C.damped_step(_trace(TEMP=temp, SP=sp), at=360.0)[0]
+
+
+def test_damped_step_needs_a_step():
+    temp, _ = _step_response(0.6)
+    res = C.damped_step(_trace(TEMP=temp, SP=np.full(len(T), 50.0)), at=360.0)
+    assert not res[0] and "did not change" in res[1]
+
+
+def test_the_lab_states_a_performance_spec_and_a_tuning_is_not_a_survivor():
+    from plclab.grade.audit import Mutant, classify
+    from plclab.grade.lab import load_lab
+
+    assert load_lab("heater-pid").performance_spec
+    assert not load_lab("motor-start-stop").performance_spec
+    full, part = 49.0, 40.0
+    m = Mutant("constant", "20.0 doubled", 26, "")
+    classify(m, "survived", full, full, performance_spec=True)
+    assert m.status == "tuning"
+    for op, score, spec in (("constant", part, True), ("negate", full, True),
+                            ("constant", full, False)):
+        m = Mutant(op, "x", 1, "")
+        classify(m, "survived", score, full, performance_spec=spec)
+        assert m.status == "survived", (op, score, spec)
+    m = Mutant("comparison", "x", 1, "")
+    classify(m, "equivalent:one scan", full, full)
+    assert m.status == "equivalent" and m.equivalence == "one scan"
+
+
+def test_performance_spec_must_be_a_boolean(tmp_path):
+    import shutil
+
+    import pytest
+
+    from plclab.errors import PlcError
+    from plclab.grade.lab import load_lab
+
+    dst = tmp_path / "heater-pid"
+    shutil.copytree(ROOT / "labs" / "heater-pid", dst)
+    toml = dst / "lab.toml"
+    toml.write_text(toml.read_text(encoding="utf-8").replace(
+        "performance_spec = true", 'performance_spec = "yes"'), encoding="utf-8")
+    with pytest.raises(PlcError) as e:
+        load_lab(str(dst))
+    assert e.value.code == "PLC5004"
