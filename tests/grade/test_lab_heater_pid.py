@@ -166,3 +166,47 @@ def test_performance_spec_must_be_a_boolean(tmp_path):
     with pytest.raises(PlcError) as e:
         load_lab(str(dst))
     assert e.value.code == "PLC5004"
+
+
+# ---------------------------------------------------------------------------- R8 vs the plant
+
+
+def _small_step_overshoot(kp, tn, period, lab):
+    """The loop's linear model from the plant the lab builds (mass, element power, losses, the
+    thermowell's lag, the sampling as half a period of delay): phase margin (degrees) and the
+    overshoot of a small set-point step (share of the step), with python-control."""
+    import control as ct
+
+    from plants import Heater
+
+    p = Heater(**lab.plant_params)
+    c_heat = 1000.0 * p.area * p.level0 * 4186.0  # J/K: rho V c of the water
+    gain = p.p_max / p.ua / 100.0  # degC per % of power, in steady state
+    plant = ct.tf([gain], [c_heat / p.ua, 1.0])
+    lag = ct.tf([1.0], [4.0, 1.0])  # the transmitter's thermowell (lab.toml wiring: tau 4 s)
+    hold = ct.tf(*ct.pade(period / 2.0, 3))
+    ctl = ct.tf([kp * tn, kp], [tn, 0.0])
+    _gm, pm, _wg, _wp = ct.margin(ctl * plant * lag * hold)
+    t = np.linspace(0.0, 1500.0, 7501)
+    _, y = ct.step_response(ct.feedback(ctl * plant * hold, lag), t)
+    return pm, float(np.max(y) - 1.0)
+
+
+def test_r8_separates_well_damped_tunings_from_swinging_ones_on_the_plant_model():
+    """The 30 % of R8 lies between the tunings the lab accepts (the solution, the variants, a
+    doubled gain, a halved integral time: phase margin 50 degrees or more) and the badly damped
+    ones (the controller called every scan but told T = 1 s: an integral time of about 10 s;
+    an integral time of 15 s)."""
+    import pytest
+
+    from plclab.grade.lab import load_lab
+
+    pytest.importorskip("control")
+    lab = load_lab("heater-pid")
+    for kp, tn, period in ((20, 100, 1.0), (25, 80, 2.0), (15, 120, 0.1), (30, 75, 0.5),
+                           (25, 90, 0.2), (40, 100, 1.0), (20, 50, 1.0)):
+        pm, over = _small_step_overshoot(kp, tn, period, lab)
+        assert over <= 0.3 and pm >= 45.0, (kp, tn, period, pm, over)
+    for kp, tn, period in ((20, 11, 1.0), (15, 15, 1.0)):
+        pm, over = _small_step_overshoot(kp, tn, period, lab)
+        assert over > 0.3 and pm < 40.0, (kp, tn, period, pm, over)
