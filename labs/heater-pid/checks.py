@@ -182,11 +182,11 @@ def heats_up(trace, signal="TEMP", level=45.0, to=600.0, power="POWER"):
     return False, msg, 0.0, [signal, power]
 
 
-def damped_step(trace, signal="TEMP", at=360.0, max_overshoot=0.3, sp="SP"):
+def damped_step(trace, signal="TEMP", at=360.0, max_overshoot=0.4, sp="SP"):
     """After the set point steps at ``at`` seconds (from the value before to the value after,
     read from ``sp``), the signal overshoots the new set point by at most ``max_overshoot``
     of the step: the damping of a step small enough that the output does not saturate (a
-    well-damped loop, phase margin about 45 degrees or more, overshoots 20 to 30 %)."""
+    well-damped PI loop, phase margin about 40 degrees or more, overshoots less than 40 %)."""
     import numpy as np
 
     t = trace.time
