@@ -180,3 +180,34 @@ def heats_up(trace, signal="TEMP", level=45.0, to=600.0, power="POWER"):
                 f"on average: the controller is content with a lower temperature; is TEMP_RAW "
                 f"scaled right (0..27648 counts = -20..120 °C)?")
     return False, msg, 0.0, [signal, power]
+
+
+def damped_step(trace, signal="TEMP", at=360.0, max_overshoot=0.4, sp="SP"):
+    """After the set point steps at ``at`` seconds (from the value before to the value after,
+    read from ``sp``), the signal overshoots the new set point by at most ``max_overshoot``
+    of the step: the damping of a step small enough that the output does not saturate (a
+    well-damped PI loop, phase margin about 40 degrees or more, overshoots less than 40 %)."""
+    import numpy as np
+
+    t = trace.time
+    spv = trace[sp].astype(float)
+    before = spv[t < float(at)]
+    after = spv[t >= float(at)]
+    if len(before) == 0 or len(after) == 0:
+        return False, f"no set-point step at {float(at):.0f} s", float(at), [sp]
+    old, new = float(before[-1]), float(after[-1])
+    step = new - old
+    if abs(step) < 1e-9:
+        return False, f"{sp} did not change at {float(at):.0f} s", float(at), [sp]
+    x = trace[signal].astype(float)[t >= float(at)]
+    over = float(np.max((x - new) * np.sign(step)))
+    share = max(over, 0.0) / abs(step)
+    head = (f"after {sp} stepped from {old:g} to {new:g} at {float(at):.0f} s, {signal} "
+            f"overshot by {max(over, 0.0):.2f} ({share:.0%} of the step, at most "
+            f"{float(max_overshoot):.0%} allowed)")
+    if share <= float(max_overshoot):
+        return True, head
+    k = int(np.argmax((x - new) * np.sign(step)))
+    return False, head + ": the loop swings (too much integral action for the gain, or " \
+        "the controller is told another sampling period than the one it runs at)", \
+        float(t[t >= float(at)][k]), [signal, sp]

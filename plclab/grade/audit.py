@@ -13,6 +13,15 @@ scenarios,
 
 A mutant whose plant signals equal the solution's in every scenario is *equivalent* (the
 change does not change behaviour) and is not counted; one that does not compile is *invalid*.
+So is one whose signals differ only by the PLC's own resolution, one scan (see
+:func:`within_one_scan`): a ``>=`` turned into ``>`` on a step time makes the phase one scan
+longer, which no requirement stated in seconds can tell from the solution (ADR 0049).
+
+In a lab whose criteria state a control performance specification (``performance_spec =
+true``: settling time, overshoot, steady-state error, recovery after a disturbance), a changed
+constant that still meets every criterion is another valid *tuning* (a gain doubled, an
+integral time halved): it is listed but not counted. A constant change that fails any part of
+the specification, and every other operator, counts as before.
 The **mutation score** is the share of behaviour-changing mutants that score at most
 :data:`CAUGHT` of the lab's points. See docs/adr/0042-critical-criteria-and-mutation-audit.md.
 """
@@ -51,7 +60,8 @@ class Mutant:
     text: str
     score: float | None = None
     max_score: float = 0.0
-    status: str = ""  # caught, survived, equivalent, invalid
+    status: str = ""  # caught, survived, equivalent, tuning, invalid
+    equivalence: str = ""  # for an equivalent mutant: "identical" or "one scan"
 
     @property
     def share(self) -> float:
@@ -94,10 +104,20 @@ class AuditReport:
             mark = "ok " if score >= VARIANT_MIN * self.max_score - 1e-9 else "TOO LOW"
             lines.append(f"  variant  {f}: {score:g} {mark}")
         by = {s: [m for m in self.mutants if m.status == s]
-              for s in ("caught", "survived", "equivalent", "invalid")}
+              for s in ("caught", "survived", "equivalent", "tuning", "invalid")}
+        scan = sum(m.equivalence == "one scan" for m in by["equivalent"])
         lines.append(f"  mutants: {len(self.mutants)} ({len(by['caught'])} caught, "
-                     f"{len(by['survived'])} survived, {len(by['equivalent'])} equivalent, "
-                     f"{len(by['invalid'])} invalid)")
+                     f"{len(by['survived'])} survived, {len(by['equivalent'])} equivalent"
+                     + (f" ({scan} within one scan)" if scan else "") +
+                     (f", {len(by['tuning'])} other valid tunings" if by["tuning"] else "") +
+                     f", {len(by['invalid'])} invalid)")
+        for m in by["tuning"]:
+            lines.append(f"  valid tuning, line {m.line}: [{m.operator}] {m.description} "
+                         f"(meets the performance specification: {m.score:g}/{m.max_score:g})")
+        for m in by["equivalent"]:
+            if m.equivalence == "one scan":
+                lines.append(f"  within one scan, line {m.line}: [{m.operator}] "
+                             f"{m.description}")
         for m in by["survived"]:
             lines.append(f"  SURVIVED {m.score:g}/{m.max_score:g} line {m.line}: "
                          f"[{m.operator}] {m.description}")
@@ -392,6 +412,94 @@ def _signals(trace: Any) -> dict[str, Any]:
     return {n: trace[n] for n in trace.signals}
 
 
+@dataclass
+class Run:
+    """What one scenario's trace shows the audit: its plant signals, the row times, the
+    trace's end and the time resolution (one PLC scan, or one row where rows are sparser)."""
+
+    signals: dict[str, Any]
+    time: Any
+    t_end: float
+    resolution: float
+    outputs: list[str] = field(default_factory=list)  # the signals the program drives
+
+    @classmethod
+    def of(cls, trace: Any) -> Run:
+        scan = float(trace.meta.get("scan") or 0.0)
+        sig = _signals(trace)
+        outs = sorted({r.get("signal") for r in trace.io if r.get("direction") == "out"}
+                      & set(sig))
+        return cls(sig, trace.time, float(trace.t_end), max(scan, trace.period),
+                   outs or sorted(sig))
+
+
+def _runs(x: Any, time: Any, t_end: float) -> tuple[list[Any], list[float]]:
+    """Run-length code of one column: the values in order and how long each lasted."""
+    import numpy as np
+
+    if len(x) == 0:
+        return [], []
+    cut = np.nonzero(x[1:] != x[:-1])[0] + 1
+    starts = np.concatenate(([0], cut))
+    ends = [float(time[k]) for k in cut] + [t_end]
+    return [x[k] for k in starts], [e - float(time[k]) for k, e in zip(starts, ends, strict=True)]
+
+
+def _close_runs(va: list[Any], da: list[float], vb: list[Any], db: list[float],
+                tol: float) -> bool:
+    """Same values in the same order, each lasting as long within ``tol``; a last run of at
+    most ``tol`` that only one side has (an edge pushed past the end) is left out."""
+    if len(va) == len(vb) + 1 and da[-1] <= tol:
+        va, da = va[:-1], da[:-1]
+    elif len(vb) == len(va) + 1 and db[-1] <= tol:
+        vb, db = vb[:-1], db[:-1]
+    # the last run is cut by the end of the trace: how long it lasts is not the program's
+    return len(va) == len(vb) and all(_equal(x, y) for x, y in zip(va, vb, strict=True)) and \
+        all(abs(x - y) <= tol for x, y in zip(da[:-1], db[:-1], strict=True))
+
+
+def _equal(x: Any, y: Any) -> bool:
+    import numpy as np
+
+    return bool(np.all(np.asarray(x) == np.asarray(y)))
+
+
+def within_one_scan(a: Run, b: Run) -> bool:
+    """Whether trace ``a`` shows what ``b`` shows at the PLC's time resolution: every signal
+    takes the same values in the same order, each value lasting as long as in ``b`` within
+    one scan (the last value, cut by the end of the run, excepted); and the program's outputs
+    together go through the same combinations in the same order (two output edges that fall
+    together in ``b`` fall together in ``a``: no lamp goes out one scan before the next one
+    lights, no order is swapped). An input edge of the plant that fell on the same scan as an
+    output edge may come a scan apart: which of two things a scan apart came first is below
+    the resolution.
+
+    An edge may thus move by a scan, and a phase last a scan longer or shorter, also once in
+    every cycle (the phases stay right, their start drifts). A preset off by a few scans, an
+    extra or a missing edge, a new combination of outputs, or an analog signal that moves
+    differently is a change of behaviour."""
+    import numpy as np
+
+    if a.signals.keys() != b.signals.keys():
+        return False
+    tol = max(a.resolution, b.resolution) * (1 + 1e-6) + 1e-9
+    for name in b.signals:
+        if not _close_runs(*_runs(a.signals[name], a.time, a.t_end),
+                           *_runs(b.signals[name], b.time, b.t_end), tol):
+            return False
+
+    def states(r: Run) -> list[tuple[Any, ...]]:
+        cols = [np.asarray(r.signals[n]) for n in b.outputs]
+        rows = list(zip(*(c.tolist() for c in cols), strict=True)) if cols else []
+        return [s for k, s in enumerate(rows) if k == 0 or s != rows[k - 1]]
+
+    sa, sb = states(a), states(b)
+    if sa == sb:
+        return True
+    # an edge pushed past the end: the last combination of the longer side is the extra one
+    return sa[:-1] == sb or sb[:-1] == sa
+
+
 def _same(a: dict[str, Any], b: dict[str, Any]) -> bool:
     import numpy as np
 
@@ -412,10 +520,28 @@ def _grade_mutant(k: int) -> tuple[int, str, float, float]:
                         keep_traces=True)
     if res.status != "ok":
         return k, "invalid", 0.0, res.max_score
-    if all(name in base and _same(_signals(tr), base[name]) for name, tr in res.traces.items()):
+    if all(name in base and _same(_signals(tr), base[name].signals)
+           for name, tr in res.traces.items()):
         return k, "equivalent", res.score, res.max_score
+    if all(name in base and within_one_scan(Run.of(tr), base[name])
+           for name, tr in res.traces.items()):
+        return k, "equivalent:one scan", res.score, res.max_score
     caught = res.score <= CAUGHT * res.max_score + 1e-9
     return k, "caught" if caught else "survived", res.score, res.max_score
+
+
+def classify(m: Mutant, status: str, score: float, top: float,
+             performance_spec: bool = False) -> None:
+    """Record a graded mutant's outcome (``status`` as :func:`_grade_mutant` gives it, e.g.
+    ``equivalent:one scan``). In a lab with a performance specification a constant change
+    that meets every criterion is another valid tuning (``tuning``), not a survivor."""
+    status, _, how = status.partition(":")
+    m.status, m.score, m.max_score = status, score, top
+    if status == "equivalent":
+        m.equivalence = how or "identical"
+    elif status == "survived" and performance_spec and m.operator == "constant" and \
+            score >= top - 1e-9:
+        m.status = "tuning"
 
 
 def audit(lab: Any, *, limit: int | None = 60, seed: int = 0, jobs: int = 1,
@@ -437,7 +563,7 @@ def audit(lab: Any, *, limit: int | None = 60, seed: int = 0, jobs: int = 1,
         text = sol.read_text(encoding="utf-8")
         base_res = grade_sources(lab, [(text, sol.name)], media_dir=None, rrd=False,
                                  keep_traces=True)
-        base = {n: _signals(t) for n, t in base_res.traces.items()}
+        base = {n: Run.of(t) for n, t in base_res.traces.items()}
         ms = mutants(text, sol.name, limit, seed)
         _JOB.update(lab=lab, mutants=ms, base=base)
         try:
@@ -451,6 +577,6 @@ def audit(lab: Any, *, limit: int | None = 60, seed: int = 0, jobs: int = 1,
         finally:
             _JOB.clear()
         for k, status, score, top in results:
-            ms[k].status, ms[k].score, ms[k].max_score = status, score, top
+            classify(ms[k], status, score, top, getattr(lab, "performance_spec", False))
         report.mutants += ms
     return report

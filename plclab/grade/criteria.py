@@ -590,9 +590,32 @@ def event_count(tr: Any, p: dict[str, Any]) -> Verdict:
         return Verdict(False, f"{n} {what} (at most {hi} expected); the first extra one at "
                        f"{fmt_t(e.time)}: {e.message}", float(e.time), [], n)
     if lo is not None and n < int(lo):
-        return Verdict(False, f"only {n} {what} (at least {lo} expected) {_span(a, b)}", b, [],
-                       n)
+        due, when = _missing_due(tr, p, [float(e.time) for e in evs], a, b)
+        return Verdict(False, f"only {n} {what} (at least {lo} expected) {_span(a, b)}; {when}",
+                       due, [], n)
     return Verdict(True, f"{n} {what}", None, [], n)
+
+
+def _missing_due(tr: Any, p: Mapping[str, Any], times: list[float], a: float, b: float
+                 ) -> tuple[float, str]:
+    """When the first missing event of a minimum count was due, and the words for it: by the
+    window's end when the criterion gives one (``to``); at the pace of the events that came
+    when they came at a steady pace (at least two, the next one due before the window's end);
+    otherwise the failure points at the window's end and the message says that the moment
+    cannot be told."""
+    np = _np()
+    if p.get("to") is not None and b < tr.t_end - 1e-9:
+        return b, f"the missing one was due by {fmt_t(b)}, the end of the checked window"
+    if len(times) >= 2:
+        gaps = np.diff(np.asarray(sorted(times)))
+        pace = float(np.median(gaps))
+        steady = pace > 0 and float(np.max(np.abs(gaps - pace))) <= 0.25 * pace
+        due = max(times) + pace
+        if steady and due < b - 1e-9:
+            return due, (f"at the pace of the ones that came (one every {pace:.3g} s) the next "
+                         f"was due at about {fmt_t(due)} and never came")
+    return b, (f"when the missing one was due cannot be told from this run, so the failure "
+               f"points at the end of the checked window ({fmt_t(b)})")
 
 
 @check("counter", Param("signal", "signal", True, help="the PLC counter, e.g. \"%MW0\""),
@@ -667,7 +690,10 @@ def _alarm_events(tr: Any, alarm: str, states: tuple[str, ...]) -> list[Any]:
              help="fail when the trigger never happens (default true)"))
 def alarm_within(tr: Any, p: dict[str, Any]) -> Verdict:
     """Each time ``trigger`` becomes true, the alarm is raised (incoming) within ``time``,
-    or is still pending from before ("alarm raised within 2 s")."""
+    or is still pending from an earlier occurrence of the same cause ("alarm raised within
+    2 s"). An alarm that was already pending *without* the cause (raised before the trigger
+    ever held, or stuck on) does not answer the trigger: a program that never clears its
+    alarm, or raises it at start, would otherwise pass every trigger after the first."""
     np = _np()
     a, b = window(tr, p)
     limit = float(p["time"])
@@ -676,22 +702,36 @@ def alarm_within(tr: Any, p: dict[str, Any]) -> Verdict:
     gone = [float(e.time) for e in _alarm_events(tr, p["alarm"], ("IO", "IAO"))]
     trig = mask(tr, p["trigger"])
     prev = np.concatenate(([False], trig[:-1]))
-    edges = np.nonzero(trig & ~prev & in_window(tr, a, b))[0]
+    rising = trig & ~prev
+    edges = np.nonzero(rising & in_window(tr, a, b))[0]
     if len(edges) == 0:
         ok = p.get("need_trigger") is False
         return Verdict(ok, f"`{p['trigger']}` never happened {_span(a, b)}" +
                        ("" if ok else ", so the alarm could not be checked"),
                        None if ok else a, names)
+    all_edges = [float(x) for x in tr.time[np.nonzero(rising)[0]]]
+
+    def answers_cause(c: float) -> bool:
+        """The alarm that came at ``c`` answered the cause: the trigger held then, or had
+        become true at most ``time`` before."""
+        k = min(int(np.searchsorted(tr.time, c - 1e-9)), len(trig) - 1)
+        return bool(trig[k]) or any(e - 1e-9 <= c <= e + limit + 1e-9 for e in all_edges)
+
     worst = 0.0
     for i in edges:
         te = float(tr.time[i])
         if te + limit > tr.t_end + 1e-9:
             continue
-        active = any(c <= te and not any(c < g <= te for g in gone) for c in came)
+        pending = [c for c in came if c < te - 1e-9 and not any(c < g <= te for g in gone)]
+        active = any(answers_cause(c) for c in pending)
         hits = [c for c in came if te - 1e-9 <= c <= te + limit + 1e-9]
         if not active and not hits:
+            why = (f": it was already pending since {fmt_t(pending[0])}, before the cause "
+                   f"(an alarm that is never cleared, or raised without its cause, does not "
+                   f"answer it)") if pending else ""
             return Verdict(False, f"`{p['trigger']}` at t = {fmt_t(te)}, but alarm "
-                           f"{p['alarm']} was not raised within {limit:g} s", te + limit, names)
+                           f"{p['alarm']} was not raised within {limit:g} s{why}", te + limit,
+                           names)
         worst = max(worst, 0.0 if active else hits[0] - te)
     return Verdict(True, f"alarm {p['alarm']} came within {worst:.2f} s of `{p['trigger']}` "
                    f"(allowed {limit:g} s)", None, names, worst)

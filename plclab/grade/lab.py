@@ -41,7 +41,7 @@ TOP_KEYS = ("id", "title", "summary", "goals", "plant", "plant_params", "scan", 
             "dialect",
             "time_limit", "memory_limit", "wiring", "io", "watch", "diagram", "scenario",
             "criterion", "mistake", "level", "chapters", "alarms", "recipes", "critical_cap",
-            "hidden_scenarios_withheld")
+            "hidden_scenarios_withheld", "performance_spec")
 LEVELS = {1: "beginner", 2: "intermediate", 3: "advanced"}
 """``level`` of a lab (``plclab lab list`` orders by it; the course's path through the labs)."""
 SCENARIO_KEYS = ("name", "description", "duration", "seed", "visible", "plant_params",
@@ -292,6 +292,7 @@ class Lab:
     alarms: dict[str, Any] | None = None  # the lab's alarm configuration (plclab.scada)
     recipes: dict[str, Any] | None = None  # the lab's recipe and its records (plclab.scada)
     critical_cap: float = 0.5  # a failed critical criterion caps the score at this share
+    performance_spec: bool = False  # criteria state a control performance spec (ADR 0049)
     withheld: int | None = None  # the student copy shipped with plclab: hidden scenarios it
     # lacks (``hidden_scenarios_withheld`` in its lab.toml); None: the instructor's lab
 
@@ -636,6 +637,7 @@ class _Builder:
         lab.alarms = self.alarms(d)
         lab.recipes = self.recipes(d, scenarios)
         lab.critical_cap = self.critical_cap(d)
+        lab.performance_spec = self.performance_spec(d)
         lab.withheld = self.withheld(d)
         return lab
 
@@ -652,6 +654,20 @@ class _Builder:
                            "written when plclab is built; an instructor's lab leaves it out",
                            key="hidden_scenarios_withheld")
         return n
+
+    def performance_spec(self, d: Mapping[str, Any]) -> bool:
+        """``performance_spec = true``: the criteria state the requirement as a control
+        engineer's performance specification (settling time, overshoot, steady-state error,
+        disturbance recovery), so any tuning inside it is right; ``plclab lab audit`` then
+        counts a changed tuning constant that meets every criterion as another valid tuning,
+        not as a survivor (ADR 0049)."""
+        v = d.get("performance_spec", False)
+        if not isinstance(v, bool):
+            raise self.err("PLC5004", f"performance_spec = {v!r}: true when the criteria state "
+                           "a performance specification that every right tuning meets (settling "
+                           "time, overshoot, steady-state error), else leave it out",
+                           key="performance_spec")
+        return v
 
     def critical_cap(self, d: Mapping[str, Any]) -> float:
         """``critical_cap = 0.5``: the most a submission earns, as a share of the lab's points,

@@ -116,6 +116,33 @@ def test_event_count_and_counter():
     assert not v.passed and "the plant counted 2" in v.message
 
 
+def _ticks(times, n=1000, dt=0.01):
+    evs = [Event(t, "bottle_filled", "filler", f"bottle at {t:g} s", {}) for t in times]
+    return trace({"X": np.zeros(n)}, dt=dt, events=evs)
+
+
+def test_event_count_minimum_points_at_the_missing_event():
+    # steady pace: one every 2 s from 1 s; the fourth (due at 7 s) never came, the run
+    # ends at 10 s
+    v = run_check("event_count", _ticks([1.0, 3.0, 5.0]), {"event": "bottle_filled", "min": 4})
+    assert not v.passed and v.value == 3
+    assert v.t_fail == pytest.approx(7.0) and "due at about" in v.message
+    # an explicit window end: due by then
+    v = run_check("event_count", _ticks([1.0, 3.0, 5.0]),
+                  {"event": "bottle_filled", "min": 4, "to": 6.5})
+    assert not v.passed and v.t_fail == pytest.approx(6.5) and "due by" in v.message
+    # no pace to go by (one event, or irregular ones): the run's end, and it says so
+    for times in ([1.0], [1.0, 1.5, 6.0], []):
+        v = run_check("event_count", _ticks(times), {"event": "bottle_filled", "min": 4})
+        assert not v.passed and v.t_fail == pytest.approx(10.0), times
+        assert "cannot be told" in v.message, times
+    # the pace says the next was not due before the end: no guess either
+    v = run_check("event_count", _ticks([4.0, 8.0]), {"event": "bottle_filled", "min": 3})
+    assert not v.passed and "cannot be told" in v.message
+    assert run_check("event_count", _ticks([1.0, 3.0, 5.0]),
+                     {"event": "bottle_filled", "min": 3}).passed
+
+
 def test_every_check_is_documented():
     for c in CHECKS.values():
         assert c.doc, c.name

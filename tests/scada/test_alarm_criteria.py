@@ -28,12 +28,32 @@ LOW = [0, 0, 1, 1, 1, 0, 0, 0, 0, 0]
     ([(3, "I")], 1, True),
     ([(4, "I")], 1, False),  # 2 s late
     ([], 1, False),
-    ([(0, "I")], 1, True),  # still pending from before the trigger
+    # pending since before the cause (raised at start, never cleared): no answer to it
+    ([(0, "I")], 1, False),
     ([(0, "I"), (1, "IO")], 1, False),  # gone before the trigger: not pending
+    ([(1, "I")], 1, False),  # raised a second before the cause: not an answer either
 ])
 def test_alarm_within(log, time, passed):
     v = run_check("alarm_within", trace(LOW, [0] * 10, log),
                   {"alarm": "NO_WATER", "trigger": "LOW", "time": time})
+    assert v.passed is passed, v.message
+    if not passed and len(log) == 1 and log[0][0] < 2:
+        assert "already pending since" in v.message
+
+
+# the cause comes twice: at 1 s and, after a short gap, at 5 s
+TWICE = [0, 1, 1, 0, 0, 1, 1, 0, 0, 0]
+
+
+@pytest.mark.parametrize("log, passed", [
+    ([(1, "I")], True),  # raised by the first occurrence and still pending at the second
+    ([(1, "I"), (3, "IO"), (5, "I")], True),  # cleared in between, raised again
+    ([(1, "I"), (3, "IO")], False),  # cleared in between and not raised again
+    ([(0, "I")], False),  # on before the first occurrence: never an answer
+])
+def test_alarm_within_pending_from_an_earlier_cause(log, passed):
+    v = run_check("alarm_within", trace(TWICE, [0] * 10, log),
+                  {"alarm": "NO_WATER", "trigger": "LOW", "time": 1})
     assert v.passed is passed, v.message
 
 
