@@ -308,6 +308,8 @@ class Plc:
             exec(code, ns)
         ns["_G"] = ns["_Globals"]()
         ns["_P"] = ns["_Programs"]()
+        if any(True for _ in self.compiled.located):  # %Q and %M start as their variables
+            ns["_sync_init"]()
         return ns
 
     def cold_restart(self) -> None:
@@ -873,7 +875,7 @@ class Plc:
 
             def setter(v):
                 setattr(walk_to_parent(), last_key, v)
-                if address and address.startswith("%I"):
+                if address:  # a located variable is its bytes of the image (ADR 0056)
                     self._write_address(address, v, final_t, physical=True)
         else:
             def getter():
@@ -923,7 +925,10 @@ class Plc:
             return
         size = m.group(2) or "X"
         byte, bit = int(m.group(3)), m.group(4)
-        tgt = self.inputs if physical else self.image_in
+        # %I: the terminals (physical) or the frozen input image; %Q: the output image, which
+        # the terminals follow at scan end; %M: the memory (ADR 0056)
+        tgt = {"I": self.inputs if physical else self.image_in, "Q": self.image_out,
+               "M": self.memory}[m.group(1)]
         t = T.base_of(ty)
         if t.kind == "real":
             fmt = ">f" if size == "D" else ">d"
