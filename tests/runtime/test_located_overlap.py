@@ -95,3 +95,20 @@ def test_a_modify_at_scan_start_of_an_output_variable_is_kept():
     plc.modify("Main.w", 42, at="scan_start")
     plc.scan()
     assert plc["Main.seen"] == 42 and plc["%QW2"] == 42
+
+
+def test_a_forced_output_address_drives_the_terminal_not_the_programs_variable():
+    plc = loads("""PROGRAM Main
+VAR
+    run AT %QX0.0 : BOOL;
+END_VAR
+run := TRUE;
+END_PROGRAM
+""", "g.st")
+    plc.force("%QX0.0", False)
+    plc.scan(2)
+    assert plc["%QX0.0"] is False      # the terminal obeys the force
+    assert plc["Main.run"] is True     # the program's variable keeps what it wrote
+    plc.unforce("%QX0.0")
+    plc.scan()
+    assert plc["%QX0.0"] is True
