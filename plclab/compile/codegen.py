@@ -494,17 +494,34 @@ class Codegen(FastPaths):
         self.emit("")
 
     def sync_functions(self) -> None:
-        """_sync_in copies frozen inputs (and %M) into located variables; _sync_out the reverse."""
+        """The copies between located variables and the process image (ADR 0056): the image
+        is the one truth, a located variable an alias of its bytes. ``_sync_in`` (scan start)
+        loads every located variable from its bytes (%I, and %Q and %M too, so that a direct
+        address, an overlapping variable or a write from outside the program is seen) and
+        remembers what it loaded; ``_sync_out`` (scan end) writes back only the %Q and %M
+        variables the program changed, so an unchanged word does not wipe a bit written
+        through ``%QX3.0``, then loads them all again, so that after a scan every variable
+        shows its bytes; ``_sync_init`` (after a restart) writes every %Q and %M variable
+        with its initial value."""
         ins: list[str] = []
         outs: list[str] = []
+        reload: list[str] = []
+        init: list[str] = []
+        k = 0
         for v, path in self.located():
             area = v.address[1]
             rd = self.addr_read(v.address, v.decl.ty)
-            if area in ("I", "M"):
+            if area == "I":
                 ins.append(f"{path} = {rd}")
-            if area in ("Q", "M"):
-                outs.append(self.addr_write(v.address, path, v.decl.ty))
-        for name, body in (("_sync_in", ins), ("_sync_out", outs)):
+                continue
+            write = self.addr_write(v.address, path, v.decl.ty)
+            ins.append(f"{path} = _LOC[{k}] = {rd}")
+            outs.append(f"if {path} != _LOC[{k}]: {write}")
+            reload.append(f"{path} = {rd}")
+            init.append(write)
+            k += 1
+        self.emit(f"_LOC = [None] * {k}")
+        for name, body in (("_sync_in", ins), ("_sync_out", outs + reload), ("_sync_init", init)):
             self.emit(f"def {name}():")
             self.ind += 1
             for line in body:

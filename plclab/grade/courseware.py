@@ -21,6 +21,11 @@ from typing import Any
 
 PRIVATE_DIRS = ("solution", "mistakes", "variants", "private")
 """Sub-folders of a lab that are the instructor's: never shipped, never copied to students."""
+
+INSTRUCTOR_DIRS = ("instructor",)
+"""Folders of the course that are the instructor's (``course/instructor``: worked solutions of
+the exercises): never shipped, never copied to students."""
+
 STUDENT_FILES = ("README.md", "lab.toml", "checks.py", "alarms.toml", "recipes.toml")
 """Files of a lab folder that ship (with ``starter.*``)."""
 COURSEWARE = ("labs", "examples", "notebooks", "course")
@@ -156,9 +161,9 @@ def copy_courseware(root: Path, dest: Path) -> list[Path]:
             shutil.copytree(sub, dest / "labs" / sub.name,
                             ignore=shutil.ignore_patterns("__pycache__", ".*"))
     for folder in ("examples", "course"):  # the course: chapters, examples, figure specs, quizzes
-        if (root / folder).is_dir():
+        if (root / folder).is_dir():  # course/instructor (worked solutions) stays behind
             shutil.copytree(root / folder, dest / folder,
-                            ignore=shutil.ignore_patterns("__pycache__", ".*"))
+                            ignore=shutil.ignore_patterns("__pycache__", ".*", *INSTRUCTOR_DIRS))
     nb = root / "notebooks"
     for f in sorted(nb.glob("*.ipynb")) if nb.is_dir() else []:
         (dest / "notebooks").mkdir(parents=True, exist_ok=True)

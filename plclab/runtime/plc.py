@@ -346,6 +346,8 @@ class Plc:
             exec(code, ns)
         ns["_G"] = ns["_Globals"]()
         ns["_P"] = ns["_Programs"]()
+        if any(True for _ in self.compiled.located):  # %Q and %M start as their variables
+            ns["_sync_init"]()
         return ns
 
     def cold_restart(self) -> None:
@@ -623,11 +625,15 @@ class Plc:
             self._to_stop(exc)
         if watched and self.modified["scan_end"]:
             self._apply_outputs(self._take("scan_end"))
+        held = None
         if self.forced:
+            held = bytes(self.image_out)
             self._apply_forced_outputs()
         if watched:
             self._fire("scan_end")
         self.outputs[:] = self.image_out
+        if held is not None:
+            self._unforce_image(held)
         ctx.first_scan = False
         ctx.scan_count += 1
         ns = ctx.now_ns + self._tick_ns
@@ -916,7 +922,7 @@ class Plc:
 
             def setter(v):
                 setattr(walk_to_parent(), last_key, v)
-                if address and address.startswith("%I"):
+                if address:  # a located variable is its bytes of the image (ADR 0056)
                     self._write_address(address, v, final_t, physical=True)
         else:
             def getter():
@@ -966,7 +972,10 @@ class Plc:
             return
         size = m.group(2) or "X"
         byte, bit = int(m.group(3)), m.group(4)
-        tgt = self.inputs if physical else self.image_in
+        # %I: the terminals (physical) or the frozen input image; %Q: the output image, which
+        # the terminals follow at scan end; %M: the memory (ADR 0056)
+        tgt = {"I": self.inputs if physical else self.image_in, "Q": self.image_out,
+               "M": self.memory}[m.group(1)]
         t = T.base_of(ty)
         if t.kind == "real":
             fmt = ">f" if size == "D" else ">d"
@@ -1016,6 +1025,22 @@ class Plc:
                 if v.address and v.address.startswith("%Q"):
                     area_size = self._addr_parts(v.address)
                     self._write_bytes(self.image_out, *area_size, val)
+
+    def _unforce_image(self, held: bytes) -> None:
+        """A forced output *address* acts on the terminal, not on the output image the program
+        and its located variables see (as S7's force of a peripheral output): after the
+        terminals are written, its bits of the image go back to what the program wrote (ADR
+        0056; the image is loaded into located variables at the next scan start)."""
+        for key in self.forced:
+            if key.startswith("%Q"):
+                size, byte, bit = self._addr_parts(key)
+                if size == "X":
+                    mask = 1 << int(bit)
+                    self.image_out[byte] = (self.image_out[byte] & ~mask & 0xFF) | \
+                        (held[byte] & mask)
+                else:
+                    n = _SIZE_BYTES[size]
+                    self.image_out[byte:byte + n] = held[byte:byte + n]
 
     @staticmethod
     def _addr_parts(addr: str):

@@ -18,7 +18,7 @@ from plclab.trace.events import Event
 from .lab_modules import lab_checks
 
 ROOT = Path(__file__).resolve().parents[2]
-LABS16 = {"bottle-packing": [3, 6, 10], "level-4-20ma": [4], "scan-timing": [2],
+LABS16 = {"bottle-packing": [10], "level-4-20ma": [4], "scan-timing": [2],
           "modbus-operator": [14]}
 
 
