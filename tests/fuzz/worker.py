@@ -2,8 +2,10 @@
 
 Started by ``harness.Runner`` as ``python worker.py``. Each case goes through parse, check,
 compile and, when it compiles, a few scans with random inputs. A soft hang guard
-(``setitimer``) turns a case that runs too long into a ``hang`` answer with the place it was
-stuck; the parent kills the worker when even that does not come back (a hang in C code). The
+(``setitimer`` on the process's CPU time, ITIMER_PROF: a loaded machine that gives the worker
+little CPU does not make a case a hang) turns a case that runs too long into a ``hang`` answer
+with the place it was stuck; the parent kills the worker when even that does not come back
+within a wall-clock margin (a hang in C code, or waiting on nothing). The
 address space is limited, so a runaway allocation is a ``MemoryError`` here, not a dead machine.
 
 Answer: ``{"outcome": "ok" | "rejected" | "plcerror" | "crash" | "hang", "stage", "sig", "msg"}``
@@ -119,19 +121,19 @@ def run_case(text: str, name: str, seed: int, scans: int) -> dict:
 
 def main() -> None:
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
-    signal.signal(signal.SIGALRM, _on_alarm)
+    signal.signal(signal.SIGPROF, _on_alarm)
     sys.setrecursionlimit(4000)
     out = sys.stdout
     sys.stdout = sys.stderr  # stray prints of the code under test do not break the protocol
     for line in sys.stdin:
         job = json.loads(line)
-        signal.setitimer(signal.ITIMER_REAL, job.get("timeout", 3.0))
+        signal.setitimer(signal.ITIMER_PROF, job.get("timeout", 3.0))
         try:
             res = run_case(job["text"], job["name"], job.get("seed", 0), job.get("scans", 3))
         except Hang:
             res = {"outcome": "hang", "stage": "?", "sig": "hang:?:?", "msg": ""}
         finally:
-            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.setitimer(signal.ITIMER_PROF, 0)
         res["id"] = job.get("id")
         out.write(json.dumps(res) + "\n")
         out.flush()

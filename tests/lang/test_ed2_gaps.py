@@ -31,10 +31,10 @@ def test_trunc_takes_its_type_from_the_context_in_ed2_dialects(dialect):
 
 
 def test_trunc_is_dint_in_codesys_and_s7():
-    # CODESYS: a DINT stored in an INT, accepted with its warning, but INT_TO_WORD of a DINT
-    # is refused; S7: both refused
-    assert [(c, s) for c, s, _ in diags(TRUNC_INT, "codesys")] == [
-        ("PLC0107", "error"), ("PLC0285", "warning")]
+    # CODESYS: a DINT stored in an INT, accepted with its warning, and INT_TO_WORD of a DINT
+    # wraps it to INT first with the same warning (ADR 0051); S7: both refused
+    assert [(c, s, n) for c, s, n in diags(TRUNC_INT, "codesys")] == [
+        ("PLC0285", "warning", 2), ("PLC0285", "warning", 3)]
     assert errors(TRUNC_INT, "s7") == ["PLC0118", "PLC0107"]
 
 
