@@ -33,6 +33,8 @@ _TIME_FNS = {"ADD_TIME": "TIME + TIME", "ADD_TOD_TIME": "time of day + TIME",
              "SUB_TOD_TOD": "the TIME between two times of day",
              "SUB_DT_TIME": "date and time - TIME", "SUB_DT_DT": "the TIME between two DTs",
              "MUL_TIME": "TIME * a number", "DIV_TIME": "TIME / a number",
+             "MULTIME": "TIME * a number (the ed.2 name of MUL_TIME, matiec dialect)",
+             "DIVTIME": "TIME / a number (the ed.2 name of DIV_TIME, matiec dialect)",
              "CONCAT_DATE_TOD": "a DT from a DATE and a time of day"}
 
 FUNCTION_DOCS: dict[str, str] = {
