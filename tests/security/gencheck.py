@@ -32,7 +32,9 @@ RUNTIME_NAMES = {"_B", "_CTX", "_F32", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc
                  "__slots__", "_Globals", "_Programs", "_sync_in", "_sync_out", "__init__",
                  "_body", "_copy", "_math",
                  "_itf", "_INIT_RETAINS",  # ADR 0021: a block's interfaces, FB_init's flag
-                 "_fbinit"}  # ADR 0052: the values a : FB(k := 3) gives FB_init
+                 "_fbinit",  # ADR 0052: the values a : FB(k := 3) gives FB_init
+                 "_sync_init",  # ADR 0056: located variables written to the image at restart
+                 "_LOC"}  # ADR 0056: each located variable's value at the last image copy
 BUILTINS = {"abs", "float", "int", "len", "list", "max", "min", "range", "bool", "str", "round"}
 METHODS = {"__new__", "_body", "_copy", "advance_ns", "from_bytes", "to_bytes", "left", "start",
            "step", "now", "now_ns", "first_scan", "scan_count", "limit",

@@ -11,7 +11,7 @@ S = "pwned_sentinel"
 
 # identifiers that mean something to Python or to the generated code
 IDENTS = ["__import__", "self", "_G", "_P", "_I", "_Q", "_M", "_B", "_CTX", "v_X", "F_X", "P_X",
-          "S_X", "_sync_in", "_sync_out", "_test_0", "_body", "_copy", "__slots__", "__init__",
+          "S_X", "_sync_in", "_sync_out", "_sync_init", "_LOC", "_test_0", "_body", "_copy", "__slots__", "__init__",
           "__class__", "__dict__", "__builtins__", "__name__", "_Globals", "_Programs", "None",
           "True_", "exec", "eval", "lambda_", "import_", "os", "sys", "_f32", "_math", "_t1",
           "_r1", "_pc", "n", "_wd", "_oob", "pwned_sentinel", "a" * 300, "X" + "_9" * 40,
