@@ -21,9 +21,7 @@ import contextlib
 import io
 import os
 import re
-import shutil
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
@@ -53,30 +51,12 @@ def check(lab: str, program: Path, png: Path, rrd: Path) -> str:
 
 def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
     """Open ``rrd`` in a viewer of its own and save its first view untouched; what it opened."""
-    from rerun.experimental import ViewerClient
+    from plclab.grade.screenshots import park_pointer, shrink, viewer
 
-    from plclab.grade.screenshots import free_port, shrink
-
-    port = free_port()
-    viewer = subprocess.Popen([sys.executable, "-m", "rerun_cli", str(rrd), "--port", str(port),
-                               "--window-size", "1600x1000"],
-                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        client, state = None, None
-        deadline = time.monotonic() + 180
-        while time.monotonic() < deadline:
-            try:
-                client = ViewerClient.connect(f"rerun+http://127.0.0.1:{port}/proxy")
-                state = client.get_state()
-                if state.recordings and not state.loading:
-                    break
-            except Exception:  # noqa: BLE001 - not up yet
-                pass
-            time.sleep(1.0)
+    with viewer(rrd, env, timeout=180) as (client, state):
         if client is None or state is None:
             return "viewer did not come up"
-        if shutil.which("xdotool"):  # the pointer on the menu bar: no hover tooltip
-            subprocess.run(["xdotool", "mousemove", "5", "5"], env=env, check=False)
+        park_pointer(env)
         time.sleep(wait)
         for attempt in range(3):  # a loaded machine: the viewer may answer late
             try:
@@ -94,12 +74,6 @@ def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
         t = act.current_time
         when = f"{t / 1e9:.2f} s" if t is not None else "unset"
         return f"opened {act.store_id.split(':')[-1]}, cursor at {when}"
-    finally:
-        viewer.terminate()
-        try:
-            viewer.wait(10)
-        except subprocess.TimeoutExpired:
-            viewer.kill()
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -16,6 +16,7 @@ Nothing is written into the source tree unless ``--out`` points there.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import shutil
 import socket
@@ -77,18 +78,20 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def shoot(rrd: Path, png: Path, t: float, rid: str, env: dict[str, str], wait: float) -> None:
-    """Open ``rrd`` in a viewer of its own, show recording ``rid`` with the cursor at ``t``,
-    save the window."""
+@contextlib.contextmanager
+def viewer(rrd: Path, env: dict[str, str], timeout: float = 120.0):
+    """A rerun viewer of its own showing ``rrd`` at 1600x1000: yields its client and its state
+    once the recordings are loaded (``(None, None)`` when it did not come up within
+    ``timeout``); stopped on leaving."""
     from rerun.experimental import ViewerClient
 
     port = free_port()
-    viewer = subprocess.Popen([sys.executable, "-m", "rerun_cli", str(rrd), "--port", str(port),
-                               "--window-size", "1600x1000"],
-                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen([sys.executable, "-m", "rerun_cli", str(rrd), "--port", str(port),
+                             "--window-size", "1600x1000"],
+                            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        client = None
-        deadline = time.monotonic() + 120
+        client, state = None, None
+        deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             try:
                 client = ViewerClient.connect(f"rerun+http://127.0.0.1:{port}/proxy")
@@ -98,7 +101,26 @@ def shoot(rrd: Path, png: Path, t: float, rid: str, env: dict[str, str], wait: f
             except Exception:  # noqa: BLE001 - not up yet
                 pass
             time.sleep(1.0)
-        if client is None:
+        yield client, state
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+
+
+def park_pointer(env: dict[str, str]) -> None:
+    """The pointer on the menu bar, so that no hover tooltip covers the view."""
+    if shutil.which("xdotool"):
+        subprocess.run(["xdotool", "mousemove", "5", "5"], env=env, check=False)
+
+
+def shoot(rrd: Path, png: Path, t: float, rid: str, env: dict[str, str], wait: float) -> None:
+    """Open ``rrd`` in a viewer of its own, show recording ``rid`` with the cursor at ``t``,
+    save the window."""
+    with viewer(rrd, env) as (client, state):
+        if client is None or state is None:
             raise SystemExit(f"the viewer did not come up for {rrd}")
         rec = next((r for r in state.recordings if r.store_id.endswith(":" + rid)), None)
         if rec is None:
@@ -108,17 +130,10 @@ def shoot(rrd: Path, png: Path, t: float, rid: str, env: dict[str, str], wait: f
             time.sleep(1.0)
         client.set_time("sim_time", duration=t, play_state="paused",
                         recording=rec.store_id if rec is not None else None)
-        if shutil.which("xdotool"):  # park the pointer on the menu bar: no hover tooltip
-            subprocess.run(["xdotool", "mousemove", "5", "5"], env=env, check=False)
+        park_pointer(env)
         time.sleep(wait)
         client.save_screenshot(str(png))
         shrink(png)
-    finally:
-        viewer.terminate()
-        try:
-            viewer.wait(10)
-        except subprocess.TimeoutExpired:
-            viewer.kill()
 
 
 def shrink(png: Path) -> None:
