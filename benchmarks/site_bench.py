@@ -1,6 +1,8 @@
 """Benchmark: the playground in a real browser (issue 17): how long Python and plclab take to
 load in the page, and how many scans of the tank program per second the page runs, beside the
-same Session in CPython.
+same Session in CPython; and, with the program in a Web Worker (issue 39), how long the page's
+own thread is ever blocked while a 200,000-iteration loop runs (the longest gap of a 10 ms
+timer in the page) and how long Stop takes to answer (the goals: 100 ms and 200 ms).
 
 Run ``python benchmarks/site_bench.py [--site DIR] [--repeat N] [--seconds S]``. Without
 ``--site`` the site is built first (into a temporary folder). Each load is a fresh browser
@@ -23,12 +25,35 @@ from plclab.site import playground_api as api  # noqa: E402
 from plclab.site.build import build  # noqa: E402
 from plclab.site.serve import serve_in_thread  # noqa: E402
 
+GAPS: list[float] = []
+STOPS: list[float] = []
+
 
 def cpython_scans_per_second(seconds: float) -> float:
     s = api.Session(api.TANK_EXAMPLE, "st", "tank")
     t = time.perf_counter()
     s.advance(seconds, every=0.1)
     return s.scans / (time.perf_counter() - t)
+
+
+LONG_LOOP = ("PROGRAM Busy\nVAR i : DINT; x : DINT; END_VAR\n"
+             "FOR i := 1 TO 200000 DO x := x + 1; END_FOR;\nEND_PROGRAM\n")
+
+
+def responsiveness(page) -> tuple[float, float]:
+    """Run LONG_LOOP for 60 s of virtual time, watch the page's thread for 2 s, press Stop:
+    (the longest gap between ticks of a 10 ms timer, the time Stop took), in ms."""
+    page.fill("#pg-code", LONG_LOOP)
+    page.evaluate("""() => { window.__gap = 0; let last = performance.now();
+        setInterval(() => { const n = performance.now();
+            window.__gap = Math.max(window.__gap, n - last); last = n; }, 10); }""")
+    page.click("#pg-run60")
+    page.wait_for_function("window.plclabPlayground.state.scans > 2", timeout=120000)
+    page.evaluate("window.__gap = 0")  # from here on: the run is under way
+    page.wait_for_timeout(2000)
+    stop_ms = page.evaluate("""async () => { const t = performance.now();
+        await window.plclabPlayground.stop(); return performance.now() - t; }""")
+    return page.evaluate("window.__gap"), stop_ms
 
 
 def browser_numbers(base: str, repeat: int, seconds: float) -> tuple[list[float], list[float]]:
@@ -47,6 +72,9 @@ def browser_numbers(base: str, repeat: int, seconds: float) -> tuple[list[float]
             loads.append(time.perf_counter() - t0)
             r = page.evaluate(f"window.plclabPlayground.run({seconds})")
             rates.append(r["scansPerSecond"])
+            gap, stop = responsiveness(page)
+            GAPS.append(gap)
+            STOPS.append(stop)
             ctx.close()
         browser.close()
     return loads, rates
@@ -79,6 +107,10 @@ def main() -> None:
     print(f"{'CPython scans/s (same Session)':34}{native:12.0f}")
     print(f"{'ratio CPython / browser':34}{native / med:12.2f}")
     print(f"{'virtual time / wall time, browser':34}{med * 0.02:12.0f}x")
+    print(f"{'longest block of the page (ms)':34}{statistics.median(GAPS):12.0f}{min(GAPS):12.0f}"
+          f"{max(GAPS):12.0f}   goal 100")
+    print(f"{'Stop answered in (ms)':34}{statistics.median(STOPS):12.0f}{min(STOPS):12.0f}"
+          f"{max(STOPS):12.0f}   goal 200")
 
 
 if __name__ == "__main__":
