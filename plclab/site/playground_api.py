@@ -194,7 +194,9 @@ class Session:
 
     def advance(self, seconds: float, every: float | None = None) -> list[dict[str, Any]]:
         """Run scans for ``seconds`` of virtual time; return a sample each ``every`` s
-        (default: each scan). A run-time fault stops the session and becomes a diagnostic."""
+        (default: each scan), on the session's own clock: a run advanced in slices (the page's
+        worker) samples at the same moments as one call. A run-time fault stops the session
+        and becomes a diagnostic."""
         if self.plc is None:
             return []
         out: list[dict[str, Any]] = []
@@ -207,7 +209,7 @@ class Session:
                 self.diagnostics += _error_dicts(e)
                 self.plc = None
                 break
-            if (i + 1) % step == 0:
+            if self.scans % step == 0:
                 out.append(self.sample())
         return out
 

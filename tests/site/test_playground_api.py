@@ -131,3 +131,17 @@ def test_tests_run_in_the_page_print_what_plclab_test_prints(tmp_path, capsys):
     assert [ln.replace(str(f), "playground.st") for ln in cli[:-1]] == res["lines"]
     broken = api.run_tests("TEST 'x' y := ; END_TEST")
     assert broken["diagnostics"] and broken["summary"] == ""
+
+
+def test_a_run_in_slices_samples_at_the_same_moments_as_one_call():
+    """The page's worker advances a run in slices of any length; the samples still fall on
+    the session's clock (every 0.1 s of virtual time), so a 60 s run ends with t = 60.0."""
+    whole = api.Session(api.TANK_EXAMPLE, "st", "tank")
+    rows = whole.advance(60.0, 0.1)
+    sliced = api.Session(api.TANK_EXAMPLE, "st", "tank")
+    got = []
+    for chunk in (0.14, 0.3, 1.02, 0.06, 7.0, 0.48) * 6 + (6.0,):  # 60 s in all
+        got += sliced.advance(chunk, 0.1)
+    assert sliced.scans == whole.scans == 3000
+    assert [r["t"] for r in got] == [r["t"] for r in rows]
+    assert got[-1]["t"] == 60.0 and got == rows
