@@ -202,7 +202,7 @@ class Session:
         out: list[dict[str, Any]] = []
         n = max(1, round(seconds / self.scan_s))
         step = max(1, round((every or self.scan_s) / self.scan_s))
-        for i in range(n):
+        for _ in range(n):
             try:
                 self.scan_once()
             except PlcError as e:
