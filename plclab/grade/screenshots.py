@@ -110,6 +110,28 @@ def viewer(rrd: Path, env: dict[str, str], timeout: float = 120.0):
             proc.kill()
 
 
+@contextlib.contextmanager
+def display(needed: bool = True):
+    """The environment a viewer runs in: this one's display, or an Xvfb of its own (1600x1000)
+    when there is none or ``PLCLAB_XVFB`` asks for one; stopped on leaving."""
+    env = {**os.environ, "RUST_LOG": "warn", "RERUN_ANALYTICS": "0"}
+    xvfb = None
+    if needed and (not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB")):
+        if shutil.which("Xvfb") is None:
+            raise SystemExit("no display and no Xvfb: apt-get install xvfb mesa-vulkan-drivers")
+        n = free_display()
+        xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x1000x24"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        env["DISPLAY"] = f":{n}"
+        time.sleep(1.0)
+    try:
+        yield env
+    finally:
+        if xvfb is not None:
+            xvfb.terminate()
+            xvfb.wait(10)
+
+
 def park_pointer(env: dict[str, str]) -> None:
     """The pointer on the menu bar, so that no hover tooltip covers the view."""
     if shutil.which("xdotool"):
@@ -157,33 +179,17 @@ def main(argv: list[str] | None = None) -> int:
     out = Path(ns.out)
     out.mkdir(parents=True, exist_ok=True)
     labs = ns.labs.split(",") if ns.labs else [p.name for p in list_labs()]
-    env = {**os.environ, "RUST_LOG": "warn", "RERUN_ANALYTICS": "0"}
-    xvfb = None
-    if not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB"):
-        if shutil.which("Xvfb") is None:
-            raise SystemExit("no display and no Xvfb: apt-get install xvfb mesa-vulkan-drivers")
-        n = free_display()
-        xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x1000x24"],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        env["DISPLAY"] = f":{n}"
-        time.sleep(1.0)
-    try:
-        with tempfile.TemporaryDirectory(prefix="plclab-shots-") as tmp:
-            for lab_id in labs:
-                for tag, program in runs(lab_id):
-                    rrd = Path(tmp) / f"{lab_id}--{tag}.rrd"
-                    t, rid = record(lab_id, program, rrd)
-                    png = out / f"{lab_id}--{tag}.png"
-                    shoot(rrd, png, t, rid, env, ns.wait)
-                    if ns.keep_rrd:
-                        shutil.copy(rrd, out / rrd.name)
-                    print(f"{png}  ({program}, cursor at {t:.1f} s)")
-    finally:
-        if xvfb is not None:
-            xvfb.terminate()
-            xvfb.wait(10)
+    with display() as env, tempfile.TemporaryDirectory(prefix="plclab-shots-") as tmp:
+        for lab_id in labs:
+            for tag, program in runs(lab_id):
+                rrd = Path(tmp) / f"{lab_id}--{tag}.rrd"
+                t, rid = record(lab_id, program, rrd)
+                png = out / f"{lab_id}--{tag}.png"
+                shoot(rrd, png, t, rid, env, ns.wait)
+                if ns.keep_rrd:
+                    shutil.copy(rrd, out / rrd.name)
+                print(f"{png}  ({program}, cursor at {t:.1f} s)")
     return 0
-
 
 if __name__ == "__main__":
     raise SystemExit(main())

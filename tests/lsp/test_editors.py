@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-EDITORS = Path(__file__).resolve().parents[2] / "editors"
+EDITORS = Path(__file__).resolve().parents[2] / "plclab" / "lsp" / "editors"
 GRAMMARS = sorted((EDITORS / "vscode" / "syntaxes").glob("*.tmLanguage.json"))
 
 

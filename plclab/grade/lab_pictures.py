@@ -1,6 +1,6 @@
 """What a student sees after a failed check, for every lab and each of its mistakes.
 
-    PYTHONPATH=$PWD python tools/lab_pictures.py --out /tmp/pics [--labs a,b] [--first] [--no-viewer]
+    python -m plclab.grade.lab_pictures --out /tmp/pics [--labs a,b] [--first] [--no-viewer]
 
 For each mistake (``labs/*/mistakes/*``; ``--first``: the first of each lab) it runs, as a
 student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenarios) and keeps:
@@ -17,22 +17,21 @@ Not run by the test suite (minutes per lab). ``docs/figures/rerun/`` holds a cho
 from __future__ import annotations
 
 import argparse
-import contextlib
-import io
-import os
 import re
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from .lab import list_labs
+from .screenshots import display, park_pointer, shrink, viewer
 
 
 def mistakes(labs: list[str] | None, first: bool) -> list[tuple[str, Path]]:
     out = []
-    for d in sorted((ROOT / "labs").iterdir()):
-        if not (d / "lab.toml").exists() or (labs and d.name not in labs):
+    for d in list_labs():
+        if labs and d.name not in labs:
             continue
         ms = sorted(p for p in (d / "mistakes").glob("*.*")) if (d / "mistakes").is_dir() else []
         out += [(d.name, m) for m in (ms[:1] if first else ms)]
@@ -40,19 +39,14 @@ def mistakes(labs: list[str] | None, first: bool) -> list[tuple[str, Path]]:
 
 
 def check(lab: str, program: Path, png: Path, rrd: Path) -> str:
-    """``plclab lab check`` in process; its output."""
-    from plclab.cli import main
-
-    buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
-        main(["lab", "check", lab, str(program), "--png", str(png), "--rrd", str(rrd)])
-    return buf.getvalue()
+    """``plclab lab check`` as a student runs it; its output."""
+    done = subprocess.run([sys.executable, "-m", "plclab", "lab", "check", lab, str(program),
+                           "--png", str(png), "--rrd", str(rrd)], capture_output=True, text=True)
+    return done.stdout + done.stderr
 
 
 def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
     """Open ``rrd`` in a viewer of its own and save its first view untouched; what it opened."""
-    from plclab.grade.screenshots import park_pointer, shrink, viewer
-
     with viewer(rrd, env, timeout=180) as (client, state):
         if client is None or state is None:
             return "viewer did not come up"
@@ -86,40 +80,26 @@ def main(argv: list[str] | None = None) -> int:
     ns = ap.parse_args(argv)
     out = Path(ns.out)
     out.mkdir(parents=True, exist_ok=True)
-    env = {**os.environ, "RUST_LOG": "warn", "RERUN_ANALYTICS": "0"}
-    xvfb = None
-    if not ns.no_viewer and (not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB")):
-        from plclab.grade.screenshots import free_display
-
-        n = free_display()
-        xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x1000x24"],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        env["DISPLAY"] = f":{n}"
-        time.sleep(1.0)
     index = out / "index.tsv"
-    try:
-        with tempfile.TemporaryDirectory(prefix="plclab-pics-") as tmp:
-            for lab, program in mistakes(ns.labs.split(",") if ns.labs else None, ns.first):
-                tag = f"{lab}--{program.stem.replace('_', '-')}"
-                png, rrd = out / f"{tag}.png", Path(tmp) / f"{tag}.rrd"
-                text = check(lab, program, png, rrd)
-                m = re.search(r"timing diagram: \S+ \((.*)\)", text)
-                score = re.findall(r"score: (\S+)/(\S+)", text)
-                full = bool(score) and score[-1][0] == score[-1][1]
-                drew = m.group(1) if m else ("passed the visible scenarios (no failure to draw)"
-                                             if full else "no failure picture")
-                seen = "-"
-                if not ns.no_viewer and rrd.exists():
-                    seen = default_view(rrd, out / f"{tag}--viewer.png", env, ns.wait)
-                line = "\t".join([lab, program.name, "/".join(score[-1]) if score else "?", drew,
-                                  seen])
-                with index.open("a", encoding="utf-8") as f:
-                    f.write(line + "\n")
-                print(line, flush=True)
-    finally:
-        if xvfb is not None:
-            xvfb.terminate()
-            xvfb.wait(10)
+    with display(not ns.no_viewer) as env, \
+            tempfile.TemporaryDirectory(prefix="plclab-pics-") as tmp:
+        for lab, program in mistakes(ns.labs.split(",") if ns.labs else None, ns.first):
+            tag = f"{lab}--{program.stem.replace('_', '-')}"
+            png, rrd = out / f"{tag}.png", Path(tmp) / f"{tag}.rrd"
+            text = check(lab, program, png, rrd)
+            m = re.search(r"timing diagram: \S+ \((.*)\)", text)
+            score = re.findall(r"score: (\S+)/(\S+)", text)
+            full = bool(score) and score[-1][0] == score[-1][1]
+            drew = m.group(1) if m else ("passed the visible scenarios (no failure to draw)"
+                                         if full else "no failure picture")
+            seen = "-"
+            if not ns.no_viewer and rrd.exists():
+                seen = default_view(rrd, out / f"{tag}--viewer.png", env, ns.wait)
+            line = "\t".join([lab, program.name, "/".join(score[-1]) if score else "?", drew,
+                              seen])
+            with index.open("a", encoding="utf-8") as f:
+                f.write(line + "\n")
+            print(line, flush=True)
     return 0
 
 
