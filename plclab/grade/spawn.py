@@ -106,42 +106,38 @@ def _end_broken_forkserver() -> None:
 
 
 def _start_forkserver() -> None:
-    """Start the forkserver (if it is not running) with the minimal environment, so neither
-    it nor the children it forks ever hold the instructor's variables."""
+    """Start the forkserver if it is not running (with the minimal environment: see
+    :func:`_guard_restarts`)."""
     from multiprocessing import forkserver
 
-    from .sandbox import environ_as, minimal_env
-
     if _forkserver_runs():
-        return  # nothing to start: the environment is not touched
+        return
     tempfile.gettempdir()  # fixed now, from the grader's own TMPDIR
-    with environ_as(minimal_env(None, "forkserver")):
-        forkserver.ensure_running()
+    forkserver.ensure_running()
 
 
 def _guard_restarts() -> None:
-    """Make every (re)start of the forkserver use the minimal environment, also the one that
+    """Make every (re)start of the forkserver use the minimal environment, so neither it nor
+    the children it forks ever hold the instructor's variables: also the start that
     ``proc.start()`` makes when the server died between :func:`start_child`'s look and the
-    start (a SIGKILL is delivered a moment after ``os.kill`` returns): multiprocessing's
-    ``ensure_running`` is wrapped once per process (ADR 0040)."""
-    from multiprocessing import forkserver
+    start (a SIGKILL is delivered a moment after ``os.kill`` returns). The guard sits where
+    the server's process is made, multiprocessing's ``util.spawnv_passfds`` (wrapped once per
+    process), not around ``ensure_running``: that one decides to restart after any look of
+    ours, so a guard there can always be raced (ADR 0040)."""
+    from multiprocessing import util
 
     from .sandbox import environ_as, minimal_env
 
-    server = forkserver._forkserver  # noqa: SLF001
-    if getattr(server, "_plclab_guarded", False):
+    original = util.spawnv_passfds
+    if getattr(original, "_plclab_guarded", False):
         return
-    original = server.ensure_running
 
-    def ensure_running() -> None:
-        if _forkserver_runs():
-            original()  # nothing to start (or it died this very microsecond: reaped, restarted)
-            return
+    def spawnv_passfds(path: Any, args: Any, passfds: Any) -> int:
         with environ_as(minimal_env(None, "forkserver")):
-            original()
+            return original(path, args, passfds)
 
-    server.ensure_running = ensure_running
-    server._plclab_guarded = True
+    spawnv_passfds._plclab_guarded = True  # type: ignore[attr-defined]
+    util.spawnv_passfds = spawnv_passfds
 
 
 def _forkserver_runs() -> bool:

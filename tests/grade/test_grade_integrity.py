@@ -158,6 +158,39 @@ def test_a_killed_forkserver_is_started_again_and_its_children_graded_again(
     assert "Traceback" not in capfd.readouterr().err
 
 
+def test_every_restart_of_the_forkserver_has_the_minimal_environment(monkeypatch):
+    """Whoever restarts a dead forkserver (plclab's own start, ``proc.start()``, or
+    multiprocessing's ``ensure_running`` called directly, as when the server dies between a
+    look and a start) starts it without the instructor's variables: the guard is where the
+    process is made, so no order of events gets round it. CI once saw the race."""
+    import time
+    from multiprocessing import forkserver
+
+    from plclab.grade import spawn
+
+    spawn.child_context()
+    monkeypatch.setenv("PLCLAB_GRADE_SECRET_OF_THE_INSTRUCTOR", "x")
+    # any look of plclab's sees the server alive, as it was a moment before it died
+    monkeypatch.setattr(spawn, "_forkserver_runs", lambda: True)
+    for _ in range(2):
+        old = forkserver._forkserver._forkserver_pid
+        os.kill(old, signal.SIGKILL)
+        os.waitid(os.P_PID, old, os.WEXITED | os.WNOWAIT)  # dead, not reaped
+        forkserver._forkserver.ensure_running()  # multiprocessing's own restart
+        new = forkserver._forkserver._forkserver_pid
+        assert new != old
+        deadline = time.monotonic() + 30
+        with open(f"/proc/{new}/environ", "rb") as f:
+            env = f.read()
+        while not env and time.monotonic() < deadline:  # read before its exec ended
+            time.sleep(0.05)
+            with open(f"/proc/{new}/environ", "rb") as f:
+                env = f.read()
+        assert b"PATH=" in env
+        assert b"PLCLAB_GRADE_SECRET_OF_THE_INSTRUCTOR" not in env
+    assert os.environ["PLCLAB_GRADE_SECRET_OF_THE_INSTRUCTOR"] == "x"  # ours is untouched
+
+
 def test_a_forkserver_that_cannot_be_started_is_plc5073(monkeypatch, tmp_path, subs):
     """When no grading process can be started at all (here every start fails as on a machine
     out of processes), the run stops with PLC5073 after a few tries, not a traceback."""
