@@ -231,7 +231,7 @@ class Parser:
                 elif oop.word(self, "INTERFACE"):  # object-oriented extensions (ADR 0021)
                     out.pous.append(oop.interface(self))
                 elif oop.word(self, "CLASS") and self.peek().kind == "IDENT":
-                    oop.refuse_class(self)
+                    out.pous.append(oop.class_pou(self))  # ed.3 6.6.5.2 (ADR 0059)
                 elif (oop.word(self, "ACTIONS") or oop.word(self, "ACTION")) and \
                         self.peek().kind == "IDENT":  # actions of a POU (ADR 0035)
                     if not self.dialect.pou_actions:
