@@ -1468,6 +1468,10 @@ class Codegen(FastPaths):
                 right = f"({right} * 1000000)"
             elif rt is T.LTIME and lt is T.TIME:
                 left = f"({left} * 1000000)"
+            if isinstance(lt, T.RefType | T.InterfaceType) and _is_zero(e.right):
+                right = "None"  # CODESYS: IF itf <> 0 (ed.3 writes NULL; ADR 0059)
+            elif isinstance(rt, T.RefType | T.InterfaceType) and _is_zero(e.left):
+                left = "None"
             pyop = {"=": "==", "<>": "!="}.get(op, op)
             return f"({left} {pyop} {right})"
         if t is T.LREAL:  # a REAL operand of an LREAL operation is a REAL value (ADR 0038)
@@ -1839,3 +1843,8 @@ def kind_name(t: T.Type | None) -> str:
 
 def generate(project: Project, filename: str = "<plclab>") -> Compiled:
     return Codegen(project, filename).generate()
+
+
+def _is_zero(e: A.Expr) -> bool:
+    """The integer literal 0, which CODESYS compares a reference or an interface with."""
+    return isinstance(e, A.Literal) and e.kind == "INT" and e.value == 0
