@@ -1663,6 +1663,13 @@ class Codegen(FastPaths):
             if d.kind == "time":
                 return f"_str_to_time({code})"
             return self.wrap(f"_str_to_int({code})", d)
+        if s is T.DT and (d.kind in ("int", "bits", "real") or d is T.BOOL):
+            # DT as a number counts seconds since 1970 (CODESYS "Conversion: DATE, DT, TOD",
+            # Beckhoff "DT_TO conversions", MATIEC __time_to_int); plclab holds milliseconds
+            code, s = f"({code} // 1000)", T.LINT
+        elif d is T.DT and s.kind in ("int", "bits", "real"):
+            whole = self.wrap(f"_round({code})", T.LINT) if s.kind == "real" else code
+            return self.wrap(f"({whole} * 1000)", d)
         if d is T.BOOL:
             return f"({code} != 0)"
         if (s.kind == "time") != (d.kind == "time") and self.dialect_at(e.loc).time_in_seconds:
