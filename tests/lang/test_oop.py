@@ -114,6 +114,7 @@ def test_method_called_on_the_interface_type():
     ("CLASS C VAR n : INT; END_VAR METHOD Up n := n + 1; END_METHOD END_CLASS "
      "PROGRAM Q VAR c : C; END_VAR c(); END_PROGRAM", "PLC0341"),
     ("CLASS C VAR n : INT; END_VAR n := 1; END_CLASS", "PLC0010"),
+    ("CLASS C EXTENDS Motor END_CLASS", "PLC0341"),
     ("FUNCTION_BLOCK ABSTRACT A METHOD ABSTRACT Run : INT END_METHOD END_FUNCTION_BLOCK "
      "FUNCTION_BLOCK X EXTENDS A END_FUNCTION_BLOCK", "PLC0221"),
     ("FUNCTION_BLOCK X VAR v : INT; END_VAR PROPERTY P : INT GET P := v; END_GET END_PROPERTY "
@@ -656,3 +657,10 @@ END_PROGRAM
     assert "CLASS FINAL Double EXTENDS TALLY" in text.replace("Tally", "TALLY") and "END_CLASS" in text
     assert "FUNCTION_BLOCK" not in text
     assert not errors(text)
+
+
+def test_this_outside_a_block_says_where_it_exists():
+    msgs = errors("FUNCTION G : INT G := THIS^.x; END_FUNCTION")
+    assert any("PLC0100" in m and "only inside a FUNCTION_BLOCK or CLASS" in m for m in msgs)
+    plain = errors("FUNCTION G : INT G := THISX; END_FUNCTION")  # an ordinary unknown name
+    assert plain and not any("only inside" in m for m in plain)
