@@ -32,6 +32,9 @@ EXTENSIONS = {
 _EXTERNAL = re.compile(r"^VAR_EXTERNAL (\S+) has no matching VAR_GLOBAL")
 _CHANNEL = re.compile(r"a Beremiz extension \(the one of IEC channel (\d+)\)")
 _CHANNEL_ATTR = re.compile(r"""IEC_Channel\s*=\s*["'](\d+)["']""")
+# Beremiz svghmi/pous.xml: HMI_INT is INT, HMI_REAL REAL, HMI_STRING STRING, HMI_BOOL BOOL, and
+# HMI_NODE (a node of the HMI tree, its "alive" flag) BOOL
+_HMI_BASE = {"NODE": "BOOL"}
 _TYPE = re.compile(r"^unknown type (HMI_[A-Z0-9_]+)")
 
 
@@ -106,9 +109,10 @@ def explain(diags: list[Diagnostic], sources: list[tuple[str, str]],
             continue
         if m_type:
             name = m_type.group(1)
+            base = _HMI_BASE.get(name[4:], name[4:])
             msg = (f"{name} is a type of Beremiz's SVG HMI extension (svghmi), which plclab does "
                    f"not run; to simulate the program declare TYPE {name} : "
-                   f"{name[4:]}; END_TYPE in a file of your own")
+                   f"{base}; END_TYPE in a file of your own")
         else:
             name = m_ext.group(1)
             who = (f"the Beremiz project's extension {exts[0]}" if len(exts) == 1 else

@@ -201,3 +201,12 @@ def test_the_extension_is_named_by_its_channel_and_other_dialects_refuse(tmp_pat
     assert "IEC channel 3" in w.message and "MQTT" not in w.message
     assert "PLC0120" in [d.code for d in errors(f, "codesys")]
     assert "PLC0120" in [d.code for d in errors(f, "iec")]
+
+
+@pytest.mark.parametrize("hmi, base", [("HMI_NODE", "BOOL"), ("HMI_INT", "INT")])
+def test_an_svg_hmi_type_names_its_base_type_as_beremiz_declares_it(tmp_path, hmi, base):
+    f = write(tmp_path / "p", beremiz=True, externals=(
+        f'<localVars><variable name="n"><type><derived name="{hmi}"/></type></variable>'
+        '</localVars>'))
+    (e,) = [d for d in errors(f) if d.code == "PLC0246"]
+    assert f"TYPE {hmi} : {base}; END_TYPE" in e.message
