@@ -210,3 +210,11 @@ def test_an_svg_hmi_type_names_its_base_type_as_beremiz_declares_it(tmp_path, hm
         '</localVars>'))
     (e,) = [d for d in errors(f) if d.code == "PLC0246"]
     assert f"TYPE {hmi} : {base}; END_TYPE" in e.message
+
+
+def test_explain_dialect_lists_the_structured_located_variable(tmp_path, capsys):
+    f = struct_project(tmp_path / "p")
+    assert main(["check", "--explain-dialect", str(f)]) == 0
+    out = capsys.readouterr().out
+    assert "PLC0340 (matiec)" in out and "iec: PLC0120" in out
+    assert "without a warning" not in out
