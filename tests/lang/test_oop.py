@@ -664,3 +664,17 @@ def test_this_outside_a_block_says_where_it_exists():
     assert any("PLC0100" in m and "only inside a FUNCTION_BLOCK or CLASS" in m for m in msgs)
     plain = errors("FUNCTION G : INT G := THISX; END_FUNCTION")  # an ordinary unknown name
     assert plain and not any("only inside" in m for m in plain)
+
+
+def test_ed3_spellings_this_dot_var_access_and_assignment_attempt():
+    """ed.3 Annex A (ADR 0059): THIS.x, SUPER.M(), SUPER(), VAR PUBLIC, ?= parse; ?= works on
+    interfaces only; a variable called Public is still a variable."""
+    assert not errors("CLASS C VAR PUBLIC n : INT; END_VAR VAR CONSTANT PRIVATE k : INT := 2; "
+                      "END_VAR METHOD M : INT THIS.n := THIS.n + k; M := THIS.n; END_METHOD "
+                      "END_CLASS")
+    assert not errors("PROGRAM P VAR public, private : INT; END_VAR public := private; "
+                      "END_PROGRAM")
+    bad = errors("PROGRAM P VAR a : INT; END_VAR a ?= 5; END_PROGRAM")
+    assert any("PLC0236" in m and "?= (an assignment attempt)" in m for m in bad)
+    assert any("only inside a FUNCTION_BLOCK" in m
+               for m in errors("FUNCTION G : INT G := THIS.x; END_FUNCTION"))

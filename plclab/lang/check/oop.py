@@ -377,6 +377,11 @@ class ObjectChecks(Pass):
             ok = isinstance(t, T.InterfaceType) or (name == "__ISVALIDREF" and
                                                     isinstance(t, T.RefType))
             if not ok and t is not T.ANY:
+                if getattr(c.func, "text", "") == "?=":  # dst ?= src (ed.3, ADR 0059)
+                    self.err("PLC0236", f"?= (an assignment attempt) works on interface "
+                             f"variables, not {t}; declare both sides with an INTERFACE type "
+                             "(or assign with :=)", a.loc)
+                    continue
                 self.err("PLC0236", f"{name} takes interface variables"
                          f"{' or references' if name == '__ISVALIDREF' else ''}, not {t}; "
                          "declare the variable with an INTERFACE type", a.loc)

@@ -27,6 +27,7 @@ from ..parsing import ParseAbort
 
 MODIFIERS = ("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL", "OVERRIDE")
 HEADER_WORDS = ("EXTENDS", "IMPLEMENTS")
+ACCESS = ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")
 # words after which a statement list of a method or an FB body ends
 BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY", "END_GET", "END_SET",
               "END_ACTION", "END_ACTIONS"}
@@ -308,9 +309,17 @@ def class_pou(p) -> A.Pou:
 
 def this_or_super(p) -> A.Name | None:
     """``THIS^`` or ``SUPER^`` (the instance itself, its base part) as a name the checker
-    knows (:mod:`plclab.lang.check.oop`); None when the current token starts neither."""
-    if not (word(p, "THIS", "SUPER") and p.peek().kind == "^"):
+    knows (:mod:`plclab.lang.check.oop`); None when the current token starts neither. The
+    ed.3 spellings (IEC 61131-3 ed.3 Annex A: ``THIS.x``, ``THIS.M()``, ``SUPER.M()``,
+    ``SUPER()``) are the same names: the ``.`` or ``(`` is left for the caller (ADR 0059)."""
+    if not word(p, "THIS", "SUPER"):
         return None
-    t = p.advance()
-    p.advance()
+    after = p.peek().kind
+    if after == "^":
+        t = p.advance()
+        p.advance()
+    elif after == "." or (after == "(" and word(p, "SUPER")):
+        t = p.advance()
+    else:
+        return None
     return A.Name(p.loc(t), t.value, t.text + "^")
