@@ -12,7 +12,10 @@ test_NAME.st``, default options (each file in its ``{dialect}`` pragma's dialect
 default). A pair that does not compile fails every TEST block in it, counted under its first
 error code. The table gives the passing TEST blocks out of all of them, then the failures
 grouped by cause (code and the start of the message), most tests first, which is what to work on
-next. ``--list`` also prints each failing test.
+next. ``--list`` also prints each failing test. A cause that vendor documentation rules out
+(ADR 0059: no vendor documents ``TIME_TO_US``/``TIME_TO_S`` or ``''`` in a string; IEC's CTUD
+counts on rising edges) is marked ``[by design]``: 362 of 374 is the ceiling without inventing
+them.
 """
 
 from __future__ import annotations
@@ -30,6 +33,13 @@ from plclab.project import compile_sources, read_sources  # noqa: E402
 from plclab.testing import run_compiled_tests  # noqa: E402
 
 TEST_RE = re.compile(r"^\s*TEST\s+'((?:[^']|'')*)'", re.MULTILINE | re.IGNORECASE)
+# causes that plclab refuses on purpose, and why (ADR 0059)
+BY_DESIGN = {
+    "TIME_TO_US": "a STruC++ runtime helper no vendor documents",
+    "TIME_TO_S ": "a STruC++ runtime helper no vendor documents",
+    "doubled": "no vendor documents '' in a string; CODESYS and TwinCAT write $'",
+    "in cv_init": "IEC's CTUD counts on the rising edge of CD, the test expects the falling one",
+}
 NUMBER_RE = re.compile(r"\b\d+(\.\d+)?\b|'[^']*'|\"[^\"]*\"")
 
 
@@ -94,7 +104,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"STruC++ st-validation: {passed}/{total} TEST blocks pass "
           f"({100 * passed / max(total, 1):.1f} %)")
     for why, n in causes.most_common():
-        print(f"{n:4d}  {why}\n      e.g. {examples[why][:160]}")
+        note = next((f"  [by design: {v}]" for k, v in BY_DESIGN.items() if k in why), "")
+        print(f"{n:4d}  {why}{note}\n      e.g. {examples[why][:160]}")
     if args.list:
         for name, lines in by_pair.items():
             print(name)

@@ -1468,6 +1468,10 @@ class Codegen(FastPaths):
                 right = f"({right} * 1000000)"
             elif rt is T.LTIME and lt is T.TIME:
                 left = f"({left} * 1000000)"
+            if isinstance(lt, T.RefType | T.InterfaceType) and _is_zero(e.right):
+                right = "None"  # CODESYS: IF itf <> 0 (ed.3 writes NULL; ADR 0059)
+            elif isinstance(rt, T.RefType | T.InterfaceType) and _is_zero(e.left):
+                left = "None"
             pyop = {"=": "==", "<>": "!="}.get(op, op)
             return f"({left} {pyop} {right})"
         if t is T.LREAL:  # a REAL operand of an LREAL operation is a REAL value (ADR 0038)
@@ -1659,6 +1663,13 @@ class Codegen(FastPaths):
             if d.kind == "time":
                 return f"_str_to_time({code})"
             return self.wrap(f"_str_to_int({code})", d)
+        if s is T.DT and (d.kind in ("int", "bits", "real") or d is T.BOOL):
+            # DT as a number counts seconds since 1970 (CODESYS "Conversion: DATE, DT, TOD",
+            # Beckhoff "DT_TO conversions", MATIEC __time_to_int); plclab holds milliseconds
+            code, s = f"({code} // 1000)", T.LINT
+        elif d is T.DT and s.kind in ("int", "bits", "real"):
+            whole = self.wrap(f"_round({code})", T.LINT) if s.kind == "real" else code
+            return self.wrap(f"({whole} * 1000)", d)
         if d is T.BOOL:
             return f"({code} != 0)"
         if (s.kind == "time") != (d.kind == "time") and self.dialect_at(e.loc).time_in_seconds:
@@ -1839,3 +1850,8 @@ def kind_name(t: T.Type | None) -> str:
 
 def generate(project: Project, filename: str = "<plclab>") -> Compiled:
     return Codegen(project, filename).generate()
+
+
+def _is_zero(e: A.Expr) -> bool:
+    """The integer literal 0, which CODESYS compares a reference or an interface with."""
+    return isinstance(e, A.Literal) and e.kind == "INT" and e.value == 0

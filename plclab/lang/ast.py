@@ -332,6 +332,9 @@ class Pou:
     # a PROGRAM's VAR_ACCESS (IEC 61131-3 ed.2 and ed.3 B.1.5.3, program_access_decls): names
     # under which it publishes its own variables, ``path`` relative to the program
     access_paths: list[AccessPath] = field(default_factory=list)
+    # an ed.3 CLASS (6.6.5.2): a FUNCTION_BLOCK without a body and without inputs or outputs
+    # (ADR 0059); kind stays FUNCTION_BLOCK, so every pass treats it as one
+    is_class: bool = False
 
     # check.symbols (SymbolTable.scope) / check.declarations: a FUNCTION's result variable
     return_decl: VarDecl | None = annotation()

@@ -30,6 +30,11 @@ EXTENSIONS = {
     "bacnet": "BACnet", "c_ext": "C code (c_ext)", "wamp": "WAMP",
 }
 _EXTERNAL = re.compile(r"^VAR_EXTERNAL (\S+) has no matching VAR_GLOBAL")
+_CHANNEL = re.compile(r"a Beremiz extension \(the one of IEC channel (\d+)\)")
+_CHANNEL_ATTR = re.compile(r"""IEC_Channel\s*=\s*["'](\d+)["']""")
+# Beremiz svghmi/pous.xml: HMI_INT is INT, HMI_REAL REAL, HMI_STRING STRING, HMI_BOOL BOOL, and
+# HMI_NODE (a node of the HMI tree, its "alive" flag) BOOL
+_HMI_BASE = {"NODE": "BOOL"}
 _TYPE = re.compile(r"^unknown type (HMI_[A-Z0-9_]+)")
 
 
@@ -51,10 +56,33 @@ def extensions_of(filename: str) -> list[str]:
     return found
 
 
+def extension_of_channel(filename: str, channel: str) -> str | None:
+    """The readable name of the extension (``NAME@EXT`` folder beside ``filename``) whose
+    ``baseconfnode.xml`` gives it IEC channel ``channel``: the first number of the located
+    addresses it serves (``%I3.0`` -> channel 3), or None."""
+    folder = os.path.dirname(os.path.abspath(filename))
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return None
+    for n in names:
+        if "@" not in n:
+            continue
+        try:
+            with open(os.path.join(folder, n, "baseconfnode.xml"), encoding="utf-8") as fh:
+                m = _CHANNEL_ATTR.search(fh.read(4096))
+        except OSError:
+            continue
+        if m and m.group(1) == channel:
+            ext = n.rpartition("@")[2].lower()
+            return f"{EXTENSIONS.get(ext, ext)} ({n})"
+    return None
+
+
 def explain(diags: list[Diagnostic], sources: list[tuple[str, str]],
             given: str | None) -> list[Diagnostic]:
     """``diags`` with PLC0100/PLC0102 of names a Beremiz extension declares turned into
-    PLC0246 naming the extension: files Beremiz wrote (:func:`dialect.origin`) and read in
+    PLC0246 naming the extension, and PLC0340 naming the extension of its IEC channel: files Beremiz wrote (:func:`dialect.origin`) and read in
     the dialect they are in (``matiec``, whether chosen by their origin, a ``{dialect}``
     pragma or ``given``); a pragma or option naming another dialect turns it off."""
     beremiz = {f: extensions_of(f) for text, f in sources
@@ -64,6 +92,16 @@ def explain(diags: list[Diagnostic], sources: list[tuple[str, str]],
     out = []
     for d in diags:
         exts = beremiz.get(d.location.file) if d.location is not None else None
+        m_chan = _CHANNEL.search(d.message) if d.code == "PLC0340" and exts is not None \
+            else None
+        if m_chan:  # name the extension that serves the address (ADR 0059)
+            who = extension_of_channel(d.location.file, m_chan.group(1))
+            if who is not None:
+                d = replace(d, message=d.message.replace(
+                    m_chan.group(0), f"Beremiz's {who} extension (IEC channel "
+                    f"{m_chan.group(1)})"))
+            out.append(d)
+            continue
         m_ext = _EXTERNAL.match(d.message) if d.code == "PLC0100" else None
         m_type = _TYPE.match(d.message) if d.code == "PLC0102" else None
         if exts is None or not (m_ext or m_type):
@@ -71,9 +109,10 @@ def explain(diags: list[Diagnostic], sources: list[tuple[str, str]],
             continue
         if m_type:
             name = m_type.group(1)
+            base = _HMI_BASE.get(name[4:], name[4:])
             msg = (f"{name} is a type of Beremiz's SVG HMI extension (svghmi), which plclab does "
                    f"not run; to simulate the program declare TYPE {name} : "
-                   f"{name[4:]}; END_TYPE in a file of your own")
+                   f"{base}; END_TYPE in a file of your own")
         else:
             name = m_ext.group(1)
             who = (f"the Beremiz project's extension {exts[0]}" if len(exts) == 1 else

@@ -20,7 +20,7 @@ __all__ = ["DialectRule", "dialect_rules", "report"]
 
 # warnings that say "accepted as the dialect does, not as IEC": the leniency codes
 LENIENCY = frozenset({"PLC0173", "PLC0175", "PLC0280", "PLC0283", "PLC0284", "PLC0285",
-                      "PLC0290", "PLC0291", "PLC0292"})
+                      "PLC0290", "PLC0291", "PLC0292", "PLC0340"})
 
 
 @dataclass

@@ -77,7 +77,7 @@ class Token:
 
 
 _OPERATORS = [
-    ":=", "=>", "<>", "<=", ">=", "**", "..", "==", "!=",
+    ":=", "=>", "<>", "<=", ">=", "**", "..", "==", "!=", "?=",
     "+", "-", "*", "/", "<", ">", "=", "(", ")", "[", "]", ",", ";", ":", ".", "&", "^", "#",
 ]
 # IEC 61131-3 identifiers (and CODESYS's rules): a letter or '_' then letters, digits and '_',
@@ -112,7 +112,7 @@ _TOKEN_RE = re.compile(
     [ \t\r\f\v]*
     (?:
     (?P<ident>[A-Za-z_][A-Za-z0-9_]*(?![A-Za-z0-9_\#]))
-  | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|[-+*<>=)\[\],;:.&^\#]|\((?!\*)|/(?![/*]))
+  | (?P<op>:=|=>|<>|<=|>=|\*\*|\.\.|==|!=|\?=|[-+*<>=)\[\],;:.&^\#]|\((?!\*)|/(?![/*]))
   | (?P<nl>\n[ \t\r\f\v]*)
   | (?P<lcomment>//[^\n]*)
   | (?P<bcomment>\(\*)
@@ -132,7 +132,7 @@ _TOKEN_RE = re.compile(
 )
 
 # characters that can never start a token (a superset would be wrong, a subset only slower)
-_NEVER_TOKEN = re.compile(r"[^\sA-Za-z0-9_%'\"{}()\[\]+\-*/<>=,;:.&^#!]+")
+_NEVER_TOKEN = re.compile(r"[^\sA-Za-z0-9_%'\"{}()\[\]+\-*/<>=,;:.&^#!?]+")
 _BLANKS = re.compile(r"[ \t]+")
 _BLANKS_ANY = re.compile(r"[ \t\r\f\v]+")
 MAX_DIGITS = 100  # an integer literal with more digits is an error (PLC0125)

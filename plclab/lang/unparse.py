@@ -266,14 +266,15 @@ class _Writer:
         mods = "".join(f"{m} " for m in p.modifiers)
         head = "".join(f" {w} {', '.join(ns)}" for w, ns in (("EXTENDS", p.extends),
                                                               ("IMPLEMENTS", p.implements)) if ns)
-        self.line(f"{p.kind} {mods}{_spelled(p.spelling, p.name)}{ret}{head}")
+        kind = "CLASS" if p.is_class else p.kind
+        self.line(f"{kind} {mods}{_spelled(p.spelling, p.name)}{ret}{head}")
         inst = {A.method_inst_name(p.name, m.name, d.name) for m in p.methods for d in m.decls
                 if d.section == "VAR_INST"}
         self.decls([d for d in p.decls if d.name not in inst])
         self.access_paths(p.access_paths, None)
         self.members(p)
         self.stmts(p.body)
-        self.line(f"END_{p.kind}")
+        self.line(f"END_{kind}")
 
     def members(self, p: A.Pou) -> None:
         """The METHODs and PROPERTYs of a block or interface (ADR 0021)."""

@@ -110,7 +110,11 @@ def test_method_called_on_the_interface_type():
     ("FUNCTION_BLOCK X EXTENDS Motor VAR n : DINT; END_VAR END_FUNCTION_BLOCK", "PLC0235"),
     ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := __ISVALIDREF(m); END_PROGRAM", "PLC0236"),
     ("PROGRAM P VAR m : Motor; b : BOOL; END_VAR b := NOT m.Home; END_PROGRAM", "PLC0242"),
-    ("CLASS C VAR n : INT; END_VAR METHOD Up n := n + 1; END_METHOD END_CLASS", "PLC0243"),
+    ("CLASS C VAR_INPUT n : INT; END_VAR METHOD Up n := n + 1; END_METHOD END_CLASS", "PLC0341"),
+    ("CLASS C VAR n : INT; END_VAR METHOD Up n := n + 1; END_METHOD END_CLASS "
+     "PROGRAM Q VAR c : C; END_VAR c(); END_PROGRAM", "PLC0341"),
+    ("CLASS C VAR n : INT; END_VAR n := 1; END_CLASS", "PLC0010"),
+    ("CLASS C EXTENDS Motor END_CLASS", "PLC0341"),
     ("FUNCTION_BLOCK ABSTRACT A METHOD ABSTRACT Run : INT END_METHOD END_FUNCTION_BLOCK "
      "FUNCTION_BLOCK X EXTENDS A END_FUNCTION_BLOCK", "PLC0221"),
     ("FUNCTION_BLOCK X VAR v : INT; END_VAR PROPERTY P : INT GET P := v; END_GET END_PROPERTY "
@@ -618,3 +622,59 @@ ASSERT_EQ(b.Count(), 11);  (* B's n is 10, A's own n is 1 *)
 ASSERT_EQ(b.Count(), 22);  (* 20 + 2 *)
 END_TEST"""
     assert [str(r) for r in run_test_sources([(src, "v.st")]) if not r.passed] == []
+
+
+def test_a_class_is_a_block_of_methods_without_a_body():
+    """ed.3 6.6.5.2 (ADR 0059): CLASS compiles; its methods keep the instance's state, a CLASS
+    EXTENDS another and overrides with SUPER^; the unparser writes CLASS back."""
+    from plclab.lang.frontends.st import parse_st
+    from plclab.lang.unparse import unparse
+
+    src = """CLASS Tally
+VAR n : INT; END_VAR
+METHOD PUBLIC Add : INT
+VAR_INPUT k : INT; END_VAR
+n := n + k; Add := n;
+END_METHOD
+END_CLASS
+CLASS FINAL Double EXTENDS Tally
+METHOD PUBLIC OVERRIDE Add : INT
+VAR_INPUT k : INT; END_VAR
+Add := SUPER^.Add(k := 2 * k);
+END_METHOD
+END_CLASS
+PROGRAM Main
+VAR t : Tally; d : Double; a, b : INT; END_VAR
+a := t.Add(k := 3);
+b := d.Add(k := 3);
+END_PROGRAM
+"""
+    assert not errors(src)
+    plc = plclab.loads(src, "c.st")
+    plc.scan(2)
+    assert (plc.get("Main.a"), plc.get("Main.b")) == (6, 12)
+    text = unparse(parse_st(src, "c.st"))
+    assert "CLASS FINAL Double EXTENDS TALLY" in text.replace("Tally", "TALLY") and "END_CLASS" in text
+    assert "FUNCTION_BLOCK" not in text
+    assert not errors(text)
+
+
+def test_this_outside_a_block_says_where_it_exists():
+    msgs = errors("FUNCTION G : INT G := THIS^.x; END_FUNCTION")
+    assert any("PLC0100" in m and "only inside a FUNCTION_BLOCK or CLASS" in m for m in msgs)
+    plain = errors("FUNCTION G : INT G := THISX; END_FUNCTION")  # an ordinary unknown name
+    assert plain and not any("only inside" in m for m in plain)
+
+
+def test_ed3_spellings_this_dot_var_access_and_assignment_attempt():
+    """ed.3 Annex A (ADR 0059): THIS.x, SUPER.M(), SUPER(), VAR PUBLIC, ?= parse; ?= works on
+    interfaces only; a variable called Public is still a variable."""
+    assert not errors("CLASS C VAR PUBLIC n : INT; END_VAR VAR CONSTANT PRIVATE k : INT := 2; "
+                      "END_VAR METHOD M : INT THIS.n := THIS.n + k; M := THIS.n; END_METHOD "
+                      "END_CLASS")
+    assert not errors("PROGRAM P VAR public, private : INT; END_VAR public := private; "
+                      "END_PROGRAM")
+    bad = errors("PROGRAM P VAR a : INT; END_VAR a ?= 5; END_PROGRAM")
+    assert any("PLC0236" in m and "?= (an assignment attempt)" in m for m in bad)
+    assert any("only inside a FUNCTION_BLOCK" in m
+               for m in errors("FUNCTION G : INT G := THIS.x; END_FUNCTION"))

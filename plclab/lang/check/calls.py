@@ -89,6 +89,12 @@ class Calls(Pass):
         ft = T.resolve(self.cx.exprs.expr(f, None))
         if isinstance(ft, T.FBType):
             if ft.pou.kind == "FUNCTION_BLOCK":
+                if ft.pou.is_class:
+                    self.err("PLC0341", f"{ft.pou.spelling or ft.pou.name} is a CLASS: it has "
+                             "no body to call (IEC 61131-3 ed.3 6.6.5.2); call one of its "
+                             "METHODs, e.g. inst.Method()", c.loc)
+                    self._args_only(c)
+                    return T.ANY
                 return self.call_fb(c, ft.pou, statement)
             if ft.pou.kind == "PROGRAM":
                 if not self.cx.in_test:

@@ -205,6 +205,19 @@ class Declarations(Pass):
             return
         size_ch, parts = split_address(addr)
         bits = _ADDR_SIZES[size_ch]
+        t0 = T.resolve(d.ty) if d.ty is not None else T.ANY
+        if (size_ch == "X" and (t0.is_aggregate or isinstance(t0, T.StringType))
+                and self.cx.dialect(d.loc).name == "matiec"):
+            # MATIEC: a Beremiz extension (MQTT...) exchanges the whole value (ADR 0059)
+            name = d.spelling or d.name
+            self.warn("PLC0340", f"{name} AT {addr} is of the structured type {t0.name}, "
+                      f"whose whole value a Beremiz extension (the one of IEC channel {parts[0]}) "
+                      "exchanges; plclab's process image holds bits and words only, so "
+                      f"{name} is kept "
+                      "as an ordinary variable: set it from a TEST block or the watch table "
+                      "to simulate the extension", d.loc)
+            d.address = None
+            return
         if size_ch == "X" and len(parts) != 2:
             self.err("PLC0120", f"bit address {addr} needs byte.bit, e.g. %IX0.3", d.loc)
             return

@@ -401,6 +401,10 @@ class Expressions(Pass, NodeVisitor):
             values = [rexp.spellings.get(k, k) for k in rexp.members]
             self.err("PLC0100", f"{e.text or e.name} is not a value of {rexp.name}; its values "
                      f"are {', '.join(values)}" + close_hint(e.name, list(rexp.members)), e.loc)
+        elif e.name in ("THIS", "SUPER") and (e.text or "").endswith("^"):
+            self.err("PLC0100", f"{e.text} exists only inside a FUNCTION_BLOCK or CLASS and its "
+                     "METHODs (IEC 61131-3 ed.3 6.6.5); a FUNCTION or PROGRAM has no instance "
+                     "of its own: pass the instance as an input", e.loc)
         else:
             self.err("PLC0100", f"{e.text or e.name} is not declared" + close_hint(e.name, cands)
                      + ("" if close_hint(e.name, cands) else "; declare it in a VAR section"),

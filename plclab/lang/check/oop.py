@@ -94,6 +94,10 @@ class ObjectChecks(Pass):
                 cands = [k for k, v in self.table.pous.items() if v.kind == want]
                 self.err("PLC0220", f"{_label(p)} EXTENDS {n}, which is not a {want}" +
                          close_hint(n, cands), p.loc)
+            elif p.is_class and not b.is_class:  # ed.3 6.6.5.2: class_decl EXTENDS a class
+                self.err("PLC0341", f"CLASS {_label(p)} EXTENDS {_label(b)}, a FUNCTION_BLOCK: "
+                         "a CLASS extends only a CLASS (IEC 61131-3 ed.3); make "
+                         f"{_label(p)} a FUNCTION_BLOCK, or {_label(b)} a CLASS", p.loc)
             elif "FINAL" in b.modifiers:
                 self.err("PLC0224", f"{_label(b)} is FINAL: no block may extend it; remove FINAL "
                          f"from {_label(b)} or do not extend it", p.loc)
@@ -373,6 +377,11 @@ class ObjectChecks(Pass):
             ok = isinstance(t, T.InterfaceType) or (name == "__ISVALIDREF" and
                                                     isinstance(t, T.RefType))
             if not ok and t is not T.ANY:
+                if getattr(c.func, "text", "") == "?=":  # dst ?= src (ed.3, ADR 0059)
+                    self.err("PLC0236", f"?= (an assignment attempt) works on interface "
+                             f"variables, not {t}; declare both sides with an INTERFACE type "
+                             "(or assign with :=)", a.loc)
+                    continue
                 self.err("PLC0236", f"{name} takes interface variables"
                          f"{' or references' if name == '__ISVALIDREF' else ''}, not {t}; "
                          "declare the variable with an INTERFACE type", a.loc)

@@ -27,6 +27,7 @@ from ..parsing import ParseAbort
 
 MODIFIERS = ("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL", "OVERRIDE")
 HEADER_WORDS = ("EXTENDS", "IMPLEMENTS")
+ACCESS = ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")
 # words after which a statement list of a method or an FB body ends
 BODY_STOPS = {"END_METHOD", "END_INTERFACE", "END_PROPERTY", "END_GET", "END_SET",
               "END_ACTION", "END_ACTIONS"}
@@ -277,21 +278,48 @@ def ref_type(p) -> A.RefTypeRef | None:
     return None
 
 
-def refuse_class(p) -> None:
-    """ed.3 ``CLASS ... END_CLASS``: not supported (PLC0243); skipped to its end."""
-    p.error("PLC0243", "CLASS (IEC 61131-3 ed.3) is not supported; write FUNCTION_BLOCK "
-            "Name ... END_FUNCTION_BLOCK with the same METHODs (in CODESYS a FUNCTION_BLOCK is "
-            "the class), and leave its body empty")
-    while not p.at("EOF") and not word(p, "END_CLASS"):
-        p.advance()
+def class_pou(p) -> A.Pou:
+    """ed.3 ``CLASS [FINAL|ABSTRACT] Name [EXTENDS B] [IMPLEMENTS I] VAR ... METHOD ...
+    END_CLASS`` (6.6.5.2): a FUNCTION_BLOCK without a body (``is_class``); a CLASS has no
+    VAR_INPUT, VAR_OUTPUT or VAR_IN_OUT (PLC0341), its methods take the inputs."""
+    head = p.advance()
+    mods = modifiers(p)
+    name = p.expect("IDENT", "a name for the CLASS")
+    extends, implements = header(p, "FUNCTION_BLOCK")
+    decls: list[A.VarDecl] = []
+    while p.tok.kind in _SECTIONS or p.at("VAR_EXTERNAL"):
+        section = p.tok
+        got = p.var_section()
+        if section.kind in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT"):
+            p.error("PLC0341", f"a CLASS has no {section.text} (IEC 61131-3 ed.3 6.6.5.2: "
+                    f"only VAR and VAR_EXTERNAL); give the values to a METHOD of "
+                    f"{name.text} as its VAR_INPUT, or write FUNCTION_BLOCK {name.text}",
+                    section)
+        decls.extend(got)
+    pou = A.Pou(p.loc(head), "FUNCTION_BLOCK", name.value, decls, [], None, name.text,
+                extends=extends, implements=implements, modifiers=mods, is_class=True)
+    members(p, pou, "END_CLASS")
+    pou.end_loc = p.loc()
+    if not word(p, "END_CLASS"):
+        p.fail_expected(f"METHOD or END_CLASS to close CLASS {name.text} (a CLASS has no "
+                        "body: its statements go into METHODs)")
     p.advance()
+    return pou
 
 
 def this_or_super(p) -> A.Name | None:
     """``THIS^`` or ``SUPER^`` (the instance itself, its base part) as a name the checker
-    knows (:mod:`plclab.lang.check.oop`); None when the current token starts neither."""
-    if not (word(p, "THIS", "SUPER") and p.peek().kind == "^"):
+    knows (:mod:`plclab.lang.check.oop`); None when the current token starts neither. The
+    ed.3 spellings (IEC 61131-3 ed.3 Annex A: ``THIS.x``, ``THIS.M()``, ``SUPER.M()``,
+    ``SUPER()``) are the same names: the ``.`` or ``(`` is left for the caller (ADR 0059)."""
+    if not word(p, "THIS", "SUPER"):
         return None
-    t = p.advance()
-    p.advance()
+    after = p.peek().kind
+    if after == "^":
+        t = p.advance()
+        p.advance()
+    elif after == "." or (after == "(" and word(p, "SUPER")):
+        t = p.advance()
+    else:
+        return None
     return A.Name(p.loc(t), t.value, t.text + "^")

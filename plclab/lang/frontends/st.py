@@ -231,7 +231,7 @@ class Parser:
                 elif oop.word(self, "INTERFACE"):  # object-oriented extensions (ADR 0021)
                     out.pous.append(oop.interface(self))
                 elif oop.word(self, "CLASS") and self.peek().kind == "IDENT":
-                    oop.refuse_class(self)
+                    out.pous.append(oop.class_pou(self))  # ed.3 6.6.5.2 (ADR 0059)
                 elif (oop.word(self, "ACTIONS") or oop.word(self, "ACTION")) and \
                         self.peek().kind == "IDENT":  # actions of a POU (ADR 0035)
                     if not self.dialect.pou_actions:
@@ -505,7 +505,10 @@ class Parser:
         sec_tok = self.advance()
         section = sec_tok.kind
         constant = retain = False
-        while self.at("CONSTANT", "RETAIN", "NON_RETAIN", "PERSISTENT"):
+        while self.at("CONSTANT", "RETAIN", "NON_RETAIN", "PERSISTENT") or (
+                oop.word(self, *oop.ACCESS) and self.peek().kind == "IDENT"):
+            # ed.3 Annex A var_decls: VAR [CONSTANT] [PUBLIC|PRIVATE|PROTECTED|INTERNAL]; the
+            # access specifier of a class's variables is read and not enforced (ADR 0059)
             k = self.advance().kind
             constant |= k == "CONSTANT"
             retain |= k in ("RETAIN", "PERSISTENT")
@@ -833,6 +836,13 @@ class Parser:
                 value = self.expr()
                 self.semicolon()
                 return A.Assign(loc, target, value)
+            if self.at("?="):  # ed.3 assignment attempt: the instance if it implements the
+                self.advance()   # interface, else NULL: __QUERYINTERFACE (ADR 0059)
+                value = self.expr()
+                self.semicolon()
+                return A.CallStmt(loc, A.Call(loc, A.Name(loc, "__QUERYINTERFACE", "?="),
+                                              [A.Arg(value.loc, None, value),
+                                               A.Arg(target.loc, None, target)]))
             if self.tok.kind == "IDENT" and self.tok.value == "REF" and self.peek().kind == "=":
                 self.advance()  # r REF= x; binds a REFERENCE TO (CODESYS; lower.reference_to)
                 self.advance()
