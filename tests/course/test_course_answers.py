@@ -106,6 +106,12 @@ def check(answer: dict, chk: dict) -> None:
         with pytest.raises(PlcError) as e:
             Recipe.juice("Mix").validate(dict(chk["recipe"]), "lemonade")
         assert e.value.code == chk["code"]
+    elif "export" in chk:
+        xml = _exported(find_chapter(7).folder / chk["export"])
+        for text in chk.get("contains", []):
+            assert text in xml, f"{text} not in the export of {chk['export']}"
+        for text in chk.get("absent", []):
+            assert text not in xml, f"{text} in the export of {chk['export']}"
     elif "lab" in chk:
         assert _close(_lab_last_on(chk), chk["last_on"], tol), chk
     else:
@@ -124,6 +130,16 @@ def _tmp_dir(tmp_path):
     _TMP.append(tmp_path)
     yield
     _TMP.pop()
+
+
+def _exported(path: Path) -> str:
+    import subprocess
+    import sys
+
+    out = _tmp() / "export.xml"
+    subprocess.run([sys.executable, "-m", "plclab", "export", str(path.resolve()), "--to",
+                    "plcopen", "--fbd", "-o", str(out)], check=True, capture_output=True)
+    return out.read_text(encoding="utf-8")
 
 
 def _watch_column(edits: list[list[str]], column: str) -> list[str]:
@@ -190,6 +206,7 @@ def _first(kind: str) -> tuple[dict, dict]:
     ("watch", {"values": ["TRUE", "TRUE", "TRUE"]}),
     ("recipe", {"recipe": {"orange": 10.0, "water": 90.0, "sugar": 1.0, "flavoring": 0.1}}),
     ("shows", {"shows": "a number the text never says"}),
+    ("export", {"export": "../06-ladder/examples/tank.ld"}),
 ])
 def test_the_checker_rejects_a_wrong_answer(kind, change):
     answer, chk = _first(kind)
