@@ -24,6 +24,9 @@ def bare_citations(text: str) -> list[str]:
 @pytest.mark.parametrize("chapter", chapters(), ids=lambda c: c.slug)
 def test_the_student_text_has_no_bare_citation(chapter):
     assert bare_citations(chapter.text) == []
+    # and no line begins with the punctuation a removed citation stood before
+    prose = re.sub(r"^```.*?^```", "", chapter.text, flags=re.S | re.M)
+    assert not re.findall(r"^ *[,.;:] .*", prose, re.M)
 
 
 def test_the_check_finds_a_bare_citation():
