@@ -77,7 +77,8 @@ COMMAND_TABLE: dict[str, CommandInfo] = {
     "course": CommandInfo("the course: build (run examples, draw figures) [--out DIR], list, "
                           "check", "plclab.course.commands"),
     "quiz": CommandInfo("take a chapter's quiz in the terminal (plclab quiz 10); --check "
-                        "validates every key", "plclab.course.commands"),
+                        "validates every key; export OUT --format gift|qti writes the pool for "
+                        "Moodle or Canvas", "plclab.course.commands"),
     "lsp": CommandInfo("a language server for editors (LSP over stdio): diagnostics, hover, "
                        "completion, outline, run a TEST", "plclab.lsp.commands"),
     "site": CommandInfo("the web site: build [--out DIR] (course, labs, codes, reference, "

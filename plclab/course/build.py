@@ -10,6 +10,7 @@ from pathlib import Path
 from ..errors import PlcError
 from .blocks import check_chapter_code
 from .figures import draw
+from .glossary import glossary_path, write_glossary
 from .model import Chapter, chapters
 from .quiz import check_quiz
 
@@ -70,6 +71,8 @@ def index_text(reports: list[ChapterReport]) -> str:
     tot = (sum(r.words for r in reports), sum(r.blocks for r in reports),
            sum(r.quiz_items for r in reports), sum(len(r.figures) for r in reports))
     lines.append(f"| **total** | {tot[0]} | {tot[1]} | {tot[2]} | {tot[3]} | |")
+    lines += ["", "[Glossary and index](glossary.md): every term in English and Russian, and the "
+              "chapters that use it."]
     return "\n".join(lines) + "\n"
 
 
@@ -84,4 +87,6 @@ def build(out: str | Path, course_dir: str | Path | None = None, only: list[Chap
     out_root.mkdir(parents=True, exist_ok=True)
     reports = [build_chapter(c, out_root, figures) for c in chs]
     (out_root / "README.md").write_text(index_text(reports), encoding="utf-8")
+    if glossary_path(course_dir).exists():
+        write_glossary(out_root, course_dir)
     return reports

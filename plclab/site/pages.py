@@ -85,6 +85,14 @@ def course_pages(docs: Path, figures: bool = True) -> tuple[list[Any], list[str]
         labs = ", ".join(f"[{lab}](../labs/{lab}/index.md)" for lab in ch.lab_refs) or "-"
         rows.append(f"| {ch.number} | [{ch.title}]({ch.slug}/index.md) | {labs} |")
         nav.append(f"course/{ch.slug}/index.md")
+    from plclab.course.glossary import glossary_markdown, glossary_path, terms
+
+    if glossary_path().exists():  # the glossary and its index (course/glossary.toml)
+        page = glossary_markdown(terms(), chapters(), link=lambda c: f"{c.slug}/index.md")
+        written_from(write(docs / "course" / "glossary.md", page), "course/glossary.toml")
+        rows += ["", "[Glossary and index](glossary.md): every term in English and Russian, "
+                 "and the chapters that use it."]
+        nav.append("course/glossary.md")
     write(docs / "course" / "index.md", "\n".join(rows) + "\n")
     return nav, problems
 

@@ -43,6 +43,13 @@ def test_every_chapter_is_a_page_and_its_examples_open_in_the_playground(docs):
         assert text.strip() in ch.read_text() and lang == fences[0]
 
 
+def test_the_glossary_is_a_page_linked_from_the_course(docs):
+    page = (docs / "course" / "glossary.md").read_text(encoding="utf-8")
+    assert "| **PLC** | программируемый логический контроллер (ПЛК) |" in page
+    assert "## Index" in page and "](02-scan-cycle/index.md)" in page
+    assert "](glossary.md)" in (docs / "course" / "index.md").read_text(encoding="utf-8")
+
+
 def test_lab_pages_show_the_io_table_and_nothing_private(docs):
     page = (docs / "labs" / "tank-two-position" / "index.md").read_text()
     assert page.count("| `LS1` | `%IX0.0` | BOOL |") == 1  # the README's table, not twice
