@@ -54,6 +54,10 @@ class Expressions(Pass, NodeVisitor):
         if src is T.ANY or dst is T.ANY:
             return
         rs, rd = T.resolve(src), T.resolve(dst)
+        if isinstance(rs, T.VarArrayType) or isinstance(rd, T.VarArrayType):
+            self.err("PLC0352", f"cannot assign {rs} to {rd}: a variable-length array is copied "
+                     "element by element, FOR i := LOWER_BOUND(a, 1) TO UPPER_BOUND(a, 1)", loc)
+            return
         if isinstance(rd, T.InterfaceType):  # an instance or interface reference (ADR 0021)
             self.cx.oop.interface_assign(rs, rd, loc)
             return
@@ -539,6 +543,11 @@ class Expressions(Pass, NodeVisitor):
             self.err("PLC0117", "strings are not indexed with [...]; use MID(s, 1, position)",
                      e.loc)
             return T.ANY
+        if isinstance(ot, T.VarArrayType):  # ARRAY[*]: bounds checked at run time (ADR 0060)
+            if len(e.indices) != ot.ndims:
+                self.err("PLC0117", f"{ot} has {ot.ndims} dimension(s) but {len(e.indices)} "
+                         "index(es) were given", e.loc)
+            return ot.elem
         if not isinstance(ot, T.ArrayType):
             self.err("PLC0117", f"{ot} is not an array and cannot be indexed", e.loc)
             return T.ANY
