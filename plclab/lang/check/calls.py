@@ -374,6 +374,10 @@ class Calls(Pass):
             c.target = CallInfo("conv", (src, dst), [(0, a.value)])
             self.en_eno(c, c.target)
             return dst
+        if name in ("MUL", "DIV") and len(args) == 2 and not any(a.output for a in args) and \
+                isinstance(args[0].value, A.Name | A.Member | A.Index | A.Literal) and \
+                T.base_of(self.cx.exprs.expr(args[0].value, None)) is T.TIME:
+            name += "_TIME"  # MUL(t, 2), DIV(t, n): the overloaded TIME rows of ed.2 Table 30
         b: Builtin = BUILTINS[name]
         if name in ED2_NAMES and not self.cx.dialect(c.loc).ed2_time_names:
             self.err("PLC0320", f"{name} is the IEC 61131-3 ed.2 name (MATIEC, OSCAT) of "
