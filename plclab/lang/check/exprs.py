@@ -480,7 +480,12 @@ class Expressions(Pass, NodeVisitor):
             inside = isinstance(e.obj, A.Name) and isinstance(e.obj.sym, VarSym) and \
                 e.obj.sym.storage in ("this", "super")  # THIS^.x, SUPER^.x (ADR 0021)
             if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test and not inside:
-                if d.section in ("VAR", "VAR_TEMP"):
+                if d.section == "VAR" and self.cx.dialect(e.loc).fb_internal_access:
+                    self.warn("PLC0353", f"{f} is internal to {pou.name}: MATIEC lets a program "
+                              "read and write it from outside, IEC 61131-3 shows only a block's "
+                              f"inputs and outputs; make {f} a VAR_INPUT or VAR_OUTPUT of "
+                              f"{pou.name} to be portable", e.loc)
+                elif d.section in ("VAR", "VAR_TEMP"):
                     self.err("PLC0121", f"{f} is internal to {pou.name}; only its inputs and "
                              "outputs are visible outside", e.loc)
                 elif write and d.section == "VAR_OUTPUT":
