@@ -129,6 +129,8 @@ _RUSTY = "vendor dialect: RuSTy's own extensions (address arithmetic), no plclab
 REVIEWED = {
     "iec-checker/test/plcopen/example.xml": "invalid: an array initial value for a BOOL",
     "iec-checker/test/st/dead-code.st": _TYPES,
+    "iec-checker/test/st/good/generic-types.st": "invalid: generic types (ANY_INT...) in a "
+    "user POU (ed.3 6.4.2: for standard functions only)",
     "iec-checker/test/st/declaration-analysis.st": _TYPES,
     "iec-checker/test/st/good/array-in-loop.st": _SIZE,
     "iec-checker/test/st/good/control-statements.st": _TYPES,
@@ -214,7 +216,7 @@ REVIEWED = {
     "blark/blark/tests/source/var_declarations_var_attrib.st":
         "invalid in its dialect: CODESYS requires a constant's value (ADR 0035)",
 }
-NAME_IN_MESSAGE = re.compile(r"^(?:unknown type |)([A-Za-z_][\w.]*)")
+NAME_IN_MESSAGE = re.compile(r"^(?:unknown type |PROGRAM |VAR_EXTERNAL |)([A-Za-z_][\w.]*)")
 
 
 def _git(mirror: Path, *args: str) -> bytes:
@@ -419,6 +421,9 @@ def classify(o: Outcome, text: str) -> str:
             missing.add(name)
         if not missing:
             return "vendor project context (a Beremiz extension's types or variables)"
+        if any(code == "PLC0100" for code, _ in errors):
+            return ("needs project context (or is a parser test): variables or programs "
+                    "declared in no file of it: " + ", ".join(sorted(missing)[:4]))
         return "needs a missing library: " + ", ".join(sorted(missing)[:4])
     return ""
 
