@@ -147,6 +147,8 @@ REVIEWED = {
     "iec-checker/test/st/merge-1.st": _SEMI,
     "iec-checker/test/st/plcopen-cp1.st": "invalid: %B0 is no address (I, Q or M is needed)",
     "iec-checker/test/st/plcopen-cp13.st": "invalid: the recursion PLCopen rule CP13 flags",
+    "iec-checker/test/st/plcopen-cp16.st": "invalid: a FUNCTION_BLOCK run as a PROGRAM instance "
+    "of a RESOURCE (what CP16 flags)",
     "iec-checker/test/st/plcopen-cp25.st": "invalid: the implicit REAL->INT CP25 flags",
     "iec-checker/test/st/plcopen-cp28.st": "invalid: TIME + DINT, which CP28 flags",
     "iec-checker/test/st/plcopen-cp3.st": _TYPES,
