@@ -238,6 +238,8 @@ class Codegen(FastPaths):
         if declared is not None:  # TYPE LEVEL : (LOW, HIGH) := HIGH
             return self.init_code(declared, ty)
         t = T.resolve(ty)
+        if isinstance(t, T.VarArrayType):  # an ARRAY[*] in-out: bound at each call
+            return "None"
         if isinstance(t, T.ArrayType):
             d = self.default_code(t.elem)
             if T.resolve(t.elem).is_aggregate:
@@ -1388,6 +1390,9 @@ class Codegen(FastPaths):
     def e_Index(self, e: A.Index) -> str:
         obj = self.ex(e.obj)
         at = T.resolve(e.obj.ty)
+        if isinstance(at, T.VarArrayType):  # ARRAY[*]: bounds of the argument (ADR 0060)
+            ixs = "".join(f"{self.own_value(self.ex(ix), ix)}, " for ix in e.indices)
+            return f"{obj}.data[_vla_ix({obj}, ({ixs}), {self.where(e.loc)})]"
         if not isinstance(at, T.ArrayType):
             return f"{obj}[0]"
         parts = []
@@ -1583,11 +1588,21 @@ class Codegen(FastPaths):
             return oop_emit.reference_operator(self, e, info)
         if info.kind == "sizeof":  # a constant the checker computed (plclab.lang.sizeof)
             return repr(int(info.callee))
+        if info.kind == "bound":  # LOWER_BOUND / UPPER_BOUND (ADR 0060)
+            upper, dim, static = info.callee
+            if static is not None:
+                return repr(static)
+            return f"{self.ex(info.inputs[0][1])}.dims[{dim}][{int(upper)}]"
         return "None"
 
     def inout_code(self, d: A.VarDecl, e: A.Expr) -> str:
         """The value a VAR_IN_OUT receives: the variable itself, or for VAR_IN_OUT CONSTANT any
         value of the type, converted as an input would be."""
+        want = T.resolve(d.ty)
+        if isinstance(want, T.VarArrayType):  # an ARRAY[*] gets the array and its bounds
+            at = T.resolve(e.ty)
+            return f"_VLA({self.ex(e)}, {at.dims!r})" if isinstance(at, T.ArrayType) \
+                else self.ex(e)
         return self.coerce(self.ex(e), e.ty, d.ty, e) if d.constant else self.ex(e)
 
     def user_function(self, info: CallInfo) -> str:

@@ -64,6 +64,8 @@ class StringTypeRef(TypeRef):
 class ArrayTypeRef(TypeRef):
     ranges: list[tuple[Expr, Expr]]
     elem: TypeRef
+    # ``ARRAY[*, *] OF T`` (ed.3 variable-length array): the number of ``*``, ranges empty
+    star: int = 0
 
 
 @dataclass(eq=False, slots=True, repr=False)

@@ -100,6 +100,14 @@ class Dialect:
     # of a temporary, a reference of its own type only)
     local_refs: bool = False
     reinterpret_refs: bool = False
+    # ``VAR_IN_OUT a : ARRAY[*] OF INT`` with LOWER_BOUND / UPPER_BOUND: variable-length arrays
+    # of IEC 61131-3 ed.3 (6.5.3), CODESYS V3 and TIA Portal (S7-1500); ed.2 and MATIEC have
+    # none (PLC0351; ADR 0060)
+    var_length_arrays: bool = True
+    # ``inst.local := x`` / ``y := inst.local`` with ``local`` a VAR of the block: MATIEC checks
+    # only that no output is assigned (stage3/lvalue_check.cc), so OpenPLC programs do it: the
+    # warning PLC0353; elsewhere PLC0121 (only inputs and outputs are visible outside)
+    fb_internal_access: bool = False
 
 
 PROFILES: dict[str, Dialect] = {d.name: d for d in (
@@ -114,7 +122,8 @@ PROFILES: dict[str, Dialect] = {d.name: d for d in (
     Dialect("s7", "Siemens TIA Portal SCL (S7-1200/1500)", True, True, False, False, True),
     Dialect("matiec", "MATIEC / Beremiz (IEC ed.2)", False, False, False, False, False, True,
             hierarchical_words=True, input_writes=True, trunc_by_context=True,
-            ed2_time_names=True, constant_default=True, max_priority=65535),
+            ed2_time_names=True, constant_default=True, max_priority=65535,
+            var_length_arrays=False, fb_internal_access=True),
 )}
 DEFAULT = "codesys"
 

@@ -338,7 +338,12 @@ class Lexer:
     def _skip_comment(self, pos: int, line: int, line_start: int, kind: str) -> tuple[int, int, int]:
         text = self.text
         start_line, start_col = line, pos - line_start + 1
-        if kind == "ccomment":
+        close = text.find(_EXP_END, pos) if text.startswith(_EXP_START, pos) else -1
+        if close >= 0:
+            # a CODESYS 2.3 export (.EXP, as OSCAT is published): the free text between
+            # (*@KEY@:DESCRIPTION*) and (*@KEY@:END_DESCRIPTION*) is the POU's description
+            seg = text[pos:close + len(_EXP_END)]
+        elif kind == "ccomment":
             end = text.find("*/", pos + 2)
             if end < 0:
                 self.error("PLC0002", "comment '/*' is never closed; add '*/'", start_line, start_col)
@@ -575,6 +580,9 @@ def _tod_ms(s: str) -> int:
     if not (0 <= h < 24 and 0 <= m < 60 and 0 <= sec < 60):
         raise ValueError(s)
     return h * 3_600_000 + m * 60_000 + round(sec * 1000)
+
+
+_EXP_START, _EXP_END = "(*@KEY@:DESCRIPTION*)", "(*@KEY@:END_DESCRIPTION*)"
 
 
 def tokenize(text: str, file: str = "<input>") -> list[Token]:

@@ -171,6 +171,31 @@ class ArrayType(Type):
 
 
 @dataclass(eq=False)
+class VarArrayType(Type):
+    """``ARRAY[*, ...] OF elem`` of a VAR_IN_OUT (IEC 61131-3 ed.3 6.5.3): the bounds are the
+    argument's, known at run time only (``LOWER_BOUND``, ``UPPER_BOUND``; ADR 0060)."""
+
+    ndims: int
+    elem: Type
+    kind = "array"
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        return f"ARRAY[{', '.join('*' * self.ndims)}] OF {self.elem.name}"
+
+
+def fits_var_array(src: Type, dst: Type) -> bool:
+    """Whether a variable of type ``src`` can be passed for the variable-length array ``dst``:
+    an array of as many dimensions, elements of the same type."""
+    s, d = resolve(src), resolve(dst)
+    if not isinstance(d, VarArrayType):
+        return False
+    ndims = len(s.dims) if isinstance(s, ArrayType) else s.ndims if isinstance(
+        s, VarArrayType) else -1
+    return ndims == d.ndims and same_type(s.elem, d.elem)
+
+
+@dataclass(eq=False)
 class StructType(Type):
     name: str
     fields: dict[str, Any] = field(default_factory=dict)  # name -> VarDecl (with .ty)
@@ -332,6 +357,8 @@ def same_type(a: Type, b: Type) -> bool:
         return a.wide == b.wide
     if isinstance(a, ArrayType) and isinstance(b, ArrayType):
         return a.dims == b.dims and same_type(a.elem, b.elem)
+    if isinstance(a, VarArrayType) and isinstance(b, VarArrayType):
+        return a.ndims == b.ndims and same_type(a.elem, b.elem)
     if isinstance(a, RefType) and isinstance(b, RefType):  # POINTER TO POINTER TO INT: by
         return same_type(a.target, b.target)  # structure, as anonymous types have no name
     return False

@@ -196,7 +196,8 @@ def type_ref(t: A.TypeRef) -> str:
         name = "WSTRING" if t.wide else "STRING"
         return f"{name}[{expr(t.length)}]" if t.length is not None else name
     if isinstance(t, A.ArrayTypeRef):
-        dims = ", ".join(f"{expr(lo)}..{expr(hi)}" for lo, hi in t.ranges)
+        dims = ", ".join(f"{expr(lo)}..{expr(hi)}" for lo, hi in t.ranges) or ", ".join(
+            "*" * t.star)
         return f"ARRAY[{dims}] OF {type_ref(t.elem)}"
     if isinstance(t, A.SubrangeTypeRef):
         return f"{type_ref(t.base)}({expr(t.lo)}..{expr(t.hi)})"

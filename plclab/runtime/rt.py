@@ -72,6 +72,27 @@ def _oob(i: int, lo: int, hi: int, where: int):
     raise Fault("PLC2002", f"array index {i} is outside the bounds {lo}..{hi}", where)
 
 
+class _VLA:
+    """The argument of an ``ARRAY[*]`` VAR_IN_OUT (ADR 0060): the caller's array (its flat
+    list, shared, so writes reach the caller) and its bounds, ``((lo, hi), ...)``."""
+
+    __slots__ = ("data", "dims")
+
+    def __init__(self, data: list, dims: tuple[tuple[int, int], ...]) -> None:
+        self.data = data
+        self.dims = tuple(dims)
+
+
+def _vla_ix(v: _VLA, ixs: tuple[int, ...], where: int) -> int:
+    """The flat position of ``v[ixs]``; an index outside its dimension's bounds is PLC2002."""
+    flat = 0
+    for i, (lo, hi) in zip(ixs, v.dims, strict=True):
+        if not lo <= i <= hi:
+            _oob(i, lo, hi, where)
+        flat = flat * (hi - lo + 1) + i - lo
+    return flat
+
+
 def _iref(obj, method: str, where: int):
     """The instance an interface variable refers to, for a call of ``method`` (ADR 0021)."""
     if obj is None:

@@ -24,7 +24,7 @@ _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")
 class CallInfo:
     """A checked call: what is called and how its parameters bind (``Call.target``)."""
 
-    kind: str  # "builtin" "conv" "function" "fb" "program" "method" "reference" "sizeof"
+    kind: str  # "builtin" "conv" "function" "fb" "program" "method" "reference" "sizeof" "bound"
     callee: Any  # Builtin | (src, dst) | Pou
     inputs: list[tuple[Any, A.Expr]] = field(default_factory=list)  # (VarDecl|index, expr)
     outputs: list[tuple[Any, A.Expr, bool]] = field(default_factory=list)  # (VarDecl, target, neg)
@@ -52,6 +52,9 @@ class Calls(Pass):
             if local is None and fname == "SIZEOF" and "SIZEOF" not in self.table.pous and \
                     self.cx.dialect(c.loc).sizeof:
                 return self.sizeof(c)
+            if local is None and fname in ("LOWER_BOUND", "UPPER_BOUND") and \
+                    fname not in self.table.pous:
+                return self.bound(c, fname)
             if local is None and self._own_method(fname):
                 # M(...) inside a block or its methods is THIS^.M(...) (CODESYS, ed.3 6.6.5)
                 c.func = A.Member(f.loc, A.Name(f.loc, "THIS", "THIS^"), fname, f.text or fname)
@@ -106,6 +109,52 @@ class Calls(Pass):
             self.err("PLC0106", f"a value of type {ft} cannot be called", c.loc)
         self._args_only(c)
         return T.ANY
+
+    def _var_array_arg(self, d: A.VarDecl, t: T.Type, a: A.Arg) -> bool:
+        """Whether ``d`` is an ``ARRAY[*]`` in-out (checked here: True); the argument must be
+        an array of as many dimensions and the same element type (ADR 0060)."""
+        want = T.resolve(d.ty) if d.ty is not None else None
+        if not isinstance(want, T.VarArrayType):
+            return False
+        if t is not T.ANY and not T.fits_var_array(t, want):
+            self.err("PLC0107", f"VAR_IN_OUT {d.name} is {want}: pass an array of "
+                     f"{want.ndims} dimension(s) of {want.elem}, not {t}", a.loc)
+        return True
+
+    def bound(self, c: A.Call, fname: str) -> T.Type:
+        """``LOWER_BOUND(arr, dim)`` / ``UPPER_BOUND(arr, dim)``: a bound of dimension ``dim``
+        (1 the first) of an array, a DINT (IEC 61131-3 ed.3 6.5.3; ADR 0060). Of an ``ARRAY[*]``
+        it is read at run time; of an array with declared bounds it is a constant."""
+        args = [a for a in c.args if a.value is not None]
+        names = {a.name.upper() for a in args if a.name}
+        if len(args) != 2 or any(a.output for a in args) or (
+                names and names != {"ARR", "DIM"}):
+            self.err("PLC0352", f"{fname} takes an array and a dimension number, e.g. "
+                     f"{fname}(values, 1)", c.loc)
+            self._args_only(c)
+            return T.DINT
+        if names:
+            args.sort(key=lambda a: a.name.upper() != "ARR")
+        arr, dim = args[0].value, args[1].value
+        at = T.resolve(self.cx.exprs.expr(arr, None))
+        self.cx.exprs.expr(dim, T.DINT)
+        n = self.cx.consts.const_int(dim)
+        if at is T.ANY:
+            return T.DINT
+        ndims = at.ndims if isinstance(at, T.VarArrayType) else len(at.dims) if isinstance(
+            at, T.ArrayType) else 0
+        if not ndims:
+            self.err("PLC0352", f"{fname} needs an array, and {expr_text(arr)} is {at}", arr.loc)
+            return T.DINT
+        if n is None or not 1 <= n <= ndims:
+            self.err("PLC0352", f"{fname}: the dimension must be a constant from 1 to {ndims} "
+                     f"({expr_text(arr)} is {at})", dim.loc)
+            return T.DINT
+        static = None
+        if isinstance(at, T.ArrayType):
+            static = at.dims[n - 1][0 if fname == "LOWER_BOUND" else 1]
+        c.target = CallInfo("bound", (fname == "UPPER_BOUND", n - 1, static), [(0, arr)])
+        return T.DINT
 
     def sizeof(self, c: A.Call) -> T.Type:
         """``SIZEOF(x)`` of a variable or a type name: a constant of the smallest unsigned
@@ -202,7 +251,8 @@ class Calls(Pass):
                 # ed.3 Table 13); the block cannot change it, so nothing is written back
                 if d.constant:
                     vt = self.cx.exprs.expr(a.value, d.ty)
-                    self.cx.exprs.check_assignable(vt, d.ty, a.value, a.loc)
+                    if not self._var_array_arg(d, vt, a):
+                        self.cx.exprs.check_assignable(vt, d.ty, a.value, a.loc)
                     inouts.append((d, a.value))
                     continue
                 tt = self.cx.exprs.lvalue(a.value)
@@ -211,6 +261,8 @@ class Calls(Pass):
                              f"{expr_text(a.value)} is a PROPERTY (a GET and a SET, not a "
                              "variable); copy it to a variable, pass that, and assign it back",
                              a.loc)
+                elif self._var_array_arg(d, tt, a):
+                    pass
                 elif not T.same_type(tt, d.ty) and tt is not T.ANY and d.ty is not T.ANY and not (
                     isinstance(T.resolve(tt), T.StringType) and
                     isinstance(T.resolve(d.ty), T.StringType)
@@ -328,6 +380,10 @@ class Calls(Pass):
             c.target = CallInfo("conv", (src, dst), [(0, a.value)])
             self.en_eno(c, c.target)
             return dst
+        if name in ("MUL", "DIV") and len(args) == 2 and not any(a.output for a in args) and \
+                isinstance(args[0].value, A.Name | A.Member | A.Index | A.Literal) and \
+                T.base_of(self.cx.exprs.expr(args[0].value, None)) is T.TIME:
+            name += "_TIME"  # MUL(t, 2), DIV(t, n): the overloaded TIME rows of ed.2 Table 30
         b: Builtin = BUILTINS[name]
         if name in ED2_NAMES and not self.cx.dialect(c.loc).ed2_time_names:
             self.err("PLC0320", f"{name} is the IEC 61131-3 ed.2 name (MATIEC, OSCAT) of "

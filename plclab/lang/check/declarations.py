@@ -92,6 +92,9 @@ class Declarations(Pass):
         return T.ANY
 
     def type_ref(self, r: A.TypeRef, name: str | None = None) -> T.Type:
+        ok, self.var_array_ok = self.var_array_ok, False  # for the outermost type only
+        if isinstance(r, A.ArrayTypeRef) and r.star:
+            return self.var_array(r, ok)
         if isinstance(r, A.NamedTypeRef):
             return self.named_type(r.name, r.loc)
         if isinstance(r, A.RefTypeRef):  # REF_TO, POINTER TO (ADR 0021)
@@ -179,6 +182,26 @@ class Declarations(Pass):
                 self.check_init(d, Scope())
             return st
         return T.ANY
+
+    var_array_ok = False  # resolving the type of a VAR_IN_OUT of a FUNCTION, block or METHOD
+
+    def var_array(self, r: A.ArrayTypeRef, ok: bool) -> T.Type:
+        """``ARRAY[*, ...] OF T``: only as the type of a VAR_IN_OUT, where the argument gives
+        the bounds (IEC 61131-3 ed.3 6.5.3; ADR 0060)."""
+        elem = self.type_ref(r.elem)
+        dialect = self.cx.dialect(r.loc)
+        if not dialect.var_length_arrays:
+            self.err("PLC0351", "ARRAY[*] (a variable-length array) is IEC 61131-3 ed.3; "
+                     f"the dialect '{dialect.name}' follows ed.2, which has none: declare "
+                     "the bounds (ARRAY[1..10] OF INT) or choose {dialect 'iec'} or "
+                     "{dialect 'codesys'}", r.loc)
+            return T.ANY
+        if not ok:
+            self.err("PLC0350", "ARRAY[*] (a variable-length array) is allowed only as the type "
+                     "of a VAR_IN_OUT of a FUNCTION, FUNCTION_BLOCK or METHOD, whose argument "
+                     "gives the bounds; declare the bounds here (ARRAY[1..10] OF INT)", r.loc)
+            return T.ANY
+        return T.ANY if elem is T.ANY else T.VarArrayType(r.star, elem)
 
     def decl_type(self, d: A.VarDecl) -> T.Type:
         if d.ty is None:
@@ -276,7 +299,12 @@ class Declarations(Pass):
             if d.section == "VAR_EXTERNAL" and isinstance(d.type, A.NamedTypeRef) and \
                     d.type.name == "__ANY__":
                 continue
-            self.decl_type(d)
+            self.var_array_ok = d.section == "VAR_IN_OUT" and p.kind in (
+                "FUNCTION", "FUNCTION_BLOCK", "METHOD")
+            try:
+                self.decl_type(d)
+            finally:
+                self.var_array_ok = False
             if d.name == p.name and p.kind == "FUNCTION":
                 self.err("PLC0101", f"{d.name} is the function's own name (its result); choose "
                          "another variable name", d.loc)

@@ -54,6 +54,10 @@ class Expressions(Pass, NodeVisitor):
         if src is T.ANY or dst is T.ANY:
             return
         rs, rd = T.resolve(src), T.resolve(dst)
+        if isinstance(rs, T.VarArrayType) or isinstance(rd, T.VarArrayType):
+            self.err("PLC0352", f"cannot assign {rs} to {rd}: a variable-length array is copied "
+                     "element by element, FOR i := LOWER_BOUND(a, 1) TO UPPER_BOUND(a, 1)", loc)
+            return
         if isinstance(rd, T.InterfaceType):  # an instance or interface reference (ADR 0021)
             self.cx.oop.interface_assign(rs, rd, loc)
             return
@@ -480,7 +484,12 @@ class Expressions(Pass, NodeVisitor):
             inside = isinstance(e.obj, A.Name) and isinstance(e.obj.sym, VarSym) and \
                 e.obj.sym.storage in ("this", "super")  # THIS^.x, SUPER^.x (ADR 0021)
             if pou.kind == "FUNCTION_BLOCK" and not self.cx.in_test and not inside:
-                if d.section in ("VAR", "VAR_TEMP"):
+                if d.section == "VAR" and self.cx.dialect(e.loc).fb_internal_access:
+                    self.warn("PLC0353", f"{f} is internal to {pou.name}: MATIEC lets a program "
+                              "read and write it from outside, IEC 61131-3 shows only a block's "
+                              f"inputs and outputs; make {f} a VAR_INPUT or VAR_OUTPUT of "
+                              f"{pou.name} to be portable", e.loc)
+                elif d.section in ("VAR", "VAR_TEMP"):
                     self.err("PLC0121", f"{f} is internal to {pou.name}; only its inputs and "
                              "outputs are visible outside", e.loc)
                 elif write and d.section == "VAR_OUTPUT":
@@ -543,6 +552,11 @@ class Expressions(Pass, NodeVisitor):
             self.err("PLC0117", "strings are not indexed with [...]; use MID(s, 1, position)",
                      e.loc)
             return T.ANY
+        if isinstance(ot, T.VarArrayType):  # ARRAY[*]: bounds checked at run time (ADR 0060)
+            if len(e.indices) != ot.ndims:
+                self.err("PLC0117", f"{ot} has {ot.ndims} dimension(s) but {len(e.indices)} "
+                         "index(es) were given", e.loc)
+            return ot.elem
         if not isinstance(ot, T.ArrayType):
             self.err("PLC0117", f"{ot} is not an array and cannot be indexed", e.loc)
             return T.ANY

@@ -698,6 +698,15 @@ class Parser:
         if t.kind == "ARRAY":
             self.advance()
             self.expect("[", "'[' and the index ranges, e.g. ARRAY[1..10] OF INT")
+            if self.at("*"):  # ARRAY[*, *] OF T: variable length (IEC 61131-3 ed.3 6.5.3)
+                star = 0
+                while self.accept("*"):
+                    star += 1
+                    if not self.accept(","):
+                        break
+                self.expect("]", "']' after the '*' of each dimension, e.g. ARRAY[*, *] OF INT")
+                self.expect("OF", "OF and the element type")
+                return A.ArrayTypeRef(loc, [], self.type_ref(), star)
             ranges = []
             while True:
                 lo = self.expr()
