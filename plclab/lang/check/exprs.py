@@ -9,9 +9,9 @@ from ...errors import Location
 from .. import ast as A
 from .. import types as T
 from ..walk import NodeVisitor, walk
-from .context import Pass, close_hint
 from .declarations import split_address
-from .symbols import EnumSym, ProgSym, VarSym
+from .pass_api import Pass
+from .symbols import EnumSym, ProgSym, VarSym, close_hint
 
 _REAL_MAX = 3.4028234663852886e38  # the largest finite IEEE single
 _UNSIGNED = {"BYTE": "USINT", "WORD": "UINT", "DWORD": "UDINT", "LWORD": "ULINT"}
