@@ -34,12 +34,15 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("api", ("plclab", "plclab.project", "plclab.testing"))],
     # the record of a run (NumPy is imported lazily, when a trace is built).
     [("trace", ("plclab.trace",))],
+    # process data around a run (watch tables, alarms, archives, recipes): read the runtime,
+    # write Trace events; the simulator, the grader and the panel use them (ADR 0061).
+    [("process", ("plclab.process",))],
     # a PLC joined to a plant on one clock; writes a Trace.
     [("sim", ("plclab.sim",))],
     # readers of a Trace (viz) and the PLC behind a Modbus server: independent of each other.
     [("viz", ("plclab.viz",)), ("modbus", ("plclab.modbus",))],
-    # SCADA around a run (watch tables, alarms, archives, recipes, the operator panel): reads
-    # the runtime and the Trace and joins a Simulation as a hook, so sim never imports it.
+    # the operator panel: a Simulation run in real time behind a small HTTP server, showing the
+    # process data of the layer `process`.
     [("scada", ("plclab.scada",))],
     # the PLC behind an OPC UA server (asyncua, lazily): the panel's runner, scada's alarms.
     [("opcua", ("plclab.opcua",))],

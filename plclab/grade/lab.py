@@ -709,7 +709,7 @@ class _Builder:
         if Path(name).name != name or not path.is_file():
             raise self.err("PLC5001", f"recipes = \"{name}\": no such file in the lab folder",
                            key="recipes")
-        from plclab.scada.recipes import Recipe
+        from plclab.process.recipes import Recipe
 
         try:
             data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -750,7 +750,7 @@ class _Builder:
         if Path(name).name != name or not path.is_file():
             raise self.err("PLC5001", f"alarms = \"{name}\": no such file in the lab folder",
                            key="alarms")
-        from plclab.scada.alarms import AlarmServer
+        from plclab.process.alarms import AlarmServer
 
         try:
             data = tomllib.loads(path.read_text(encoding="utf-8"))
