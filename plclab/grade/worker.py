@@ -34,7 +34,7 @@ from pathlib import Path
 from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
-           "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.scada", "rerun",
+           "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.process", "rerun",
            "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png", "PIL.Image",
            "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin", "plclab.grade.protocol",
            "plclab.lang.sfc_outline", "plclab.lang.unparse", "plclab.viz.sfc_lane",
