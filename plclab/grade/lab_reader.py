@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import Location, PlcError
+from plclab.lang.addresses import parse_located
 from plclab.runtime.plc import MAX_CYCLE_NS, MIN_CYCLE_NS
 
 from .errors import did_you_mean, grade_error
@@ -37,7 +38,6 @@ _SIZE_TYPES = {
     "D": ("DWORD", "DINT", "UDINT", "REAL", "TIME"),
     "L": ("LWORD", "LINT", "ULINT", "LREAL", "LTIME"),
 }
-_ADDR = re.compile(r"^%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?$", re.IGNORECASE)
 _ID = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 
 
@@ -358,12 +358,12 @@ class LabReader(CriteriaSections):
             name = self.string(r, "name", what, "io", i, required=True)
             addr = self.string(r, "address", what, "io", i, required=True).strip()
             ty = self.string(r, "type", what, "io", i, required=True).strip().upper()
-            m = _ADDR.match(addr)
-            if not m:
+            located = parse_located(addr)
+            if located is None:
                 raise self.err("PLC5004", f"{what} ({name}): address '{addr}' is not a PLC "
                                "address such as %IX0.0, %QX0.1, %IW64, %MW0", "io", i, "address")
-            size = (m.group(2) or "X").upper()
-            if size == "X" and m.group(4) is None:
+            size = located.size
+            if size == "X" and located.bit is None:
                 raise self.err("PLC5004", f"{what} ({name}): a bit address needs the bit: "
                                f"{addr}.0", "io", i, "address")
             if ty not in _SIZE_TYPES[size]:
