@@ -18,7 +18,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import plclab  # noqa: E402
-from plclab.scada import Alarm, AlarmServer, WatchRow, WatchTable  # noqa: E402
+from plclab.process import Alarm, AlarmServer, WatchRow, WatchTable  # noqa: E402
 from plclab.sim import Simulation  # noqa: E402
 
 TANK = """PROGRAM TankLevel

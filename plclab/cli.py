@@ -138,7 +138,7 @@ def cmd_run(ns: argparse.Namespace) -> int:
         raise PlcError("PLC3002", "--cycles must be 0 or more")
     table = None
     if ns.watch:
-        from .scada.watch import WatchTable
+        from .process.watch import WatchTable
 
         table = WatchTable.load(ns.watch)
         table.attach(plc)

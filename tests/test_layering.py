@@ -34,12 +34,15 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("api", ("plclab", "plclab.project", "plclab.testing"))],
     # the record of a run (NumPy is imported lazily, when a trace is built).
     [("trace", ("plclab.trace",))],
+    # process data around a run (watch tables, alarms, archives, recipes): read the runtime,
+    # write Trace events; the simulator, the grader and the panel use them (ADR 0061).
+    [("process", ("plclab.process",))],
     # a PLC joined to a plant on one clock; writes a Trace.
     [("sim", ("plclab.sim",))],
     # readers of a Trace (viz) and the PLC behind a Modbus server: independent of each other.
     [("viz", ("plclab.viz",)), ("modbus", ("plclab.modbus",))],
-    # SCADA around a run (watch tables, alarms, archives, recipes, the operator panel): reads
-    # the runtime and the Trace and joins a Simulation as a hook, so sim never imports it.
+    # the operator panel: a Simulation run in real time behind a small HTTP server, showing the
+    # process data of the layer `process`.
     [("scada", ("plclab.scada",))],
     # the PLC behind an OPC UA server (asyncua, lazily): the panel's runner, scada's alarms.
     [("opcua", ("plclab.opcua",))],
@@ -72,6 +75,18 @@ KNOWN_CYCLES: list[frozenset[str]] = [
     # none: add a cycle here only with the issue that removes it
 ]
 
+# Cycles that exist only through imports under ``if TYPE_CHECKING:`` (never run, so they cannot
+# leave a module half-initialised, but they still tie modules together). Same rules as above.
+_CHECK = "plclab.lang.check."
+KNOWN_TYPING_CYCLES: list[frozenset[str]] = [
+    # The checker's context holds one object per pass and names their classes for the type
+    # checker, while every pass names the context (Pass.cx) and asks the other passes through
+    # it (self.cx.exprs.expr(...)): the passes call each other recursively by design. At run
+    # time the passes import only pass_api and symbols (ADR 0061).
+    frozenset(_CHECK + m for m in ("calls", "consts", "context", "declarations", "exprs", "oop",
+                                    "pass_api", "program", "stmts")),
+]
+
 
 # ------------------------------------------------------------------------------ the graph
 
@@ -87,8 +102,10 @@ def module_files(root: Path = PACKAGE) -> dict[str, Path]:
     return out
 
 
-def imported_names(module: str, path: Path, modules: dict[str, Path]) -> dict[str, int]:
-    """Every module *module* imports (plclab's and others') -> the first line that does."""
+def imported_names(module: str, path: Path, modules: dict[str, Path],
+                   typing_too: bool = False) -> dict[str, int]:
+    """Every module *module* imports (plclab's and others') -> the first line that does; with
+    *typing_too*, also the imports under ``if TYPE_CHECKING:``."""
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found: dict[str, int] = {}
     tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
@@ -97,7 +114,7 @@ def imported_names(module: str, path: Path, modules: dict[str, Path]) -> dict[st
                    and ast.unparse(block.test).endswith("TYPE_CHECKING")
                    for stmt in block.body for n in ast.walk(stmt)}
     for node in ast.walk(tree):
-        if id(node) in typing_only:
+        if id(node) in typing_only and not typing_too:
             continue
         names: list[str] = []
         if isinstance(node, ast.Import):
@@ -123,14 +140,17 @@ def owning_module(name: str, modules: dict[str, Path]) -> str | None:
     return name or None
 
 
-def import_graph() -> tuple[dict[str, dict[str, int]], dict[str, dict[str, int]]]:
-    """(plclab module -> plclab modules it imports -> line, module -> outside imports -> line)."""
-    modules = module_files()
+def import_graph(root: Path = PACKAGE, typing_too: bool = False
+                 ) -> tuple[dict[str, dict[str, int]], dict[str, dict[str, int]]]:
+    """(module -> modules of the package at *root* it imports -> line, module -> outside imports
+    -> line), every module of the package included, edges inside one sub-package too."""
+    modules = module_files(root)
+    top = root.name
     inside: dict[str, dict[str, int]] = {m: {} for m in modules}
     outside: dict[str, dict[str, int]] = {m: {} for m in modules}
     for m, path in modules.items():
-        for name, line in imported_names(m, path, modules).items():
-            if name == "plclab" or name.startswith("plclab."):
+        for name, line in imported_names(m, path, modules, typing_too).items():
+            if name == top or name.startswith(top + "."):
                 target = owning_module(name, modules)
                 if target and target != m:
                     inside[m].setdefault(target, line)
@@ -241,8 +261,8 @@ def test_known_cycles_are_not_stale() -> None:
                        f"{[sorted(c) for c in actual]})")
 
 
-def test_no_upward_imports() -> None:
-    inside, _ = import_graph()
+def upward_imports(inside: dict[str, dict[str, int]]) -> list[str]:
+    """The imports of *inside* that go to a higher layer or sideways, as sentences."""
     bad = []
     for m, targets in sorted(inside.items()):
         lm, rm = layer_of(m)
@@ -253,7 +273,23 @@ def test_no_upward_imports() -> None:
             if any(m in c and t in c for c in KNOWN_CYCLES):
                 continue  # reported by KNOWN_CYCLES
             bad.append(f"{m} (layer {lm}) imports {t} (layer {lt}) at line {line}")
+    return bad
+
+
+def test_no_upward_imports() -> None:
+    inside, _ = import_graph()
+    bad = upward_imports(inside)
     assert not bad, "imports that go up or sideways:\n" + "\n".join(bad)
+
+
+def test_no_cycles_even_through_imports_for_type_checkers() -> None:
+    inside, _ = import_graph(typing_too=True)
+    actual = {frozenset(c) for c in strongly_connected(inside)}
+    found = actual - set(KNOWN_CYCLES) - set(KNOWN_TYPING_CYCLES)
+    assert not found, "import cycles (counting `if TYPE_CHECKING:` imports):\n" + "\n".join(
+        " -> ".join(cycle_path(inside, sorted(c))) for c in found)
+    stale = [sorted(c) for c in KNOWN_TYPING_CYCLES if c not in actual]
+    assert not stale, f"KNOWN_TYPING_CYCLES lists cycles that no longer exist: {stale}"
 
 
 def test_the_core_needs_only_the_standard_library() -> None:
@@ -300,6 +336,56 @@ def test_a_cycle_and_an_upward_import_are_caught() -> None:
     assert layer_of("plclab.lang.check")[1] < layer_of("plclab.sim.simulation")[1]
     assert layer_of("plclab.sim.commands")[0] == "cli"
     assert layer_of("plclab")[0] == "api" and layer_of("plclab.errors")[0] == "base"
+
+
+def _package(root: Path, files: dict[str, str]) -> Path:
+    """A throw-away package ``plclab`` under *root* with the given modules (path -> source)."""
+    pkg = root / "plclab"
+    for rel, text in files.items():
+        path = pkg / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    return pkg
+
+
+def test_a_planted_circle_inside_one_package_is_found(tmp_path: Path) -> None:
+    # Two modules of one sub-package import each other: one at module level and relatively,
+    # the other inside a function and absolutely; a third only under TYPE_CHECKING.
+    pkg = _package(tmp_path, {
+        "__init__.py": "",
+        "lang/__init__.py": "",
+        "lang/a.py": "from .b import f\n",
+        "lang/b.py": "def f():\n    from plclab.lang import a\n    return a\n",
+        "lang/c.py": ("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n"
+                      "    from .d import D\n"),
+        "lang/d.py": "from . import c\n",
+        "lang/e.py": "from . import a\n",  # imports the cycle, is not part of it
+    })
+    inside, _ = import_graph(pkg)
+    assert strongly_connected(inside) == [["plclab.lang.a", "plclab.lang.b"]]
+    assert cycle_path(inside, ["plclab.lang.a", "plclab.lang.b"]) == [
+        "plclab.lang.a", "plclab.lang.b", "plclab.lang.a"]
+    typed, _ = import_graph(pkg, typing_too=True)
+    assert strongly_connected(typed) == [["plclab.lang.a", "plclab.lang.b"],
+                                         ["plclab.lang.c", "plclab.lang.d"]]
+
+
+def test_a_planted_upward_import_is_found(tmp_path: Path) -> None:
+    pkg = _package(tmp_path, {
+        "__init__.py": "",
+        "runtime/__init__.py": "",
+        "runtime/plc.py": "import json\nfrom ..sim import simulation\nfrom ..lang import ast\n",
+        "sim/__init__.py": "",
+        "sim/simulation.py": "from plclab.runtime.plc import Plc\n",
+        "lang/__init__.py": "",
+        "lang/ast.py": "",
+    })
+    inside, outside = import_graph(pkg)
+    assert upward_imports(inside) == [
+        "plclab.runtime.plc (layer runtime) imports plclab.sim.simulation (layer sim) at line 2"]
+    assert outside["plclab.runtime.plc"] == {"json": 1}
+    assert upward_imports({"plclab.viz.x": {"plclab.modbus.y": 3}}) == [
+        "plclab.viz.x (layer viz) imports plclab.modbus.y (layer modbus) at line 3"]  # sideways
 
 
 def layer_graph() -> dict[str, dict[str, int]]:

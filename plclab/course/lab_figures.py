@@ -28,11 +28,11 @@ def lab_run(source: Path, lab_id: str, scenario: str, watch: list[str] | None = 
     sim = Simulation(plc, lab.plant, lab.wiring, seed=sc.seed, scenario=sc.scenario(),
                      watch=[*lab.all_watch(sc), *(watch or [])], plant_params={**lab.plant_params, **sc.plant_params})
     if lab.alarms:
-        from plclab.scada.alarms import AlarmServer
+        from plclab.process.alarms import AlarmServer
 
         sim.add_hook(AlarmServer.from_dict(lab.alarms, f"{lab.id}/alarms"))
     if lab.recipes and sc.recipe:
-        from plclab.scada.recipes import Recipe
+        from plclab.process.recipes import Recipe
 
         recipe = Recipe.from_dict(lab.recipes, f"{lab.id}/recipes")
         for at, record in sc.recipe:
@@ -43,7 +43,7 @@ def lab_run(source: Path, lab_id: str, scenario: str, watch: list[str] | None = 
 
 def lab_figure(source: Path, spec: dict[str, Any], path: Path) -> str:
     """Draw the run; returns a note: switchings, alarm entries and SFC steps seen."""
-    from plclab.scada.alarms import alarm_log
+    from plclab.process.alarms import alarm_log
     from plclab.viz.from_trace import series
     from plclab.viz.timing import timing_diagram
 

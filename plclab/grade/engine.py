@@ -431,11 +431,11 @@ def _simulate(lab: Lab, compiled: Any, sc: ScenarioSpec) -> Any:
                      watch=lab.all_watch(sc), plant_params={**lab.plant_params,
                                                             **sc.plant_params})
     if lab.alarms:  # the alarm log goes into the trace (plclab.scada, ADR 0025)
-        from plclab.scada.alarms import AlarmServer
+        from plclab.process.alarms import AlarmServer
 
         sim.add_hook(AlarmServer.from_dict(lab.alarms, f"{lab.id}/alarms"))
     if lab.recipes and sc.recipe:  # records written into the PLC at their times
-        from plclab.scada.recipes import Recipe
+        from plclab.process.recipes import Recipe
 
         recipe = Recipe.from_dict(lab.recipes, f"{lab.id}/recipes")
         for at, record in sc.recipe:

@@ -34,11 +34,11 @@ from pathlib import Path
 from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
-           "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.scada", "rerun",
+           "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.process", "rerun",
            "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png", "PIL.Image",
            "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin", "plclab.grade.protocol",
            "plclab.lang.sfc_outline", "plclab.lang.unparse", "plclab.viz.sfc_lane",
-           "plclab.scada.alarms", "plclab.scada.recipes",
+           "plclab.process.alarms", "plclab.process.recipes",
            "numpy.ma", "dateutil.relativedelta")  # rerun imports these when it writes a file
 """Imported once by the forkserver. ``rerun`` costs 0.3-0.5 s to import: without it here every
 failing submission (which writes a recording) paid it again in its child. Every module a

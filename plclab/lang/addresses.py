@@ -20,13 +20,22 @@ PLC0120 and PLC0127.
 ('%QX9.3', '%QX9.3', '%IX1.2', '%MW4')
 >>> canonical("%IW2.5.7.1"), hierarchical("%IW2.5.7.1")
 ('%IW1', True)
+
+Everything after the front ends reads the canonical form with :func:`parse_located` (one parser
+for the runtime's process image, the simulator's wiring, the Modbus map, the lab's I/O table and
+the Trace's conditions):
+
+>>> parse_located("%qx1.2"), parse_located("%MW4").nbytes, parse_located("%IX1.2.3")
+(Located(area='Q', size='X', byte=1, bit=2), 2, None)
 """
 
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 
-__all__ = ["ADDRESS_RE", "canonical", "hierarchical"]
+__all__ = ["ADDRESS_RE", "LOCATED", "LOCATED_RE", "SIZE_BYTES", "Located", "canonical",
+           "hierarchical", "parse_located"]
 
 ADDRESS_RE = re.compile(r"%([IQM])([XBWDL]?)([0-9]+(?:\.[0-9]+)*)")
 _MAX_DIGITS = 9  # longer numbers are left for the checker (PLC0127)
@@ -66,3 +75,47 @@ def canonical(text: str, words: bool = False) -> str:
     if size == "X":
         return f"%{area}X{int(fields[-2])}.{fields[-1]}"
     return f"%{area}{size}{int(fields[-1])}"
+
+
+# -- the canonical form, read by everything after the front ends ----------------------------------
+LOCATED = r"%([IQM])([XBWDL]?)([0-9]+)(?:\.([0-9]+))?"
+"""The canonical (S7) form of a direct address as a pattern, upper case: area, size (empty for a
+bit), byte, bit. :data:`LOCATED_RE` matches it; :func:`parse_located` reads it."""
+LOCATED_RE = re.compile(LOCATED)
+SIZE_BYTES = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}
+"""Bytes of the process image an address of each size covers (a bit address: its byte)."""
+
+
+@dataclass(frozen=True)
+class Located:
+    """A direct address in the canonical form: ``%QX1.2`` is ``Located("Q", "X", 1, 2)``."""
+
+    area: str  # I, Q or M
+    size: str  # X (bit), B, W, D or L
+    byte: int
+    bit: int | None  # None for B, W, D, L (and for a bit address written without its bit)
+
+    @property
+    def nbytes(self) -> int:
+        """Bytes of the process image it covers."""
+        return SIZE_BYTES[self.size]
+
+    def __str__(self) -> str:
+        return f"%{self.area}{self.size}{self.byte}" + ("" if self.bit is None else f".{self.bit}")
+
+
+def parse_located(text: str) -> Located | None:
+    """The parts of a direct address in the canonical form (any case, blanks around ignored), or
+    None when ``text`` is not one. IEC's other forms (``%QX75``, ``%IW2.5.7.1``) are not
+    rewritten here: :func:`canonical` does that where a front end reads them. The bit range
+    (0..7), a bit address without its bit and the size against a type are for the caller to
+    report, each with its own code and words.
+
+    >>> str(parse_located(" %ib3 ")), parse_located("%IX0.9").bit, parse_located("IX0.0")
+    ('%IB3', 9, None)
+    """
+    m = LOCATED_RE.fullmatch(text.strip().upper())
+    if m is None:
+        return None
+    return Located(m.group(1), m.group(2) or "X", int(m.group(3)),
+                   None if m.group(4) is None else int(m.group(4)))

@@ -31,7 +31,7 @@ import xml.etree.ElementTree as ET
 
 from ..errors import PlcError
 from . import ast as A
-from .lower.sfc import Chart, Step, Transition
+from .lower.sfc_chart import Chart, Step, Transition
 from .plcopen_elements import hide, sub, text_body, visible
 from .unparse import expr as st_expr
 from .unparse import unparse

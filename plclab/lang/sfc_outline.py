@@ -1,7 +1,7 @@
 """A chart as plain data: what the trace's SFC lane, the lab feedback and the drawing need.
 
 The lowering keeps the chart of an SFC body on its POU (``Pou.sfc``, a
-:class:`~plclab.lang.lower.sfc.Chart`); :func:`outline` turns it into JSON-able dicts with the
+:class:`~plclab.lang.lower.sfc_chart.Chart`); :func:`outline` turns it into JSON-able dicts with the
 names as written and each transition's condition as ST text (docs/adr/0023).
 
 >>> from plclab.project import check_sources

@@ -39,10 +39,9 @@ from __future__ import annotations
 import csv
 import io
 import json
-import re
 from dataclasses import dataclass
 
-from ..lang.addresses import canonical
+from ..lang.addresses import LOCATED_RE, canonical
 
 #: bytes of each area that are mapped (8192 bits, 512 words)
 MAPPED_BYTES = 1024
@@ -78,7 +77,7 @@ STATUS_COUNT = len(STATUS_FIELDS)
 COIL, DISCRETE_INPUT, INPUT_REGISTER, HOLDING_REGISTER = (
     "coil", "discrete_input", "input_register", "holding_register")
 
-_ADDR_RE = re.compile(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?")
+_ADDR_RE = LOCATED_RE  # the one parser of direct addresses (plclab.lang.addresses)
 _WORDS = {"X": 1, "B": 1, "W": 1, "D": 2, "L": 4}
 _BYTES = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}
 

@@ -150,7 +150,7 @@ def cmd_serve(ns: argparse.Namespace) -> int:
     plc = load(*ns.files, cycle_time=ns.cycle_time)
     table = None
     if ns.watch:  # a watch table on the live PLC (plclab.scada, ADR 0025)
-        from plclab.scada.watch import WatchTable
+        from plclab.process.watch import WatchTable
 
         table = WatchTable.load(ns.watch)
         table.attach(plc)

@@ -21,7 +21,7 @@ SEVERITY = {"error": 800, "warning": 500, "system": 300}
 
 
 class AlarmNodes:
-    """Condition nodes and events for an :class:`~plclab.scada.alarms.AlarmServer`."""
+    """Condition nodes and events for an :class:`~plclab.process.alarms.AlarmServer`."""
 
     def __init__(self, server: Any, alarms: Any) -> None:
         self.server = server

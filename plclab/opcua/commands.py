@@ -42,7 +42,7 @@ def _positive(value: float | None, what: str) -> None:
 
 def _simulation(ns: argparse.Namespace, plc_files: list[str]):
     """The PLC, its plant simulation (or a bare PLC) and the alarm server."""
-    from plclab.scada.alarms import AlarmServer
+    from plclab.process.alarms import AlarmServer
     from plclab.sim.runner import load_plc
 
     from .runner import BarePlc

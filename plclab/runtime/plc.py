@@ -27,7 +27,7 @@ from ..compile.real32 import single_cell
 from ..durations import parse_duration
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang import types as T
-from ..lang.addresses import canonical
+from ..lang.addresses import LOCATED_RE, SIZE_BYTES, canonical
 from ..lang.check.symbols import instance_label
 from ..lang.limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
 from ..names import split_outside_brackets
@@ -102,8 +102,8 @@ MAX_CYCLE_NS = MAX_INTERVAL_NS  # one day
 MAX_SCANS = 100_000_000  # scans per run()/scan() call
 MAX_IMAGE = 65_536  # bytes of each process image area (%I, %Q, %M)
 _IMAGE_USE = re.compile(r"\b_[IQ]\b")  # generated code touching the input or output image
-_ADDR_RE = re.compile(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?")
-_SIZE_BYTES = {"X": 1, "B": 1, "W": 2, "D": 4, "L": 8}
+_ADDR_RE = LOCATED_RE  # the one parser of direct addresses (plclab.lang.addresses)
+_SIZE_BYTES = SIZE_BYTES
 
 
 def check_cycle_ns(ns: int, what: str, location: Location | None = None) -> int:
@@ -967,7 +967,7 @@ class Plc:
     def _write_address(self, address: str, value: Any, ty: T.Type, physical: bool) -> None:
         import struct as _struct
 
-        m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", address)
+        m = _ADDR_RE.fullmatch(address)
         if not m:
             return
         size = m.group(2) or "X"
@@ -1044,7 +1044,7 @@ class Plc:
 
     @staticmethod
     def _addr_parts(addr: str):
-        m = re.fullmatch(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", addr.upper())
+        m = _ADDR_RE.fullmatch(addr.upper())
         assert m
         return m.group(2) or "X", int(m.group(3)), m.group(4)
 

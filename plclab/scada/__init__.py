@@ -1,9 +1,10 @@
-"""SCADA and commissioning around the PLC: watch tables, alarms, archives, recipes, a panel.
+"""SCADA around a simulated plant: the operator panel, its page, the notebook widget, ``plclab panel``.
 
-Layer ``scada`` (``docs/adr/0025-scada-alarms-trigger-points.md``): above ``sim``; it reads the
-runtime (trigger points, modify, force) and the Trace. The simulation never imports it: an
-alarm server or a watch table joins a run as a hook (``sim.add_hook(...)``), so the PLC and the
-simulator stay free of SCADA concepts and a run without hooks costs nothing extra.
+Layer ``scada`` (``docs/adr/0025-scada-alarms-trigger-points.md``): above ``sim``; the panel runs
+a Simulation in real time behind a small HTTP server. The process data it shows (watch tables,
+alarms, archives, recipes) live one layer down in :mod:`plclab.process`, where the simulator and
+the grader use them too; this package re-exports those names, so ``from plclab.scada import
+Recipe`` (the course, the labs' READMEs) keeps working.
 
 >>> from plclab.scada import Alarm, AlarmServer, WatchRow, WatchTable
 >>> AlarmServer([Alarm("HOT", "too hot", tag="T", kind="H", limit=90.0)]).alarms[0].high
@@ -12,10 +13,10 @@ True
 
 from __future__ import annotations
 
-from .alarms import Alarm, AlarmClass, AlarmServer, LogEntry, alarm_log
-from .archive import ArchiveRow, archive, write_csv, write_parquet
-from .recipes import Element, Recipe
-from .watch import Sample, WatchRow, WatchTable, format_value
+from plclab.process.alarms import Alarm, AlarmClass, AlarmServer, LogEntry, alarm_log
+from plclab.process.archive import ArchiveRow, archive, write_csv, write_parquet
+from plclab.process.recipes import Element, Recipe
+from plclab.process.watch import Sample, WatchRow, WatchTable, format_value
 
 __all__ = [
     "Alarm",

@@ -25,12 +25,12 @@ from plclab.errors import PlcError
 @arg("--speed", type=float, default=1.0, help="virtual seconds per second (default 1)")
 @arg("--port", type=int, default=8765, help="port on 127.0.0.1 (default 8765)")
 def cmd_panel(ns: argparse.Namespace) -> int:
+    from plclab.process.alarms import AlarmServer
+    from plclab.process.recipes import Recipe
     from plclab.sim import Simulation
     from plclab.sim.runner import load_plc
 
-    from .alarms import AlarmServer
     from .panel import Panel, serve
-    from .recipes import Recipe
 
     alarms = AlarmServer.load(ns.alarms) if ns.alarms else None
     recipe = Recipe.load(ns.recipe) if ns.recipe else None

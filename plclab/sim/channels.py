@@ -661,13 +661,13 @@ def _warnings(channels: list[Channel], plc: Any) -> list[str]:
 
 def _covered(addr: str, wired: set[str]) -> bool:
     """True when a bit address lies inside a wired byte/word (or the other way round)."""
-    m = ADDRESS_RE.fullmatch(addr)
+    m = ADDRESS_RE.fullmatch(addr.upper())
     if not m:
         return False
     area, size, byte = m.group(1), (m.group(2) or "X"), int(m.group(3))
     lo, hi = byte, byte + max(1, _SIZES[size])
     for w in wired:
-        mw = ADDRESS_RE.fullmatch(w)
+        mw = ADDRESS_RE.fullmatch(w.upper())
         if not mw or mw.group(1) != area:
             continue
         s2, b2 = (mw.group(2) or "X"), int(mw.group(3))

@@ -93,11 +93,11 @@ def cmd_sim(ns: argparse.Namespace) -> int:
     # -- SCADA hooks (plclab.scada, ADR 0025)
     table = alarms = None
     if ns.watch_table:
-        from plclab.scada import WatchTable
+        from plclab.process import WatchTable
 
         table = sim.add_hook(WatchTable.load(ns.watch_table))
     if ns.alarms:
-        from plclab.scada import AlarmServer
+        from plclab.process import AlarmServer
 
         alarms = sim.add_hook(AlarmServer.load(ns.alarms))
     duration = ns.duration

@@ -46,18 +46,18 @@ from __future__ import annotations
 
 import math
 import os
-import re
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from plclab.errors import Diagnostic, Location
+from plclab.lang.addresses import LOCATED_RE
 
 from ._toml import read_toml, row_reporter, row_spans
 from .durations import parse_ns
 from .errors import did_you_mean, raise_all
 
-ADDRESS_RE = re.compile(r"%([IQM])([XBWDL]?)(\d+)(?:\.(\d+))?", re.IGNORECASE)
+ADDRESS_RE = LOCATED_RE  # the one parser of direct addresses (plclab.lang.addresses)
 ROW_KEYS = ("plc", "signal", "module", "description")
 
 
@@ -326,7 +326,7 @@ def _row_from(obj: Any, index: int, file: str | None, text: str | None,
     if len(diags) > n0:
         return None
     plc = raw["plc"].strip()
-    m = ADDRESS_RE.fullmatch(plc)
+    m = ADDRESS_RE.fullmatch(plc.upper())
     if m:
         plc = "%" + m.group(1).upper() + (m.group(2) or "X").upper() + m.group(3) + \
             ("." + m.group(4) if m.group(4) is not None else "")

@@ -33,6 +33,7 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.lang.addresses import LOCATED
 
 TIME_NAMES = ("t", "time")
 _WORDS = {"AND": "and", "OR": "or", "NOT": "not", "TRUE": "True", "FALSE": "False",
@@ -47,12 +48,12 @@ def _err(text: str, why: str) -> PlcError:
                     "'RUN and SPEED >= 1400', 'not LS1 or t > 60'")
 
 
-_ADDR = re.compile(r"%([IQM][XBWDL]?\d+(?:\.\d+)?)", re.IGNORECASE)
+_ADDR = re.compile(LOCATED, re.IGNORECASE)  # the direct addresses of plclab.lang.addresses
 
 
 def _normalise(text: str) -> str:
     """ST spellings -> Python: AND/OR/NOT/XOR/TRUE/FALSE, '=' and '<>'; %IX0.0 -> a name."""
-    text = _ADDR.sub(lambda m: "_pct_" + m.group(1).upper().replace(".", "_dot_"), text)
+    text = _ADDR.sub(lambda m: "_pct_" + m.group(0)[1:].upper().replace(".", "_dot_"), text)
     out: list[tuple[int, str]] = []
     try:
         toks = list(tokenize.generate_tokens(io.StringIO(text.replace("<>", "!=")).readline))

@@ -8,8 +8,8 @@ import tomllib
 import pytest
 
 from plclab.course.model import find_chapter
+from plclab.process.watch import WatchTable
 from plclab.project import check_sources, loads
-from plclab.scada.watch import WatchTable
 
 
 def _text(n: int) -> str:

@@ -12,7 +12,7 @@ from plclab.course.figures import draw
 from plclab.course.lab_figures import lab_run
 from plclab.course.model import find_chapter
 from plclab.errors import PlcError
-from plclab.scada.alarms import alarm_log
+from plclab.process.alarms import alarm_log
 
 
 def _spec(chapter, name):

@@ -17,7 +17,7 @@ import pytest
 
 import plclab
 from plclab.errors import PlcError
-from plclab.scada import Alarm, AlarmServer, Recipe
+from plclab.process import Alarm, AlarmServer, Recipe
 from plclab.scada.panel import Panel, make_server
 from plclab.sim import Simulation
 

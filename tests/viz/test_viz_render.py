@@ -9,8 +9,9 @@ import pytest
 
 from plclab.cli import main
 from plclab.errors import PlcError
+from plclab.viz.network_layout import NetworkLayout as _Layout
 from plclab.viz.render_listing import render_listing
-from plclab.viz.render_network import _Layout, network_pous, parse_source, render_source
+from plclab.viz.render_network import network_pous, parse_source, render_source
 
 ROOT = Path(__file__).resolve().parents[2]
 EX = ROOT / "examples"

@@ -13,8 +13,8 @@ from ..ast import expr_text
 from ..builtins import BUILTINS, ED2_NAMES, Builtin, conversion
 from ..lower import reference_to
 from ..sizeof import sizeof, sizeof_type
-from .context import Pass, close_hint
-from .symbols import ProgSym, VarSym
+from .pass_api import Pass
+from .symbols import ProgSym, VarSym, close_hint
 from .typing_rules import TYPING_RULES, Typing
 
 _INPUTISH = ("VAR_INPUT", "VAR_IN_OUT")

@@ -16,7 +16,7 @@ from __future__ import annotations
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
-from .context import Pass
+from .pass_api import Pass
 from .symbols import AccessBinding, ConfigBinding, Scope, close_hint, instance_label
 
 __all__ = ["ConfigVars"]

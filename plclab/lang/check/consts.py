@@ -9,7 +9,7 @@ from typing import Any
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
-from .context import Pass
+from .pass_api import Pass
 from .symbols import EnumSym, Scope, VarSym
 
 _CHAIN_LIMIT = 64  # named types / constants defined through each other, at most this deep

@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING, Any
 from ...errors import Diagnostic, Location
 from .. import ast as A
 from ..dialect import Dialect, profile
-from .symbols import Scope, SymbolTable, close_hint
+from .symbols import Scope, SymbolTable
 
-__all__ = ["CheckContext", "Pass", "close_hint"]
+__all__ = ["CheckContext"]
 
 if TYPE_CHECKING:  # the passes, created by checker.Checker
     from .calls import Calls
@@ -65,20 +65,3 @@ class CheckContext:
     def report(self, code: str, msg: str, loc: Location | None, severity: str) -> None:
         """A diagnostic of the symbol table (:meth:`SymbolTable.collect`)."""
         self.diags.append(Diagnostic(code, msg, loc, severity))
-
-
-class Pass:
-    """A checker pass: its context, the symbol table, and the two ways to report."""
-
-    def __init__(self, cx: CheckContext) -> None:
-        self.cx = cx
-
-    @property
-    def table(self) -> SymbolTable:
-        return self.cx.table
-
-    def err(self, code: str, msg: str, loc: Location | None) -> None:
-        self.cx.err(code, msg, loc)
-
-    def warn(self, code: str, msg: str, loc: Location | None) -> None:
-        self.cx.warn(code, msg, loc)

@@ -6,8 +6,8 @@ from __future__ import annotations
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
-from .context import Pass, close_hint
-from .symbols import EnumSym, Scope, VarSym
+from .pass_api import Pass
+from .symbols import EnumSym, Scope, VarSym, close_hint
 
 MAX_IMAGE_BYTES = 65536  # the largest process image a Plc may have (image_size)
 _ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}

@@ -16,8 +16,8 @@ from ..ast import expr_text
 from ..limits import MAX_EXTENDS_DEPTH
 from ..walk import walk
 from .calls import CallInfo
-from .context import Pass, close_hint
-from .symbols import VarSym
+from .pass_api import Pass
+from .symbols import VarSym, close_hint
 
 _PARAMS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 # the methods the runtime calls itself (CODESYS), with their BOOL inputs

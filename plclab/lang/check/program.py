@@ -9,7 +9,7 @@ from .. import datasize
 from .. import types as T
 from ..datasize import DataSizes
 from ..limits import MAX_INTERVAL_NS, MIN_INTERVAL_NS
-from .context import Pass
+from .pass_api import Pass
 
 
 class ProgramChecks(Pass):

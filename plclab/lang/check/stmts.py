@@ -11,8 +11,8 @@ from .. import ast as A
 from .. import types as T
 from ..limits import MAX_BLOCK_NESTING, MAX_EXPR_NESTING, nesting_violation, too_deep_message
 from ..walk import NodeVisitor
-from .context import Pass, close_hint
-from .symbols import EnumSym, Scope, VarSym
+from .pass_api import Pass
+from .symbols import EnumSym, Scope, VarSym, close_hint
 
 
 class Statements(Pass, NodeVisitor):

@@ -14,7 +14,7 @@ from typing import Any
 from .. import ast as A
 from .. import types as T
 from ..builtins import Builtin
-from .exprs import as_bool_literal
+from .exprs_operators import as_bool_literal
 
 __all__ = ["TYPING_RULES", "Typing"]
 

@@ -1,5 +1,5 @@
 """PLCopen XML ``<SFC>`` bodies (TC6 XML v2.01, as OpenPLC Editor and Beremiz write them) -> the
-same :class:`~plclab.lang.lower.sfc.Chart` as the textual SFC front end.
+same :class:`~plclab.lang.lower.sfc_chart.Chart` as the textual SFC front end.
 
 The graphical chart is a graph of elements joined by ``connectionPointIn/connection
 refLocalId``: ``step`` (``initialStep="true"``), ``transition`` (``priority``, a ``condition``),
@@ -33,7 +33,7 @@ from typing import Any
 
 from ...errors import Diagnostic, Location
 from .. import ast as A
-from ..lower.sfc import Action, Assoc, Chart, Step, Transition
+from ..lower.sfc_chart import Action, Assoc, Chart, Step, Transition
 from ..parsing import ParseAbort
 
 _Importer = Any  # plcopen's importer: loc, err, fail, kid, kids, ident, describe, expr, ...

@@ -26,7 +26,7 @@ from __future__ import annotations
 from ...errors import Location
 from .. import ast as A
 from ..lexer import Token
-from ..lower.sfc import Action, Assoc, Chart, Step, Transition
+from ..lower.sfc_chart import Action, Assoc, Chart, Step, Transition
 from ..parsing import ParseAbort
 from .il_lines import is_il_body, parse_il_body
 

@@ -25,12 +25,11 @@ POU, and from tests as ``Main.S.X``); a declared action ``A1`` becomes ``A1 : AC
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from ...errors import Diagnostic, Location
 from .. import ast as A
 from .il import Instr, lower_il
 from .network import lower_network
+from .sfc_chart import Assoc, Chart, Step
 from .sfc_checks import check_chart
 from .types import LoweringTypes
 
@@ -40,64 +39,6 @@ QUALIFIERS = ("N", "R", "S", "P", "P1", "P0") + TIMED
 _INPUT = {"N": "N", "R": "R", "S": "S0", "L": "L", "D": "D", "P": "P", "P1": "P1",
           "P0": "P0", "SD": "SD", "DS": "DS", "SL": "SL"}
 MAX_TIME_NS = 2147483647000000  # T#24d20h31m23s647ms: the step timer's preset
-
-
-@dataclass(eq=False)
-class Assoc:
-    """``A1(L, T#2s)`` inside a step: action, qualifier (upper-case, as written) and time."""
-
-    loc: Location
-    action: str
-    text: str
-    qualifier: str = "N"
-    time: A.Expr | None = None
-
-
-@dataclass(eq=False)
-class Step:
-    loc: Location
-    name: str
-    text: str
-    initial: bool = False
-    assocs: list[Assoc] = field(default_factory=list)
-
-
-@dataclass(eq=False)
-class Transition:
-    """``TRANSITION [name] [(PRIORITY := n)] FROM s TO s`` with its condition: an expression
-    (``:= cond;``), IL lines (``: LD x ...``) or ST statements assigning the transition name."""
-
-    loc: Location
-    name: str | None
-    sources: list[tuple[str, Location]]
-    targets: list[tuple[str, Location]]
-    priority: int | None = None
-    spelling: dict[str, str] = field(default_factory=dict)  # step name -> as written
-    text: str = ""  # the name as written
-    cond: A.Expr | None = None
-    body: list[A.Stmt] | None = None
-    il: list[Instr] | None = None
-    pending: list[A.PendingBody] = field(default_factory=list)  # LD/FBD (PLCopen XML)
-
-
-@dataclass(eq=False)
-class Action:
-    """``ACTION name: ... END_ACTION`` with an ST body or IL lines."""
-
-    loc: Location
-    name: str
-    text: str
-    body: list[A.Stmt] = field(default_factory=list)
-    il: list[Instr] | None = None
-    pending: list[A.PendingBody] = field(default_factory=list)  # LD/FBD/IL (PLCopen XML)
-
-
-@dataclass(eq=False)
-class Chart:
-    loc: Location
-    steps: list[Step] = field(default_factory=list)
-    transitions: list[Transition] = field(default_factory=list)
-    actions: list[Action] = field(default_factory=list)
 
 
 def lower_sfc(pou: A.Pou, payload: list[Chart], types: LoweringTypes) -> list[Diagnostic]:

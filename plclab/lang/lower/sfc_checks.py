@@ -12,17 +12,13 @@ leave a transition that can never be enabled.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from ...errors import Diagnostic, Location
 from ...suggest import suggest
 from .. import ast as A
 from .. import types as T
 from ..limits import MAX_SFC_STEPS
+from .sfc_chart import Chart, Step
 from .types import LoweringTypes
-
-if TYPE_CHECKING:
-    from .sfc import Chart, Step
 
 MAX_SITUATIONS = 4096  # explored situations; beyond, the structural checks are skipped
 _TIMED = ("L", "D", "SD", "DS", "SL")

@@ -30,7 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import PlcError, printable
-from plclab.scada.files import read_toml
+from plclab.process.files import read_toml
 
 TRIGGERS = ("scan_start", "scan_end", "stop")
 FORMATS = ("auto", "bool", "dec", "hex", "bin", "oct", "float", "char", "time")

@@ -10,7 +10,7 @@ import pytest
 
 import plclab
 from plclab.errors import PlcError
-from plclab.scada import Recipe, archive, write_csv, write_parquet
+from plclab.process import Recipe, archive, write_csv, write_parquet
 from plclab.trace import Trace
 
 MIX = """PROGRAM Mix

@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from plclab.errors import PlcError
-from plclab.scada.files import read_toml
+from plclab.process.files import read_toml
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ import pytest
 
 import plclab
 from plclab.errors import PlcError
-from plclab.scada import Alarm, AlarmServer, alarm_log
+from plclab.process import Alarm, AlarmServer, alarm_log
 
 
 def run_steps(alarm: Alarm, steps, classes=None):
@@ -53,7 +53,7 @@ STATE_CASES = [
 @pytest.mark.parametrize("name, alarm, steps, expected, final", STATE_CASES,
                          ids=[c[0] for c in STATE_CASES])
 def test_alarm_states(name, alarm, steps, expected, final):
-    from plclab.scada.alarms import CLASSES, AlarmClass
+    from plclab.process.alarms import CLASSES, AlarmClass
 
     classes = {**CLASSES, "fire": AlarmClass("fire", True, "#ff0000")}
     log, state = run_steps(alarm, steps, classes)

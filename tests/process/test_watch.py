@@ -7,7 +7,7 @@ import pytest
 
 import plclab
 from plclab.errors import PlcError
-from plclab.scada import WatchRow, WatchTable, format_value
+from plclab.process import WatchRow, WatchTable, format_value
 
 SRC = """PROGRAM Main
 VAR a AT %IX0.0 : BOOL; q AT %QX0.0 : BOOL; n : INT; hits : INT; END_VAR
