@@ -101,7 +101,7 @@ def check(answer: dict, chk: dict) -> None:
     elif "watch" in chk:
         assert _watch_column(chk["watch"], chk["column"]) == chk["values"]
     elif "recipe" in chk:
-        from plclab.scada import Recipe
+        from plclab.process import Recipe
 
         with pytest.raises(PlcError) as e:
             Recipe.juice("Mix").validate(dict(chk["recipe"]), "lemonade")
@@ -143,8 +143,8 @@ def _exported(path: Path) -> str:
 
 
 def _watch_column(edits: list[list[str]], column: str) -> list[str]:
+    from plclab.process.watch import WatchTable
     from plclab.project import load
-    from plclab.scada.watch import WatchTable
 
     ex = find_chapter(16).folder / "examples"
     text = (ex / "commissioning.toml").read_text(encoding="utf-8")
