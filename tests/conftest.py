@@ -39,3 +39,24 @@ def pytest_collection_modifyitems(config, items):
             if rel == prefix or rel.startswith(prefix.rstrip("/") + "/"):
                 for mark in marks:
                     item.add_marker(getattr(pytest.mark, mark))
+
+
+def pytest_configure(config):
+    """The compile cache (ADR 0057) of this run and of every command it starts lives in a
+    folder of its own under the system's temporary folder, removed at the end: a test run
+    leaves nothing in the home folder or the repository. A test of the cache itself sets
+    ``PLCLAB_CACHE_DIR`` to its ``tmp_path``."""
+    import os
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix="plclab-test-cache-")
+    os.environ["PLCLAB_CACHE_DIR"] = folder
+    config._plclab_cache_dir = folder
+
+
+def pytest_unconfigure(config):
+    import shutil
+
+    folder = getattr(config, "_plclab_cache_dir", None)
+    if folder:
+        shutil.rmtree(folder, ignore_errors=True)
