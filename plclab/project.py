@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
+from .compile.cache import MemoryCache
 from .errors import Diagnostic, PlcError
 from .lang import ast as A
 from .lang.dialect import DEFAULT, choose, using
@@ -135,9 +136,22 @@ def check_parsed(files: list[A.SourceFile], diags: list[Diagnostic],
 
 
 def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>",
-                    dialect: str | None = None):
+                    dialect: str | None = None, *, cache: bool = True):
     """Parse, check and compile; raise one PlcError carrying every diagnostic on error.
-    ``dialect``: the dialect of files without a ``{dialect}`` pragma (ADR 0017)."""
+    ``dialect``: the dialect of files without a ``{dialect}`` pragma (ADR 0017).
+
+    The same texts compiled again in this process come from the memory cache (ADR 0057): a
+    copy of the first result whose lists a caller may change (``tests``), sharing the code
+    objects and the checked project, which a :class:`Plc` only reads. ``cache=False``
+    compiles afresh."""
+    from .compile import cache as compile_cache
+
+    k = None
+    if cache and sum(len(t) for t, _ in sources) <= MEMORY_CACHE_CHARS:
+        k = compile_cache.key("compiled", sources, dialect, {"filename": filename})
+        hit = COMPILED.get(k)
+        if hit is not None:
+            return _fresh_copy(hit)
     from .compile.codegen import generate
 
     project, diags = check_sources(sources, dialect)
@@ -146,7 +160,31 @@ def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>",
         raise PlcError(errors[0].code, errors[0].message, errors[0].location, diagnostics=diags)
     compiled = generate(project, filename)
     compiled.diagnostics = diags  # type: ignore[attr-defined]
+    if k is not None:
+        COMPILED.put(k, compiled)
+        return _fresh_copy(compiled)
     return compiled
+
+
+MEMORY_CACHE_CHARS = 4_000_000
+"""Sources longer than this (about 130,000 lines) are not kept in the memory cache."""
+
+
+COMPILED = MemoryCache(size=16)
+"""The memory cache of :func:`compile_sources` (key: :func:`plclab.compile.cache.key`)."""
+
+
+def _fresh_copy(c):
+    """A copy of a cached Compiled whose mutable lists and dicts are its own."""
+    import copy
+
+    out = copy.copy(c)
+    out.tests = list(c.tests)
+    out.located = list(c.located)
+    out.natives = dict(c.natives)
+    out.assert_texts = dict(c.assert_texts)
+    out.diagnostics = list(getattr(c, "diagnostics", []))  # type: ignore[attr-defined]
+    return out
 
 
 def load(*paths: str | os.PathLike, dialect: str | None = None, **options: Any):

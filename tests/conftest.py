@@ -5,6 +5,8 @@ plain modules, importable by name from their tests (``import harness``, ``import
 import sys
 from pathlib import Path
 
+import pytest
+
 _HERE = Path(__file__).resolve().parent
 for _folder in ("fuzz", "security", "viz"):
     if str(_HERE / _folder) not in sys.path:
@@ -39,6 +41,16 @@ def pytest_collection_modifyitems(config, items):
             if rel == prefix or rel.startswith(prefix.rstrip("/") + "/"):
                 for mark in marks:
                     item.add_marker(getattr(pytest.mark, mark))
+
+
+@pytest.fixture(autouse=True)
+def _fresh_compile_cache():
+    """Each test compiles its programs afresh: the memory cache of ``compile_sources`` (ADR
+    0057) must not hand a test what another test compiled under other monkeypatches."""
+    from plclab.project import COMPILED
+
+    COMPILED.clear()
+    yield
 
 
 def pytest_configure(config):

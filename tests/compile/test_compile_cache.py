@@ -246,3 +246,52 @@ def test_cached_check_gives_the_same_diagnostics_as_a_check(cache_folder):
     assert cached_check(sources) == fresh  # a miss, stored
     assert cached_check(sources) == fresh  # a hit
     assert entries(cache_folder)
+
+
+# -- compile_sources: the memory cache ------------------------------------------------------
+
+TESTED = OK + "TEST 'one'\n  ASSERT_TRUE(TRUE);\nEND_TEST\nTEST 'two'\n  ASSERT_TRUE(TRUE);\nEND_TEST\n"
+
+
+def test_compile_sources_compiles_the_same_text_once(monkeypatch):
+    import plclab.compile.codegen as codegen
+    from plclab.project import compile_sources
+    from plclab.runtime.plc import Plc
+
+    calls: list[int] = []
+    real = codegen.generate
+    monkeypatch.setattr(codegen, "generate", lambda *a, **k: calls.append(1) or real(*a, **k))
+    a = compile_sources([(OK, "p.st")])
+    b = compile_sources([(OK, "p.st")])
+    assert calls == [1]
+    assert a is not b and a.code is b.code  # the code objects are shared, the object is not
+    plc_a, plc_b = Plc(a), Plc(b)
+    plc_a.scan(3)
+    plc_b.scan(1)
+    assert (plc_a["x"], plc_b["x"]) == (3, 1)  # two PLCs of one cached program: own memory
+    compile_sources([(OK + "\n", "p.st")])  # another text
+    compile_sources([(OK, "q.st")])  # another file name
+    compile_sources([(OK, "p.st")], dialect="iec")  # another dialect
+    compile_sources([(OK, "p.st")], cache=False)  # asked not to
+    assert calls == [1] * 5
+
+
+def test_a_cached_compile_gives_each_caller_its_own_lists():
+    from plclab.project import compile_sources
+
+    first = compile_sources([(TESTED, "t.st")])
+    assert [t[0] for t in first.tests] == ["one", "two"]
+    first.tests = [t for t in first.tests if t[0] == "two"]  # what `plclab test -k` does
+    first.tests.clear()
+    again = compile_sources([(TESTED, "t.st")])
+    assert [t[0] for t in again.tests] == ["one", "two"]
+
+
+def test_compile_errors_are_not_cached_as_results():
+    from plclab.errors import PlcError
+    from plclab.project import compile_sources
+
+    for _ in range(2):
+        with pytest.raises(PlcError) as e:
+            compile_sources([(SRC, "bad.st")])
+        assert e.value.code == "PLC0100"
