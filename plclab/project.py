@@ -142,12 +142,13 @@ def compile_sources(sources: list[tuple[str, str]], filename: str = "<plclab>",
 
     The same texts compiled again in this process come from the memory cache (ADR 0057): a
     copy of the first result whose lists a caller may change (``tests``), sharing the code
-    objects and the checked project, which a :class:`Plc` only reads. ``cache=False``
-    compiles afresh."""
+    objects and the checked project, which a :class:`Plc` only reads. ``cache=False`` (or
+    ``PLCLAB_NO_CACHE=1``) compiles afresh."""
     from .compile import cache as compile_cache
 
     k = None
-    if cache and sum(len(t) for t, _ in sources) <= MEMORY_CACHE_CHARS:
+    if cache and not compile_cache.disabled() and sum(len(t) for t, _ in sources) <= \
+            MEMORY_CACHE_CHARS:
         k = compile_cache.key("compiled", sources, dialect, {"filename": filename})
         hit = COMPILED.get(k)
         if hit is not None:

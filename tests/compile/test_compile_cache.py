@@ -258,6 +258,7 @@ def test_compile_sources_compiles_the_same_text_once(monkeypatch):
     from plclab.project import compile_sources
     from plclab.runtime.plc import Plc
 
+    monkeypatch.delenv("PLCLAB_NO_CACHE", raising=False)
     calls: list[int] = []
     real = codegen.generate
     monkeypatch.setattr(codegen, "generate", lambda *a, **k: calls.append(1) or real(*a, **k))
@@ -274,10 +275,15 @@ def test_compile_sources_compiles_the_same_text_once(monkeypatch):
     compile_sources([(OK, "p.st")], dialect="iec")  # another dialect
     compile_sources([(OK, "p.st")], cache=False)  # asked not to
     assert calls == [1] * 5
+    monkeypatch.setenv("PLCLAB_NO_CACHE", "1")  # turned off
+    compile_sources([(OK, "p.st")])
+    assert calls == [1] * 6
 
 
-def test_a_cached_compile_gives_each_caller_its_own_lists():
+def test_a_cached_compile_gives_each_caller_its_own_lists(monkeypatch):
     from plclab.project import compile_sources
+
+    monkeypatch.delenv("PLCLAB_NO_CACHE", raising=False)
 
     first = compile_sources([(TESTED, "t.st")])
     assert [t[0] for t in first.tests] == ["one", "two"]
