@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import os
+import re
 from typing import Any
 
 from .compile.cache import MemoryCache
@@ -54,17 +55,22 @@ def parse_sources(sources: list[tuple[str, str]], dialect: str | None = None,
     if any(b.kind == "SFC" for f in files for p in f.pous for b in p.pending):
         files[len(STDLIB_FILES):len(STDLIB_FILES)] = parse_library((SFC_LIBRARY,))
     own = files[-len(sources):] if sources else []
-    add_annex_f(files, own)
+    add_annex_f(files, own, [text for text, _ in sources])
     keep_rtc(files, own)
     diags.extend(lower_pending(files))
     return files, diags
 
 
-def add_annex_f(files: list[A.SourceFile], own: list[A.SourceFile]) -> None:
+def add_annex_f(files: list[A.SourceFile], own: list[A.SourceFile],
+                texts: list[str] | None = None) -> None:
     """Add the Annex F blocks (ADR 0029) when the project's own files declare one of them or
-    one is in the ``matiec`` dialect; there PID and RAMP are the Annex's, else plclab's."""
+    one is in the ``matiec`` dialect; there PID and RAMP are the Annex's, else plclab's.
+    ``texts``: the files' source texts; a type name is a word of them, so when none of them
+    holds one of the names, the trees are not walked (a walk of a 50,000-line program: 0.1 s)."""
     matiec = any(f.dialect == "matiec" for f in own)
     wanted = ANNEX_F_BLOCKS if matiec else ANNEX_F_BLOCKS - ANNEX_F_SHARED
+    if not matiec and texts is not None and not any(_ANNEX_F_WORD.search(t) for t in texts):
+        return
     used = {n.name for f in own for n in walk(f) if isinstance(n, A.NamedTypeRef)}
     if not matiec and not used & wanted:
         return
@@ -73,6 +79,10 @@ def add_annex_f(files: list[A.SourceFile], own: list[A.SourceFile]) -> None:
     for f in files[:len(STDLIB_FILES)]:  # the Annex's PID and RAMP replace plclab's
         f.pous = [p for p in f.pous if p.name not in wanted]
     files.insert(len(STDLIB_FILES), annex)
+
+
+_ANNEX_F_WORD = re.compile(r"\b(?:" + "|".join(sorted(ANNEX_F_BLOCKS - ANNEX_F_SHARED)) + r")\b",
+                           re.IGNORECASE)
 
 
 RTC_DIALECTS = frozenset({"iec", "matiec"})
