@@ -22,12 +22,11 @@ Two stores share the keys:
   Python. Entries are written to a temporary file in the same folder and renamed into place
   (:func:`os.replace`, atomic), so concurrent writers and readers never see half an entry.
 
-Importing this module imports only the standard library (hashlib, json, os).
+Importing this module imports only the standard library (json, os, CPython's SHA-256).
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import sys
@@ -45,6 +44,15 @@ FORMAT = 1
 MAX_ENTRY_BYTES = 64 * 1024 * 1024
 """A disk entry larger than this is not read (a 50,000-line program's generated Python is
 about 6 MB)."""
+
+try:  # CPython's own SHA-256: the same digests as hashlib's, without loading OpenSSL (5 ms of a
+    from _sha2 import sha256 as _sha256  # cache hit's start-up); 3.12+ names it _sha2
+except ImportError:  # pragma: no cover - depends on the Python version
+    try:
+        from _sha256 import sha256 as _sha256  # 3.11
+    except ImportError:
+        from hashlib import sha256 as _sha256
+
 
 _PACKAGE = Path(__file__).resolve().parent.parent
 _COMPILER_PARTS = ("lang", "compile", "runtime")
@@ -78,7 +86,7 @@ def compiler_fingerprint() -> str:
     global _fingerprint
     if _fingerprint is None:
         version = sys.modules["plclab"].__version__  # the package is imported before this module
-        h = hashlib.sha256(f"plclab {version} format {FORMAT}".encode())
+        h = _sha256(f"plclab {version} format {FORMAT}".encode())
         for part in _COMPILER_PARTS:
             for root, dirs, files in os.walk(_PACKAGE / part):
                 dirs[:] = sorted(d for d in dirs if d != "__pycache__")
@@ -97,7 +105,7 @@ def key(kind: str, sources: Iterable[tuple[str, str]], dialect: str | None = Non
         options: dict[str, Any] | None = None, *, version: str | None = None) -> str:
     """The key of ``kind`` made of (text, filename) ``sources`` in ``dialect`` with ``options``
     (JSON-able values); ``version`` replaces the compiler's fingerprint (for tests)."""
-    h = hashlib.sha256()
+    h = _sha256()
     head = [FORMAT, kind, version if version is not None else compiler_fingerprint(),
             dialect, sorted((options or {}).items())]
     h.update(json.dumps(head, sort_keys=True, default=repr).encode())
@@ -161,7 +169,7 @@ def load_entry(k: str, folder: Path | None = None) -> Any:
         payload = entry["payload"]
         ok = (isinstance(entry, dict) and entry.get("format") == FORMAT
               and entry.get("key") == k and isinstance(payload, str)
-              and hashlib.sha256(payload.encode("utf-8", "surrogatepass")).hexdigest()
+              and _sha256(payload.encode("utf-8", "surrogatepass")).hexdigest()
               == entry.get("sha256"))
         value = json.loads(payload) if ok else None
     except (ValueError, TypeError, KeyError, UnicodeError, RecursionError):
@@ -183,7 +191,7 @@ def store_entry(k: str, value: Any, folder: Path | None = None) -> bool:
         return False
     path = _entry_path(k, folder)
     payload = json.dumps(value, ensure_ascii=False, separators=(",", ":"))
-    data = json.dumps({"format": FORMAT, "key": k, "sha256": hashlib.sha256(
+    data = json.dumps({"format": FORMAT, "key": k, "sha256": _sha256(
         payload.encode("utf-8", "surrogatepass")).hexdigest(), "payload": payload},
         ensure_ascii=True).encode("ascii")
     if len(data) > MAX_ENTRY_BYTES:

@@ -48,6 +48,13 @@ def test_key_changes_with_everything_that_changes_the_result():
     assert len({base, *others}) == len(others) + 1
 
 
+def test_the_cache_hashes_as_hashlib_does():
+    import hashlib
+
+    for data in (b"", b"abc", "Kühler ∑".encode() * 1000):
+        assert cache._sha256(data).hexdigest() == hashlib.sha256(data).hexdigest()
+
+
 def test_key_does_not_confuse_where_one_file_ends():
     one = cache.key("check", [("ab", "x.st"), ("c", "y.st")], version="1")
     two = cache.key("check", [("a", "x.st"), ("bc", "y.st")], version="1")
