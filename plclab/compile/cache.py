@@ -4,8 +4,9 @@
 A key is the SHA-256 of everything that changes the result: the kind of result (``check``,
 ``python``...), plclab's version and a fingerprint of its compiler's own files (size and
 modification time of every ``.py`` and ``.st`` file of :mod:`plclab.lang`,
-:mod:`plclab.compile` and the block library, so a developer's edit of the compiler is a new
-key even when the version is not), the dialect, the options, and each file's name and text.
+:mod:`plclab.compile`, the block library and the top-level modules of :mod:`plclab` such as
+``errors.py``, ``suggest.py`` and ``problems.toml``, so a developer's edit of the compiler is a
+new key even when the version is not), the dialect, the options, and each file's name and text.
 
 Two stores share the keys:
 
@@ -82,11 +83,16 @@ _fingerprint: str | None = None
 
 def compiler_fingerprint() -> str:
     """plclab's version and the size and modification time of each file of the compiler (the
-    ``.py`` files of lang and compile, the library's ``.st`` files); computed once a process."""
+    ``.py`` files of lang and compile, the library's ``.st`` files, plclab's top-level modules
+    and catalogue); computed once a process."""
     global _fingerprint
     if _fingerprint is None:
         version = sys.modules["plclab"].__version__  # the package is imported before this module
         h = _sha256(f"plclab {version} format {FORMAT}".encode())
+        for entry in sorted(os.scandir(_PACKAGE), key=lambda e: e.name):
+            if entry.name.endswith((".py", ".toml")) and entry.is_file():  # errors, suggest,
+                st = entry.stat()  # durations, project... and the problem catalogue
+                h.update(f"/{entry.name} {st.st_size} {st.st_mtime_ns}\n".encode())
         for part in _COMPILER_PARTS:
             for root, dirs, files in os.walk(_PACKAGE / part):
                 dirs[:] = sorted(d for d in dirs if d != "__pycache__")

@@ -81,7 +81,16 @@ def test_key_follows_plclabs_version_and_its_compiler_files(monkeypatch, tmp_pat
     one = cache.compiler_fingerprint()
     (fake / "lang" / "lexer.py").write_text("x = 22\n")
     monkeypatch.setattr(cache, "_fingerprint", None)
-    assert cache.compiler_fingerprint() != one
+    two = cache.compiler_fingerprint()
+    assert two != one
+    (fake / "suggest.py").write_text("hint = 1\n")  # a top-level module the checker uses
+    monkeypatch.setattr(cache, "_fingerprint", None)
+    three = cache.compiler_fingerprint()
+    assert three != two
+    (fake / "runtime" / "plc.py").write_text("x = 1\n")  # the runtime's Python: no change
+    (fake / "lang" / "notes.txt").write_text("x")
+    monkeypatch.setattr(cache, "_fingerprint", None)
+    assert cache.compiler_fingerprint() == three
 
 
 def test_cache_folder_follows_the_environment(monkeypatch, tmp_path):
