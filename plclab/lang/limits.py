@@ -67,12 +67,6 @@ def compiler_guard(recursion_limit: int = RECURSION_LIMIT):
         yield
     finally:
         if collecting:
-            # what the block made goes to the oldest generation in O(1) (freeze + unfreeze): the
-            # next young collection would otherwise traverse every one of its objects at once
-            # (1.3 s of a 50,000-line check, measured); a full collection finds them in its time
-            if not gc.get_freeze_count():
-                gc.freeze()
-                gc.unfreeze()
             gc.enable()
         if old < recursion_limit:
             sys.setrecursionlimit(old)
