@@ -46,14 +46,22 @@ MAX_ENTRY_BYTES = 64 * 1024 * 1024
 """A disk entry larger than this is not read (a 50,000-line program's generated Python is
 about 6 MB)."""
 
-try:  # CPython's own SHA-256: the same digests as hashlib's, without loading OpenSSL (5 ms of a
-    from _sha2 import sha256 as _sha256  # cache hit's start-up); 3.12+ names it _sha2
-except ImportError:  # pragma: no cover - depends on the Python version
-    try:
-        from _sha256 import sha256 as _sha256  # 3.11
-    except ImportError:
-        from hashlib import sha256 as _sha256
+def _builtin_sha256() -> Any:
+    """CPython's own SHA-256 (``_sha2`` from 3.12, ``_sha256`` before): the same digests as
+    hashlib's without loading OpenSSL (5 ms of a cache hit's start-up); hashlib's elsewhere."""
+    import importlib
 
+    for name in ("_sha2", "_sha256"):
+        try:
+            return importlib.import_module(name).sha256
+        except (ImportError, AttributeError):
+            continue
+    from hashlib import sha256
+
+    return sha256
+
+
+_sha256 = _builtin_sha256()
 
 _PACKAGE = Path(__file__).resolve().parent.parent
 _COMPILER_PARTS = ("lang", "compile", "runtime")
