@@ -40,10 +40,13 @@ def loads(text: str, filename: str = "<string>.st", **options):
     return _loads(text, filename, **options)
 
 
-def compile_sources(sources, filename: str = "<plclab>", dialect: str | None = None):
+def compile_sources(sources, filename: str = "<plclab>", dialect: str | None = None, *,
+                    cache: bool = True):
+    """Parse, check and compile (text, filename) pairs; ``cache=False``: not from the memory
+    cache (ADR 0057; see :func:`plclab.project.compile_sources`)."""
     from .project import compile_sources as _c
 
-    return _c(sources, filename, dialect)
+    return _c(sources, filename, dialect, cache=cache)
 
 
 def run_tests(*paths):

@@ -51,8 +51,18 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
 @arg("--explain-dialect", action="store_true", help="list the dialect rules that fired: "
      "each leniency with its warning code and location, and what a strict iec compiler says "
      "there (what is not portable)")
+@arg("--no-cache", action="store_true", help="check again even when these files were checked "
+     "before (the compile cache, ADR 0057; PLCLAB_NO_CACHE=1 turns it off everywhere)")
 def cmd_check(ns: argparse.Namespace) -> int:
-    from .project import check_sources, read_sources
+    from .lang.sources import read_sources
+
+    if not (ns.explain_dialect or ns.lab or ns.verbose):
+        # the plain check: its diagnostics come from the compile cache when these texts were
+        # checked before; the front end is imported only on a miss
+        diags = cached_check(read_sources(ns.files), ns.dialect, lint=not ns.no_lint,
+                             use_cache=not ns.no_cache)
+        return _report_check(ns, diags)
+    from .project import check_sources
 
     if ns.explain_dialect:
         from .lang.explain_dialect import report
@@ -75,11 +85,49 @@ def cmd_check(ns: argparse.Namespace) -> int:
                 name, why = "?", e.message
             print(f"{printable(filename)}: dialect {name} ({why})")
     _, diags = check_sources(sources, ns.dialect, lint=not ns.no_lint, io_table=io_table)
+    return _report_check(ns, diags)
+
+
+def _report_check(ns: argparse.Namespace, diags) -> int:
     if ns.no_warnings:
         diags = [d for d in diags if d.severity == "error"]
     errors, warnings = _print_diags(diags)
     print(f"{errors} error(s), {warnings} warning(s)")
     return 1 if errors else 0
+
+
+def cached_check(sources: list[tuple[str, str]], dialect: str | None = None, *,
+                 lint: bool = True, use_cache: bool = True) -> list:
+    """The diagnostics of :func:`plclab.project.check_sources` for (text, filename) sources,
+    from the disk cache when the same texts were checked before with the same plclab, dialect
+    and options (ADR 0057); a miss checks and stores them. ``use_cache=False``: check only."""
+    from .compile import cache
+    from .errors import Diagnostic, Location
+
+    k = None
+    if use_cache and not cache.disabled():
+        k = cache.key("check", sources, dialect, {"lint": lint})
+        stored = cache.load_entry(k)
+        if isinstance(stored, list) and all(_stored_diagnostic(x) for x in stored):
+            return [Diagnostic(code, message, None if file is None else
+                               Location(file, line, col), severity)
+                    for code, message, severity, file, line, col in stored]
+    from .project import check_sources
+
+    _, diags = check_sources(sources, dialect, lint=lint)
+    if k is not None:
+        cache.store_entry(k, [[d.code, d.message, d.severity] + (
+            [d.location.file, d.location.line, d.location.col] if d.location is not None
+            else [None, 0, 0]) for d in diags])
+    return diags
+
+
+def _stored_diagnostic(x: object) -> bool:
+    """``x`` is a diagnostic as :func:`cached_check` stores it (anything else: check again)."""
+    return (isinstance(x, list) and len(x) == 6 and isinstance(x[0], str)
+            and isinstance(x[1], str) and x[2] in ("error", "warning")
+            and (x[3] is None or isinstance(x[3], str))
+            and all(type(v) is int for v in x[4:]))
 
 
 @command("test")

@@ -5,6 +5,8 @@ plain modules, importable by name from their tests (``import harness``, ``import
 import sys
 from pathlib import Path
 
+import pytest
+
 _HERE = Path(__file__).resolve().parent
 for _folder in ("fuzz", "security", "viz"):
     if str(_HERE / _folder) not in sys.path:
@@ -39,3 +41,34 @@ def pytest_collection_modifyitems(config, items):
             if rel == prefix or rel.startswith(prefix.rstrip("/") + "/"):
                 for mark in marks:
                     item.add_marker(getattr(pytest.mark, mark))
+
+
+@pytest.fixture(autouse=True)
+def _fresh_compile_cache():
+    """Each test compiles its programs afresh: the memory cache of ``compile_sources`` (ADR
+    0057) must not hand a test what another test compiled under other monkeypatches."""
+    from plclab.project import COMPILED
+
+    COMPILED.clear()
+    yield
+
+
+def pytest_configure(config):
+    """The compile cache (ADR 0057) of this run and of every command it starts lives in a
+    folder of its own under the system's temporary folder, removed at the end: a test run
+    leaves nothing in the home folder or the repository. A test of the cache itself sets
+    ``PLCLAB_CACHE_DIR`` to its ``tmp_path``."""
+    import os
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix="plclab-test-cache-")
+    os.environ["PLCLAB_CACHE_DIR"] = folder
+    config._plclab_cache_dir = folder
+
+
+def pytest_unconfigure(config):
+    import shutil
+
+    folder = getattr(config, "_plclab_cache_dir", None)
+    if folder:
+        shutil.rmtree(folder, ignore_errors=True)

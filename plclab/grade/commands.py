@@ -375,7 +375,8 @@ def lab_check(ns: argparse.Namespace) -> int:
     out = fresh_output_dir(Path(ns.out)) if ns.out and not ns.no_media else None
     work = Path(tempfile.mkdtemp(prefix="plclab-check-"))
     try:
-        grader = Grader(lab, work, jobs=1, media=out is not None, scenarios=names)
+        grader = Grader(lab, work, jobs=1, media=out is not None, scenarios=names,
+                        direct=True)  # one child: no forkserver (ADR 0057)
         res = grader.grade_one(sources)
         if out is not None:
             for f in (work / "check").iterdir():

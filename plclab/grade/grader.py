@@ -45,6 +45,7 @@ from .safety import clean_text, output_dirname
 from .spawn import (  # noqa: F401 - remove_stale_workdirs: also the grader's name for it
     FORKSERVER_LOST,
     child_context,
+    direct_context,
     read_child_log,
     remove_stale_workdirs,
     start_child,
@@ -254,6 +255,9 @@ class Grader:
         ``progress(done, total, student, outcome)`` after each submission.
     scenarios : names, optional
         Only these scenarios (``plclab lab check``: the visible ones); default: all.
+    direct : bool, optional
+        :meth:`grade_one` starts its child directly (``fork``) instead of through a
+        forkserver (``plclab lab check``: the student's own process; ADR 0057).
     executor : str, optional
         None: a local process pool of ``jobs`` children; ``tcp://HOST:PORT``: the Dask
         scheduler whose workers run the children (:mod:`plclab.grade.cluster`).
@@ -263,8 +267,10 @@ class Grader:
                  timeout: float | None = None, memory_mb: int | None = None,
                  force: bool = False, media: bool = True,
                  progress: Callable[[int, int, str, Outcome], None] | None = None,
-                 scenarios: list[str] | None = None, executor: str | None = None) -> None:
+                 scenarios: list[str] | None = None, executor: str | None = None,
+                 direct: bool = False) -> None:
         self.lab = lab
+        self.direct = direct  # grade_one in a direct child, no forkserver (spawn.direct_context)
         self.executor = executor
         self.out = Path(out)
         self.jobs = max(1, int(jobs))
@@ -347,7 +353,7 @@ class Grader:
         return res
 
     def _run(self, todo: deque[Submission], total: int, done_n: int) -> list[Outcome]:
-        ctx = child_context()
+        ctx = (direct_context() if self.direct and len(todo) == 1 else None) or child_context()
         running: list[_Running] = []
         closing: list[_Running] = []  # finished, being joined and written out
         finished: list[Outcome] = []

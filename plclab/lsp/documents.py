@@ -3,19 +3,21 @@
 :func:`analyze` runs :func:`plclab.project.check_sources` (front end, lowering, checker,
 beginner warnings) on one document and keeps what the editor features need: the diagnostics,
 the parsed files and the :class:`~plclab.lsp.index.Index`. :class:`Workspace` keeps one
-analysis per text hash (an unchanged document, or an edit undone, is never checked again) and,
-per document, the last analysis without syntax errors: while a student types a half line,
-hover and completion still know the declarations.
+analysis per text hash (an unchanged document, or an edit undone, is never checked again; the
+LRU is the compile cache's :class:`~plclab.compile.cache.MemoryCache`, and the block library
+each analysis needs is parsed once a process, ADR 0057) and, per document, the last analysis
+without syntax errors: while a student types a half line, hover and completion still know the
+declarations.
 """
 
 from __future__ import annotations
 
 import hashlib
 import time
-from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..compile.cache import MemoryCache
 from ..errors import Diagnostic, Location, PlcError
 from .index import Index, build
 
@@ -107,10 +109,14 @@ class Workspace:
 
     size: int = 64
     dialect: str | None = None
-    cache: OrderedDict[str, Analysis] = field(default_factory=OrderedDict)
+    cache: MemoryCache = field(default=None)  # type: ignore[assignment] # made in __post_init__
     last_good: dict[str, Analysis] = field(default_factory=dict)  # uri -> analysis
     current: dict[str, Analysis] = field(default_factory=dict)  # uri -> analysis
     checks: int = 0  # how many times the pipeline ran (the cache's hits do not count)
+
+    def __post_init__(self) -> None:
+        if self.cache is None:
+            self.cache = MemoryCache(self.size)  # the compile cache's LRU (ADR 0057)
 
     def update(self, uri: str, text: str, filename: str) -> Analysis:
         """The analysis of *text*: from the cache when this text was checked before."""
@@ -119,11 +125,7 @@ class Workspace:
         if a is None:
             a = analyze(text, filename, self.dialect)
             self.checks += 1
-            self.cache[key] = a
-            while len(self.cache) > self.size:
-                self.cache.popitem(last=False)
-        else:
-            self.cache.move_to_end(key)
+            self.cache.put(key, a)
         self.current[uri] = a
         if a.syntax_ok:
             self.last_good[uri] = a

@@ -382,8 +382,10 @@ def full_cycles(trace, min_cycles=1):
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="prctl is Linux only")
-def test_a_child_runs_confined(tmp_path, monkeypatch):
-    """An instructor check (which runs in the child) reports the child's surroundings."""
+@pytest.mark.parametrize("direct", [False, True], ids=["forkserver", "direct"])
+def test_a_child_runs_confined(tmp_path, monkeypatch, direct):
+    """An instructor check (which runs in the child) reports the child's surroundings: the
+    same for a forkserver's child (``grade``) and a direct one (``lab check``, ADR 0057)."""
     lab_dir = create_lab("probe-lab", tmp_path)
     with open(lab_dir / "checks.py", "a", encoding="utf-8") as fh:
         fh.write(PROBE)
@@ -393,7 +395,11 @@ def test_a_child_runs_confined(tmp_path, monkeypatch):
     shutil.copy(lab_dir / "solution" / "solution.st", subs / "ann.st")
     monkeypatch.setenv("INSTRUCTOR_TOKEN", "s3cret")
     out = tmp_path / "out"
-    [oc] = Grader(lab, out, jobs=1, timeout=60, media=False).grade_folder(subs)
+    if direct:
+        sources = [((subs / "ann.st").read_text(encoding="utf-8"), "ann.st")]
+        oc = Grader(lab, out, jobs=1, timeout=60, media=False, direct=True).grade_one(sources)
+    else:
+        [oc] = Grader(lab, out, jobs=1, timeout=60, media=False).grade_folder(subs)
     msg = next(t.message for t in oc.result.tests if "PROBE" in t.message)
     rep = json.loads(msg.split("PROBE", 1)[1])
     assert "INSTRUCTOR_TOKEN" not in rep["env"]
@@ -434,16 +440,19 @@ def _group(pgid: int) -> list[tuple[int, str]]:
 
 
 @pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
-def test_no_grading_process_outlives_a_killed_grader(tmp_path):
+@pytest.mark.parametrize("command", ["grade", "lab check"])
+def test_no_grading_process_outlives_a_killed_grader(tmp_path, command):
+    """Neither a forkserver's child (``grade``) nor a direct one (``lab check``, ADR 0057)."""
     subs = tmp_path / "subs"
     subs.mkdir()
     (subs / "slow.st").write_text(SLOW, encoding="utf-8")
     (tmp_path / "tmp").mkdir()  # a killed grader cannot remove its child's folder: keep it here
     env = dict(os.environ, TMPDIR=str(tmp_path / "tmp"), PYTHONPATH=os.pathsep.join(
         [str(Path(__file__).resolve().parents[2])] + sys.path))
-    proc = subprocess.Popen([sys.executable, "-m", "plclab", "grade", "motor-start-stop",
-                             str(subs), "--out", str(tmp_path / "out"), "--jobs", "1",
-                             "--timeout", "300s", "--no-media", "-q"], env=env,
+    args = (["grade", "motor-start-stop", str(subs), "--out", str(tmp_path / "out"),
+             "--jobs", "1", "--timeout", "300s", "--no-media", "-q"] if command == "grade"
+            else ["lab", "check", "motor-start-stop", str(subs / "slow.st")])
+    proc = subprocess.Popen([sys.executable, "-m", "plclab", *args], env=env,
                             start_new_session=True, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
     try:

@@ -39,3 +39,19 @@ def test_a_project_without_them_compiles_no_annex_block() -> None:
     blocks = library_blocks("PROGRAM Main VAR t : TON; END_VAR t(IN := TRUE); END_PROGRAM")
     assert not blocks & {"INTEGRAL", "DERIVATIVE", "HYSTERESIS"}
     assert {"PID", "RAMP"} <= blocks
+
+
+def test_annex_f_blocks_are_found_in_any_case_and_only_when_named():
+    """The text pre-filter of add_annex_f (ADR 0057) must not miss a block written in lower
+    case, nor add the Annex when its names appear only inside longer identifiers."""
+    from plclab.project import parse_sources
+
+    def annex_in(text: str) -> bool:
+        files, _ = parse_sources([(text, "a.st")])
+        return any(f.file.endswith("annexf.st") for f in files)
+
+    use = "PROGRAM P VAR h : {}; END_VAR END_PROGRAM"
+    assert annex_in(use.format("hysteresis"))
+    assert annex_in(use.format("Integral"))
+    assert not annex_in("PROGRAM P VAR myintegral : INT; END_VAR END_PROGRAM")
+    assert not annex_in("PROGRAM P VAR x : INT; END_VAR x := 1; END_PROGRAM")

@@ -186,10 +186,17 @@ def violations(run: Run, box: Sandbox, reads: list[Path], writes: list[Path]) ->
                     "pty.spawn") or ev.startswith("os.exec"):
             if not _multiprocessing_start(args) and args[1] not in MATPLOTLIB_FC_LIST:
                 bad.append(f"started a process: {ev} {args}")
-        elif ev == "os.fork" and not _is_forkserver(run, e["pid"]):
-            bad.append("os.fork in a process that is not plclab's multiprocessing forkserver")
+        elif ev == "os.fork" and not _is_forkserver(run, e["pid"]) and not _is_lab_check(
+                run, e["pid"]):
+            bad.append("os.fork in a process that is not plclab's multiprocessing forkserver "
+                       "or a `plclab lab check` (its direct grading child, ADR 0057)")
         elif ev.startswith(("socket.", "ctypes.", "webbrowser", "urllib")):
             local = any(str(box.tmpdir) in str(a) for a in args)  # the forkserver's socket
+            # the sandbox's own prctl (PR_SET_PDEATHSIG, PR_SET_NAME) in a forked grading
+            # child: audited only since lab check forks it directly (a forkserver's children
+            # run with the minimal environment, without this audit's log)
+            local = local or (ev == "ctypes.dlsym" and args[1:] == ["prctl"]
+                              and _is_forked_child(run, e["pid"]))
             if not local and args != [None]:  # ctypes.dlopen(None): a library's own symbols
                 bad.append(f"{ev} {args}")
     for e in run.events:
@@ -213,6 +220,18 @@ def _path_arg(a: str) -> str:
 def _multiprocessing_start(args: list) -> bool:
     text = " ".join(str(a) for a in args)
     return sys.executable in text and "multiprocessing" in text
+
+
+def _is_lab_check(run: Run, pid: int) -> bool:
+    """The process ``pid`` is a ``plclab lab check`` command (it forks its grading child)."""
+    return any(e["ev"] == "start" and e["pid"] == pid
+               and " lab check " in " ".join(e["args"][0]) + " " for e in run.events)
+
+
+def _is_forked_child(run: Run, pid: int) -> bool:
+    """``pid`` logged events but never started an interpreter: a child forked by an audited
+    process (the grading child of ``lab check``)."""
+    return not any(e["ev"] == "start" and e["pid"] == pid for e in run.events)
 
 
 def _is_forkserver(run: Run, pid: int) -> bool:

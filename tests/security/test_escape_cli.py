@@ -66,6 +66,25 @@ def test_the_audit_sees_an_escape(box):
     assert any("imported" in b for b in bad) and any("hidden.txt" in b for b in bad)
 
 
+def test_the_audit_allows_a_fork_only_to_lab_check_and_prctl_only_to_its_child(box):
+    """ADR 0057's direct grading child: ``lab check`` may fork, and the forked child may look
+    up prctl; any other command's fork, or prctl in a started interpreter, is reported."""
+    def run_of(argv: list[str], *events: tuple[int, str, list]) -> audit.Run:
+        start = {"ev": "start", "pid": 1, "args": [["python", "-c", "import plclab.cli", *argv], str(box.cwd)]}
+        return audit.Run(0, "", "", [start] + [{"ev": ev, "pid": pid, "args": args}
+                                               for pid, ev, args in events], box.cwd)
+
+    fork, prctl = (1, "os.fork", []), (2, "ctypes.dlsym", ["<CDLL 'None'>", "prctl"])
+    assert audit.violations(run_of(["lab", "check", "m", "f.st"], fork, prctl), box, [], []) == []
+    bad = audit.violations(run_of(["check", "f.st"], fork), box, [], [])
+    assert any("os.fork" in b for b in bad)
+    bad = audit.violations(run_of(["lab", "check", "m", "f.st"], (1, *prctl[1:])), box, [], [])
+    assert any("prctl" in b for b in bad)  # in the command itself: not the sandbox's child
+    bad = audit.violations(run_of(["lab", "check", "m", "f.st"],
+                                  (2, "ctypes.dlsym", ["<CDLL 'None'>", "system"])), box, [], [])
+    assert any("system" in b for b in bad)
+
+
 @pytest.mark.parametrize("group", ["st", "il-ld", "xml"])
 def test_check_every_hostile_file(box, group):
     cases = {"st": payloads.st_cases(), "il-ld": payloads.il_cases() + payloads.ld_cases(),

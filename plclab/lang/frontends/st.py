@@ -1244,14 +1244,34 @@ def parse_st_collect(text: str, file: str = "<input>",
 
 
 def parse_library(names: tuple[str, ...] = STDLIB_FILES) -> list[A.SourceFile]:
-    """plclab's block library, freshly parsed (a project's checker annotates its own copy);
-    ``names``: which library files (default: those every project gets)."""
-    files = []
-    for name in names:
-        f, d = parse(stdlib_text(name), stdlib_filename(name), library=True)
-        assert not d, d
-        files.append(f)
-    return files
+    """plclab's block library, a fresh copy (a project's checker annotates its own copy);
+    ``names``: which library files (default: those every project gets).
+
+    Parsed once a process and dialect; each call unpickles a copy of that first parse (3 times
+    faster than parsing, and 10 times faster than ``copy.deepcopy``). The pickle never leaves
+    the process and holds only trees parsed from plclab's own files (ADR 0057)."""
+    import pickle
+
+    blob = _library_blobs.get((names, _CURRENT_DIALECT()))
+    if blob is None:
+        files = []
+        for name in names:
+            f, d = parse(stdlib_text(name), stdlib_filename(name), library=True)
+            assert not d, d
+            files.append(f)
+        _library_blobs[(names, _CURRENT_DIALECT())] = pickle.dumps(
+            files, protocol=pickle.HIGHEST_PROTOCOL)
+        return files
+    with compiler_guard():
+        return pickle.loads(blob)
+
+
+_library_blobs: dict[tuple[tuple[str, ...], str], bytes] = {}
+"""The library files parsed, pickled: (names, dialect) -> the pickle (see parse_library)."""
+
+
+def _CURRENT_DIALECT() -> str:  # noqa: N802 - reads like the constant it is for one parse
+    return current_dialect().name
 
 
 @cache
