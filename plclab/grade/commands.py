@@ -384,8 +384,10 @@ def lab_check(ns: argparse.Namespace) -> int:
     finally:
         shutil.rmtree(work, ignore_errors=True)
     res = res.result
-    text = render_feedback(res, instructor=ns.hidden, hint_level=ns.hint,
-                           fixes={c.name: c.hint_fix for c in lab.criteria if c.hint_fix})
+    from plclab.i18n_labs import localize_result
+
+    shown, fixes = localize_result(res, lab)
+    text = render_feedback(shown, instructor=ns.hidden, hint_level=ns.hint, fixes=fixes)
     if out is not None:
         write_atomic(out / FEEDBACK_MARK, text)
     print(text)
@@ -430,8 +432,13 @@ def lab_check(ns: argparse.Namespace) -> int:
                   f"criterion '{first.criterion}', failed {when})")
     elif any(not t.passed for t in res.tests) and not ns.no_media and not getattr(ns, "png_done",
                                                                                   False):
-        print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
-    print(f"score: {res.score:g}/{res.max_score:g}")
+        from plclab.i18n import tr
+
+        print(tr("timing diagrams of the failures: add --out DIR (or --png F for one scenario)"))
+    from plclab.i18n import decimal, tr
+
+    print(tr("score: {score}/{max_score}", score=decimal(f"{res.score:g}"),
+             max_score=decimal(f"{res.max_score:g}")))
     return 0
 
 
@@ -527,8 +534,11 @@ def lint_lines(lab, sources: list[tuple[str, str]]) -> list[str]:
     from plclab.project import check_sources
 
     _, diags = check_sources(sources, lab.dialect, lint=True, io_table=lab.io)
-    found = [str(d) for d in diags if d.code.startswith("PLC021")]
-    return [f"{len(found)} warning(s) about your program:", *found, ""] if found else []
+    from plclab.i18n import tr
+
+    found = [d.render() for d in diags if d.code.startswith("PLC021")]
+    return ([tr("{n} warning(s) about your program:", n=len(found)), *found, ""] if found
+            else [])
 
 
 FEEDBACK_MARK = "feedback.md"

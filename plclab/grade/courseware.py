@@ -143,6 +143,15 @@ def copy_student_lab(src: Path, dest: Path) -> Path:
             (dest / f.name).write_text(student_lab_toml(text), encoding="utf-8")
         elif f.name in STUDENT_FILES or f.name.startswith("starter."):
             shutil.copyfile(f, dest / f.name)
+    for f in sorted(src.glob("lab.*.toml")):  # a language's texts: the student part (ADR 0063)
+        import tomllib
+
+        from plclab.i18n_labs import student_texts
+
+        data = student_lab_data(tomllib.loads((src / "lab.toml").read_text(encoding="utf-8-sig")))
+        (dest / f.name).write_text(student_texts(
+            f.read_text(encoding="utf-8-sig"), {c.get("name") for c in data["criterion"]},
+            {sc.get("name") for sc in data["scenario"]}), encoding="utf-8")
     return dest
 
 
