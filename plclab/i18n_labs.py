@@ -20,7 +20,6 @@ the language's before :func:`plclab.grade.feedback.render_feedback` writes it.
 from __future__ import annotations
 
 import copy
-import json
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -120,21 +119,3 @@ def localize_result(result: Any, lab: Any, lang: str | None = None) -> tuple[Any
     fixes = {criterion_text(texts, n, "name", n): criterion_text(texts, n, "hint_fix", f)
              for n, f in fixes.items()}
     return out, fixes
-
-
-def student_texts(text: str, criteria: set[str], scenarios: set[str]) -> str:
-    """The student copy of a ``lab.<lang>.toml`` text: only the criteria and scenarios its
-    student ``lab.toml`` keeps (a hidden criterion's name and hint stay with the instructor)."""
-    data = tomllib.loads(text)
-    out = ["# the student copy: the texts of the criteria and scenarios shown to students"]
-    for key, value in data.items():
-        if isinstance(value, str):
-            out.append(f"{key} = {json.dumps(value, ensure_ascii=False)}")
-    for table, keep in (("criteria", criteria), ("scenarios", scenarios)):
-        for name, entry in data.get(table, {}).items():
-            if name not in keep or not isinstance(entry, dict):
-                continue
-            out += ["", f"[{table}.{json.dumps(name, ensure_ascii=False)}]"]
-            out += [f"{k} = {json.dumps(v, ensure_ascii=False)}" for k, v in entry.items()
-                    if isinstance(v, str)]
-    return "\n".join(out) + "\n"

@@ -115,3 +115,22 @@ def test_every_lab_text_file_parses_and_keeps_placeholders_out(lang):
             for name, entry in data.get("criteria", {}).items():
                 assert set(entry) <= {"name", "message", "hint", "hint_fix", "description"}, \
                     f"{path}: [criteria.{name!r}] has unknown keys"
+
+
+def test_the_student_copy_keeps_only_the_texts_of_what_students_see(tmp_path):
+    from plclab.grade.courseware import copy_student_lab
+
+    dropped = 0
+    for lab in LABS:
+        dest = copy_student_lab(lab, tmp_path / lab.name)
+        student = tomllib.loads((dest / "lab.toml").read_text(encoding="utf-8"))
+        texts = tomllib.loads((dest / "lab.ru.toml").read_text(encoding="utf-8"))
+        full = tomllib.loads((lab / "lab.ru.toml").read_text(encoding="utf-8"))
+        names = {c["name"] for c in student["criterion"]}
+        assert set(texts["criteria"]) == names, lab.name
+        assert set(texts.get("scenarios", {})) <= {s["name"] for s in student["scenario"]}
+        assert texts["title"] == full["title"]
+        for name in names:
+            assert texts["criteria"][name] == full["criteria"][name]
+        dropped += len(full["criteria"]) - len(names)
+    assert dropped > 0  # some lab has criteria only its hidden scenarios check
