@@ -124,6 +124,34 @@ def _q(name: str) -> str:
     return '"' + name.replace('"', '\\"') + '"'
 
 
+def parser_helps(parser: Any, where: str = "plclab") -> dict[str, str]:
+    """Every help text and description of an argparse ``parser`` and its sub-commands:
+    text -> the command it belongs to."""
+    import argparse
+
+    helps: dict[str, str] = {}
+    if parser.description:
+        helps.setdefault(parser.description, where)
+    for action in parser._actions:
+        if action.help and action.help != argparse.SUPPRESS:
+            helps.setdefault(action.help, where)
+        if isinstance(action, argparse._SubParsersAction):
+            for choice in action._choices_actions:
+                if choice.help:
+                    helps.setdefault(choice.help, where)
+            for name, sub in action.choices.items():
+                for text, w in parser_helps(sub, f"{where} {name}").items():
+                    helps.setdefault(text, w)
+    return helps
+
+
+def missing_help(helps: dict[str, str], ui: dict[str, Any], lang: str) -> list[str]:
+    """Help texts of ``helps`` without a ``lang`` text in ``ui.toml``."""
+    return [f"{where} --help: {text!r} has no text in plclab/locale/{lang}/ui.toml (add it "
+            "under 'command-line help')" for text, where in helps.items()
+            if not isinstance(ui.get(text), str)]
+
+
 def locale_file(lang: str, name: str) -> Path:
     """``plclab/locale/<lang>/<name>.toml``."""
     return LOCALE_DIR / lang / f"{name}.toml"

@@ -149,3 +149,11 @@ def test_lab_check_speaks_russian(capsys):
     assert re.search(r"t = \d+,\d\d с", out)  # decimal comma in prose
     assert re.search(r"баллы: 0/\d+", out)
     assert "pump starts below LS1" not in out and "Hint:" not in out and "Score" not in out
+
+
+def test_top_level_help_in_russian(capsys):
+    with pytest.raises(SystemExit):
+        main(["--lang", "ru", "--help"])
+    out = capsys.readouterr().out
+    assert "проверить исходные файлы и вывести диагностику" in out
+    assert "--lang LANG" in out and "check" in out and "lab" in out

@@ -134,3 +134,27 @@ def test_the_student_copy_keeps_only_the_texts_of_what_students_see(tmp_path):
             assert texts["criteria"][name] == full["criteria"][name]
         dropped += len(full["criteria"]) - len(names)
     assert dropped > 0  # some lab has criteria only its hidden scenarios check
+
+
+@pytest.mark.parametrize("lang", SHIPPED)
+def test_every_help_text_of_every_command_is_translated(lang):
+    from plclab.cli import build_parser
+
+    helps = i18n_check.parser_helps(build_parser("all"))
+    assert len(helps) > 150 and "print errors only" in helps
+    missing = i18n_check.missing_help(helps, load(lang, "ui"), lang)
+    assert not missing, "\n".join(missing)
+
+
+def test_a_help_text_without_russian_is_found():
+    import argparse
+
+    p = argparse.ArgumentParser(description="a tool")
+    sub = p.add_subparsers()
+    s = sub.add_parser("go", help="go somewhere")
+    s.add_argument("--far", help="how far (new)")
+    missing = i18n_check.missing_help(i18n_check.parser_helps(p),
+                                      {"a tool": "инструмент", "go somewhere": "идти",
+                                       "show this help message and exit": "справка"}, "ru")
+    assert missing == ["plclab go --help: 'how far (new)' has no text in "
+                       "plclab/locale/ru/ui.toml (add it under 'command-line help')"]
