@@ -99,20 +99,30 @@ def missing_ui(keys: dict[str, str], ui: dict[str, Any], lang: str) -> list[str]
 
 
 def missing_lab_texts(lab_dir: Path, lang: str) -> list[str]:
-    """Criteria of the lab in ``lab_dir`` without a ``name`` in its ``lab.<lang>.toml``."""
+    """What the lab in ``lab_dir`` lacks in its ``lab.<lang>.toml``: the title, each criterion's
+    name and, where ``lab.toml`` has them, its message, hint and hint_fix, each scenario's
+    description; and criteria it names that ``lab.toml`` does not have."""
     import tomllib
 
     spec = tomllib.loads((lab_dir / "lab.toml").read_text(encoding="utf-8-sig"))
     path = lab_dir / f"lab.{lang}.toml"
     texts = tomllib.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
     crits = texts.get("criteria", {})
-    out = []
+    where = f"labs/{lab_dir.name}/{path.name}"
+    out = [] if str(texts.get("title", "")).strip() else [f"{lab_dir.name}: no title in {where}"]
     for c in spec.get("criterion", []):
         name = c.get("name", "")
-        if not (isinstance(crits.get(name), dict) and str(crits[name].get("name", "")).strip()):
-            out.append(f"{lab_dir.name}: criterion {name!r} has no name in "
-                       f"labs/{lab_dir.name}/{path.name} (add [criteria.{_q(name)}] "
-                       'name = "...")')
+        got = crits.get(name) if isinstance(crits.get(name), dict) else {}
+        for key in ("name", "message", "hint", "hint_fix"):
+            if (key == "name" or c.get(key)) and not str(got.get(key, "")).strip():
+                out.append(f"{lab_dir.name}: criterion {name!r} has no {key} in {where} (add "
+                           f'[criteria.{_q(name)}] {key} = "...")')
+    scen = texts.get("scenarios", {})
+    for sc in spec.get("scenario", []):
+        name = sc.get("name", "")
+        if sc.get("description") and not str(scen.get(name, {}).get("description", "")).strip():
+            out.append(f"{lab_dir.name}: scenario {name!r} has no description in {where} (add "
+                       f'[scenarios.{_q(name)}] description = "...")')
     for name in crits:
         if name not in {c.get("name") for c in spec.get("criterion", [])}:
             out.append(f"{lab_dir.name}: {path.name} names criterion {name!r}, which lab.toml "

@@ -88,7 +88,7 @@ def test_the_placeholder_check_catches_dropped_renamed_and_broken_placeholders()
 
 @pytest.mark.parametrize("lang", SHIPPED)
 @pytest.mark.parametrize("lab", LABS, ids=lambda p: p.name)
-def test_every_criterion_of_every_lab_has_a_name(lang, lab):
+def test_every_lab_has_its_title_criteria_hints_and_scenarios(lang, lab):
     missing = i18n_check.missing_lab_texts(lab, lang)
     assert not missing, "\n".join(missing)
 
@@ -96,14 +96,19 @@ def test_every_criterion_of_every_lab_has_a_name(lang, lab):
 def test_a_lab_criterion_without_a_name_or_a_stale_one_is_found(tmp_path):
     lab = tmp_path / "labs" / "demo"
     lab.mkdir(parents=True)
-    (lab / "lab.toml").write_text('[[criterion]]\nname = "pump starts"\n'
-                                  '[[criterion]]\nname = "no overflow"\n', encoding="utf-8")
-    (lab / "lab.ru.toml").write_text('[criteria."pump starts"]\nname = "насос включается"\n'
+    (lab / "lab.toml").write_text(
+        '[[scenario]]\nname = "normal"\ndescription = "a tank"\n'
+        '[[criterion]]\nname = "pump starts"\nhint = "think"\n'
+        '[[criterion]]\nname = "no overflow"\n', encoding="utf-8")
+    (lab / "lab.ru.toml").write_text('title = "Бак"\n[criteria."pump starts"]\n'
+                                     'name = "насос включается"\n'
                                      '[criteria."old name"]\nname = "старое"\n', encoding="utf-8")
     missing = i18n_check.missing_lab_texts(lab, "ru")
-    assert len(missing) == 2
-    assert "'no overflow' has no name in labs/demo/lab.ru.toml" in missing[0]
-    assert "'old name'" in missing[1] and "does not have" in missing[1]
+    assert len(missing) == 4, missing
+    assert "'pump starts' has no hint in labs/demo/lab.ru.toml" in missing[0]
+    assert "'no overflow' has no name in labs/demo/lab.ru.toml" in missing[1]
+    assert "scenario 'normal' has no description" in missing[2]
+    assert "'old name'" in missing[3] and "does not have" in missing[3]
 
 
 @pytest.mark.parametrize("lang", SHIPPED)
