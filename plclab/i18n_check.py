@@ -65,16 +65,19 @@ def _percent(text: str) -> str:
                   text.replace("{", "{{").replace("}", "}}"))
 
 
-def missing_problems(codes: list[str], problems: dict[str, Any], lang: str) -> list[str]:
-    """Codes of ``plclab/problems.toml`` without a title or an explanation in ``lang``."""
+def missing_problems(codes: list[str], problems: dict[str, Any], lang: str,
+                     english: dict[str, dict[str, Any]] | None = None) -> list[str]:
+    """Codes of ``plclab/problems.toml`` without a title or an explanation in ``lang`` (and,
+    with the ``english`` entries, without the ``no_example`` or ``reserved_why`` they have)."""
     out = []
     for code in codes:
         entry = problems.get(code, {})
-        lacks = [k for k in ("title", "explanation")
+        extra = [k for k in ("no_example", "reserved_why") if (english or {}).get(code, {}).get(k)]
+        lacks = [k for k in ("title", "explanation", *extra)
                  if not (isinstance(entry.get(k), str) and entry[k].strip())]
         if lacks:
             out.append(f"{code}: no {' and no '.join(lacks)} in plclab/locale/{lang}/problems.toml"
-                       f" (add [{code}] with title and explanation next to its numeric "
+                       f" (add [{code}] with {', '.join(lacks)} next to its numeric "
                        "neighbours)")
     return out
 

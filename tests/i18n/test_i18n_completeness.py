@@ -24,7 +24,10 @@ def load(lang, name):
 
 @pytest.mark.parametrize("lang", SHIPPED)
 def test_every_code_has_a_title_and_an_explanation(lang):
-    missing = i18n_check.missing_problems(list(catalogue()), load(lang, "problems"), lang)
+    english = {c: {"no_example": p.no_example, "reserved_why": p.reserved_why}
+               for c, p in catalogue().items()}
+    missing = i18n_check.missing_problems(list(catalogue()), load(lang, "problems"), lang,
+                                          english)
     assert not missing, "\n".join(missing)
 
 
@@ -39,8 +42,12 @@ def test_a_code_added_without_russian_is_named_with_where_to_add_it():
     codes = [*catalogue(), "PLC9302"]
     problems = {k: v for k, v in problems.items() if k != "PLC0100"}
     problems["PLC0101"] = {"title": "повторное объявление", "explanation": "  "}
-    missing = i18n_check.missing_problems(codes, problems, "ru")
-    assert len(missing) == 3
+    problems["PLC0191"] = {k: v for k, v in problems["PLC0191"].items() if k != "no_example"}
+    english = {"PLC0191": {"no_example": "a safety net"}}
+    missing = i18n_check.missing_problems(codes, problems, "ru", english)
+    assert len(missing) == 4
+    assert any(m.startswith("PLC0191: no no_example") for m in missing)
+    missing = [m for m in missing if not m.startswith("PLC0191")]
     assert missing[0].startswith("PLC0100: no title and no explanation in "
                                  "plclab/locale/ru/problems.toml")
     assert missing[1].startswith("PLC0101: no explanation")
