@@ -393,7 +393,10 @@ def lab_check(ns: argparse.Namespace) -> int:
     print(text)
     wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
     if wants_export and res.status in ("timeout", "memory", "crash", "rejected"):
-        print(f"no export: the program did not finish within the lab's limits ({res.status})")
+        from plclab.i18n import tr
+
+        print(tr("no export: the program did not finish within the lab's limits ({status})",
+                 status=res.status))
     elif wants_export:
         from plclab.viz.from_trace import run_exports
 
@@ -424,12 +427,18 @@ def lab_check(ns: argparse.Namespace) -> int:
             for line in run_exports(again.traces[name], ns):
                 print(line)
     if out is not None:
-        print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
+        from plclab.i18n import tr
+        from plclab.i18n_labs import criterion_text, lab_texts
+
+        print(tr("feedback with diagrams: {path}", path=out / FEEDBACK_MARK))
         first = first_failure(lab, res.tests, {t.scenario: None for t in res.tests})
         if first is not None and getattr(first, "diagram", None):
-            when = f"at t = {first.t_fail:.2f} s" if first.t_fail is not None else "over the run"
-            print(f"first failure: {out / first.diagram} (scenario '{first.scenario}', "
-                  f"criterion '{first.criterion}', failed {when})")
+            when = (tr("at t = {t:num} s", t=f"{first.t_fail:.2f}") if first.t_fail is not None
+                    else tr("over the run"))
+            print(tr("first failure: {path} (scenario '{scenario}', criterion '{criterion}', "
+                     "failed {when})", path=out / first.diagram, scenario=first.scenario,
+                     criterion=criterion_text(lab_texts(lab), first.criterion, "name",
+                                              first.criterion), when=when))
     elif any(not t.passed for t in res.tests) and not ns.no_media and not getattr(ns, "png_done",
                                                                                   False):
         from plclab.i18n import tr
