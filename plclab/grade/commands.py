@@ -255,10 +255,14 @@ def lab_audit(ns: argparse.Namespace) -> int:
 
 
 def lab_list(ns: argparse.Namespace) -> int:
+    from plclab.i18n import tr
+    from plclab.i18n_labs import lab_texts
+
     from .lab import LEVELS, list_labs, load_lab, repo_labs_dir
 
     own = repo_labs_dir().resolve()
-    head = ("lab", "level", "chapters", "plant", "languages", "points", "title")
+    head = (tr("lab"), tr("level"), tr("chapters"), tr("plant"), tr("languages"), tr("points"),
+            tr("title"))
     labs, broken = [], []
     for p in list_labs(ns.labs):
         try:
@@ -270,10 +274,11 @@ def lab_list(ns: argparse.Namespace) -> int:
     rows = [head]
     for k, (lab, p) in enumerate(labs):
         where = "" if p.parent.resolve() == own else f"  [{p}]"
-        start = "  <- start here" if k == 0 and lab.level == 1 else ""
-        rows.append((lab.id, LEVELS.get(lab.level, "-"), ",".join(map(str, lab.chapters)),
-                     lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
-                     lab.title + where + start))
+        start = tr("  <- start here") if k == 0 and lab.level == 1 else ""
+        title = lab_texts(lab).get("title") or lab.title
+        rows.append((lab.id, tr(LEVELS[lab.level]) if lab.level in LEVELS else "-",
+                     ",".join(map(str, lab.chapters)), lab.plant, ",".join(lab.languages),
+                     f"{lab.max_score:g}", title + where + start))
     rows += broken
     widths = [max(len(r[i]) for r in rows) for i in range(6)]
     for r in rows:

@@ -10,6 +10,7 @@ import pytest
 
 from plclab import i18n, i18n_check
 from plclab.grade.feedback import STATUS_WORDS
+from plclab.grade.lab import LEVELS
 from plclab.problems import catalogue
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -59,6 +60,7 @@ def test_every_text_of_the_command_line_and_the_feedback_is_translated(lang):
     keys = i18n_check.tr_keys()
     keys.update({w: "plclab/grade/feedback.py STATUS_WORDS" for w in STATUS_WORDS.values()})
     keys.update({w: "plclab/i18n.py severity()" for w in i18n_check.STATUS_AND_SEVERITY})
+    keys.update({w: "plclab/grade/lab.py LEVELS" for w in LEVELS.values()})
     assert len(keys) > 40  # the scan found the tr() calls
     missing = i18n_check.missing_ui(keys, load(lang, "ui"), lang)
     assert not missing, "\n".join(missing)
