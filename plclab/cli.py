@@ -17,6 +17,7 @@ import sys
 from . import __version__
 from .cli_registry import COMMAND_TABLE, REGISTRY, Registered, arg, command
 from .errors import PlcError, printable
+from .i18n import normalize, tr, unknown_language
 from .names import split_names
 
 DIALECTS = ("iec", "codesys", "s7", "matiec")  # plclab.lang.dialect.PROFILES (not imported here)
@@ -30,7 +31,7 @@ def _print_diags(diags, out=None) -> tuple[int, int]:
     out = out or sys.stdout
     errors = warnings = 0
     for d in diags:
-        print(str(d), file=out)
+        print(d.render(), file=out)
         if d.severity == "error":
             errors += 1
         else:
@@ -83,7 +84,8 @@ def cmd_check(ns: argparse.Namespace) -> int:
                 name, why = explain_choice(text, ns.dialect, filename)
             except PlcError as e:
                 name, why = "?", e.message
-            print(f"{printable(filename)}: dialect {name} ({why})")
+            print(tr("{file}: dialect {name} ({why})", file=printable(filename), name=name,
+                     why=why))
     _, diags = check_sources(sources, ns.dialect, lint=not ns.no_lint, io_table=io_table)
     return _report_check(ns, diags)
 
@@ -92,7 +94,7 @@ def _report_check(ns: argparse.Namespace, diags) -> int:
     if ns.no_warnings:
         diags = [d for d in diags if d.severity == "error"]
     errors, warnings = _print_diags(diags)
-    print(f"{errors} error(s), {warnings} warning(s)")
+    print(tr("{errors} error(s), {warnings} warning(s)", errors=errors, warnings=warnings))
     return 1 if errors else 0
 
 
@@ -142,7 +144,7 @@ def cmd_test(ns: argparse.Namespace) -> int:
 
     compiled = compile_sources(read_sources(ns.files), dialect=ns.dialect)
     for d in getattr(compiled, "diagnostics", []):
-        print(str(d))
+        print(d.render())
     if ns.keyword:
         compiled.tests = [t for t in compiled.tests if ns.keyword.lower() in t[0].lower()]
     results = run_compiled_tests(compiled)
@@ -150,10 +152,10 @@ def cmd_test(ns: argparse.Namespace) -> int:
     failed = len(results) - passed
     for r in results:
         if not r.passed or ns.verbose:
-            print(str(r))
+            print(r.render())
     if not results:
-        print("no TEST blocks found")
-    print(f"{passed} passed, {failed} failed")
+        print(tr("no TEST blocks found"))
+    print(tr("{passed} passed, {failed} failed", passed=passed, failed=failed))
     return 0 if failed == 0 and results else 1
 
 
@@ -250,6 +252,8 @@ def build_parser(load: str | list[str] | tuple[str, ...] = (),
     p = argparse.ArgumentParser(prog="plclab", description="plclab: a virtual PLC lab for "
                                 "IEC 61131-3 (ST, IL, LD) with physics plants and an autograder.")
     p.add_argument("--version", action="version", version=f"plclab {__version__}")
+    p.add_argument("--lang", metavar="LANG", help="the language of messages: en or ru (default: "
+                   "PLCLAB_LANG, else the locale, else en); also after the command")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     for name, info in COMMAND_TABLE.items():
         if only and name not in load:
@@ -272,21 +276,87 @@ def _tolerant_streams() -> None:
                 pass
 
 
+def take_lang(argv: list[str]) -> tuple[str | None, list[str]]:
+    """``--lang X`` / ``--lang=X`` anywhere before a ``--`` (a global option: ``plclab --lang ru
+    check f.st`` and ``plclab explain PLC0113 --lang ru`` alike): its value and the rest."""
+    lang, rest, i = None, [], 0
+    while i < len(argv):
+        a = argv[i]
+        if a == "--":
+            rest += argv[i:]
+            break
+        if a == "--lang":
+            if i + 1 >= len(argv):
+                raise PlcError("PLC9300", "--lang needs a language: --lang en or --lang ru")
+            lang, i = argv[i + 1], i + 2
+            continue
+        if a.startswith("--lang="):
+            lang = a.partition("=")[2]
+        else:
+            rest.append(a)
+        i += 1
+    if lang is not None and normalize(lang) is None:
+        raise PlcError("PLC9300", unknown_language(lang))
+    return lang, rest
+
+
+def localize_parser(p: argparse.ArgumentParser) -> None:
+    """The help texts of ``p`` and of its sub-commands in the language chosen."""
+    from .i18n import SOURCE, language, tr
+
+    if language() == SOURCE:
+        return
+    import argparse as ap
+
+    if p.description:
+        p.description = tr(p.description)
+    for action in p._actions:
+        if action.help and action.help != ap.SUPPRESS:
+            action.help = tr(action.help)
+        if isinstance(action, ap._SubParsersAction):
+            for choice in action._choices_actions:
+                if choice.help:
+                    choice.help = tr(choice.help)
+            for sp in dict.fromkeys(action.choices.values()):
+                localize_parser(sp)
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     _tolerant_streams()
+    from . import i18n
+
+    before, gettext = i18n.chosen(), argparse._
     try:
+        return _main(argv)
+    finally:  # main() called again in one process (tests, a notebook) starts afresh
+        i18n.set_language(before)
+        argparse._ = gettext
+
+
+def _main(argv: list[str]) -> int:
+    try:
+        lang, argv = take_lang(argv)
+        if lang is not None:
+            from .i18n import set_language
+
+            set_language(lang)
         name = chosen_command(argv)
         known = name in COMMAND_TABLE
         # `plclab check f.st`: only the parser of `check`; `plclab -h check` lists them all
+        from .i18n import SOURCE, language
+
+        if language() != SOURCE:  # argparse's own words: "usage: ", "options", "-h" ...
+            argparse._ = tr  # looked up when a parser is made and when help is printed
         parser = build_parser([name] if known else [], only=known and argv[0] == name)
+        localize_parser(parser)
         ns = parser.parse_args(argv)
         if not ns.command:
             parser.print_help()
             return 2
         return REGISTRY[ns.command].run(ns)
     except PlcError as e:
-        print(str(e), file=sys.stderr)
+        print(e.render(), file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)

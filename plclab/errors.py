@@ -69,6 +69,17 @@ class Diagnostic:
         where = f"{self.location}: " if self.location else ""
         return f"{where}{self.severity} {self.code}: {printable(self.message)}"
 
+    def render(self) -> str:
+        """The diagnostic in the language chosen (``--lang``, ``PLCLAB_LANG``, the locale:
+        :mod:`plclab.i18n`); ``str()`` stays English, the form tools and logs parse."""
+        from .i18n import SOURCE, language, message, severity
+
+        if language() == SOURCE:
+            return str(self)
+        where = f"{self.location}: " if self.location else ""
+        return (f"{where}{severity(self.severity)} {self.code}: "
+                f"{printable(message(self.code, self.message))}")
+
 
 class PlcError(Exception):
     """An error a user can cause: bad source, a runtime fault, a bad lab file...
@@ -95,6 +106,18 @@ class PlcError(Exception):
             return "\n".join(str(d) for d in self.diagnostics)
         where = f"{self.location}: " if self.location else ""
         return f"{where}error {self.code}: {printable(self.message)}"
+
+    def render(self) -> str:
+        """The error in the language chosen (see :meth:`Diagnostic.render`)."""
+        from .i18n import SOURCE, language, message, severity
+
+        if language() == SOURCE:
+            return str(self)
+        if len(self.diagnostics) > 1:
+            return "\n".join(d.render() for d in self.diagnostics)
+        where = f"{self.location}: " if self.location else ""
+        return (f"{where}{severity('error')} {self.code}: "
+                f"{printable(message(self.code, self.message))}")
 
 
 class PlcRuntimeFault(PlcError):

@@ -79,12 +79,16 @@ PROBLEMS: dict[str, tuple[str, str]]  # code -> (title, explanation); see __geta
 
 
 def explain(code: str) -> str:
-    """``CODE: title`` and the explanation (KeyError for an unknown code)."""
+    """``CODE: title`` and the explanation, in the language chosen (:mod:`plclab.i18n`;
+    English where it has no text); KeyError for an unknown code."""
+    from .i18n import problem_text
+
     code = code.upper()
     if code not in catalogue():
         raise KeyError(code)
     p = catalogue()[code]
-    return f"{code}: {p.title}\n\n{p.explanation}"
+    return (f"{code}: {problem_text(code, 'title', p.title)}\n\n"
+            f"{problem_text(code, 'explanation', p.explanation)}")
 
 
 def _indent(text: str) -> str:
@@ -94,32 +98,40 @@ def _indent(text: str) -> str:
 def describe(code: str) -> str:
     """The full entry as text: title, explanation, the wrong example and its fix (or the
     command or snippet for command-line and configuration codes). KeyError for an unknown code."""
+    from .i18n import problem_text, tr
+
     p = catalogue()[code.upper()]
     parts = [explain(p.code)]
     if p.wrong is not None:
         if p.run == "test":
-            how = " (run its TEST blocks: plclab test FILE)"
+            how = tr(" (run its TEST blocks: plclab test FILE)")
         elif p.scans is not None:
-            how = f" (scan it {p.scans} time{'s' if p.scans != 1 else ''}: plclab run FILE " \
-                  f"--cycles {p.scans})"
+            how = (tr(" (scan it {n} time: plclab run FILE --cycles {n})", n=p.scans)
+                   if p.scans == 1 else
+                   tr(" (scan it {n} times: plclab run FILE --cycles {n})", n=p.scans))
         else:
             how = ""
         lang = (p.language or "st").upper()
-        parts.append(f"Wrong ({lang}){how}:\n\n{_indent(p.wrong)}")
+        parts.append(tr("Wrong ({lang}){how}:", lang=lang, how=how) + f"\n\n{_indent(p.wrong)}")
     if p.fix is not None:
-        parts.append(f"Fix:\n\n{_indent(p.fix)}")
+        parts.append(tr("Fix:") + f"\n\n{_indent(p.fix)}")
     if p.example is not None:
-        parts.append(f"Example:\n\n{_indent(p.example)}")
+        parts.append(tr("Example:") + f"\n\n{_indent(p.example)}")
     if p.no_example is not None:
-        parts.append(f"No example: {p.no_example}")
+        parts.append(tr("No example: {why}",
+                        why=problem_text(p.code, "no_example", p.no_example)))
     if p.reserved:
-        parts.append(f"Reserved: {p.reserved_why or 'not raised yet'}")
+        parts.append(tr("Reserved: {why}", why=problem_text(
+            p.code, "reserved_why", p.reserved_why or "not raised yet")))
     return "\n\n".join(parts)
 
 
 def listing() -> str:
     """One line per code: ``PLC0100  undeclared name``."""
-    return "\n".join(f"{code}  {p.title}" for code, p in sorted(catalogue().items()))
+    from .i18n import problem_text
+
+    return "\n".join(f"{code}  {problem_text(code, 'title', p.title)}"
+                     for code, p in sorted(catalogue().items()))
 
 
 def close_codes(code: str, n: int = 3) -> list[str]:

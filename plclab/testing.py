@@ -20,12 +20,32 @@ class TestResult:
     message: str = ""
     failure_location: Location | None = None
     code: str = ""
+    assert_text: str = ""  # the ASSERT's text when ``message`` ends with " (in <it>)"
 
     def __str__(self) -> str:
         if self.passed:
             return f"PASS {printable(self.title)}"
         where = self.failure_location or self.location
         return f"{where}: FAIL {printable(self.title)}: {printable(self.message)}"
+
+    def render(self) -> str:
+        """The line in the language chosen (:mod:`plclab.i18n`); ``str()`` stays English."""
+        from .i18n import SOURCE, language, message, tr
+
+        if language() == SOURCE:
+            return str(self)
+        if self.passed:
+            return tr("PASS {title}", title=printable(self.title))
+        where = self.failure_location or self.location
+        msg = self.message
+        suffix = f" (in {self.assert_text})" if self.assert_text else ""
+        if suffix and msg.endswith(suffix):
+            msg = msg[: -len(suffix)]
+        text = message(self.code, msg) if self.code else msg
+        if suffix:
+            text += tr(" (in {text})", text=self.assert_text)
+        return tr("{where}: FAIL {title}: {message}", where=where, title=printable(self.title),
+                  message=printable(text))
 
 
 def run_compiled_tests(compiled) -> list[TestResult]:
@@ -48,7 +68,7 @@ def run_compiled_tests(compiled) -> list[TestResult]:
                 text = compiled.assert_texts.get(exc.where)
             if text:
                 msg = f"{msg} (in {text})"
-            results.append(TestResult(title, loc, False, msg, where, err.code))
+            results.append(TestResult(title, loc, False, msg, where, err.code, text or ""))
             continue
         results.append(TestResult(title, loc, True))
     return results

@@ -2,10 +2,15 @@
 ``tests/security``, ``tests/viz/render_checks.py``) are
 plain modules, importable by name from their tests (``import harness``, ``import payloads``)."""
 
+import os
 import sys
 from pathlib import Path
 
 import pytest
+
+# The suite asserts English messages: a developer's Russian locale must not change them
+# (tests/i18n chooses its languages itself). Subprocesses inherit it.
+os.environ["PLCLAB_LANG"] = "en"
 
 _HERE = Path(__file__).resolve().parent
 for _folder in ("fuzz", "security", "viz"):

@@ -21,8 +21,10 @@ PACKAGE = Path(__file__).resolve().parent.parent / "plclab"
 # each other. The most specific prefix wins; the root package ``plclab`` matches only itself.
 LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     # errors, the problem catalogue, name lists, the command table: standard library only.
+    # plclab.i18n*: the language of messages (ADR 0063), read by errors' render().
     [("base", ("plclab.errors", "plclab.problems", "plclab.names", "plclab.cli_registry",
-               "plclab.durations", "plclab.suggest"))],
+               "plclab.durations", "plclab.suggest", "plclab.i18n", "plclab.i18n_labs",
+               "plclab.i18n_check"))],
     # signal conversions (4-20 mA, counts, Pt100): pure math on floats, used by the runtime's
     # analog scaling blocks and by the simulator's I/O channels.
     [("io", ("plclab.io",))],

@@ -10,7 +10,7 @@ _spec.loader.exec_module(conftest)
 ROOT = TESTS.parent
 # folders that test the project as a whole rather than one package
 CROSS_CUTTING = {"fuzz", "security", "snapshots", "st", "cli", "notebooks", "corpus",
-                 "schema"}
+                 "schema", "i18n"}
 
 
 def test_every_test_folder_mirrors_a_package_or_is_cross_cutting():

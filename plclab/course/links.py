@@ -15,8 +15,10 @@ def chapters_teaching(code: str) -> list[str]:
     for c in chapters():
         try:
             if any(b.expected_code == code for b in c.blocks):
-                lines.append(f"Taught in chapter {c.number}, {c.title}: "
-                             f"course/{c.slug}/chapter.md")
+                from plclab.i18n import tr
+
+                lines.append(tr("Taught in chapter {number}, {title}: {path}", number=c.number,
+                                title=c.title, path=f"course/{c.slug}/chapter.md"))
         except Exception:  # noqa: BLE001 - a broken chapter must not break explain
             continue
     return lines

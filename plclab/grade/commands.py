@@ -255,10 +255,14 @@ def lab_audit(ns: argparse.Namespace) -> int:
 
 
 def lab_list(ns: argparse.Namespace) -> int:
+    from plclab.i18n import tr
+    from plclab.i18n_labs import lab_texts
+
     from .lab import LEVELS, list_labs, load_lab, repo_labs_dir
 
     own = repo_labs_dir().resolve()
-    head = ("lab", "level", "chapters", "plant", "languages", "points", "title")
+    head = (tr("lab"), tr("level"), tr("chapters"), tr("plant"), tr("languages"), tr("points"),
+            tr("title"))
     labs, broken = [], []
     for p in list_labs(ns.labs):
         try:
@@ -270,10 +274,11 @@ def lab_list(ns: argparse.Namespace) -> int:
     rows = [head]
     for k, (lab, p) in enumerate(labs):
         where = "" if p.parent.resolve() == own else f"  [{p}]"
-        start = "  <- start here" if k == 0 and lab.level == 1 else ""
-        rows.append((lab.id, LEVELS.get(lab.level, "-"), ",".join(map(str, lab.chapters)),
-                     lab.plant, ",".join(lab.languages), f"{lab.max_score:g}",
-                     lab.title + where + start))
+        start = tr("  <- start here") if k == 0 and lab.level == 1 else ""
+        title = lab_texts(lab).get("title") or lab.title
+        rows.append((lab.id, tr(LEVELS[lab.level]) if lab.level in LEVELS else "-",
+                     ",".join(map(str, lab.chapters)), lab.plant, ",".join(lab.languages),
+                     f"{lab.max_score:g}", title + where + start))
     rows += broken
     widths = [max(len(r[i]) for r in rows) for i in range(6)]
     for r in rows:
@@ -385,14 +390,19 @@ def lab_check(ns: argparse.Namespace) -> int:
     finally:
         shutil.rmtree(work, ignore_errors=True)
     res = res.result
-    text = render_feedback(res, instructor=ns.hidden, hint_level=ns.hint,
-                           fixes={c.name: c.hint_fix for c in lab.criteria if c.hint_fix})
+    from plclab.i18n_labs import localize_result
+
+    shown, fixes = localize_result(res, lab)
+    text = render_feedback(shown, instructor=ns.hidden, hint_level=ns.hint, fixes=fixes)
     if out is not None:
         write_atomic(out / FEEDBACK_MARK, text)
     print(text)
     wants_export = any(getattr(ns, k, None) for k in ("rrd", "vcd", "wavedrom", "png", "spawn"))
     if wants_export and res.status in ("timeout", "memory", "crash", "rejected"):
-        print(f"no export: the program did not finish within the lab's limits ({res.status})")
+        from plclab.i18n import tr
+
+        print(tr("no export: the program did not finish within the lab's limits ({status})",
+                 status=res.status))
     elif wants_export:
         from plclab.viz.from_trace import run_exports
 
@@ -423,16 +433,27 @@ def lab_check(ns: argparse.Namespace) -> int:
             for line in run_exports(again.traces[name], ns):
                 print(line)
     if out is not None:
-        print(f"feedback with diagrams: {out / FEEDBACK_MARK}")
+        from plclab.i18n import tr
+        from plclab.i18n_labs import criterion_text, lab_texts
+
+        print(tr("feedback with diagrams: {path}", path=out / FEEDBACK_MARK))
         first = first_failure(lab, res.tests, {t.scenario: None for t in res.tests})
         if first is not None and getattr(first, "diagram", None):
-            when = f"at t = {first.t_fail:.2f} s" if first.t_fail is not None else "over the run"
-            print(f"first failure: {out / first.diagram} (scenario '{first.scenario}', "
-                  f"criterion '{first.criterion}', failed {when})")
+            when = (tr("at t = {t:num} s", t=f"{first.t_fail:.2f}") if first.t_fail is not None
+                    else tr("over the run"))
+            print(tr("first failure: {path} (scenario '{scenario}', criterion '{criterion}', "
+                     "failed {when})", path=out / first.diagram, scenario=first.scenario,
+                     criterion=criterion_text(lab_texts(lab), first.criterion, "name",
+                                              first.criterion), when=when))
     elif any(not t.passed for t in res.tests) and not ns.no_media and not getattr(ns, "png_done",
                                                                                   False):
-        print("timing diagrams of the failures: add --out DIR (or --png F for one scenario)")
-    print(f"score: {res.score:g}/{res.max_score:g}")
+        from plclab.i18n import tr
+
+        print(tr("timing diagrams of the failures: add --out DIR (or --png F for one scenario)"))
+    from plclab.i18n import decimal, tr
+
+    print(tr("score: {score}/{max_score}", score=decimal(f"{res.score:g}"),
+             max_score=decimal(f"{res.max_score:g}")))
     return 0
 
 
@@ -528,8 +549,11 @@ def lint_lines(lab, sources: list[tuple[str, str]]) -> list[str]:
     from plclab.project import check_sources
 
     _, diags = check_sources(sources, lab.dialect, lint=True, io_table=lab.io)
-    found = [str(d) for d in diags if d.code.startswith("PLC021")]
-    return [f"{len(found)} warning(s) about your program:", *found, ""] if found else []
+    from plclab.i18n import tr
+
+    found = [d.render() for d in diags if d.code.startswith("PLC021")]
+    return ([tr("{n} warning(s) about your program:", n=len(found)), *found, ""] if found
+            else [])
 
 
 FEEDBACK_MARK = "feedback.md"

@@ -128,6 +128,25 @@ def dumps_toml(data: dict[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def student_texts(text: str, criteria: set[str], scenarios: set[str]) -> str:
+    """The student copy of a lab's ``lab.<lang>.toml`` (its texts in a language, ADR 0063):
+    only the criteria and scenarios its student ``lab.toml`` keeps, so a hidden criterion's
+    name and hint stay with the instructor."""
+    data = tomllib.loads(text)
+    out = ["# the student copy: the texts of the criteria and scenarios shown to students"]
+    for key, value in data.items():
+        if isinstance(value, str):
+            out.append(f"{_key(key)} = {json.dumps(value, ensure_ascii=False)}")
+    for table, keep in (("criteria", criteria), ("scenarios", scenarios)):
+        for name, entry in data.get(table, {}).items():
+            if name not in keep or not isinstance(entry, dict):
+                continue
+            out += ["", f"[{table}.{json.dumps(name, ensure_ascii=False)}]"]
+            out += [f"{_key(k)} = {json.dumps(v, ensure_ascii=False)}" for k, v in entry.items()
+                    if isinstance(v, str)]
+    return "\n".join(out) + "\n"
+
+
 # ---------------------------------------------------------------------------- copying
 
 
@@ -143,6 +162,11 @@ def copy_student_lab(src: Path, dest: Path) -> Path:
             (dest / f.name).write_text(student_lab_toml(text), encoding="utf-8")
         elif f.name in STUDENT_FILES or f.name.startswith("starter."):
             shutil.copyfile(f, dest / f.name)
+    for f in sorted(src.glob("lab.*.toml")):  # a language's texts: the student part (ADR 0063)
+        data = student_lab_data(tomllib.loads((src / "lab.toml").read_text(encoding="utf-8-sig")))
+        (dest / f.name).write_text(student_texts(
+            f.read_text(encoding="utf-8-sig"), {c.get("name") for c in data["criterion"]},
+            {sc.get("name") for sc in data["scenario"]}), encoding="utf-8")
     return dest
 
 

@@ -270,6 +270,21 @@ def _cell(text: str) -> str:
     return clean_text(text, 4000).replace("|", "\\|")
 
 
+"""What the feedback says of a result that is not "ok" (translated through ``ui.toml``)."""
+STATUS_WORDS = {
+    "compile_error": "The program does not compile, so no scenario could run.",
+    "no_source": "No source file was found in the submission.",
+    "language": "The submission uses a language this lab does not accept.",
+    "timeout": "The grading was stopped at the time limit.",
+    "memory": "The program needed more memory than allowed.",
+    "crash": "The grading process crashed.",
+    "rejected": "The submission was not graded (see below).",
+    "infrastructure": "The grading machine failed (not your program): it will be "
+                      "graded again.",
+}
+"""What the feedback says of a result whose status is not ``ok``."""
+
+
 def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
                     fixes: dict[str, str] | None = None) -> str:
     """The feedback of a :class:`~plclab.grade.engine.Result` as Markdown.
@@ -279,50 +294,43 @@ def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
     all the grader shows), 2 also the literal fix (``hint_fix``, from *fixes*: criterion name
     -> text).
     """
+    from plclab.i18n import decimal, localize_line, tr
+
     lines: list[str] = []
     who = f" — {md_text(result.student)}" if result.student else ""
     title = result.lab_title or result.lab_id
     lines.append(f"# {title}{who}")
     lines.append("")
-    lines.append(f"**Score: {_pts(result.score)} / {_pts(result.max_score)}**")
+    lines.append(tr("**Score: {score} / {max_score}**", score=decimal(_pts(result.score)),
+                    max_score=decimal(_pts(result.max_score))))
     failed_critical = [t for t in getattr(result, "critical_failures", [])
                        if t.visible or instructor]
     if failed_critical:  # first: a safety requirement or the lab's core function failed
         names = list(dict.fromkeys(t.criterion for t in failed_critical))
         capped = getattr(result, "capped", False)
-        cap = (f" (the score is capped at {result.critical_cap:.0%} of the points until it "
-               "passes)" if capped else "")
-        lines += ["", f"**A critical requirement failed**{cap}: " + "; ".join(
-            md_text(n) for n in names) + ". First failure: " + md_line(failed_critical[0].message)]
+        cap = (tr(" (the score is capped at {share} of the points until it passes)",
+                  share=f"{result.critical_cap:.0%}") if capped else "")
+        lines += ["", tr("**A critical requirement failed**{cap}: ", cap=cap) + "; ".join(
+            md_text(n) for n in names) + tr(". First failure: ")
+            + md_line(failed_critical[0].message)]
     elif getattr(result, "capped", False):  # a hidden scenario's critical check failed
-        lines += ["", f"**A critical requirement failed in a hidden scenario:** the score is "
-                  f"capped at {result.critical_cap:.0%} of the points."]
-    status_words = {
-        "compile_error": "The program does not compile, so no scenario could run.",
-        "no_source": "No source file was found in the submission.",
-        "language": "The submission uses a language this lab does not accept.",
-        "timeout": "The grading was stopped at the time limit.",
-        "memory": "The program needed more memory than allowed.",
-        "crash": "The grading process crashed.",
-        "rejected": "The submission was not graded (see below).",
-        "infrastructure": "The grading machine failed (not your program): it will be "
-                          "graded again.",
-    }
-    if result.status in status_words:
-        lines += ["", status_words[result.status]]
+        lines += ["", tr("**A critical requirement failed in a hidden scenario:** the score is "
+                         "capped at {share} of the points.", share=f"{result.critical_cap:.0%}")]
+    if result.status in STATUS_WORDS:
+        lines += ["", tr(STATUS_WORDS[result.status])]
     if result.message:
         lines += ["", md_line(result.message)]
     if result.files:
-        lines += ["", "Files: " + ", ".join(md_code(f) for f in result.files[:MAX_FILES])
-                  + (f" and {len(result.files) - MAX_FILES} more"
+        lines += ["", tr("Files: ") + ", ".join(md_code(f) for f in result.files[:MAX_FILES])
+                  + (tr(" and {n} more", n=len(result.files) - MAX_FILES)
                      if len(result.files) > MAX_FILES else "")]
     if result.diagnostics:
         errors = [d for d in result.diagnostics if " error " in f" {d} "]
-        head = "Compiler errors" if errors else "Compiler warnings"
-        shown = result.diagnostics[:MAX_DIAGNOSTICS]
+        head = tr("Compiler errors") if errors else tr("Compiler warnings")
+        shown = [localize_line(d) for d in result.diagnostics[:MAX_DIAGNOSTICS]]
         more = len(result.diagnostics) - len(shown)
         if more:
-            shown = shown + [f"... and {more} more"]
+            shown = shown + [tr("... and {n} more", n=more)]
         lines += ["", f"## {head}", "", *md_fence([clean_text(d, 4000) for d in shown])]
     by_sc: dict[str, list[Any]] = {}
     for t in result.tests:
@@ -338,43 +346,47 @@ def render_feedback(result: Any, instructor: bool = False, hint_level: int = 1,
         got = sum(t.score for t in tests)
         mx = sum(t.max_score for t in tests)
         desc = f" — {run.description}" if run and run.description else ""
-        tag = "" if visible else " (hidden)"
-        lines += ["", f"## Scenario `{name}`{tag}{desc}", "", f"{_pts(got)} / {_pts(mx)} points"]
+        tag = "" if visible else tr(" (hidden)")
+        lines += ["", tr("## Scenario `{name}`{tag}{desc}", name=name, tag=tag, desc=desc), "",
+                  tr("{got} / {max} points", got=decimal(_pts(got)), max=decimal(_pts(mx)))]
         if run and run.error and not run.ran:
             lines += ["", f"**{md_line(run.error)}**"]
         for note in (run.notes if run else []):
             lines += ["", f"**{md_line(note)}**"]
-        lines += ["", "| | Criterion | Points | What happened |", "|---|---|---|---|"]
+        lines += ["", tr("| | Criterion | Points | What happened |"), "|---|---|---|---|"]
         for t in tests:
-            mark = "PASS" if t.passed else "FAIL"
-            lines.append(f"| {mark} | {_cell(t.criterion)} | {_pts(t.score)}/"
-                         f"{_pts(t.max_score)} | {_cell(t.message)} |")
+            mark = tr("PASS") if t.passed else tr("FAIL")
+            lines.append(f"| {mark} | {_cell(t.criterion)} | {decimal(_pts(t.score))}/"
+                         f"{decimal(_pts(t.max_score))} | {_cell(t.message)} |")
         for t in tests:
             if not real_failure(t):
                 continue
-            lines += ["", f"### FAIL: {t.criterion}", "", t.message + "."
+            lines += ["", tr("### FAIL: {criterion}", criterion=t.criterion), "", t.message + "."
                       if not t.message.endswith(".") else t.message]
             if t.hint and hint_level >= 1:
-                lines += ["", f"Hint: {t.hint}"]
+                lines += ["", tr("Hint: {hint}", hint=t.hint)]
             if hint_level >= 2 and (fixes or {}).get(t.criterion):
-                lines += ["", f"The fix: {(fixes or {})[t.criterion]}"]
+                lines += ["", tr("The fix: {fix}", fix=(fixes or {})[t.criterion])]
             if t.diagram:
-                at = f" around t = {t.t_fail:.2f} s" if t.t_fail is not None else ""
-                lines += ["", f"![timing diagram of {t.criterion}{at}]({t.diagram})"]
+                at = (tr(" around t = {t:num} s", t=f"{t.t_fail:.2f}")
+                      if t.t_fail is not None else "")
+                lines += ["", tr("![timing diagram of {criterion}{at}]({path})",
+                                 criterion=t.criterion, at=at, path=t.diagram)]
         if run and run.rrd:
-            lines += ["", f"Recording of this scenario ({run.rrd_note}): [{run.rrd}]({run.rrd})"
-                      f" — open it with `rerun {run.rrd}`."]
+            lines += ["", tr("Recording of this scenario ({note}): [{rrd}]({rrd}) — open it "
+                             "with `rerun {rrd}`.", note=run.rrd_note, rrd=run.rrd)]
         elif run and run.rrd_note:
             lines += ["", f"({run.rrd_note})"]
     if hidden:
-        lines += ["", "## Hidden scenarios", "",
-                  "These scenarios are not shown before the grades are published; you see "
-                  "only whether each test passed.", "", "| | Test | Points |", "|---|---|---|"]
+        lines += ["", tr("## Hidden scenarios"), "",
+                  tr("These scenarios are not shown before the grades are published; you see "
+                     "only whether each test passed."), "", tr("| | Test | Points |"),
+                  "|---|---|---|"]
         for name in hidden:
             for t in by_sc[name]:
-                mark = "PASS" if t.passed else "FAIL"
-                lines.append(f"| {mark} | {_cell(t.name)} | {_pts(t.score)}/"
-                             f"{_pts(t.max_score)} |")
+                mark = tr("PASS") if t.passed else tr("FAIL")
+                lines.append(f"| {mark} | {_cell(t.name)} | {decimal(_pts(t.score))}/"
+                             f"{decimal(_pts(t.max_score))} |")
     return "\n".join(lines) + "\n"
 
 

@@ -608,7 +608,10 @@ class Grader:
     def _write_student(self, res: Result, dirname: str) -> None:
         d = self.out / dirname
         write_json(d / "results.json", results_json(res))
-        write_atomic(d / "feedback.md", render_feedback(res))
+        from plclab.i18n_labs import localize_result
+
+        shown, _ = localize_result(res, self.lab)  # the language chosen (ADR 0063)
+        write_atomic(d / "feedback.md", render_feedback(shown))
         write_json(d / SIDECAR, {"grader": GRADER_VERSION, "lab": self.lab.id,
                                  "submission_hash": res.submission_hash,
                                  "lab_hash": self.lab.hash, "scenarios": self.scenarios,

@@ -1,0 +1,170 @@
+"""Checks of the translations (ADR 0063): what a shipped language lacks, and templates whose
+placeholders differ from the English text's. ``tests/i18n`` runs them on the real files and on
+broken copies; each finding is one line that says what is missing and where to add it.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from pathlib import Path
+from typing import Any
+
+from .i18n import LOCALE_DIR, fields
+
+PLCLAB_DIR = Path(__file__).resolve().parent
+STATUS_AND_SEVERITY = ("error", "warning")
+
+
+def placeholder_problems(pairs: list[tuple[str, str, str]]) -> list[str]:
+    """``(where, english, translated)`` triples whose placeholder names differ (a translation
+    may repeat or reorder them, not drop or invent one).
+
+    >>> placeholder_problems([("x", "{a} of {b}", "{b} из {a}"), ("y", "{a}", "{c}")])
+    ['y: the translation has {c} where the English has {a}']
+    """
+    out = []
+    for where, en, tr in pairs:
+        try:
+            a, b = set(fields(en)), set(fields(tr))
+        except ValueError as e:  # an unclosed brace
+            out.append(f"{where}: not a valid template ({e})")
+            continue
+        if a != b:
+            has = ", ".join("{" + f + "}" for f in sorted(b)) or "no placeholder"
+            want = ", ".join("{" + f + "}" for f in sorted(a)) or "no placeholder"
+            out.append(f"{where}: the translation has {has} where the English has {want}")
+    return out
+
+
+def catalogue_pairs(problems: dict[str, Any], ui: dict[str, Any],
+                    lang: str) -> list[tuple[str, str, str]]:
+    """Every (where, English, translation) of a language's ``problems.toml`` messages and
+    ``ui.toml`` (its keys are the English templates; argparse's ``%(x)s`` ones are compared
+    by their ``%`` names)."""
+    pairs = []
+    for code, entry in problems.items():
+        for i, m in enumerate(entry.get("messages", []) if isinstance(entry, dict) else []):
+            pairs.append((f"problems.toml [{code}] messages[{i}]", m.get("en", ""),
+                          m.get(lang, "")))
+    for key, value in ui.items():
+        if isinstance(value, str):
+            if "%(" in key or "%s" in key or "%r" in key:
+                pairs.append((f"ui.toml {key!r}", _percent(key), _percent(value)))
+            else:
+                pairs.append((f"ui.toml {key!r}", key, value))
+    for i, m in enumerate(ui.get("messages", [])):
+        pairs.append((f"ui.toml messages[{i}]", m.get("en", ""), m.get(lang, "")))
+    return pairs
+
+
+def _percent(text: str) -> str:
+    """``%(prog)s: %s`` as a brace template (``{prog}: {_1}``) for the placeholder check."""
+    n = iter(range(1, 100))
+    return re.sub(r"%\((\w+)\)[sr]|%[sr]", lambda m: "{" + (m[1] or f"_{next(n)}") + "}",
+                  text.replace("{", "{{").replace("}", "}}"))
+
+
+def missing_problems(codes: list[str], problems: dict[str, Any], lang: str,
+                     english: dict[str, dict[str, Any]] | None = None) -> list[str]:
+    """Codes of ``plclab/problems.toml`` without a title or an explanation in ``lang`` (and,
+    with the ``english`` entries, without the ``no_example`` or ``reserved_why`` they have)."""
+    out = []
+    for code in codes:
+        entry = problems.get(code, {})
+        extra = [k for k in ("no_example", "reserved_why") if (english or {}).get(code, {}).get(k)]
+        lacks = [k for k in ("title", "explanation", *extra)
+                 if not (isinstance(entry.get(k), str) and entry[k].strip())]
+        if lacks:
+            out.append(f"{code}: no {' and no '.join(lacks)} in plclab/locale/{lang}/problems.toml"
+                       f" (add [{code}] with {', '.join(lacks)} next to its numeric "
+                       "neighbours)")
+    return out
+
+
+def tr_keys(root: Path = PLCLAB_DIR) -> dict[str, str]:
+    """Every literal template passed to ``tr()`` in plclab's source: template -> file:line."""
+    keys: dict[str, str] = {}
+    for f in sorted(root.rglob("*.py")):
+        tree = ast.parse(f.read_text(encoding="utf-8"))
+        for n in ast.walk(tree):
+            if (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "tr"
+                    and n.args and isinstance(n.args[0], ast.Constant)
+                    and isinstance(n.args[0].value, str)):
+                keys.setdefault(n.args[0].value, f"{f.relative_to(root.parent)}:{n.lineno}")
+    return keys
+
+
+def missing_ui(keys: dict[str, str], ui: dict[str, Any], lang: str) -> list[str]:
+    """Templates of ``keys`` (template -> where it is used) without a ``lang`` text."""
+    return [f"{where}: tr({key!r}) has no text in plclab/locale/{lang}/ui.toml"
+            for key, where in keys.items() if not isinstance(ui.get(key), str)]
+
+
+def missing_lab_texts(lab_dir: Path, lang: str) -> list[str]:
+    """What the lab in ``lab_dir`` lacks in its ``lab.<lang>.toml``: the title, each criterion's
+    name and, where ``lab.toml`` has them, its message, hint and hint_fix, each scenario's
+    description; and criteria it names that ``lab.toml`` does not have."""
+    import tomllib
+
+    spec = tomllib.loads((lab_dir / "lab.toml").read_text(encoding="utf-8-sig"))
+    path = lab_dir / f"lab.{lang}.toml"
+    texts = tomllib.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    crits = texts.get("criteria", {})
+    where = f"labs/{lab_dir.name}/{path.name}"
+    out = [] if str(texts.get("title", "")).strip() else [f"{lab_dir.name}: no title in {where}"]
+    for c in spec.get("criterion", []):
+        name = c.get("name", "")
+        got = crits.get(name) if isinstance(crits.get(name), dict) else {}
+        for key in ("name", "message", "hint", "hint_fix"):
+            if (key == "name" or c.get(key)) and not str(got.get(key, "")).strip():
+                out.append(f"{lab_dir.name}: criterion {name!r} has no {key} in {where} (add "
+                           f'[criteria.{_q(name)}] {key} = "...")')
+    scen = texts.get("scenarios", {})
+    for sc in spec.get("scenario", []):
+        name = sc.get("name", "")
+        if sc.get("description") and not str(scen.get(name, {}).get("description", "")).strip():
+            out.append(f"{lab_dir.name}: scenario {name!r} has no description in {where} (add "
+                       f'[scenarios.{_q(name)}] description = "...")')
+    for name in crits:
+        if name not in {c.get("name") for c in spec.get("criterion", [])}:
+            out.append(f"{lab_dir.name}: {path.name} names criterion {name!r}, which lab.toml "
+                       "does not have (renamed? rename it here too)")
+    return out
+
+
+def _q(name: str) -> str:
+    return '"' + name.replace('"', '\\"') + '"'
+
+
+def parser_helps(parser: Any, where: str = "plclab") -> dict[str, str]:
+    """Every help text and description of an argparse ``parser`` and its sub-commands:
+    text -> the command it belongs to."""
+    import argparse
+
+    helps: dict[str, str] = {}
+    if parser.description:
+        helps.setdefault(parser.description, where)
+    for action in parser._actions:
+        if action.help and action.help != argparse.SUPPRESS:
+            helps.setdefault(action.help, where)
+        if isinstance(action, argparse._SubParsersAction):
+            for choice in action._choices_actions:
+                if choice.help:
+                    helps.setdefault(choice.help, where)
+            for name, sub in action.choices.items():
+                for text, w in parser_helps(sub, f"{where} {name}").items():
+                    helps.setdefault(text, w)
+    return helps
+
+
+def missing_help(helps: dict[str, str], ui: dict[str, Any], lang: str) -> list[str]:
+    """Help texts of ``helps`` without a ``lang`` text in ``ui.toml``."""
+    return [f"{where} --help: {text!r} has no text in plclab/locale/{lang}/ui.toml (add it "
+            "under 'command-line help')" for text, where in helps.items()
+            if not isinstance(ui.get(text), str)]
+
+
+def locale_file(lang: str, name: str) -> Path:
+    """``plclab/locale/<lang>/<name>.toml``."""
+    return LOCALE_DIR / lang / f"{name}.toml"
