@@ -24,7 +24,7 @@ from ..compile.codegen import Compiled
 from ..compile.real32 import single_cell
 from ..errors import Location, PlcError, PlcRuntimeFault
 from ..lang.check.symbols import instance_label
-from . import natives
+from . import natives, scan_gen
 from .plc_limits import (
     DEFAULT_IMAGE,
     MAX_CYCLE_NS,
@@ -42,7 +42,7 @@ from .plc_limits import (
 )
 from .plc_scan import ScanCycle
 from .plc_vars import Var, VariableAccess, convert_in, format_typed
-from .plc_watch import ForcingAndWatch, TriggerHooks
+from .plc_watch import ForcedTable, ForcingAndWatch, TriggerHooks
 from .rt import HELPERS, AssertFailure, Budget, Fault, fb_exit_all
 
 # the trigger points of TIA Portal's watch tables (001 lines 3985-4030, Table 14)
@@ -133,7 +133,8 @@ class Plc(ScanCycle, VariableAccess, ForcingAndWatch):
                                                     "clock_memory_byte")
         self.inputs = bytearray(image_size)  # the physical input terminals
         self.outputs = bytearray(image_size)  # the physical output terminals
-        self.forced: dict[str, Any] = {}
+        self._live = [False]  # the generated scan's flag: the common case holds (ADR 0058)
+        self.forced: dict[str, Any] = ForcedTable(self._reselect)
         # trigger points of a watch table (ADR 0025): callbacks and one-shot modifications
         self.triggers: dict[str, list[Any]] = {t: TriggerHooks(self._rewatch) for t in TRIGGERS}
         self.modified: dict[str, dict[str, Any]] = {t: {} for t in TRIGGERS}
@@ -255,7 +256,11 @@ class Plc(ScanCycle, VariableAccess, ForcingAndWatch):
         # one task running at the base tick: no need to check which tasks are due
         self._single = (self._task_bodies[0][1] if len(self._task_bodies) == 1 and
                         self._task_bodies[0][0] == self._tick_ns else None)
-        self._one = self._one_scan() if self._single is not None else None
+        # the scan of this PLC as one generated function (ADR 0058); the old one, if a
+        # caller still holds it, hands its calls to the general scan()
+        self._live[0] = False
+        self.scan, self._unchecked, self._live = scan_gen.build(self, ScanCycle.scan)
+        self._reselect()
 
     @property
     def tick_ns(self) -> int:

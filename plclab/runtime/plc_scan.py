@@ -28,49 +28,43 @@ class ScanCycle:
     def scan_count(self) -> int:
         return self.ctx.scan_count
 
+    @property
+    def state(self) -> str:
+        """``"RUN"`` or ``"STOP"``."""
+        return self._state
+
+    @state.setter
+    def state(self, value: str) -> None:
+        self._state = value
+        self._reselect()
+
+    def _reselect(self) -> None:
+        """Whether the generated scan may run (RUN, nothing forced, no trigger point or pending
+        modification): called where any of these changes (ADR 0058)."""
+        live = getattr(self, "_live", None)
+        if live is not None:
+            live[0] = (getattr(self, "_state", None) == "RUN" and not self.forced
+                       and not getattr(self, "_hooked", True))
+
     def scan(self, n: int = 1) -> None:
-        """Run ``n`` scan cycles: freeze inputs, run due tasks, write outputs, advance clock."""
+        """Run ``n`` scan cycles: freeze inputs, run due tasks, write outputs, advance clock.
+
+        The general path: ``plc.scan`` is the PLC's generated scan (:mod:`.scan_gen`), which
+        comes here for ``n`` other than 1 and outside the common case."""
         if n.__class__ is not int or not 0 <= n <= MAX_SCANS:
             check_count(n, "scan: n")
-        if (self.state != "RUN" or self.forced or self._single is None or n < 1
-                or self._system_bytes or self._hooked):
+        if not self._live[0] or n < 1:
             for _ in range(n):
                 self._scan_once()
             return
         if n == 1:
-            self._one()
-            return
-        self._fast_scans(n)
-
-    def _one_scan(self):
-        """``_fast_scans(1)`` with what it needs bound once (made by ``_bind``): the fixed
-        cost of a ``scan()`` call (ADR 0034). The same steps and end state, a fault included
-        (no output copy, no clock step, the scan counted); without a process image in the
-        program the order of the image copies cannot be seen."""
-        plc, ctx, budget, tick = self, self.ctx, self.budget, self._tick_ns
-        img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
-        sync_in, sync_out, bodies = self._sync_in, self._sync_out, self._single
-
-        def one() -> None:
-            budget.left = budget.limit
-            img_in[:] = inputs
-            try:
-                if sync_in is not None:
-                    sync_in()
-                for body in bodies:
-                    body()
-                if sync_out is not None:
-                    sync_out()
-                outputs[:] = img_out
-                t = ctx.now_ns + tick
-                ctx.now_ns = t
-                ctx.now = t // 1_000_000
-            except BaseException as exc:  # noqa: BLE001
-                plc._to_stop(exc)
-            ctx.first_scan = False
-            ctx.scan_count += 1
-
-        return one
+            self._unchecked()
+        elif self._single is not None and not self._system_bytes:
+            self._fast_scans(n)
+        else:  # several tasks or system bytes: the generated scan n times
+            one = self._unchecked
+            for _ in range(n):
+                one()
 
     def _fast_scans(self, n: int) -> None:
         """The common case (RUN, nothing forced, one cyclic task, no system bytes): the steps
@@ -127,72 +121,17 @@ class ScanCycle:
         ctx.scan_count += n
 
     def scanner(self):
-        """A function that runs one scan, as ``scan()`` does, at less cost per call: what it
-        needs is bound once (the simulation calls it every cycle). While the PLC is not in
-        the common case (STOP, forced values, several tasks, system bytes, or after a
-        restart, or with a watch table's trigger points or a pending modify) it simply calls
-        :meth:`scan`."""
-        plc = self
-        bodies = self._single
-        if bodies is None or len(bodies) != 1:
-            return self.scan
-        body = bodies[0]
-        ctx, budget, tick = self.ctx, self.budget, self._tick_ns
-        img_in, inputs, img_out, outputs = self.image_in, self.inputs, self.image_out, self.outputs
-        sync_in, sync_out = self._sync_in, self._sync_out
+        """A function that runs one scan, as ``scan()`` does, at less cost per call: the PLC's
+        generated scan (:mod:`.scan_gen`, ADR 0058), which the simulation calls every cycle.
+        Outside the common case (STOP, forced values, a watch table's trigger points or a
+        pending modify) it hands the call to the general :meth:`scan`; after a restart the
+        function of the old program does too.
 
-        def ready() -> bool:
-            """True while ``unchecked`` may stand for ``scan_one``."""
-            return not (plc._single is not bodies or plc.state != "RUN" or plc.forced
-                        or plc._system_bytes or plc._hooked)
-
-        def scan_one() -> None:
-            if (plc._single is not bodies or plc.state != "RUN" or plc.forced
-                    or plc._system_bytes or plc._hooked):  # trigger points: scan()
-                plc.scan()
-                return
-            budget.left = budget.limit  # from here on as unchecked() (a call less)
-            img_in[:] = inputs
-            try:
-                if sync_in is not None:
-                    sync_in()
-                body()
-                if sync_out is not None:
-                    sync_out()
-            except BaseException as exc:  # noqa: BLE001
-                plc._to_stop(exc)
-            outputs[:] = img_out
-            t = ctx.now_ns + tick
-            ctx.now_ns = t
-            ctx.now = t // 1_000_000
-            ctx.first_scan = False
-            ctx.scan_count += 1
-
-        def unchecked() -> None:
-            budget.left = budget.limit
-            img_in[:] = inputs
-            try:
-                if sync_in is not None:
-                    sync_in()
-                body()
-                if sync_out is not None:
-                    sync_out()
-            except BaseException as exc:  # noqa: BLE001
-                plc._to_stop(exc)
-            outputs[:] = img_out
-            t = ctx.now_ns + tick
-            ctx.now_ns = t
-            ctx.now = t // 1_000_000
-            ctx.first_scan = False
-            ctx.scan_count += 1
-
-        # for a caller that knows what can change between its scans (the simulation's fused
-        # loop, ADR 0032): while ready() holds and nothing but the scans themselves runs,
-        # only a fault (state STOP) can end the common case, so the caller may check ready()
-        # once, call unchecked() and go back to scan_one after the state changed
-        scan_one.ready = ready  # type: ignore[attr-defined]
-        scan_one.unchecked = unchecked  # type: ignore[attr-defined]
-        return scan_one
+        Its ``ready()`` tells whether the common case holds, and ``unchecked()`` runs the scan
+        without looking: for a caller that knows what can change between its scans (the
+        simulation's fused loop, ADR 0032), only a fault (state STOP) can end the common case
+        while nothing but the scans themselves runs."""
+        return self.scan
 
     def _scan_once(self) -> None:
         ctx = self.ctx

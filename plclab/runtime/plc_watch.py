@@ -93,6 +93,7 @@ class ForcingAndWatch:
         v = self.var(path)
         self.modified[at][path.upper()] = (v, convert_in(value, v.type, path))
         self._hooked = True
+        self._reselect()
 
     def enable_outputs_in_stop(self, enable: bool = True) -> None:
         """TIA Portal's *Enable peripheral outputs*: in STOP, modified outputs reach the
@@ -114,6 +115,7 @@ class ForcingAndWatch:
     def _rewatch(self) -> None:
         """Recompute ``_hooked`` after a trigger list or a pending modification changed."""
         self._hooked = any(self._watch_parts)
+        self._reselect()
 
     def _take(self, at: str) -> list[tuple[str, Any]]:
         items = list(self.modified[at].items())
@@ -156,10 +158,10 @@ class TriggerHooks(list):
         return self
 
 
-def _notifying(name: str) -> Any:
-    method = getattr(list, name)
+def _notifying(name: str, base: type = list) -> Any:
+    method = getattr(base, name)
 
-    def changed(self: TriggerHooks, *args: Any) -> Any:
+    def changed(self: Any, *args: Any) -> Any:
         out = method(self, *args)
         self._changed()
         return out
@@ -171,4 +173,26 @@ def _notifying(name: str) -> Any:
 for _name in ("append", "extend", "insert", "remove", "pop", "clear", "__setitem__",
               "__delitem__"):
     setattr(TriggerHooks, _name, _notifying(_name))
+del _name
+
+
+class ForcedTable(dict):
+    """``plc.forced``: the forced values, a dict that calls ``changed()`` after every change, so
+    the generated scan learns that forcing is active without testing the table on each call
+    (ADR 0058)."""
+
+    __slots__ = ("_changed",)
+
+    def __init__(self, changed: Any) -> None:
+        super().__init__()
+        self._changed = changed
+
+    def __ior__(self, other: Any) -> ForcedTable:
+        super().__ior__(other)
+        self._changed()
+        return self
+
+
+for _name in ("__setitem__", "__delitem__", "pop", "popitem", "clear", "update", "setdefault"):
+    setattr(ForcedTable, _name, _notifying(_name, dict))
 del _name
