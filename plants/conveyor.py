@@ -325,6 +325,7 @@ class Conveyor(Plant):
         self._hw = self.bottle_width / 2.0
         self._hh = self.bottle_height / 2.0
         self._snap_template: dict[str, float] | None = None  # see snapshot()
+        self._snap_row: tuple[Any, ...] | None = None  # see snapshot_row()
         self._slot_keys = [
             (f"bottle{i}.id", f"bottle{i}.x", f"bottle{i}.y", f"bottle{i}.angle")
             for i in range(self.max_bottles)
@@ -752,6 +753,37 @@ class Conveyor(Plant):
             out[k_y] = b.y
             out[k_a] = b.angle
         return out
+
+    def snapshot_row(self) -> list[float]:
+        """:meth:`snapshot`'s values in its keys' order, built without a dict: what the
+        simulation records every scan (``snapshot_keys()`` gives the keys once)."""
+        lay = self._snap_row
+        if lay is None:
+            keys = list(self.snapshot())
+            pos = {k: i for i, k in enumerate(keys)}
+            tmpl = [NAN if k.startswith("bottle") else 0.0 for k in keys]
+            lay = self._snap_row = (tmpl, [pos[k] for k in self.counts], pos["spilled_volume"],
+                                    [pos[k[0]] for k in self._slot_keys])
+        tmpl, count_pos, first, slot_pos = lay
+        out = tmpl.copy()
+        for i, v in zip(count_pos, self.counts.values(), strict=True):
+            out[i] = float(v)
+        out[first] = self.spilled_volume
+        out[first + 1] = self.filled_volume
+        out[first + 2] = self.v_belt
+        out[first + 3] = self.cyl
+        out[first + 4] = float(len(self._bottles))
+        for b in self._bottles:
+            i = slot_pos[b.slot]
+            out[i] = float(b.id)
+            out[i + 1] = b.x
+            out[i + 2] = b.y
+            out[i + 3] = b.angle
+        return out
+
+    def snapshot_keys(self) -> list[str]:
+        """The keys of :meth:`snapshot`, in the order of :meth:`snapshot_row`."""
+        return list(self.snapshot())
 
     def geometry(self) -> dict[str, Any]:
         return {

@@ -78,9 +78,14 @@ class Recording:
         self._g_watch = rec.add("watch", wnames, wkinds)
         self._g_snap = None
         self._snap_keys: list[str] | None = None
+        self._snap_row: Any = None  # the plant's snapshot_row() when it gives the keys' order
         self.recorder = rec
 
     def _record_snapshot(self) -> None:
+        row_of = self._snap_row
+        if row_of is not None:
+            self._g_snap.rows.append(row_of())  # the plant's values in the keys' order
+            return
         snap = self.plant.snapshot()
         if self._g_snap is None:
             keys = list(snap)
@@ -89,6 +94,11 @@ class Recording:
             names = [k if k.upper() not in taken else f"snapshot:{k}" for k in keys]
             self._g_snap = self.recorder.add("snapshot", names, ["float"] * len(keys))
             self._g_snap.rows.extend([(math.nan,) * len(keys)] * (len(self.recorder.index) - 1))
+            # a plant that gives its snapshot as a row in fixed key order (the conveyor's
+            # hundreds of slot columns): a list a scan, no dict
+            row_of = getattr(self.plant, "snapshot_row", None)
+            if row_of is not None and list(self.plant.snapshot_keys()) == keys:
+                self._snap_row = row_of
         keys = self._snap_keys
         assert keys is not None
         if len(snap) == len(keys) and list(snap) == keys:

@@ -49,3 +49,40 @@ def test_a_wrong_index_is_caught(monkeypatch) -> None:
     assert len(idx) == len(c._bottles) >= 2
     xs = [fl[i] for i in idx]
     assert xs == [b.x for b in c._bottles] and xs[0] != xs[1]
+
+
+def test_the_snapshot_row_is_the_snapshot_in_its_keys_order() -> None:
+    c = Conveyor(belt_length=6.0, feed_pitch=0.3, knock_rate=0.3, max_bottles=30)
+    c.reset(seed=2)
+    keys = c.snapshot_keys()
+    for k in range(600):
+        c["CONVEYOR"] = k > 10
+        c["REJECT"] = 200 <= k < 240
+        c.step(0.01)
+        if k % 50 == 0:
+            want = c.snapshot()
+            assert list(want) == keys
+            assert repr(c.snapshot_row()) == repr(list(want.values())), f"scan {k}"
+
+
+def test_a_simulation_records_the_same_snapshot_either_way(monkeypatch) -> None:
+    import numpy as np
+
+    import plclab
+    from plclab.sim import Scenario, Simulation
+
+    src = ("PROGRAM Line VAR START AT %IX0.0 : BOOL; STOP AT %IX0.1 : BOOL; "
+           "CONVEYOR AT %QX0.0 : BOOL; END_VAR CONVEYOR := (START OR CONVEYOR) AND STOP; "
+           "END_PROGRAM")
+
+    def run():
+        sim = Simulation(plclab.loads(src), "conveyor", scenario=Scenario().press("START", at="0.5s"),
+                         plant_params={"belt_length": 6.0, "feed_pitch": 0.3, "max_bottles": 30})
+        return sim.run(8.0)
+
+    fast = run()
+    monkeypatch.delattr(Conveyor, "snapshot_row")
+    plain = run()
+    assert fast.names == plain.names and "bottle3.x" in fast.names
+    for name in fast.names:
+        assert np.array_equal(fast[name], plain[name], equal_nan=True), name
