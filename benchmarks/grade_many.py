@@ -69,14 +69,8 @@ def forkserver_children_cpu() -> float | None:
         return None
 
 
-def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--n", type=int, default=100)
-    p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--no-media", action="store_true")
-    p.add_argument("--before", type=float, default=None,
-                   help="an earlier wall time (s) to print beside this one")
-    ns = p.parse_args(argv)
+def measure(n: int = 100, jobs: int = 2, media: bool = True) -> dict:
+    """Grade ``n`` half-failing submissions; the wall time and what main() prints."""
     from plclab.grade.grader import Grader
     from plclab.grade.lab import load_lab
 
@@ -84,11 +78,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         subs, out = base / "submissions", base / "results"
         subs.mkdir()
-        truth = make_half_failing(subs, ns.n)
+        truth = make_half_failing(subs, n)
         lab = load_lab(LAB, deep=True)
         load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
         t0, c0 = time.perf_counter(), time.process_time()
-        outcomes = Grader(lab, out, jobs=ns.jobs, media=not ns.no_media).grade_folder(subs)
+        outcomes = Grader(lab, out, jobs=jobs, media=media).grade_folder(subs)
         wall, own = time.perf_counter() - t0, time.process_time() - c0
         kids = forkserver_children_cpu()
         passing = [o.wall_s for o in outcomes if truth[o.result.student]]
@@ -99,7 +93,23 @@ def main(argv: list[str] | None = None) -> int:
         rrds = len(list(out.glob("*/*.rrd")))
     finally:
         shutil.rmtree(base, ignore_errors=True)
-    media = "no media" if ns.no_media else f"media: {pngs} PNG, {rrds} .rrd"
+    return {"outcomes": outcomes, "passing": passing, "failing": failing, "wall": wall,
+            "own": own, "kids": kids, "load": load, "wrong": wrong,
+            "media": f"media: {pngs} PNG, {rrds} .rrd" if media else "no media"}
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--n", type=int, default=100)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--no-media", action="store_true")
+    p.add_argument("--before", type=float, default=None,
+                   help="an earlier wall time (s) to print beside this one")
+    ns = p.parse_args(argv)
+    r = measure(ns.n, ns.jobs, not ns.no_media)
+    outcomes, failing, passing, wall = r["outcomes"], r["failing"], r["passing"], r["wall"]
+    wrong, kids, own, load = r["wrong"], r["kids"], r["own"], r["load"]
+    media = r["media"]
     print(f"{LAB}: {len(outcomes)} submissions ({len(failing)} failing), jobs {ns.jobs}, "
           f"{media}")
     mp, mf = statistics.mean(passing), statistics.mean(failing)

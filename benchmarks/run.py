@@ -1,6 +1,6 @@
 """Benchmarks: µs per scan of plclab vs hand-written and tuned Python doing the same work.
 
-Run ``python benchmarks/run.py [--quick]``. Prints
+Run ``python benchmarks/run.py [--quick] [--table] [--site]``. Prints
 
 * a table per program: plclab, the plain Python baseline, the tuned Python baseline (locals,
   inlined wraps and MOD, hoisted constants; ``programs.py``), both ratios, and whether all three
@@ -9,7 +9,9 @@ Run ``python benchmarks/run.py [--quick]``. Prints
   a time and inside one ``plc.scan(n)``, with ``median ratio vs bytecode VM`` when the VM's times
   are given in ``PLCLAB_VM_RESULTS`` (see ``benchmarks/vm/README.md``);
 * the compile speed and peak memory of a 5,000-line and a 50,000-line ST file;
-* then ``worst ratio vs tuned python: X.XX`` and, last, ``worst ratio vs hand-written python: X.XX``.
+* then ``worst ratio vs tuned python: X.XX`` and ``worst ratio vs hand-written python: X.XX``;
+* last, issue 35's table (:mod:`speed_table`): every row as measure, now, reference, goal, ratio
+  (``--table``: only that; ``--site``: with the playground row, which needs Chromium).
 
 Timings are interleaved (plclab, plain, tuned, plclab, ...) and the medians are reported, so a
 burst of load on the shared machine hits all three alike.
@@ -181,6 +183,11 @@ def compile_cost(lines: int, repeat: int) -> tuple[int, float, float]:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     quick = "--quick" in argv
+    if "--table" in argv:  # only issue 35's table (speed_table.py)
+        import speed_table
+
+        speed_table.main(quick=quick, site="--site" in argv)
+        return 0
     rounds = 5 if quick else 15
     rows = []
     worst = worst_tuned = 0.0
@@ -224,6 +231,9 @@ def main(argv: list[str] | None = None) -> int:
               f"(scanner()), {statistics.median(ratios_n):.2f} with scan(n)")
     print(f"worst ratio vs tuned python: {worst_tuned:.2f}")
     print(f"worst ratio vs hand-written python: {worst:.2f}")
+    import speed_table  # issue 35's table: every row beside its reference and goal
+
+    speed_table.main(quick=quick, site="--site" in argv)
     return 0
 
 

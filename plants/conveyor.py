@@ -87,6 +87,16 @@ def _find_pose_getters() -> None:
         _POSE = (get_pos, get_angle)
 
 
+def _batch_reader(pymunk: Any) -> tuple[Any, Any, Any] | None:
+    """(buffer, fields, get_space_bodies) of pymunk's batch API (pymunk 6.6+), else None."""
+    try:
+        from pymunk import batch
+    except ImportError:  # pragma: no cover - an older pymunk: one call a bottle
+        return None
+    fields = batch.BodyFields.BODY_ID | batch.BodyFields.POSITION | batch.BodyFields.ANGLE
+    return batch.Buffer(), fields, batch.get_space_bodies
+
+
 class _Bottle:
     __slots__ = (
         "angle",
@@ -315,6 +325,7 @@ class Conveyor(Plant):
         self._hw = self.bottle_width / 2.0
         self._hh = self.bottle_height / 2.0
         self._snap_template: dict[str, float] | None = None  # see snapshot()
+        self._snap_row: tuple[Any, ...] | None = None  # see snapshot_row()
         self._slot_keys = [
             (f"bottle{i}.id", f"bottle{i}.x", f"bottle{i}.y", f"bottle{i}.angle")
             for i in range(self.max_bottles)
@@ -359,6 +370,10 @@ class Conveyor(Plant):
         space.add(belt, wall)
         self._space = space
         self._belt = belt
+        self._batch = _batch_reader(pymunk)  # one read of every body's pose a scan
+        self._batch_key: tuple[list[int], int] | None = None
+        self._batch_idx: list[int] = []
+        self._bottles_changed = 0  # counts releases and removals (the batch's index)
         self.v_belt = 0.0
         self.cyl = 0.0
         self._bottles: list[_Bottle] = []
@@ -429,6 +444,7 @@ class Conveyor(Plant):
             b.knock_x = self.rng.uniform(xx + 0.1, max(xx + 0.1, self.x_eye - KNOCK_LEAD))
         b.sync()
         self._bottles.append(b)
+        self._bottles_changed += 1
         self.counts["released"] += 1
         self._emit(
             "bottle_released",
@@ -496,9 +512,20 @@ class Conveyor(Plant):
         end = self.belt_length
         gone = end + 1.0
         get_pos, get_angle = _POSE if _POSE is not None else (None, None)
+        poses = self._read_poses()
+        if poses is not None:  # every pose from one batched read (pymunk.batch)
+            fl, idx = poses
+            for b, i in zip(self._bottles, idx, strict=True):
+                b.x = fl[i]
+                b.y = fl[i + 1]
+                a = fl[i + 2]
+                if a != b.angle:
+                    b.angle = a
         for b in self._bottles:
-            cb = b.cb
-            if cb is not None:  # b.sync() inline
+            if poses is not None:
+                x = b.x
+            elif b.cb is not None:  # b.sync() inline
+                cb = b.cb
                 v = get_pos(cb)  # type: ignore[misc]
                 b.x = x = v.x
                 b.y = v.y
@@ -587,6 +614,23 @@ class Conveyor(Plant):
                         pitch *= 1.0 + self.feed_jitter * (2.0 * self.rng.random() - 1.0)
                     self._pitch = pitch
 
+    def _read_poses(self) -> tuple[list[float], list[int]] | None:
+        """(x, y, angle of every body in the space's order, where each bottle's start) from
+        one call of pymunk's batch API instead of two C calls a bottle; None without it."""
+        batch = self._batch
+        if batch is None:
+            return None
+        buf, fields, get = batch
+        buf.clear()
+        get(self._space, fields, buf)
+        ids = memoryview(buf.int_buf()).cast("Q").tolist()
+        key = (ids, self._bottles_changed)
+        if key != self._batch_key:  # a body came or went: where each bottle is now
+            self._batch_key = key
+            where = {bid: 3 * j for j, bid in enumerate(ids)}
+            self._batch_idx = [where[b.body.id] for b in self._bottles]
+        return memoryview(buf.float_buf()).cast("d").tolist(), self._batch_idx
+
     def _knock(self, b: _Bottle) -> None:
         b.knocked = True
         b.knock_x = None
@@ -645,6 +689,7 @@ class Conveyor(Plant):
     def _remove(self, b: _Bottle) -> None:
         self._space.remove(b.body, b.shape)
         self._bottles.remove(b)
+        self._bottles_changed += 1
         self._free.append(b.slot)
         self._free.sort(reverse=True)
 
@@ -708,6 +753,37 @@ class Conveyor(Plant):
             out[k_y] = b.y
             out[k_a] = b.angle
         return out
+
+    def snapshot_row(self) -> list[float]:
+        """:meth:`snapshot`'s values in its keys' order, built without a dict: what the
+        simulation records every scan (``snapshot_keys()`` gives the keys once)."""
+        lay = self._snap_row
+        if lay is None:
+            keys = list(self.snapshot())
+            pos = {k: i for i, k in enumerate(keys)}
+            tmpl = [NAN if k.startswith("bottle") else 0.0 for k in keys]
+            lay = self._snap_row = (tmpl, [pos[k] for k in self.counts], pos["spilled_volume"],
+                                    [pos[k[0]] for k in self._slot_keys])
+        tmpl, count_pos, first, slot_pos = lay
+        out = tmpl.copy()
+        for i, v in zip(count_pos, self.counts.values(), strict=True):
+            out[i] = float(v)
+        out[first] = self.spilled_volume
+        out[first + 1] = self.filled_volume
+        out[first + 2] = self.v_belt
+        out[first + 3] = self.cyl
+        out[first + 4] = float(len(self._bottles))
+        for b in self._bottles:
+            i = slot_pos[b.slot]
+            out[i] = float(b.id)
+            out[i + 1] = b.x
+            out[i + 2] = b.y
+            out[i + 3] = b.angle
+        return out
+
+    def snapshot_keys(self) -> list[str]:
+        """The keys of :meth:`snapshot`, in the order of :meth:`snapshot_row`."""
+        return list(self.snapshot())
 
     def geometry(self) -> dict[str, Any]:
         return {

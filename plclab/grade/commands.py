@@ -103,8 +103,9 @@ def _grade_one_lab(ns: argparse.Namespace, lab_name: str, subs: Path, out: Path,
                    timeout: float | None, memory: int | None, executor: str | None,
                    multi: bool) -> None:
     from .batch import Unpacked, run_summary
-    from .grader import Grader, ProgressBar, summary_table
+    from .grader import Grader
     from .lab import lacks, load_lab, require_hidden
+    from .progress import ProgressBar, summary_table
 
     lab = load_lab(lab_name, ns.labs, deep=True)
     require_hidden(lab, ns.visible_only)

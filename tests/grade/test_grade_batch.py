@@ -21,7 +21,8 @@ from plclab.grade.batch import (
 )
 from plclab.grade.engine import Result
 from plclab.grade.engine import TestResult as OneTest
-from plclab.grade.grader import Outcome, ProgressBar
+from plclab.grade.grader import Outcome
+from plclab.grade.progress import ProgressBar
 
 ROOT = Path(__file__).resolve().parents[2]
 TANK = ROOT / "labs" / "tank-two-position"
