@@ -305,6 +305,10 @@ class ExprEmit:
                 right = f"({right} * 1000000)"
             elif rt is T.LTIME and lt is T.TIME:
                 left = f"({left} * 1000000)"
+            if isinstance(lt, T.RefType | T.InterfaceType) and _is_zero(e.right):
+                right = "None"  # CODESYS: IF itf <> 0 (ed.3 writes NULL; ADR 0059)
+            elif isinstance(rt, T.RefType | T.InterfaceType) and _is_zero(e.left):
+                left = "None"
             pyop = {"=": "==", "<>": "!="}.get(op, op)
             return f"({left} {pyop} {right})"
         if t is T.LREAL:  # a REAL operand of an LREAL operation is a REAL value (ADR 0038)
@@ -506,6 +510,13 @@ class ExprEmit:
             if d.kind == "time":
                 return f"_str_to_time({code})"
             return self.wrap(f"_str_to_int({code})", d)
+        if s is T.DT and (d.kind in ("int", "bits", "real") or d is T.BOOL):
+            # DT as a number counts seconds since 1970 (CODESYS "Conversion: DATE, DT, TOD",
+            # Beckhoff "DT_TO conversions", MATIEC __time_to_int); plclab holds milliseconds
+            code, s = f"({code} // 1000)", T.LINT
+        elif d is T.DT and s.kind in ("int", "bits", "real"):
+            whole = self.wrap(f"_round({code})", T.LINT) if s.kind == "real" else code
+            return self.wrap(f"({whole} * 1000)", d)
         if d is T.BOOL:
             return f"({code} != 0)"
         if (s.kind == "time") != (d.kind == "time") and self.dialect_at(e.loc).time_in_seconds:
@@ -625,3 +636,8 @@ def _in_range_builtin(e: A.Call) -> bool:
         return all(isinstance(x, _SIMPLE) and x.ty is not None and T.base_of(x.ty) is t
                    for x in vals) and isinstance(args[0], _SIMPLE)
     return False
+
+
+def _is_zero(e: A.Expr) -> bool:
+    """The integer literal 0, which CODESYS compares a reference or an interface with."""
+    return isinstance(e, A.Literal) and e.kind == "INT" and e.value == 0
