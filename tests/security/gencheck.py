@@ -38,7 +38,8 @@ RUNTIME_NAMES = {"_B", "_CTX", "_F32", "_G", "_I", "_M", "_P", "_Q", "_fb", "_pc
 BUILTINS = {"abs", "float", "int", "len", "list", "max", "min", "range", "bool", "str", "round"}
 METHODS = {"__new__", "_body", "_copy", "advance_ns", "from_bytes", "to_bytes", "left", "start",
            "step", "now", "now_ns", "first_scan", "scan_count", "limit",
-           "get", "set"}  # get/set: a reference's target (ADR 0021)
+           "get", "set",  # get/set: a reference's target (ADR 0021)
+           "data", "dims"}  # an ARRAY[*] argument's elements and bounds (ADR 0060)
 FORBIDDEN_CALLS = {"__import__", "eval", "exec", "open", "getattr", "setattr", "compile",
                    "globals", "locals", "vars", "breakpoint", "input", "delattr"}
 

@@ -15,7 +15,7 @@ IDENTS = ["__import__", "self", "_G", "_P", "_I", "_Q", "_M", "_B", "_CTX", "v_X
           "__class__", "__dict__", "__builtins__", "__name__", "_Globals", "_Programs", "None",
           "True_", "exec", "eval", "lambda_", "import_", "os", "sys", "_f32", "_math", "_t1",
           "_r1", "_pc", "n", "_wd", "_oob", "pwned_sentinel", "a" * 300, "X" + "_9" * 40,
-          "__X", "_X__", "__", "_"]
+          "__X", "_X__", "__", "_", "data", "dims", "_VLA", "_vla_ix"]
 
 # ST string literals (as written in source) that try to close a Python literal
 STRINGS = [

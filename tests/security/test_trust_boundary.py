@@ -102,7 +102,8 @@ def test_library_blocks_bind_only_through_the_registry():
     assert set(bound.values()) == natives.names()
     assert all(name == key for name, key in bound.items())
     for key in bound.values():
-        assert natives.resolve(key).__module__ in ("plclab.runtime.stdfb", "plclab.runtime.ctrlfb")
+        assert natives.resolve(key).__module__ in (
+            "plclab.runtime.stdfb", "plclab.runtime.ctrlfb", "plclab.runtime.ctrlfb_signals")
 
 
 def test_an_unregistered_name_is_refused():
