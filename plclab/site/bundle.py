@@ -1,5 +1,6 @@
 """What the playground loads in the browser: Pyodide from the npm ``pyodide`` package, and a zip
-of plclab's pure-Python core with the ``tank`` and ``motor`` plants.
+of plclab's pure-Python core with the ``tank`` and ``motor`` plants, the language server's
+feature functions and the highlighting lexers (with Pygments' lexer core).
 
 Pyodide is installed with ``npm install`` into a cache outside the source tree
 (``$PLCLAB_CACHE`` or ``~/.cache/plclab``, folder ``npm/``) the first time a site is built, then
@@ -24,6 +25,11 @@ REPO = Path(__file__).resolve().parents[2]
 # Packages of plclab that the page never imports (they need NumPy, pymunk, rerun, sockets...).
 NOT_IN_BROWSER = ("sim", "viz", "grade", "modbus", "course", "courseware")
 BROWSER_PLANTS = ("base.py", "tank.py", "motor.py")
+# The editor's highlighting is the course's (plclab/viz/highlight.py): that module, and the lexer
+# core of Pygments (pure Python, BSD licence; not its lexers, formatters or styles).
+BROWSER_VIZ = ("__init__.py", "highlight.py")
+PYGMENTS_MODULES = ("__init__.py", "filter.py", "filters/__init__.py", "lexer.py", "plugin.py",
+                    "regexopt.py", "token.py", "util.py")
 PLANTS_INIT = ('"""The plants of the playground (the site ships only the pure-Python tank and '
                'motor)."""\n\nfrom .base import Plant, PlantError\n\n'
                '__all__ = ["Plant", "PlantError"]\n')
@@ -82,7 +88,17 @@ def _core_files() -> list[tuple[Path, str]]:
             continue
         if path.suffix in (".py", ".st", ".toml"):
             out.append((path, f"plclab/{rel.as_posix()}"))
+    out += [(pkg / "viz" / n, f"plclab/viz/{n}") for n in BROWSER_VIZ]
     out += [(REPO / "plants" / n, f"plants/{n}") for n in BROWSER_PLANTS]
+    import pygments
+
+    src = Path(pygments.__file__).parent
+    out += [(src / n, f"pygments/{n}") for n in PYGMENTS_MODULES]
+    from importlib.metadata import distribution
+
+    for f in distribution("pygments").files or []:  # its licence travels with it
+        if f.name == "LICENSE":
+            out.append((Path(str(f.locate())), "pygments/LICENSE"))
     return out
 
 
