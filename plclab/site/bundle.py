@@ -19,6 +19,8 @@ from pathlib import Path
 from plclab.errors import PlcError
 
 PYODIDE_VERSION = "0.27.8"
+AXE_VERSION = "4.11.0"
+"""axe-core (MPL-2.0), the accessibility checker the browser tests inject into each page."""
 PYODIDE_FILES = ("pyodide.js", "pyodide.mjs", "pyodide.asm.js", "pyodide.asm.wasm",
                  "python_stdlib.zip", "pyodide-lock.json", "package.json")
 REPO = Path(__file__).resolve().parents[2]
@@ -53,20 +55,44 @@ def pyodide_dir(install: bool = True) -> Path:
     folder = cache_dir() / "node_modules" / "pyodide"
     if (folder / "pyodide.asm.wasm").exists() or not install:
         return folder
+    return npm_package("pyodide", PYODIDE_VERSION, "pyodide.asm.wasm",
+                       "or set PLCLAB_PYODIDE_DIR, or build with --no-playground")
+
+
+def npm_package(name: str, version: str, probe: str, other: str = "") -> Path:
+    """The folder of the npm package ``name@version`` in the cache, installed with npm when
+    the file ``probe`` is not in it yet."""
+    folder = cache_dir() / "node_modules" / name
+    if (folder / probe).exists() and _installed_version(folder) == version:
+        return folder
     npm = shutil.which("npm")
     if npm is None:
-        raise PlcError("PLC3042", "the playground needs Pyodide from npm, and npm is not "
-                       "installed: install Node.js and npm (apt-get install npm), or set "
-                       "PLCLAB_PYODIDE_DIR, or build with --no-playground")
+        raise PlcError("PLC3042", f"{name} comes from npm, and npm is not installed: install "
+                       f"Node.js and npm (apt-get install npm){', ' + other if other else ''}")
     cache_dir().mkdir(parents=True, exist_ok=True)
     done = subprocess.run([npm, "install", "--no-audit", "--no-fund", "--prefix",
-                           str(cache_dir()), f"pyodide@{PYODIDE_VERSION}"],
+                           str(cache_dir()), f"{name}@{version}"],
                           capture_output=True, text=True)
-    if done.returncode != 0 or not (folder / "pyodide.asm.wasm").exists():
+    if done.returncode != 0 or not (folder / probe).exists():
         tail = (done.stderr or done.stdout).strip().splitlines()[-3:]
-        raise PlcError("PLC3042", f"npm install pyodide@{PYODIDE_VERSION} failed "
-                       f"({' / '.join(tail)}); check the network or set PLCLAB_PYODIDE_DIR")
+        raise PlcError("PLC3042", f"npm install {name}@{version} failed "
+                       f"({' / '.join(tail)}); check the network{', ' + other if other else ''}")
     return folder
+
+
+def _installed_version(folder: Path) -> str | None:
+    import json
+
+    try:
+        return json.loads((folder / "package.json").read_text("utf-8")).get("version")
+    except (OSError, ValueError):
+        return None
+
+
+def axe_script() -> Path:
+    """``axe.min.js`` of axe-core ``AXE_VERSION`` (npm, into the cache): the browser tests
+    inject it into a page and run ``axe.run()`` (WCAG 2.1 A and AA rules)."""
+    return npm_package("axe-core", AXE_VERSION, "axe.min.js") / "axe.min.js"
 
 
 def copy_pyodide(dest: Path) -> Path:

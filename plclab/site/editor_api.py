@@ -62,14 +62,26 @@ def highlight(text: str, language: str = "st") -> list[list[tuple[str, str]]]:
     return lines
 
 
-def _analysis(text: str, language: str, for_features: bool = False) -> Any:
+def _analysis(text: str, language: str, line: int = 0) -> Any:
+    """The language server's analysis of the text; with ``line`` the one hover and completion
+    use: the text's own when it reads, else the text without the half-typed ``line`` (the
+    declarations around it), else the last text that read. (The last text that read alone is
+    not enough: in the page it may be another program, the one before a paste.)"""
     global _workspace
     from plclab.lsp.documents import Workspace
 
     if _workspace is None:
         _workspace = Workspace(size=16)
-    _workspace.update(URI, text, filename(language))
-    return _workspace.for_features(URI) if for_features else _workspace.current[URI]
+    a = _workspace.update(URI, text, filename(language))
+    if not line or a.syntax_ok:
+        return a
+    lines = text.split("\n")
+    if 0 < line <= len(lines):
+        lines[line - 1] = ""
+        probe = _workspace.update(URI + "-without-line", "\n".join(lines), filename(language))
+        if probe.syntax_ok:
+            return probe
+    return _workspace.for_features(URI)
 
 
 def word_end(text: str, line: int, col: int) -> int:
@@ -105,7 +117,7 @@ def hover(text: str, language: str, line: int, col: int) -> str:
     variable's type and declaration, a standard function's or block's signature and doc."""
     from plclab.lsp import features as F
 
-    a = _analysis(text, language, for_features=True)
+    a = _analysis(text, language, line)
     if a is None:
         return ""
     if a.text != text:  # the last text that read: positions may have moved, so ask by name
@@ -134,7 +146,7 @@ def complete(text: str, language: str, line: int, col: int) -> list[dict[str, st
     and keywords, narrowed to those that start with the word typed so far."""
     from plclab.lsp import features as F
 
-    a = _analysis(text, language, for_features=True)
+    a = _analysis(text, language, line)
     if a is None:
         return []
     w = F.word_at(text, line, col, before_only=True)

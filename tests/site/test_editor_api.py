@@ -142,3 +142,18 @@ def test_completion_of_members_declared_names_and_standard_blocks():
                                                  "st", 10, 3)}
     assert {"CTU", "CTD", "CTUD"} <= set(blocks) and blocks["CTU"]["kind"] == "block"
     assert "CU" in blocks["CTU"]["detail"]
+
+
+
+def test_a_half_typed_line_completes_from_its_own_program_not_the_one_before():
+    """The page checked another program before (the example it opened with); the student
+    replaced it and types a half line: the names come from the new program."""
+    ed._workspace = None
+    ed.lint("PROGRAM Old\nVAR legacy : INT; END_VAR\nlegacy := 1;\nEND_PROGRAM\n", "st")
+    text = "PROGRAM P\nVAR level : REAL; delay : TON; END_VAR\nle\nEND_PROGRAM\n"
+    labels = [c["label"] for c in ed.complete(text, "st", 3, 3)]
+    assert labels[0] == "level" and "legacy" not in labels
+    text = text.replace("le\n", "delay.\n")
+    assert {"Q", "ET"} <= {c["label"] for c in ed.complete(text, "st", 3, 7)}
+    text = text.replace("delay.\n", "x := delay + ;\n")
+    assert "delay : TON" in ed.hover(text, "st", 3, 8)
