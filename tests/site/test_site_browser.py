@@ -748,6 +748,6 @@ def test_every_try_it_example_shows_its_plant_watch_or_tests_without_an_unasked_
             problems.append((where, "tests", d["tests"][-200:]))
         elif d["shown"] not in ("plant", "watch", "tests"):
             problems.append((where, d["shown"], d["status"]))
-    assert problems == []
+    assert problems == [], problems
     assert known_seen == set(KNOWN_WARNINGS)
     assert errors == []
