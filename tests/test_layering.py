@@ -52,12 +52,14 @@ LAYERS: list[list[tuple[str, tuple[str, ...]]]] = [
     [("grade", ("plclab.grade",))],
     # the course: chapters, their examples, figures from real runs and quizzes.
     [("course", ("plclab.course",))],
-    # the web site: pages from the course, labs, catalogue and plants; the playground's Python
-    # side (plclab.site.playground_api, lab_check) itself needs only the core and the plants.
-    [("site", ("plclab.site",))],
     # the language server: the core's front ends and checker for editors (pygls only in
-    # plclab.lsp.server, imported by `plclab lsp`; docs/adr/0054-language-server.md).
+    # plclab.lsp.server, imported by `plclab lsp`; docs/adr/0054-language-server.md); below
+    # the site, whose playground editor calls its feature functions (docs/adr/0064).
     [("lsp", ("plclab.lsp",))],
+    # the web site: pages from the course, labs, catalogue and plants; the playground's Python
+    # side (plclab.site.playground_api, lab_check, editor_api) needs only the core, the
+    # plants, the language server's feature functions and the highlighting lexers.
+    [("site", ("plclab.site",))],
     # the command line: every `commands` module is a CLI front end of its package.
     [("cli", ("plclab.cli", "plclab.__main__", "plclab.sim.commands", "plclab.viz.commands",
               "plclab.grade.commands", "plclab.modbus.commands", "plclab.compile.commands",

@@ -69,7 +69,8 @@ def mkdocs_config(docs: Path, out: Path, nav: list[Any]) -> dict[str, Any]:
                   "features": ["navigation.sections", "navigation.top", "search.highlight"],
                   "palette": {"primary": "indigo"}},
         "plugins": ["search"],
-        "extra_css": ["playground/playground.css"],
+        "extra_css": ["theme/accessibility.css", "playground/playground.css"],
+        "extra_javascript": ["theme/accessibility.js"],
         "markdown_extensions": ["tables", "admonition", "attr_list", "md_in_html",
                                 {"toc": {"permalink": True}},
                                 {"pymdownx.highlight": {
@@ -95,8 +96,9 @@ def generate(docs: Path, playground: bool = True, figures: bool = True,
     written_from(pages.write(pg / "index.md",
                              (SITE_SOURCES / "playground.md").read_text("utf-8")),
                  "site/playground.md")
-    for name in ("playground.js", "worker.js", "playground.css"):
+    for name in ("playground.js", "editor.js", "worker.js", "playground.css"):
         shutil.copyfile(SITE_SOURCES / "playground" / name, pg / name)
+    shutil.copytree(SITE_SOURCES / "theme", docs / "theme")
     lab_nav = pages.lab_pages(docs, pg)
     if playground:
         core_zip(pg / "plclab-core.zip")
@@ -122,8 +124,10 @@ def build(out: str | Path | None = None, playground: bool = True,
                        "'plclab[site]' (or pip install mkdocs-material)") from None
     out_dir = check_out(Path(out) if out is not None else default_out())
     rep = BuildReport(out_dir, playground=playground)
+    from importlib.metadata import version
+
     print_ = fingerprint({"playground": playground, "figures": figures,
-                          "notebooks": notebooks})
+                          "notebooks": notebooks, "pygments": version("pygments")})
     if reuse and recorded(out_dir / MARKER) == print_ and (out_dir / "index.html").exists():
         rep.reused = True
         rep.pages = sum(1 for _ in out_dir.rglob("index.html"))

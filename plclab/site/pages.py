@@ -56,7 +56,8 @@ def _with_try_links(text: str, depth: int) -> str:
                     f"[{error.group(1)}]({'../' * depth}problems/{error.group(1)}/index.md).*"]
         if lang in PLAYGROUND_LANGUAGES:
             code = "\n".join(lines[i + 1:j]) + "\n"
-            out += ["", f'<a class="try-it" href="{try_link(code, lang, depth)}">'
+            expect = f"&expect={error.group(1)}" if error else ""  # the page announces it
+            out += ["", f'<a class="try-it" href="{try_link(code, lang, depth)}{expect}">'
                     "Try it in the playground</a>"]
         i = j + 1
     return "\n".join(out) + "\n"
@@ -190,8 +191,8 @@ def problem_pages(docs: Path) -> list[Any]:
         if p.wrong:
             page += ["## Wrong", "", f"```{lang}", p.wrong.strip("\n"), "```", ""]
             if lang in PLAYGROUND_LANGUAGES:
-                page += [f'<a class="try-it" href="{try_link(p.wrong, lang, 2)}">'
-                         "Try the wrong program</a>", ""]
+                page += [f'<a class="try-it" href="{try_link(p.wrong, lang, 2)}'
+                         f'&expect={code}">Try the wrong program</a>', ""]
         if p.fix:
             page += ["## Right", "", f"```{lang}", p.fix.strip("\n"), "```", ""]
             if lang in PLAYGROUND_LANGUAGES:

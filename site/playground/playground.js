@@ -12,7 +12,8 @@
     tests: $("pg-tests"), share: $("pg-share"), check: $("pg-check"), status: $("pg-status"),
     clock: $("pg-clock"), diags: $("pg-diagnostics"), canvas: $("pg-diagram"),
     summary: $("pg-summary"), results: $("pg-results"), buttons: $("pg-buttons"),
-    watch: $("pg-watch"), testOut: $("pg-test-output"),
+    watch: $("pg-watch"), testOut: $("pg-test-output"), layer: $("pg-layer"), tip: $("pg-tip"),
+    info: $("pg-info"), complete: $("pg-complete"),
   };
   const MOTOR_BUTTONS = [["START", true], ["STOP", false], ["OL_RESET", true]];
   // the page's limit for one silent call of the worker: a run reports every slice, so 10 s
@@ -21,7 +22,8 @@
   const STOP_GRACE_MS = 150;  // Stop waits this long for the worker before ending it
   const state = { worker: null, nextId: 1, pending: new Map(), busy: null, lastHeard: 0,
                   labs: {}, rows: [], loadMs: null, example: "", trend: [], watch: [],
-                  compiled: false, scans: 0, t: 0, ok: false, paused: false };
+                  compiled: false, scans: 0, t: 0, ok: false, paused: false,
+                  edits: 0, compiledAt: -1, lintTimer: 0, lastDiagnostics: [] };
 
   // ------------------------------------------------------------------ the worker
   function startWorker() {
@@ -91,18 +93,28 @@
     }
   }
 
-  // ------------------------------------------------------------------ editor
-  function renumber(bad) {
-    const n = el.code.value.split("\n").length;
-    const lines = [];
-    for (let i = 1; i <= n; i++) {
-      lines.push(bad && bad.has(i) ? `<span class="pg-bad" data-line="${i}">${i}</span>` : `${i}`);
-    }
-    el.gutter.innerHTML = lines.join("\n");
-    el.gutter.scrollTop = el.code.scrollTop;
+  // ------------------------------------------------------------------ editor (editor.js)
+  const problemHref = (code) => `../problems/${encodeURIComponent(code)}/`;
+  const editor = window.PlcEditor({
+    textarea: el.code, layer: el.layer, gutter: el.gutter, tip: el.tip, info: el.info,
+    list: el.complete, problemHref, language: () => el.lang.value,
+    ask: (type, data) => (state.example ? call(type, data) : Promise.reject(new Error("loading"))),
+  });
+  function renumber() { editor.refresh(); }
+  // diagnostics as you type: plclab check's (the language server's), unless a compile, run or
+  // check of this very text has spoken since
+  function lintSoon() {
+    clearTimeout(state.lintTimer);
+    const seq = state.edits;
+    state.lintTimer = setTimeout(async () => {
+      if (!state.example) return;
+      let m;
+      try { m = await call("lint", { code: el.code.value, lang: el.lang.value }); } catch (e) { return; }
+      if (seq === state.edits && state.compiledAt < seq) showDiagnostics(m.diagnostics);
+    }, 400);
   }
-  el.code.addEventListener("input", () => { renumber(); state.compiled = false; });
-  el.code.addEventListener("scroll", () => { el.gutter.scrollTop = el.code.scrollTop; });
+  el.code.addEventListener("input", () => { state.compiled = false; state.edits++; lintSoon(); });
+  el.lang.addEventListener("change", () => { state.edits++; renumber(); lintSoon(); });
 
   function decode(b64) {
     const s = b64.replace(/-/g, "+").replace(/_/g, "/");
@@ -117,7 +129,8 @@
   }
   function fromHash() {
     const h = new URLSearchParams(location.hash.slice(1));
-    const has = { code: !!h.get("code"), plant: h.get("plant"), lab: h.get("lab") };
+    const has = { code: !!h.get("code"), plant: h.get("plant"), lab: h.get("lab"),
+                  expect: (h.get("expect") || "").split(",").filter(Boolean) };
     if (h.get("code")) el.code.value = decode(h.get("code"));
     if (h.get("lang")) el.lang.value = h.get("lang");
     if (has.plant && [...el.plant.options].some((o) => o.value === has.plant)) el.plant.value = has.plant;
@@ -145,8 +158,8 @@
     return escapeHtml(text).replace(/`([^`]+)`/g, "<code>$1</code>");
   }
   function showDiagnostics(list) {
+    state.lastDiagnostics = list || [];
     el.diags.innerHTML = "";
-    const bad = new Set();
     for (const d of list) {
       const li = document.createElement("li");
       li.className = "pg-" + d.severity;
@@ -154,15 +167,14 @@
       li.dataset.line = d.line;
       const where = d.line ? `line ${d.line}${d.col ? ":" + d.col : ""}: ` : "";
       li.innerHTML = `${escapeHtml(where)}${escapeHtml(d.severity)} ` +
-        `<a href="../problems/${encodeURIComponent(d.code)}/">${escapeHtml(d.code)}</a>: ` +
+        `<a href="${problemHref(d.code)}">${escapeHtml(d.code)}</a>: ` +
         withCode(d.message);
       li.tabIndex = 0;
       li.addEventListener("click", (e) => { if (e.target.tagName !== "A") goToLine(d.line); });
       li.addEventListener("keydown", (e) => { if (e.key === "Enter") goToLine(d.line); });
       el.diags.appendChild(li);
-      if (d.severity === "error" && d.line) bad.add(d.line);
     }
-    renumber(bad);
+    editor.setMarks(list);
   }
   function goToLine(line) {
     if (!line) return;
@@ -340,6 +352,7 @@
     if (state.busy) await stop();
     await ready;
     el.results.innerHTML = ""; el.testOut.textContent = "";
+    state.compiledAt = state.edits;
     const m = await call("compile", { code: el.code.value, lang: el.lang.value,
                                       plant: el.plant.value, trend: state.trend });
     state.compiled = true; state.ok = m.ok; state.t = m.t; state.scans = m.scans;
@@ -386,6 +399,7 @@
     const m = await call("step");
     if (m.row) addRows([m.row]);
     state.t = m.t; state.scans = m.scans; showWatch(m.watch); draw(); summarise(); clock();
+    if (!m.ok) showDiagnostics(m.diagnostics);  // the run-time fault, at its line
     setStatus(m.ok ? "stepped" : "fault", m.ok ? `One scan: t = ${m.t.toFixed(2)} s.`
       : `Stopped by a run-time fault: ${faultText(m.diagnostics)}`);
   }
@@ -439,6 +453,7 @@
     if (state.busy) await stop();
     state.rows = []; draw(); el.summary.textContent = ""; el.testOut.textContent = "";
     setStatus("checking", `Checking against ${lab.title}...`);
+    state.compiledAt = state.edits;
     let res;
     try { res = await busyCall("check", { code: el.code.value, lang: el.lang.value, lab }, "check"); }
     catch (e) { return null; }
@@ -458,6 +473,7 @@
   async function runTests() {
     if (state.busy) await stop();
     el.results.innerHTML = "";
+    state.compiledAt = state.edits;
     let res;
     try { res = await busyCall("tests", { code: el.code.value, lang: el.lang.value }, "tests"); }
     catch (e) { return null; }
@@ -476,13 +492,49 @@
   };
 
   // ------------------------------------------------------------------ what an example needs
+  // A try-it link opens what its example needs: its TEST results, its plant, or the watch panel
+  // with its variables (one scan run); a deliberate mistake (``expect=PLC...``) is announced.
+  // The page then says what it showed (the event "pg-example", for the browser tests).
   async function openExample(asked) {
     if (!asked.code) { await compile(); return; }
     const a = await call("analyse", { code: el.code.value, lang: el.lang.value });
     if (!asked.plant && !asked.lab) { el.plant.value = a.plant; motorButtons(); }
-    if (a.tests > 0 && a.ok) { await compile(); await runTests(); return; }
-    await compile();
-    if (a.ok && el.plant.value === "none") await stepOnce();  // the watch shows its values
+    let shown;
+    if (a.tests > 0 && a.ok) {
+      await compile(); await runTests(); shown = "tests";
+    } else {
+      await compile();
+      shown = !state.ok ? "error" : el.plant.value === "none" ? "watch" : "plant";
+      const codes = () => [...el.diags.querySelectorAll("li")].map((li) => li.dataset.code);
+      if (state.ok && (el.plant.value === "none" ||
+          asked.expect.some((c) => !codes().includes(c)))) {
+        await stepOnce();  // the watch shows its values; a run-time mistake shows itself
+      }
+    }
+    let codes = [...el.diags.querySelectorAll("li")].map((li) => li.dataset.code);
+    if (asked.expect.some((c) => !codes.includes(c))) {
+      // a mistake only plclab check's rules see (a double coil...): add what the checker says
+      const lint = await call("lint", { code: el.code.value, lang: el.lang.value });
+      const shownNow = [...el.diags.querySelectorAll("li")].map((li) => ({
+        code: li.dataset.code, line: Number(li.dataset.line) }));
+      const more = lint.diagnostics.filter((d) => !shownNow.some((x) => x.code === d.code && x.line === d.line));
+      if (more.length) {
+        showDiagnostics(state.lastDiagnostics.concat(more));
+        codes = [...el.diags.querySelectorAll("li")].map((li) => li.dataset.code);
+      }
+    }
+    if (asked.expect.length) {
+      const seen = asked.expect.filter((c) => codes.includes(c));
+      if (seen.length) {
+        setStatus(el.status.dataset.state, el.status.textContent +
+          ` This example makes the mistake ${seen.join(", ")} on purpose.`);
+      }
+    }
+    const detail = { shown, plant: el.plant.value, codes, expect: asked.expect,
+                     tests: el.testOut.textContent, watch: state.watch.length,
+                     rows: state.rows.length, status: el.status.dataset.state };
+    window.dispatchEvent(new CustomEvent("pg-example", { detail }));
+    return detail;
   }
   window.addEventListener("hashchange", async () => {
     const asked = fromHash();
@@ -508,7 +560,7 @@
     renumber(); motorButtons();
     await ready;
     if (!el.code.value) el.code.value = state.example;
-    renumber();
+    renumber(); lintSoon();
     state.loadMs = performance.now() - t0;
     buttons();
     if (asked.code) await openExample(asked);
@@ -523,5 +575,5 @@
   window.addEventListener("resize", draw);
   // for the browser tests and the benchmark
   window.plclabPlayground = { ready: started, state, compile, run, checkLab, runTests, stop,
-                              stepOnce, shareLink };
+                              stepOnce, shareLink, call, editor };
 })();

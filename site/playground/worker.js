@@ -6,7 +6,7 @@
 "use strict";
 importScripts("../pyodide/pyodide.js");
 
-let py = null, api = null, labApi = null, session = null;
+let py = null, api = null, labApi = null, editorApi = null, session = null;
 let job = null;          // the running run/live: {id, kind, paused, stop, speed}
 const SLICE_MS = 40;     // wall-clock time of one Python call, about
 const toJs = (p) => (p && p.toJs ? p.toJs({ dict_converter: Object.fromEntries }) : p);
@@ -26,6 +26,7 @@ async function init(msg) {
   py = pyodide;
   api = py.pyimport("plclab.site.playground_api");
   labApi = py.pyimport("plclab.site.lab_check");
+  editorApi = py.pyimport("plclab.site.editor_api");
   reply(msg.id, "ready", { example: api.TANK_EXAMPLE, loadMs: performance.now() - t0 });
 }
 
@@ -114,6 +115,12 @@ const handlers = {
   unforce: (m) => { if (session) session.unforce(m.path); reply(m.id, "ok"); },
   trend: (m) => { if (session) session.set_trend(py.toPy(m.paths)); reply(m.id, "ok"); },
   watch: (m) => reply(m.id, "watch", { watch: session ? toJs(session.watch()) : [] }),
+  // the editor (plclab/site/editor_api.py): colours, diagnostics as you type, hover, completion
+  highlight: (m) => reply(m.id, "highlighted", { spans: toJs(editorApi.highlight(m.code, m.lang)) }),
+  lint: (m) => reply(m.id, "linted", { diagnostics: toJs(editorApi.lint(m.code, m.lang)) }),
+  hover: (m) => reply(m.id, "hovered", { hover: editorApi.hover(m.code, m.lang, m.line, m.col) }),
+  complete: (m) => reply(m.id, "completed", {
+    items: toJs(editorApi.complete(m.code, m.lang, m.line, m.col)) }),
   analyse: (m) => reply(m.id, "analysed", toJs(api.analyse(m.code, m.lang))),
   tests: (m) => reply(m.id, "tested", toJs(api.run_tests(m.code, m.lang))),
   check: (m) => {

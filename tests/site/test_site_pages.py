@@ -35,10 +35,15 @@ def test_one_page_per_code_with_its_wrong_and_right_program(docs):
 def test_every_chapter_is_a_page_and_its_examples_open_in_the_playground(docs):
     for ch in (REPO / "course").glob("[0-9][0-9]-*/chapter.md"):
         page = (docs / "course" / ch.parent.name / "index.md").read_text()
-        links = re.findall(r'href="\.\./\.\./playground/#lang=(\w+)&code=([\w-]+)"', page)
-        fences = re.findall(r"^```(st|il|ld)\b", ch.read_text(), re.M)
+        links = re.findall(r'href="\.\./\.\./playground/#lang=(\w+)&code=([\w-]+)'
+                           r'(?:&expect=(PLC\d{4}))?"', page)
+        fences = re.findall(r"^```(st|il|ld)\b(.*)$", ch.read_text(), re.M)
         assert len(links) == len(fences) > 0, ch
-        lang, code = links[0]
+        # a deliberate mistake's link says which code the page should expect
+        assert [x[2] for x in links] == [(re.findall(r"error=(PLC\d{4})", f[1]) or [""])[0]
+                                         for f in fences], ch
+        lang, code, _ = links[0]
+        fences = [f[0] for f in fences]
         text = base64.urlsafe_b64decode(code + "=" * (-len(code) % 4)).decode()
         assert text.strip() in ch.read_text() and lang == fences[0]
 
