@@ -272,3 +272,20 @@ def test_quiz_checker_catches_a_changed_program_field() -> None:
     ru = _qru()
     del ru["item"][1]["explain"]
     assert quiz_differences(QEN, ru)
+
+
+def test_english_build_ignores_the_russian_files(tmp_path: Path) -> None:
+    """`plclab course build` reads chapter.md and quiz.toml by name: the Russian files beside
+    them change neither the chapter list nor the English output."""
+    from plclab.course.build import build_chapter
+    from plclab.course.model import chapters
+
+    listed = chapters()
+    assert [c.folder for c in listed] == [c for c in CHAPTERS if (c / "chapter.md").exists()]
+    for chapter in [c for c in listed if (c.folder / "chapter.ru.md").exists()][:1]:
+        build_chapter(chapter, tmp_path, figures=False)
+        out = tmp_path / chapter.slug
+        assert not list(out.rglob("*.ru.*"))
+        assert (out / "chapter.md").read_text(encoding="utf-8") == \
+            (chapter.folder / "chapter.md").read_text(encoding="utf-8")
+        assert not re.search("[А-Яа-яЁё]", (out / "quiz.toml").read_text(encoding="utf-8"))
