@@ -289,3 +289,31 @@ def test_english_build_ignores_the_russian_files(tmp_path: Path) -> None:
         assert (out / "chapter.md").read_text(encoding="utf-8") == \
             (chapter.folder / "chapter.md").read_text(encoding="utf-8")
         assert not re.search("[А-Яа-яЁё]", (out / "quiz.toml").read_text(encoding="utf-8"))
+
+
+@pytest.mark.parametrize("chapter", [c for c in _ru_chapters() if (c / "quiz.ru.toml").exists()],
+                         ids=lambda p: p.name)
+def test_ru_quiz_is_valid_for_the_quiz_loader(chapter: Path) -> None:
+    """The Russian quiz passes the same validation as the English one (kinds, required keys)."""
+    from plclab.course.model import Chapter
+    from plclab.course.quiz import items
+
+    ch = Chapter(chapter)
+    with open(chapter / "quiz.ru.toml", "rb") as fh:
+        ch.quiz_data = tomllib.load(fh)   # what `plclab quiz --lang ru` would read
+    ru = items(ch)
+    assert [i.id for i in ru] == [i.id for i in items(Chapter(chapter))]
+    assert all(i.question and i.explain for i in ru)
+
+
+@pytest.mark.parametrize("chapter", _ru_chapters(), ids=lambda p: p.name)
+def test_ru_chapter_agrees_through_the_course_model(chapter: Path) -> None:
+    """plclab's own reader sees the same labs, figures and code blocks in both editions."""
+    from plclab.course.model import Chapter
+
+    en, ru = Chapter(chapter), Chapter(chapter)
+    ru.text = (chapter / "chapter.ru.md").read_text(encoding="utf-8")
+    assert ru.lab_refs == en.lab_refs
+    assert ru.figure_refs == en.figure_refs
+    assert [(b.language, b.attrs, b.text) for b in ru.blocks] == \
+        [(b.language, b.attrs, b.text) for b in en.blocks]
