@@ -414,6 +414,12 @@ def run_scenario(lab: Lab, compiled: Any, sc: ScenarioSpec, number: int,
                                 critical=c.critical))
     if any(not t.passed for t in tests):  # an SFC: where the chart stands, and why
         run.notes.extend(f"At the end: {line}" for line in trace.meta.get("sfc_end", []))
+    # what is shown (pictures, kept traces) reads each address as its declared type
+    from plclab.trace.typed import declared_view
+
+    from .feedback import declared_types
+
+    trace = declared_view(trace, declared_types(compiled, lab.io))
     if media_dir is not None and any(not t.passed for t in tests):
         from .feedback import draw_failures
 

@@ -38,6 +38,26 @@ def real_failure(t: Any) -> bool:
     return not t.passed and not t.detail.startswith(("not earned", "not run"))
 
 
+def declared_types(compiled: Any, io: Any = ()) -> dict[str, str]:
+    """``{address: elementary type name}`` as the student declared them: the program's
+    located variables (``LEVEL_MM AT %MW22 : INT`` gives ``INT``; ``INT(0..100)`` too), then
+    the lab's I/O table (``io`` rows with ``address`` and ``type``) for the addresses the
+    program uses without a declaration. For :func:`plclab.trace.typed.declared_view`."""
+    from plclab.lang import types as T
+
+    out: dict[str, str] = {}
+    symbols = getattr(getattr(compiled, "project", None), "symbols", None)
+    for lv in symbols.located_vars() if symbols is not None else ():
+        addr = str(lv.address).upper()
+        name = getattr(T.base_of(T.resolve(lv.decl.ty)), "name", None)
+        if not addr.endswith("*") and isinstance(name, str):
+            out.setdefault(addr, name.upper())
+    for r in io or ():
+        if getattr(r, "address", "") and getattr(r, "type", ""):
+            out.setdefault(str(r.address).upper(), str(r.type).upper())
+    return out
+
+
 def failure_window(tf: float | None, w: float, t_end: float) -> tuple[float, float]:
     """The window of width ``w`` a diagram shows around a failure at ``tf`` (None: the end)."""
     if tf is None:
@@ -71,6 +91,55 @@ def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
     return out
 
 
+_COUNTING = ("event_count", "counter", "max_switchings", "no_chatter")
+
+
+def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
+    """``limits`` with what the run counted beside what the criterion expects, for the
+    criteria that count (events, switchings, a program's counter): ``exactly 90 bottle passed
+    events, counted 84``; a counter also gets a dashed line at the plant's count on its own
+    row (``plant counted 84``). Other criteria: ``limits`` unchanged."""
+    from dataclasses import replace
+
+    from .criteria import Limit, _events, window
+
+    check = getattr(crit, "check", "") if getattr(crit, "function", None) is None else ""
+    if check not in _COUNTING or trace is None or not hasattr(trace, "events_of"):
+        return limits
+    try:
+        verdict = crit.evaluate(trace)
+    except Exception:  # noqa: BLE001 - a picture never stops on its criterion
+        return limits
+    seen = verdict.value
+    if not isinstance(seen, int | float) or isinstance(seen, bool):
+        return limits
+    p = dict(crit.params)
+    out = []
+    for lim in limits:
+        if lim.kind != "count":
+            out.append(lim)
+            continue
+        if check == "counter":
+            try:
+                a, b = window(trace, p)
+                n = len(_events(trace, p["event"], p.get("where"), a, b, p.get("source")))
+                extra = p.get("events")
+                if extra:
+                    n += len(_events(trace, str(extra.get("event")), extra.get("where"), a, b))
+            except Exception:  # noqa: BLE001
+                out.append(lim)
+                continue
+            out.append(replace(lim, label=f"{lim.label}: the plant counted {n}, "
+                                          f"{lim.signal} = {seen:g}"))
+            out.append(Limit("level", lim.signal, f"plant counted {n}", float(n)))
+        elif check == "no_chatter":
+            out.append(replace(lim, label=f"{lim.label}: {seen:g} in chatter"))
+        else:
+            word = "switched" if check == "max_switchings" else "counted"
+            out.append(replace(lim, label=f"{lim.label}, {word} {seen:g}"))
+    return out
+
+
 def criterion_picture(trace: Any, crit: Any, rows: list[str], analog: Any = None) -> Any:
     """What ``crit`` checks, drawn over the diagram rows ``rows`` (trace columns): the
     :class:`plclab.viz.failure_diagram.Drawing` every picture of a failure shares."""
@@ -91,7 +160,7 @@ def criterion_picture(trace: Any, crit: Any, rows: list[str], analog: Any = None
         except Exception:  # noqa: BLE001
             return False
 
-    return criterion_drawing(criterion_limits(crit), row_of,
+    return criterion_drawing(counted_limits(trace, crit, criterion_limits(crit)), row_of,
                              trace.meta.get("units", {}) if hasattr(trace, "meta") else {},
                              analog or is_analog)
 

@@ -1,6 +1,7 @@
 """What a student sees after a failed check, for every lab and each of its mistakes.
 
     python -m plclab.grade.lab_pictures --out /tmp/pics [--labs a,b] [--first] [--no-viewer]
+                                        [--hidden]
 
 For each mistake (``labs/*/mistakes/*``; ``--first``: the first of each lab) it runs, as a
 student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenarios) and keeps:
@@ -8,8 +9,13 @@ student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenari
 - ``LAB--MISTAKE.png``: the ``--png`` timing diagram (the first failure, its criterion's limits);
 - ``LAB--MISTAKE--viewer.png``: the real rerun viewer's *default* view of ``R`` (no clicks, no
   cursor moved: under Xvfb at 1600x1000, saved with ``ViewerClient.save_screenshot``);
-- a line in ``index.tsv``: lab, mistake, the scenario and criterion ``--png`` drew, and what the
-  viewer opened (its recording, where its time cursor stood).
+- a line in ``index.tsv``: lab, mistake, its score, the scenario and criterion ``--png`` drew,
+  the limits of that criterion the picture draws (``criterion_limits``), what the viewer opened
+  (its recording, where its time cursor stood), and ``hidden`` when it was drawn from a hidden
+  scenario.
+
+``--hidden``: a mistake that passes every visible scenario is checked again with the
+instructor's ``lab check --hidden`` (hidden scenarios too), so that its failure is drawn.
 
 Not run by the test suite (minutes per lab). ``docs/figures/rerun/`` holds a chosen few.
 """
@@ -38,11 +44,24 @@ def mistakes(labs: list[str] | None, first: bool) -> list[tuple[str, Path]]:
     return out
 
 
-def check(lab: str, program: Path, png: Path, rrd: Path) -> str:
-    """``plclab lab check`` as a student runs it; its output."""
+def check(lab: str, program: Path, png: Path, rrd: Path, hidden: bool = False) -> str:
+    """``plclab lab check`` as a student runs it (``hidden``: as the instructor, with the
+    hidden scenarios); its output."""
     done = subprocess.run([sys.executable, "-m", "plclab", "lab", "check", lab, str(program),
-                           "--png", str(png), "--rrd", str(rrd)], capture_output=True, text=True)
+                           "--png", str(png), "--rrd", str(rrd)] + (["--hidden"] if hidden else []),
+                          capture_output=True, text=True)
     return done.stdout + done.stderr
+
+
+def drawn_limits(lab: str, criterion: str) -> str:
+    """The limits ``--png`` draws for ``criterion`` of ``lab`` (its one description), as
+    words; ``-`` when it has none."""
+    from .criteria import criterion_limits
+    from .lab import load_lab
+
+    crit = next((c for c in load_lab(lab).criteria if c.name == criterion), None)
+    lims = criterion_limits(crit) if crit is not None else []
+    return "; ".join(f"{lim.kind}: {lim.label}" for lim in lims) or "-"
 
 
 def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
@@ -76,6 +95,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--labs", default=None, help="comma separated lab ids (default: all)")
     ap.add_argument("--first", action="store_true", help="only the first mistake of each lab")
     ap.add_argument("--no-viewer", action="store_true", help="only the --png pictures")
+    ap.add_argument("--hidden", action="store_true",
+                    help="a mistake that passes the visible scenarios: check it again with "
+                    "the hidden ones (the instructor's view)")
     ap.add_argument("--wait", type=float, default=10.0, help="seconds to let the viewer draw")
     ns = ap.parse_args(argv)
     out = Path(ns.out)
@@ -90,13 +112,22 @@ def main(argv: list[str] | None = None) -> int:
             m = re.search(r"timing diagram: \S+ \((.*)\)", text)
             score = re.findall(r"score: (\S+)/(\S+)", text)
             full = bool(score) and score[-1][0] == score[-1][1]
+            hidden = "-"
+            if ns.hidden and m is None and full:  # fails only in hidden scenarios
+                text = check(lab, program, png, rrd, hidden=True)
+                m = re.search(r"timing diagram: \S+ \((.*)\)", text)
+                score = re.findall(r"score: (\S+)/(\S+)", text)
+                full = bool(score) and score[-1][0] == score[-1][1]
+                hidden = "hidden"
+            crit = re.search(r"criterion '([^']*)'", m.group(1)) if m else None
+            lims = drawn_limits(lab, crit.group(1)) if crit else "-"
             drew = m.group(1) if m else ("passed the visible scenarios (no failure to draw)"
                                          if full else "no failure picture")
             seen = "-"
             if not ns.no_viewer and rrd.exists():
                 seen = default_view(rrd, out / f"{tag}--viewer.png", env, ns.wait)
             line = "\t".join([lab, program.name, "/".join(score[-1]) if score else "?", drew,
-                              seen])
+                              lims, seen, hidden])
             with index.open("a", encoding="utf-8") as f:
                 f.write(line + "\n")
             print(line, flush=True)
