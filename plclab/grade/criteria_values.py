@@ -112,7 +112,7 @@ def value(tr: Any, p: dict[str, Any]) -> Verdict:
 # ---------------------------------------------------------------------------- events
 
 
-def _events(tr: Any, kind: str, where: Mapping[str, Any] | None, a: float, b: float,
+def trace_events(tr: Any, kind: str, where: Mapping[str, Any] | None, a: float, b: float,
             source: str | None = None) -> list[Any]:
     out = []
     for e in tr.events_of(kind, source, a, b):
@@ -141,7 +141,7 @@ def event_count(tr: Any, p: dict[str, Any]) -> Verdict:
     ``max`` or ``equals`` ("no standing bottle rejected": bottle_rejected where fallen = false,
     max = 0)."""
     a, b = window(tr, p)
-    evs = _events(tr, p["event"], p.get("where"), a, b, p.get("source"))
+    evs = trace_events(tr, p["event"], p.get("where"), a, b, p.get("source"))
     n = len(evs)
     what = _what(p["event"], p.get("where"))
     hi = p.get("max") if p.get("equals") is None else p["equals"]
@@ -187,10 +187,10 @@ def counter(tr: Any, p: dict[str, Any]) -> Verdict:
     window, the number of matching events (good bottles counted = bottles that passed)."""
     a, b = window(tr, p)
     name = p["signal"]
-    n = len(_events(tr, p["event"], p.get("where"), a, b, p.get("source")))
+    n = len(trace_events(tr, p["event"], p.get("where"), a, b, p.get("source")))
     extra = p.get("events")
     if extra:
-        n += len(_events(tr, str(extra.get("event")), extra.get("where"), a, b))
+        n += len(trace_events(tr, str(extra.get("event")), extra.get("where"), a, b))
     v = tr.value_at(name, b - 1e-9)
     tol = int(p.get("tolerance") or 0)
     if abs(int(v) - n) <= tol:
@@ -210,7 +210,7 @@ def event_data(tr: Any, p: dict[str, Any]) -> Verdict:
     ``hi``, and there are at least ``min`` of them ("every bottle that left the belt holds
     0.45 l ± 0.02 l", the recipe's volume)."""
     a, b = window(tr, p)
-    evs = [e for e in _events(tr, p["event"], p.get("where"), a, b, p.get("source"))
+    evs = [e for e in trace_events(tr, p["event"], p.get("where"), a, b, p.get("source"))
            if isinstance(e.data.get(p["field"]), int | float)]
     what = _what(p["event"], p.get("where"))
     lo = -math.inf if p.get("lo") is None else float(p["lo"])

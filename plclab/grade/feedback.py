@@ -101,7 +101,9 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
     row (``plant counted 84``). Other criteria: ``limits`` unchanged."""
     from dataclasses import replace
 
-    from .criteria import Limit, _events, window
+    from .criteria_base import window
+    from .criteria_limits import Limit
+    from .criteria_values import trace_events
 
     check = getattr(crit, "check", "") if getattr(crit, "function", None) is None else ""
     if check not in _COUNTING or trace is None or not hasattr(trace, "events_of"):
@@ -122,10 +124,10 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
         if check == "counter":
             try:
                 a, b = window(trace, p)
-                n = len(_events(trace, p["event"], p.get("where"), a, b, p.get("source")))
+                n = len(trace_events(trace, p["event"], p.get("where"), a, b, p.get("source")))
                 extra = p.get("events")
                 if extra:
-                    n += len(_events(trace, str(extra.get("event")), extra.get("where"), a, b))
+                    n += len(trace_events(trace, str(extra.get("event")), extra.get("where"), a, b))
             except Exception:  # noqa: BLE001
                 out.append(lim)
                 continue
