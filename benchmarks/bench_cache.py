@@ -96,6 +96,22 @@ def line(measure: str, now: float, goal: float, unit: str = "s") -> str:
     return f"{measure:<34} now {now:8.3f} {unit}   goal {goal:6.3f} {unit}   ratio {now / goal:5.2f}"
 
 
+def rows(quick: bool) -> list[dict]:
+    """The rows of ``benchmarks/speed_table.py`` (issue 35's table)."""
+    src = big_source(50_000)
+    n = src.count("\n")
+    cold, warm = compile_seconds(src, 1 if quick else 2)
+    _first, second = check_from_disk(src)
+    cpu = stages(src)
+    prof = ", ".join(f"{k} {v:.2f}" for k, v in cpu.items())
+    return [dict(measure=f"compile {n // 1000}k lines, cold", now=cold, unit="s", reference=4.1,
+                 goal=GOALS["compile cold"], note=f"best; CPU by stage: {prof}"),
+            dict(measure=f"compile {n // 1000}k lines, unchanged (memory cache)", now=warm,
+                 unit="s", reference=None, goal=GOALS["compile unchanged (memory)"]),
+            dict(measure=f"check {n // 1000}k lines, unchanged (disk cache, fresh process)",
+                 now=second, unit="s", reference=None, goal=GOALS["check unchanged (disk)"])]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--lines", type=int, default=50_000)

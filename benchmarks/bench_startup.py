@@ -78,13 +78,8 @@ def line(measure: str, now: float, goal: float, floor: float | None = None) -> s
     return text
 
 
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeat", type=int, default=7)
-    ap.add_argument("--no-lsp", action="store_true")
-    ns = ap.parse_args(argv)
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"bench_startup: {os.cpu_count()} CPUs, load average {load:.1f}; bytecode cache on")
+def measure(repeat: int, lsp: bool = True) -> dict[str, float | None]:
+    """Every figure of this module in seconds: floor, hit, miss, lab, lsp."""
     with tempfile.TemporaryDirectory(prefix="plclab-bench-startup-") as tmp:
         env = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONPYCACHEPREFIX=f"{tmp}/pyc",
                    PLCLAB_CACHE_DIR=f"{tmp}/cache")
@@ -93,19 +88,47 @@ def main(argv: list[str] | None = None) -> int:
         small = Path(tmp) / "small.st"
         small.write_text(SMALL, encoding="utf-8")
         py = sys.executable
-        floor = timed([py, "-c", "pass"], env, tmp, ns.repeat)
-        hit = timed([py, "-m", "plclab", "check", str(small)], env, tmp, ns.repeat)
-        miss = timed([py, "-m", "plclab", "check", "--no-cache", str(small)], env, tmp,
-                     ns.repeat)
+        floor = timed([py, "-c", "pass"], env, tmp, repeat)
+        hit = timed([py, "-m", "plclab", "check", str(small)], env, tmp, repeat)
+        miss = timed([py, "-m", "plclab", "check", "--no-cache", str(small)], env, tmp, repeat)
         solution = ROOT / "labs" / "tank-two-position" / "solution" / "tank.st"
         lab = timed([py, "-m", "plclab", "lab", "check", "tank-two-position", str(solution)],
-                    env, tmp, max(3, ns.repeat // 2))
+                    env, tmp, max(3, repeat // 2))
+    return {"floor": floor, "hit": hit, "miss": miss, "lab": lab,
+            "lsp": lsp_median() if lsp else None}
+
+
+def rows(quick: bool) -> list[dict]:
+    """The rows of ``benchmarks/speed_table.py`` (issue 35's table), in its units."""
+    m = measure(3 if quick else 7)
+    floor = f"python -c pass {m['floor'] * 1000:.0f} ms; bytecode cache on; median"
+    out = [dict(measure="plclab lab check tank-two-position SOLUTION, whole command",
+                now=m["lab"], unit="s", reference=0.87, goal=GOALS["lab check"], note=floor),
+           dict(measure="plclab check small.st (compile cache hit)", now=m["hit"] * 1000,
+                unit="ms", reference=90.0, goal=GOALS["check"] * 1000, note=floor),
+           dict(measure="plclab check small.st --no-cache", now=m["miss"] * 1000, unit="ms",
+                reference=90.0, goal=GOALS["check --no-cache"] * 1000, note=floor)]
+    if m["lsp"] is not None:
+        out.append(dict(measure="lsp diagnostics after an edit (487 lines)",
+                        now=m["lsp"] * 1000, unit="ms", reference=111.0,
+                        goal=GOALS["lsp"] * 1000, note="lsp_bench.py median"))
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=7)
+    ap.add_argument("--no-lsp", action="store_true")
+    ns = ap.parse_args(argv)
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"bench_startup: {os.cpu_count()} CPUs, load average {load:.1f}; bytecode cache on")
+    m = measure(ns.repeat, lsp=not ns.no_lsp)
+    floor, hit, miss, lab, lsp = m["floor"], m["hit"], m["miss"], m["lab"], m["lsp"]
     print(f"{'python -c pass (the floor)':<40} now {floor * 1000:8.1f} ms")
     print(line("check small.st (compile cache hit)", hit, GOALS["check"], floor))
     print(line("check small.st --no-cache", miss, GOALS["check --no-cache"], floor))
     print(line("lab check tank-two-position (visible)", lab, GOALS["lab check"], floor))
     if not ns.no_lsp:
-        lsp = lsp_median()
         if lsp is None:
             print("lsp diagnostics after an edit: not measured (pygls missing?)")
         else:
