@@ -13,25 +13,5 @@ True
 
 from __future__ import annotations
 
-from plclab.process.alarms import Alarm, AlarmClass, AlarmServer, LogEntry, alarm_log
-from plclab.process.archive import ArchiveRow, archive, write_csv, write_parquet
-from plclab.process.recipes import Element, Recipe
-from plclab.process.watch import Sample, WatchRow, WatchTable, format_value
-
-__all__ = [
-    "Alarm",
-    "AlarmClass",
-    "AlarmServer",
-    "ArchiveRow",
-    "Element",
-    "LogEntry",
-    "Recipe",
-    "Sample",
-    "WatchRow",
-    "WatchTable",
-    "alarm_log",
-    "archive",
-    "format_value",
-    "write_csv",
-    "write_parquet",
-]
+from plclab.process import *  # noqa: F403 - the process layer's names, re-exported
+from plclab.process import __all__  # noqa: F401
