@@ -19,13 +19,13 @@ True
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from typing import Any
 
+from ..lang.addresses import parse_located
+
 __all__ = ["declared_view"]
 
-_ADDR = re.compile(r"%[IQM]([BWDL])\d+$", re.IGNORECASE)
 _BITS = {"B": 8, "W": 16, "D": 32, "L": 64}
 # integer types: (bits, signed); the reals by their size
 _INTS = {"SINT": (8, True), "INT": (16, True), "DINT": (32, True), "LINT": (64, True),
@@ -69,11 +69,12 @@ def declared_view(trace: Any, types: Mapping[str, str]) -> Any:
     kinds = dict(trace.kinds)
     changed = False
     for name, col in trace.columns.items():
-        m = _ADDR.match(name)
+        loc = parse_located(name)  # a byte or word address: %MW0, %ID4 (not a bit)
         ty = wanted.get(name.upper())
-        if m is None or ty is None or trace.kinds.get(name) != "int":
+        if loc is None or loc.size not in _BITS or loc.bit is not None or ty is None \
+                or trace.kinds.get(name) != "int":
             continue
-        new = _typed(col, m.group(1).upper(), ty)
+        new = _typed(col, loc.size, ty)
         if new is None or (new.dtype == col.dtype and (new == col).all()):
             continue
         cols[name] = new
