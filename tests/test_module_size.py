@@ -18,9 +18,6 @@ EXCEPTIONS: dict[str, str] = {
     # the plant and its pymunk bodies, contact handlers and snapshot in one class: split with
     # the trace-on-change work of issue 35 (its snapshot is recorded per scan)
     "plants/conveyor.py": "split pending: one class; goes with the conveyor's recording change",
-    # edited by two branches of session 4 while the others were split: the next to split
-    "plclab/lang/frontends/st.py": "split pending: the ST parser, by declarations and bodies",
-    "plclab/lang/frontends/plcopen.py": "split pending: the PLCopen reader, by body language",
     # the namespace of generated code: HELPERS is built from its private globals, so a split
     # must rename every helper the code generator emits; it goes with the codegen split
     "plclab/runtime/rt.py": "split pending: goes with the codegen split (generated names)",
