@@ -144,22 +144,24 @@ class _Canvas:
             s = e + off
 
 
-def label_place(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7
-                ) -> tuple[float, str]:
+def label_place(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7,
+                right: float | None = None) -> tuple[float, str]:
     """Where a failure marker's ``label`` goes for the line at pixel ``x``: right of the line
-    (anchor ``ls``), or, when its box would pass the picture's right edge (less a margin),
-    right-aligned left of the line (``rs``), so the label is never cut at the edge."""
+    (anchor ``ls``), or, when its box would pass ``right`` (the plot's right edge; default
+    the picture's edge less a margin), right-aligned left of the line (``rs``), so the label
+    never runs off the plot or is cut at the picture's edge."""
     f = font(int(round(size_pt * SCALE)))
     gap = 2 * SCALE
-    if cv.draw.textbbox((x + gap, y), label, font=f, anchor="ls")[2] <= cv.w - LABEL_MARGIN:
+    edge = min(cv.w - LABEL_MARGIN, right if right is not None else cv.w)
+    if cv.draw.textbbox((x + gap, y), label, font=f, anchor="ls")[2] <= edge:
         return x + gap, "ls"
-    return max(min(x - gap, cv.w - LABEL_MARGIN), cv.draw.textlength(label, font=f)), "rs"
+    return max(min(x - gap, edge), cv.draw.textlength(label, font=f)), "rs"
 
 
-def label_box(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7
-              ) -> tuple[float, float, float, float]:
+def label_box(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7,
+              right: float | None = None) -> tuple[float, float, float, float]:
     """The pixel box of the label :func:`label_place` puts at the line at ``x``."""
-    at, anchor = label_place(cv, x, y, label, size_pt)
+    at, anchor = label_place(cv, x, y, label, size_pt, right)
     return cv.draw.textbbox((at, y), label, font=font(int(round(size_pt * SCALE))),
                             anchor=anchor)
 
@@ -215,7 +217,7 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
             cv.dashed((x, ax_t), (x, ax_b), RED, cv.px(0.8), 3 * SCALE, 2 * SCALE)
     for t, label, level in labels:
         y = ax_b - (1.02 + 0.17 * level / (frac * h_in)) * ax_h
-        x, anchor = label_place(cv, X(t), y, label)
+        x, anchor = label_place(cv, X(t), y, label, right=ax_r + 4 * SCALE)
         cv.text((x, y), label, 7, RED, anchor)
     # the time axis: the bottom spine, ticks pointing out, labels, its name
     cv.draw.line([(ax_l, ax_b), (ax_r, ax_b)], fill=BLACK, width=cv.px(0.8))

@@ -141,6 +141,9 @@ def test_a_failure_label_at_the_right_edge_stays_inside_the_picture(tmp_path):
     assert overflowing >= 5
     x0, _, x1, _ = fp.label_box(cv, 0.2 * cv.w, 40.0, label)
     assert x0 >= 0.2 * cv.w  # room to the right: the label stays right of its line
+    for k in range(0, 101):  # bounded by the plot's right edge
+        x0, _, x1, _ = fp.label_box(cv, k / 100 * 0.9 * cv.w, 40.0, label, right=0.9 * cv.w)
+        assert 0 <= x0 and x1 <= 0.9 * cv.w
 
     def red_columns(p):  # the columns that hold a red (text or line) pixel
         img = Image.open(p).convert("RGB")
@@ -154,4 +157,5 @@ def test_a_failure_label_at_the_right_edge_stays_inside_the_picture(tmp_path):
                 markers=[(19.9, label)])
     w, cols = red_columns(path)
     assert cols and max(cols) < w - 1  # nothing red on the picture's last column
-    assert min(cols) < max(cols) - 40  # the label's text, left of the dashed line
+    line = max(cols)  # the dashed line: the label ends left of it, not past the plot
+    assert min(cols) < line - 40  # the label's text, left of the dashed line
