@@ -29,6 +29,7 @@ from .series import Series
 DPI = 72
 SCALE = 2
 """Drawn at twice the size, then reduced: smooth lines and text."""
+LABEL_MARGIN = 3 * SCALE  # supersampled pixels a marker label keeps from the right edge
 
 GREEN = (44, 160, 44)
 GREEN_FILL = (223, 241, 223)  # tab:green at alpha 0.15 on white
@@ -143,6 +144,28 @@ class _Canvas:
             s = e + off
 
 
+def label_place(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7,
+                right: float | None = None) -> tuple[float, str]:
+    """Where a failure marker's ``label`` goes for the line at pixel ``x``: right of the line
+    (anchor ``ls``), or, when its box would pass ``right`` (the plot's right edge; default
+    the picture's edge less a margin), right-aligned left of the line (``rs``), so the label
+    never runs off the plot or is cut at the picture's edge."""
+    f = font(int(round(size_pt * SCALE)))
+    gap = 2 * SCALE
+    edge = min(cv.w - LABEL_MARGIN, right if right is not None else cv.w)
+    if cv.draw.textbbox((x + gap, y), label, font=f, anchor="ls")[2] <= edge:
+        return x + gap, "ls"
+    return max(min(x - gap, edge), cv.draw.textlength(label, font=f)), "rs"
+
+
+def label_box(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7,
+              right: float | None = None) -> tuple[float, float, float, float]:
+    """The pixel box of the label :func:`label_place` puts at the line at ``x``."""
+    at, anchor = label_place(cv, x, y, label, size_pt, right)
+    return cv.draw.textbbox((at, y), label, font=font(int(round(size_pt * SCALE))),
+                            anchor=anchor)
+
+
 def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: float,
                 hi: float, heights: Sequence[float], title: str = "",
                 markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
@@ -194,8 +217,8 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
             cv.dashed((x, ax_t), (x, ax_b), RED, cv.px(0.8), 3 * SCALE, 2 * SCALE)
     for t, label, level in labels:
         y = ax_b - (1.02 + 0.17 * level / (frac * h_in)) * ax_h
-        right = cv.draw.textlength(label, font=font(int(round(7 * SCALE)))) > cv.w - X(t)
-        cv.text((X(t), y), label, 7, RED, "rs" if right else "ls")  # never cut at the edge
+        x, anchor = label_place(cv, X(t), y, label, right=ax_r + 4 * SCALE)
+        cv.text((x, y), label, 7, RED, anchor)
     # the time axis: the bottom spine, ticks pointing out, labels, its name
     cv.draw.line([(ax_l, ax_b), (ax_r, ax_b)], fill=BLACK, width=cv.px(0.8))
     ticks = [t for t in nice_ticks(lo, hi) if lo - 1e-9 <= t <= hi + 1e-9]

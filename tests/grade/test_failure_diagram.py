@@ -118,3 +118,44 @@ def test_time_ticks_are_matplotlibs():
             all(abs(a - b) < 1e-9 for a, b in zip(nice_ticks(lo, hi), want, strict=True))
     assert tick_labels([7.5, 10.0, 12.5]) == ["7.5", "10.0", "12.5"]
     assert tick_labels([112.0, 120.0]) == ["112", "120"]
+
+
+def test_a_failure_label_at_the_right_edge_stays_inside_the_picture(tmp_path):
+    """A failure near the end of the window ("move timeout fails" in drive-homing
+    move_every_scan) gets its label left of the line, not cut at the picture's edge."""
+    from PIL import Image
+
+    from plclab.viz import failure_png as fp
+    from plclab.viz.timing import failure_png
+
+    label = "move timeout fails"
+    cv = fp._Canvas(9.0, 4.0)
+    f = fp.font(7 * fp.SCALE)
+    overflowing = 0
+    for k in range(0, 101):
+        x = k / 100 * cv.w
+        x0, _, x1, _ = fp.label_box(cv, x, 40.0, label)
+        assert 0 <= x0 and x1 <= cv.w - fp.LABEL_MARGIN, (x, x0, x1)
+        # the check can fail: left of the line, the label would pass the edge here
+        overflowing += cv.draw.textbbox((x, 40.0), label, font=f, anchor="ls")[2] > cv.w
+    assert overflowing >= 5
+    x0, _, x1, _ = fp.label_box(cv, 0.2 * cv.w, 40.0, label)
+    assert x0 >= 0.2 * cv.w  # room to the right: the label stays right of its line
+    for k in range(0, 101):  # bounded by the plot's right edge
+        x0, _, x1, _ = fp.label_box(cv, k / 100 * 0.9 * cv.w, 40.0, label, right=0.9 * cv.w)
+        assert 0 <= x0 and x1 <= 0.9 * cv.w
+
+    def red_columns(p):  # the columns that hold a red (text or line) pixel
+        img = Image.open(p).convert("RGB")
+        w, h = img.size
+        px = img.load()
+        return w, {x for x in range(w) for y in range(h)
+                   if px[x, y][0] > 170 and px[x, y][1] < 140 and px[x, y][2] < 140}
+
+    path = tmp_path / "edge.png"
+    failure_png(_rows(), path, 0.0, 20.0, title="move-timeout: move timeout",
+                markers=[(19.9, label)])
+    w, cols = red_columns(path)
+    assert cols and max(cols) < w - 1  # nothing red on the picture's last column
+    line = max(cols)  # the dashed line: the label ends left of it, not past the plot
+    assert min(cols) < line - 40  # the label's text, left of the dashed line
