@@ -62,7 +62,10 @@ def open_page(browser, url, width=1280):
     errors: list[str] = []
     page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
     page.on("pageerror", lambda e: errors.append(str(e)))
-    page.on("requestfailed", lambda r: errors.append(f"failed: {r.url}"))
+    # a request the page's own navigation cancelled (a favicon still loading when a try-it
+    # link opens the playground) is net::ERR_ABORTED, not a fault; a missing file is a 404
+    page.on("requestfailed", lambda r: errors.append(f"failed: {r.url} ({r.failure})")
+            if r.failure != "net::ERR_ABORTED" else None)
     page.on("response", lambda r: errors.append(f"{r.status}: {r.url}") if r.status >= 400
             else None)
     page.goto(url)
