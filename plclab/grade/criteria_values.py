@@ -179,6 +179,16 @@ def _missing_due(tr: Any, p: Mapping[str, Any], times: list[float], a: float, b:
                f"points at the end of the checked window ({fmt_t(b)})")
 
 
+def plant_count(tr: Any, p: dict[str, Any], a: float, b: float) -> int:
+    """The events a ``counter`` criterion compares its PLC counter with, in ``[a, b]``: its
+    ``event`` (with ``where`` and ``source``) plus its optional second ``events`` table."""
+    n = len(trace_events(tr, p["event"], p.get("where"), a, b, p.get("source")))
+    extra = p.get("events")
+    if extra:
+        n += len(trace_events(tr, str(extra.get("event")), extra.get("where"), a, b))
+    return n
+
+
 @check("counter", Param("signal", "signal", True, help="the PLC counter, e.g. \"%MW0\""),
        _EVENT, _WHERE, Param("events", "table", help="a second {event, where} to add"),
        Param("tolerance", "int", default=0), Param("source", "str"))
@@ -187,10 +197,7 @@ def counter(tr: Any, p: dict[str, Any]) -> Verdict:
     window, the number of matching events (good bottles counted = bottles that passed)."""
     a, b = window(tr, p)
     name = p["signal"]
-    n = len(trace_events(tr, p["event"], p.get("where"), a, b, p.get("source")))
-    extra = p.get("events")
-    if extra:
-        n += len(trace_events(tr, str(extra.get("event")), extra.get("where"), a, b))
+    n = plant_count(tr, p, a, b)
     v = tr.value_at(name, b - 1e-9)
     tol = int(p.get("tolerance") or 0)
     if abs(int(v) - n) <= tol:

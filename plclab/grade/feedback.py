@@ -103,7 +103,7 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
 
     from .criteria_base import window
     from .criteria_limits import Limit
-    from .criteria_values import trace_events
+    from .criteria_values import plant_count
 
     check = getattr(crit, "check", "") if getattr(crit, "function", None) is None else ""
     if check not in _COUNTING or trace is None or not hasattr(trace, "events_of"):
@@ -123,11 +123,7 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
             continue
         if check == "counter":
             try:
-                a, b = window(trace, p)
-                n = len(trace_events(trace, p["event"], p.get("where"), a, b, p.get("source")))
-                extra = p.get("events")
-                if extra:
-                    n += len(trace_events(trace, str(extra.get("event")), extra.get("where"), a, b))
+                n = plant_count(trace, p, *window(trace, p))
             except Exception:  # noqa: BLE001
                 out.append(lim)
                 continue
