@@ -22,11 +22,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from ..lang.addresses import parse_located
+from ..lang.addresses import SIZE_BYTES, parse_located
 
 __all__ = ["declared_view"]
 
-_BITS = {"B": 8, "W": 16, "D": 32, "L": 64}
 # integer types: (bits, signed); the reals by their size
 _INTS = {"SINT": (8, True), "INT": (16, True), "DINT": (32, True), "LINT": (64, True),
          "USINT": (8, False), "UINT": (16, False), "UDINT": (32, False), "ULINT": (64, False),
@@ -38,7 +37,7 @@ def _typed(col: Any, size: str, ty: str) -> Any:
     """The raw integers of one address column as values of ``ty`` (None: no change)."""
     import numpy as np
 
-    bits = _BITS[size]
+    bits = 8 * SIZE_BYTES[size]
     if ty in _INTS:
         tbits, signed = _INTS[ty]
         if tbits != bits:
@@ -71,7 +70,7 @@ def declared_view(trace: Any, types: Mapping[str, str]) -> Any:
     for name, col in trace.columns.items():
         loc = parse_located(name)  # a byte or word address: %MW0, %ID4 (not a bit)
         ty = wanted.get(name.upper())
-        if loc is None or loc.size not in _BITS or loc.bit is not None or ty is None \
+        if loc is None or loc.size == "X" or loc.bit is not None or ty is None \
                 or trace.kinds.get(name) != "int":
             continue
         new = _typed(col, loc.size, ty)
