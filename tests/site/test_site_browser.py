@@ -308,7 +308,10 @@ def test_step_pause_and_live_at_the_clocks_pace(site, browser):
     page.click("#pg-compile")
     wait_state(page, "compiled")
     for n in (1, 2):
+        # After the first step the state already reads "stepped": wait for the scan count,
+        # which only the worker's answer to this click moves, then for the state.
         page.click("#pg-step")
+        page.wait_for_function(f"window.plclabPlayground.state.scans >= {n}", timeout=120000)
         wait_state(page, "stepped")
         assert page.evaluate("window.plclabPlayground.state.scans") == n
     page.click("#pg-live")
