@@ -2,7 +2,8 @@
 
 A wiring table is a list of rows. Each row joins one PLC address (``%IX0.0``, ``%IW64``,
 ``%QX0.0``, ``%QW64``) or PLC variable (``Main.SP``) to one plant signal through an I/O module
-of :mod:`plclab.io`:
+of :mod:`plclab.io`. The kinds of module, their parameters and faults are specified once, in
+:data:`plclab.io.modules.KINDS` (:data:`MODULES` here; ADR 0068); today they are:
 
 ========  =========  ===================================================================
 module    direction  what it models
@@ -186,7 +187,7 @@ class WireRow:
     signal : str
         The plant signal.
     module : str
-        ``di``, ``ai``, ``do``, ``ao`` or ``direct``.
+        A module kind of :data:`MODULES` (``di``, ``ai``, ``do``, ``ao``, ``direct``...).
     params : dict
         Module parameters (see :data:`MODULES`), already checked and converted.
     description : str
@@ -219,9 +220,10 @@ class WireRow:
 
     def label(self) -> str:
         """``row 3 (%IX0.0 <- LS1)`` for messages."""
-        arrow = "->" if MODULES.get(self.module, MODULES["direct"]).direction == "out" else "<-"
-        if self.module == "direct" and self.is_address and self.plc[1:2].upper() == "Q":
-            arrow = "->"
+        kind = MODULES.get(self.module)
+        out = kind.direction == "out" if kind is not None and kind.direction else \
+            self.is_address and self.plc[1:2].upper() == "Q"  # direct: the address says
+        arrow = "->" if out else "<-"
         return f"wiring row {self.index} ({self.plc} {arrow} {self.signal})"
 
     def to_dict(self) -> dict[str, Any]:

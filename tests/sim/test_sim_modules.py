@@ -217,3 +217,17 @@ def test_a_new_kind_is_checked_against_the_signal_and_address(fake_kinds):
         with pytest.raises(PlcError) as e:
             Simulation(plclab.loads(TANK), "tank", [row])
         assert e.value.code == code, (row, e.value)
+
+
+# --------------------------------------------------------------------------- the docs agree
+def test_the_simulation_docs_name_every_kind_parameter_and_fault():
+    text = (Path(__file__).resolve().parents[2] / "docs" / "simulation.md").read_text("utf-8")
+    rows = {ln.split("`")[1]: ln for ln in text.splitlines() if ln.startswith("| `")}
+    faults = next(ln for ln in text.splitlines() if ln.startswith("| `io_fault`"))
+    for name, kind in KINDS.items():
+        assert name in rows, f"docs/simulation.md: no row for module {name}"
+        missing = [p for p in kind.params if f"`{p}`" not in rows[name]]
+        assert not missing, f"docs/simulation.md, module {name}: parameters {missing} missing"
+        missing = [f for f in kind.faults if f"`{f}`" not in faults]
+        assert not missing, f"docs/simulation.md, io_fault: faults {missing} of {name} missing"
+
