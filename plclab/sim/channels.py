@@ -279,16 +279,14 @@ def _kinds(direction: str) -> str:
 def _wrong_signal(kind: ModuleKind, sig: Any, is_bool: bool) -> str:
     """Why a module kind cannot carry a plant signal, and what to use instead."""
     alt = alternative(kind, "bool" if is_bool else "real")
-    instead = f"use module {alt.name} ({alt.help})" if alt else "use another module"
+    other = alt.name if alt else "another module"
     if is_bool:
-        return f"{sig.name} is a BOOL signal; module {kind.name} is for REAL signals " \
-               f"({kind.help}): {instead.replace('use module', 'use', 1)}"
+        return f"{sig.name} is a BOOL signal; module {kind.name} is for REAL signals: use {other}"
+    head = f"{sig.name} is a REAL {sig.kind} ({sig.unit}); module {kind.name} carries a bit"
     if kind.real_param:
-        return f"{sig.name} is a REAL signal ({sig.unit}); module {kind.name} carries a bit: " \
-               f"give {kind.real_param} = <value> ({kind.params[kind.real_param].help}) to " \
-               f"turn it into one, or {instead}"
-    return f"{sig.name} is a REAL {sig.kind} ({sig.unit}); module {kind.name} carries a bit: " \
-           f"{instead} or direct"
+        return f"{head}: give {kind.real_param} = <value> " \
+               f"({kind.params[kind.real_param].help}) to turn it into one, or use module {other}"
+    return f"{head}: use module {other} or direct"
 
 
 def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: bool,
@@ -324,20 +322,20 @@ def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: 
         bad("PLC4004", f"{row.plc} is beyond the process image ({plc.image_size} bytes; "
             "give a larger one: --image-size, Plc(..., image_size=...))", "plc")
         return
-    mod, kind = row.module, MODULES[row.module]
-    if kind.carries == "bit" or (kind.carries == "value" and is_bool):
+    mod, spec = row.module, MODULES[row.module]
+    if spec.carries == "bit" or (spec.carries == "value" and is_bool):
         if size != "X":
             bad("PLC4004", f"{ch.signal.name} is a BOOL signal: wire it to a bit address such as "
                 f"%{area}X{byte}.0, not {row.plc}", "plc")
             return
     elif size == "X":
-        what = "counts" if kind.carries == "counts" else "a number"
+        what = "counts" if spec.carries == "counts" else "a number"
         bad("PLC4004", f"{ch.signal.name} is a REAL signal ({what}): wire it to a word such as "
             f"%{area}W{byte} (or %{area}D for 32 bits), not the bit {row.plc}", "plc")
         return
-    elif kind.sizes and size not in kind.sizes:
-        fits = " or ".join(f"{_SIZE_NAMES[z]} (%{area}{z}{byte})" for z in kind.sizes)
-        bad("PLC4004", f"module {mod} carries {kind.carries}: they need {fits}, not {row.plc}",
+    elif spec.sizes and size not in spec.sizes:
+        fits = " or ".join(f"{_SIZE_NAMES[z]} (%{area}{z}{byte})" for z in spec.sizes)
+        bad("PLC4004", f"module {mod} carries {spec.carries}: they need {fits}, not {row.plc}",
             "plc")
         return
     ch.address = row.plc
@@ -348,7 +346,7 @@ def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: 
         return
     declared = _declared(plc, row.plc)
     kind = type_kind(declared)[0] if declared is not None else ""
-    if kind == "real" and MODULES[mod].carries == "value" and size in ("D", "L"):
+    if kind == "real" and spec.carries == "value" and size in ("D", "L"):
         ch.float_fmt = ">f" if size == "D" else ">d"
         ch.plc_kind = "float"
         return
