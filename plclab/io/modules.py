@@ -16,12 +16,13 @@ module, once (as :mod:`plclab.lang.builtins` does for the standard functions and
   them, e.g. an analog input's wire break);
 * how it is built from a row (``build``), how long it must still be called after its input
   changed (``settle``), whether its output depends on the present input only (``memoryless``),
-  and which per-scan code of :data:`plclab.sim.channels.TRANSFERS` moves it (``transfer``).
+  and which per-scan code of :data:`plclab.sim.transfers.TRANSFERS` moves it (``transfer``).
 
 The wiring loader (:mod:`plclab.sim.wiring`), the binding and the per-scan transfer
-(:mod:`plclab.sim.channels`) and the scenario's I/O faults (:mod:`plclab.sim.scenario`) read
-:data:`KINDS`; a new kind of module is one entry here (``tests/io/test_io_modules.py`` checks
-that every key names a converter and a transfer that exist, and that an entry alone is enough).
+(:mod:`plclab.sim.channels`) and the scenario's I/O faults (:mod:`plclab.sim.sim_actions`) read
+:data:`KINDS`; a new kind of module is one entry here (ADR 0068). ``tests/io/test_io_modules.py``
+checks that every key names a converter and a transfer that exist;
+``tests/sim/test_sim_modules.py`` that an entry alone is enough.
 
 >>> KINDS["ai"].direction, KINDS["ai"].sizes, KINDS["di"].sizes, KINDS["direct"].sizes
 ('in', ('W', 'D'), ('X',), ())
@@ -104,7 +105,7 @@ class ModuleKind:
     faults : mapping of str to str
         Fault name -> what happens (the implementing class's own table).
     transfer : str
-        Key of :data:`plclab.sim.channels.TRANSFERS`: the per-scan code that moves it.
+        Key of :data:`plclab.sim.transfers.TRANSFERS`: the per-scan code that moves it.
     build : callable or None
         ``build(params, signal)`` -> the module object (``signal`` is the plant's signal, with
         ``unit`` and ``range``); None: no module, the value is copied.

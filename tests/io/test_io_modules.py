@@ -11,7 +11,7 @@ import pytest
 from plclab.errors import PlcError
 from plclab.io.modules import KINDS, ModuleKind, Param
 from plclab.lang.addresses import SIZE_BYTES
-from plclab.sim.channels import TRANSFERS
+from plclab.sim.transfers import TRANSFERS
 from plclab.sim.wiring import CONVERTERS
 
 SIGNAL = SimpleNamespace(name="X", type="real", unit="m", range=(0.0, 2.0))
