@@ -20,6 +20,8 @@ into the other, with the imperfections a real installation has::
 * :mod:`~plclab.io.digital`: :class:`DigitalInput` (contact bounce, input filter) and
   :class:`DigitalOutput` (transistor or relay).
 * :mod:`~plclab.io.pt100`: platinum RTDs and a 4-20 mA RTD transmitter.
+* :mod:`~plclab.io.modules`: the specification of each kind of module a wiring row names
+  (:data:`KINDS`: direction, signals, addresses, parameters, faults, builder; ADR 0068).
 
 Every channel runs on virtual time: each call passes ``t`` (seconds, never decreasing)
 and results depend only on the times and the seed.
@@ -37,6 +39,7 @@ the input, PLC9109 time not finite or going backwards.
 
 from plclab.io.analog import AnalogInput, AnalogOutput, LinearTransmitter, Transmitter
 from plclab.io.digital import IEC_TYPE1_24V, ChatterStats, DigitalInput, DigitalOutput
+from plclab.io.modules import KINDS, ModuleKind
 from plclab.io.pt100 import RtdTransmitter, resistance, temperature
 from plclab.io.scaling import (
     CONVENTIONS,
@@ -61,6 +64,7 @@ from plclab.io.scaling import (
 __all__ = [
     "CONVENTIONS",
     "IEC_TYPE1_24V",
+    "KINDS",
     "SIGNAL_RANGES",
     "AnalogInput",
     "AnalogOutput",
@@ -69,6 +73,7 @@ __all__ = [
     "DigitalInput",
     "DigitalOutput",
     "LinearTransmitter",
+    "ModuleKind",
     "RtdTransmitter",
     "SignalRange",
     "Status",

@@ -43,8 +43,19 @@ from plclab.io.scaling import (
 
 __all__ = ["AnalogInput", "AnalogOutput", "LinearTransmitter", "Transmitter"]
 
-AI_FAULTS = ("wire_break", "short", "stuck")
-AO_FAULTS = ("open", "stuck")
+AI_FAULTS: dict[str, str] = {
+    "wire_break": "the loop opens: 0 mA / 0 V, the range minimum on 0-based ranges, a wire "
+                  "break (S7: 32767, NE43: below 3.6 mA) on live-zero ranges",
+    "short": "the signal goes to 125 % of the range's top: overflow",
+    "stuck": "the input word freezes (at the present value or at value); the diagnostics see "
+             "nothing wrong",
+}
+"""The faults of an analog input (:meth:`AnalogInput.inject`): name -> what happens."""
+AO_FAULTS: dict[str, str] = {
+    "open": "the wire is open: 0 mA / 0 V reach the actuator",
+    "stuck": "the output freezes (at the present value or at value)",
+}
+"""The faults of an analog output (:meth:`AnalogOutput.inject`): name -> what happens."""
 
 
 @runtime_checkable

@@ -39,9 +39,18 @@ IEC_TYPE1_24V: tuple[float, float] = (5.0, 15.0)
 """IEC 61131-2 type 1 24 V DC input: OFF at or below 5 V, ON at or above 15 V; in
 between the bit keeps its state (a hysteresis)."""
 
-DI_FAULTS = ("open", "stuck_1")
-DO_FAULTS = ("welded", "open_coil")
+DI_FAULTS: dict[str, str] = {
+    "open": "the wire is open: the input reads FALSE",
+    "stuck_1": "the input reads TRUE whatever the contact does",
+}
+"""The faults of a digital input (:meth:`DigitalInput.inject`): name -> what happens."""
+DO_FAULTS: dict[str, str] = {
+    "welded": "the contacts are welded: the actuator stays on",
+    "open_coil": "the relay coil is open: the contacts never close",
+}
+"""The faults of a digital output (:meth:`DigitalOutput.inject`): name -> what happens."""
 DO_KINDS = {"transistor": (0.0, 0.0), "relay": (10.0, 5.0)}
+"""Digital output kinds: name -> default (close_ms, open_ms)."""
 
 
 class DigitalInput:

@@ -29,74 +29,20 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plclab.errors import Diagnostic, PlcError
+from plclab.io.modules import ModuleKind, alternative
+from plclab.lang.addresses import SIZE_BYTES
 
 from .errors import did_you_mean, raise_all, sim_error
+from .transfers import TRANSFERS
 from .wiring import ADDRESS_RE, MODULES, WireRow, Wiring
 
-_SIZES = {"X": 0, "B": 1, "W": 2, "D": 4, "L": 8}
+_SIZE_NAMES = {"X": "a bit", "B": "a byte", "W": "a word", "D": "a double word", "L": "a long word"}
 
 
 def mix_seed(sim_seed: int, *parts: Any) -> int:
     """A 63-bit seed from the simulation seed and a row's own seed or position."""
     h = hashlib.sha256(repr((int(sim_seed),) + tuple(parts)).encode()).digest()
     return int.from_bytes(h[:8], "big") >> 1
-
-
-class _Passthrough:
-    """Transmitter for a plant signal that already is mA or V (e.g. the tank's LEVEL_MA)."""
-
-    def __init__(self, signal: str) -> None:
-        self.signal = signal
-
-    def output(self, value: float) -> float:
-        return float(value)
-
-
-class _Buckets:
-    """The values that give the same counts as the last conversion of a noise-free AI.
-
-    The chain value -> linear transmitter -> ADC is monotonic and quantised, so the values that
-    convert to a regular code ``c`` form an interval; inside it (less a margin of a millionth
-    of its width) no conversion is needed. The interval is computed from the module's
-    public parameters and checked against every real conversion: if the module ever
-    disagrees (another transmitter model, a fault), the shortcut is switched off for good.
-    """
-
-    def __init__(self, ai: Any) -> None:
-        fmt, rng = ai.format, ai.range
-        tx = ai.transmitter
-        self.ai = ai
-        self.ok = True
-        self.min_code, self.max_code, self.step = fmt.min_code, fmt.max_code, fmt.step
-        span = rng.hi - rng.lo
-        if isinstance(tx, _Passthrough):
-            ax, bx = 1.0, 0.0
-            xlo, xhi = -math.inf, math.inf
-        elif type(tx).__name__ == "LinearTransmitter":
-            ax = span / (tx.hi - tx.lo)
-            bx = rng.lo - tx.lo * ax
-            xlo, xhi = (rng.sat_lo, rng.sat_hi) if tx.saturate else (-math.inf, math.inf)
-        else:
-            self.ok = False
-            return
-        ac = fmt.nominal_counts / span
-        self.a = ac * ax  # counts = a * value + b
-        self.b = ac * (bx - rng.lo) + fmt.zero
-        v1, v2 = (xlo - bx) / ax, (xhi - bx) / ax  # values the transmitter passes unclipped
-        self.vlo, self.vhi = min(v1, v2), max(v1, v2)
-
-    def __call__(self, c: int, p: float) -> tuple[float, float]:
-        if not self.ok or self.ai.fault is not None or not self.min_code < c < self.max_code \
-                or not self.vlo < p < self.vhi:
-            return math.inf, -math.inf  # clipped, saturated, special code or fault: convert
-        v1 = (c - self.step / 2 - self.b) / self.a
-        v2 = (c + self.step / 2 - self.b) / self.a
-        va, vb = max(min(v1, v2), self.vlo), min(max(v1, v2), self.vhi)
-        m = 1e-6 * abs(v2 - v1)
-        if not va - m <= p <= vb + m:
-            self.ok = False  # the module does something else: always convert from now on
-            return math.inf, -math.inf
-        return va + m, vb - m
 
 
 @dataclass
@@ -126,6 +72,11 @@ class Channel:
     @property
     def label(self) -> str:
         return self.row.label()
+
+    @property
+    def kind(self) -> ModuleKind:
+        """The specification of the row's module (:data:`plclab.io.modules.KINDS`)."""
+        return MODULES[self.row.module]
 
 
 @dataclass
@@ -158,7 +109,7 @@ class Transfer:
 
     def mark_dirty(self, ch: Channel) -> None:
         """Make the next transfer call the channel's module (after a fault change)."""
-        if ch.direction == "in" and ch.row.module == "ai" and ch.memoryless:
+        if ch.direction == "in" and ch.kind.transfer == "sampled" and ch.memoryless:
             ch.state[0], ch.state[1] = math.inf, -math.inf
         else:
             ch.state[0] = _DIRTY
@@ -244,13 +195,13 @@ def bind(wiring: Wiring, plant: Any, plc: Any, seed: int = 0) -> Transfer:
         # -- direction against the signal's kind
         if direction == "in" and sig.kind in ("actuator", "lamp"):
             bad("PLC4003", f"{sig.name} is {_a(sig.kind)} {sig.kind}: the PLC drives it. Wire it "
-                "from an output: module do/ao (or direct) with a %Q address or an output "
-                "variable", "module" if spec.direction else "plc")
+                f"from an output: module {_kinds('out')} (or direct) with a %Q address or an "
+                "output variable", "module" if spec.direction else "plc")
             continue
         if direction == "out" and sig.kind == "sensor":
             bad("PLC4003", f"{sig.name} is a sensor: the plant computes it and the PLC can only "
-                "read it. Wire it to an input: module di/ai (or direct) with a %I address",
-                "module" if spec.direction else "plc")
+                f"read it. Wire it to an input: module {_kinds('in')} (or direct) with a %I "
+                "address", "module" if spec.direction else "plc")
             continue
         if direction == "out" and sig.kind == "panel":
             bad("PLC4003", f"{sig.name} is a panel input (an operator button, switch or the "
@@ -259,23 +210,12 @@ def bind(wiring: Wiring, plant: Any, plc: Any, seed: int = 0) -> Transfer:
             continue
         # -- the module against the signal's type
         is_bool = sig.type == "bool"
-        if row.module == "di" and not is_bool and "threshold" not in row.params:
-            bad("PLC4006", f"{sig.name} is a REAL signal ({sig.unit}); a digital input needs "
-                "threshold = <value> (or [off_max, on_min]) to turn it into a bit, or use "
-                "module ai", "module")
+        if not spec.takes(is_bool, row.params):
+            bad("PLC4006", _wrong_signal(spec, sig, is_bool), "module")
             continue
-        if row.module == "di" and is_bool and "threshold" in row.params:
-            bad("PLC4006", f"threshold only applies to REAL signals; {sig.name} is BOOL",
-                "threshold")
-            continue
-        if row.module in ("ai", "ao") and is_bool:
-            other = "di" if row.module == "ai" else "do"
-            bad("PLC4006", f"{sig.name} is a BOOL signal; module {row.module} is analog: use "
-                f"{other}", "module")
-            continue
-        if row.module == "do" and not is_bool:
-            bad("PLC4006", f"{sig.name} is a REAL actuator ({sig.unit}); drive it with module "
-                "ao (an analog output) or direct", "module")
+        if is_bool and spec.real_param in row.params:
+            bad("PLC4006", f"{spec.real_param} only applies to REAL signals; {sig.name} is BOOL",
+                spec.real_param)
             continue
         if row.params.get("invert") and not is_bool:
             bad("PLC4006", f"invert only applies to BOOL signals; {sig.name} is REAL", "invert")
@@ -291,7 +231,7 @@ def bind(wiring: Wiring, plant: Any, plc: Any, seed: int = 0) -> Transfer:
         # -- duplicates
         if direction == "in":
             if ch.address is not None:
-                n = max(1, _SIZES[ch.size])
+                n = SIZE_BYTES[ch.size]
                 keys = [(ch.byte, ch.bit)] if ch.size == "X" else \
                     [(b, k) for b in range(ch.byte, ch.byte + n) for k in range(8)]
                 clash = next((in_bits[k] for k in keys if k in in_bits), None)
@@ -331,6 +271,24 @@ def _a(word: str) -> str:
     return "an" if word[0] in "aeiou" else "a"
 
 
+def _kinds(direction: str) -> str:
+    """``di/ai``: the module kinds of one direction, for messages."""
+    return "/".join(k.name for k in MODULES.values() if k.direction == direction)
+
+
+def _wrong_signal(kind: ModuleKind, sig: Any, is_bool: bool) -> str:
+    """Why a module kind cannot carry a plant signal, and what to use instead."""
+    alt = alternative(kind, "bool" if is_bool else "real")
+    other = alt.name if alt else "another module"
+    if is_bool:
+        return f"{sig.name} is a BOOL signal; module {kind.name} is for REAL signals: use {other}"
+    head = f"{sig.name} is a REAL {sig.kind} ({sig.unit}); module {kind.name} carries a bit"
+    if kind.real_param:
+        return f"{head}: give {kind.real_param} = <value> " \
+               f"({kind.params[kind.real_param].help}) to turn it into one, or use module {other}"
+    return f"{head}: use module {other} or direct"
+
+
 def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: bool,
                   bad: Any) -> None:
     m = ADDRESS_RE.fullmatch(row.plc)
@@ -359,25 +317,26 @@ def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: 
     elif bit is not None:
         bad("PLC4004", f"{row.plc}: only bit addresses (X) have a .bit part", "plc")
         return
-    n = max(1, _SIZES[size])
+    n = SIZE_BYTES[size]
     if byte + n > plc.image_size:
         bad("PLC4004", f"{row.plc} is beyond the process image ({plc.image_size} bytes; "
             "give a larger one: --image-size, Plc(..., image_size=...))", "plc")
         return
-    mod = row.module
-    if mod in ("di", "do") or (mod == "direct" and is_bool):
+    mod, spec = row.module, MODULES[row.module]
+    if spec.carries == "bit" or (spec.carries == "value" and is_bool):
         if size != "X":
             bad("PLC4004", f"{ch.signal.name} is a BOOL signal: wire it to a bit address such as "
                 f"%{area}X{byte}.0, not {row.plc}", "plc")
             return
     elif size == "X":
-        what = "counts" if mod in ("ai", "ao") else "a number"
+        what = "counts" if spec.carries == "counts" else "a number"
         bad("PLC4004", f"{ch.signal.name} is a REAL signal ({what}): wire it to a word such as "
             f"%{area}W{byte} (or %{area}D for 32 bits), not the bit {row.plc}", "plc")
         return
-    elif mod in ("ai", "ao") and size not in ("W", "D"):
-        bad("PLC4004", f"analog counts need a word (%{area}W{byte}) or a double word "
-            f"(%{area}D{byte}), not {row.plc}", "plc")
+    elif spec.sizes and size not in spec.sizes:
+        fits = " or ".join(f"{_SIZE_NAMES[z]} (%{area}{z}{byte})" for z in spec.sizes)
+        bad("PLC4004", f"module {mod} carries {spec.carries}: they need {fits}, not {row.plc}",
+            "plc")
         return
     ch.address = row.plc
     ch.size, ch.byte, ch.bit = size, byte, int(bit or 0)
@@ -387,7 +346,7 @@ def _bind_address(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool: 
         return
     declared = _declared(plc, row.plc)
     kind = type_kind(declared)[0] if declared is not None else ""
-    if kind == "real" and mod == "direct" and size in ("D", "L"):
+    if kind == "real" and spec.carries == "value" and size in ("D", "L"):
         ch.float_fmt = ">f" if size == "D" else ">d"
         ch.plc_kind = "float"
         return
@@ -411,17 +370,17 @@ def _bind_variable(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool:
             "address such as %IX0.0", "plc")
         return
     kind, rng = type_kind(var.type)
-    mod = row.module
-    need_bool = mod in ("di", "do") or (mod == "direct" and is_bool)
+    mod, carries = row.module, MODULES[row.module].carries
+    need_bool = carries == "bit" or (carries == "value" and is_bool)
     if need_bool and kind != "bool":
         bad("PLC4004", f"{row.plc} is {var.type}; {ch.signal.name} is a bit: wire it to a BOOL "
             "variable", "plc")
         return
-    if mod in ("ai", "ao") and kind != "int":
+    if carries == "counts" and kind != "int":
         bad("PLC4004", f"{row.plc} is {var.type}; module {mod} carries integer counts: use an "
             "INT variable (or module direct to copy engineering units into a REAL)", "plc")
         return
-    if mod == "direct" and not is_bool and kind not in ("int", "real"):
+    if carries == "value" and not is_bool and kind not in ("int", "real"):
         bad("PLC4004", f"{row.plc} is {var.type}; {ch.signal.name} is a number: use a REAL or "
             "integer variable", "plc")
         return
@@ -447,44 +406,18 @@ def _bind_variable(ch: Channel, row: WireRow, plc: Any, direction: str, is_bool:
 
 
 def _make_module(ch: Channel, row: WireRow, sig: Any, sim_seed: int) -> None:
-    from plclab import io
-
+    kind = MODULES[row.module]
+    if kind.build is None:
+        return
     p = dict(row.params)
-    p.pop("invert", None)
-    mod = row.module
-    if mod == "di":
+    p.pop("invert", None)  # the channel inverts, not the module
+    if "seed" in kind.params:
         row_seed = p.pop("seed", None)
-        seed = mix_seed(sim_seed, "di", row_seed if row_seed is not None else row.index,
-                        row.signal)
-        ch.module = io.DigitalInput(seed=seed, **p)
-        ch.settle = (ch.module.bounce_ms + ch.module.filter_ms) / 1000.0
-        ch.plc_kind = "bool" if ch.var is None or ch.var_kind == "bool" else ch.plc_kind
-    elif mod == "ai":
-        row_seed = p.pop("seed", None)
-        seed = mix_seed(sim_seed, "ai", row_seed if row_seed is not None else row.index,
-                        row.signal)
-        rng_name = p.pop("signal_range", "4-20mA")
-        rng = io.signal_range(rng_name)
-        tx = None
-        if sig.unit and sig.unit == rng.unit:
-            tx = _Passthrough(rng.name)
-            lo_d, hi_d = rng.lo, rng.hi
-        else:
-            lo_d, hi_d = sig.range
-        lo = p.pop("lo", lo_d)
-        hi = p.pop("hi", hi_d)
-        ch.module = io.AnalogInput(lo=lo, hi=hi, signal=rng.name, seed=seed, transmitter=tx, **p)
-        ai = ch.module
-        ch.memoryless = ai.noise == 0.0 and ai.tau == 0.0 and ai.sample_period == 0.0
-    elif mod == "do":
-        ch.module = io.DigitalOutput(**p)
-        ch.settle = max(ch.module.close_ms, ch.module.open_ms) / 1000.0
-    elif mod == "ao":
-        rng_name = p.pop("signal_range", "0-10V")
-        lo = p.pop("lo", sig.range[0])
-        hi = p.pop("hi", sig.range[1])
-        ch.module = io.AnalogOutput(lo=lo, hi=hi, signal=rng_name, **p)
-        ch.memoryless = True
+        p["seed"] = mix_seed(sim_seed, kind.name, row_seed if row_seed is not None else row.index,
+                             row.signal)
+    ch.module = kind.build(p, sig)
+    ch.settle = kind.settle(ch.module)
+    ch.memoryless = kind.memoryless(ch.module)
 
 
 # --------------------------------------------------------------------------- code generation
@@ -508,39 +441,7 @@ def _compile(channels: list[Channel], plant: Any, plc: Any) -> Transfer:
         sig = repr(ch.signal.name)
         x = f"x{i}"
         names.append(x)
-        if ch.row.module == "di":
-            ns[f"_m{i}"] = ch.module.sample
-            # call while the input changed or its bounce/filter events are not all past
-            emit(f"    p = v[{sig}]; s = {s}")
-            emit("    if p != s[0] or s[1] >= 0.0:")
-            emit("        if p != s[0]:")
-            emit(f"            s[0] = p; s[1] = t + {ch.settle!r}")
-            emit(f"        s[2] = _m{i}(t, p)")
-            emit("        if t >= s[1]: s[1] = -1.0")
-            emit(f"    {x} = {'not ' if ch.invert else ''}s[2]")
-        elif ch.row.module == "ai":
-            ns[f"_m{i}"] = ch.module.sample
-            if ch.memoryless:
-                # a noise-free channel without filter: the counts only change when the value
-                # leaves the quantisation step of the last conversion (see _Buckets)
-                ns[s] = ch.state = [math.inf, -math.inf, None]
-                ns[f"_b{i}"] = _Buckets(ch.module)
-                emit(f"    p = v[{sig}]; s = {s}")
-                emit("    if not s[0] <= p <= s[1]:")
-                emit(f"        c = s[2] = _m{i}(t, p)")
-                emit(f"        s[0], s[1] = _b{i}(c, p)")
-                emit(f"    {x} = s[2]")
-            else:
-                emit(f"    {x} = _m{i}(t, v[{sig}])")
-        else:  # direct
-            if ch.signal.type == "bool":
-                emit(f"    {x} = {'not ' if ch.invert else ''}v[{sig}]")
-            elif ch.plc_kind == "float":
-                emit(f"    {x} = float(v[{sig}])")
-            else:
-                lo, hi = ch.int_range
-                emit(f"    {x} = round(v[{sig}])")
-                emit(f"    {x} = {lo} if {x} < {lo} else {hi} if {x} > {hi} else {x}")
+        TRANSFERS[ch.kind.transfer][0](ch, i, x, s, sig, ns, emit)
         emit(_write_in(ch, i, x, ns))
     in_body = lines[1:]
     emit(f"    return ({''.join(n + ', ' for n in names)})")
@@ -557,7 +458,7 @@ def _compile(channels: list[Channel], plant: Any, plc: Any) -> Transfer:
         elif ch.float_fmt:
             items.append(f"_unpack({ch.float_fmt!r}, Q, {ch.byte})[0]")
         else:
-            n = _SIZES[ch.size]
+            n = SIZE_BYTES[ch.size]
             signed = ch.size != "B"
             items.append(f"int.from_bytes(Q[{ch.byte}:{ch.byte + n}], 'big', signed={signed})")
     emit(f"    return ({''.join(it + ', ' for it in items)})")
@@ -568,38 +469,13 @@ def _compile(channels: list[Channel], plant: Any, plc: Any) -> Transfer:
         s = f"_o{i}"
         ns[s] = ch.state = [_DIRTY, -1.0, values[ch.signal.name]]
         sig = repr(ch.signal.name)
-        mod = ch.row.module
         if ch.signal.type == "bool":
             cmd = f"{'not ' if ch.invert else ''}@q{i}@"
             if ch.var is not None and ch.var_kind != "bool":
                 cmd = f"{'not ' if ch.invert else ''}bool(@q{i}@)"
         else:
             cmd = f"@q{i}@"
-        if mod == "do":
-            ns[f"_n{i}"] = ch.module.apply
-            emit(f"    c = {cmd}; s = {s}")
-            emit("    if c != s[0] or s[1] >= 0.0:")
-            emit("        if c != s[0]:")
-            emit(f"            s[0] = c; s[1] = t + {ch.settle!r}")
-            emit(f"        a = _n{i}(t, c)")
-            emit("        if t >= s[1]: s[1] = -1.0")
-            emit("        if a != s[2]:")
-            emit(f"            s[2] = a; _W({sig}, a)")
-            if ch.module.kind == "relay":
-                ns[f"_e{i}"] = ch
-                emit(f"            _E(_e{i}, a)")
-        elif mod == "ao":
-            ns[f"_n{i}"] = ch.module.apply
-            emit(f"    c = {cmd}; s = {s}")
-            emit("    if c != s[0]:")
-            emit(f"        s[0] = c; a = _n{i}(t, c)")
-            emit("        if a != s[2]:")
-            emit(f"            s[2] = a; _W({sig}, a)")
-        else:
-            conv = "" if ch.signal.type == "bool" else "float"
-            emit(f"    a = {conv}({cmd}); s = {s}")
-            emit("    if a != s[2]:")
-            emit(f"        s[2] = a; _W({sig}, a)")
+        TRANSFERS[ch.kind.transfer][1](ch, i, s, sig, cmd, ns, emit)
     emit("    return None")
     k = lines.index("def apply_out(t, q):")
     apply_body = lines[k + 1:-1]
@@ -634,7 +510,7 @@ def _write_in(ch: Channel, i: int, x: str, ns: dict[str, Any]) -> str:
         return f"    I[{b}] = (I[{b}] | {m}) if {x} else (I[{b}] & {0xFF ^ m})"
     if ch.float_fmt:
         return f"    _pack({ch.float_fmt!r}, I, {b}, {x})"
-    n = _SIZES[ch.size]
+    n = SIZE_BYTES[ch.size]
     if n == 1:
         return f"    I[{b}] = {x} & 255"
     if n == 2:
@@ -665,7 +541,7 @@ def _covered(addr: str, wired: set[str]) -> bool:
     if not m:
         return False
     area, size, byte = m.group(1), (m.group(2) or "X"), int(m.group(3))
-    lo, hi = byte, byte + max(1, _SIZES[size])
+    lo, hi = byte, byte + SIZE_BYTES[size]
     for w in wired:
         mw = ADDRESS_RE.fullmatch(w.upper())
         if not mw or mw.group(1) != area:
@@ -673,6 +549,6 @@ def _covered(addr: str, wired: set[str]) -> bool:
         s2, b2 = (mw.group(2) or "X"), int(mw.group(3))
         if size == "X" and s2 == "X":
             continue
-        if b2 < hi and lo < b2 + max(1, _SIZES[s2]):
+        if b2 < hi and lo < b2 + SIZE_BYTES[s2]:
             return True
     return False

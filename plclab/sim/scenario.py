@@ -85,10 +85,6 @@ VERBS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 }
 """Scenario verbs with their required and optional keys."""
 
-IO_FAULTS = {"di": ("open", "stuck_1"), "do": ("welded", "open_coil"),
-             "ai": ("wire_break", "short", "stuck"), "ao": ("open", "stuck")}
-"""I/O module faults by module (see :mod:`plclab.io`)."""
-
 TOP_KEYS = ("description", "plant", "plant_params", "wiring", "duration", "until", "scan", "dt",
             "seed", "watch", "action")
 

@@ -12,7 +12,7 @@ from typing import Any
 from plclab.errors import PlcError
 
 from .errors import did_you_mean
-from .scenario import IO_FAULTS, Action, Scenario
+from .scenario import Action, Scenario
 
 
 class ScenarioActions:
@@ -161,7 +161,7 @@ class ScenarioActions:
                 self._event(t_ns, "io_clear", ch.name, f"I/O fault on {ch.name} cleared")
 
             return [(a.at_ns, io_clear)]
-        valid = IO_FAULTS[ch.row.module]
+        valid = ch.kind.faults  # the module kind's own fault table (plclab.io.modules)
         if a.target not in valid:
             raise PlcError("PLC4014", f"module {ch.row.module} ({ch.name}) has no fault "
                            f"'{a.target}'.{did_you_mean(a.target, valid)} Faults: "

@@ -174,6 +174,7 @@ class Recording:
     def _edges(self) -> tuple[dict[str, Any], dict[str, bool], list[Any]]:
         import numpy as np
 
+        from plclab.io import DigitalInput, DigitalOutput
         from plclab.trace.events import Event
 
         edges: dict[str, Any] = {}
@@ -181,7 +182,7 @@ class Recording:
         bounce: list[Any] = []
         for c in self.transfer.channels:
             m = c.module
-            if c.row.module == "di":
+            if isinstance(m, DigitalInput):  # its raw and filtered histories
                 raw = m.raw_transitions
                 filt = m.filtered_transitions
                 init = bool(m.initial) if m.initial is not None else False
@@ -204,7 +205,7 @@ class Recording:
                                                 f"{span:.2f} ms", {"edges": len(burst)}))
                         if e is not None:
                             burst = [e]
-            elif c.row.module == "do":
+            elif isinstance(m, DigitalOutput):  # its contact's history
                 sw = m.switch_times
                 edges[f"{c.name}.contact"] = (np.array([x[0] for x in sw], dtype=float),
                                               np.array([x[1] for x in sw], dtype=bool))

@@ -2,7 +2,8 @@
 
 A wiring table is a list of rows. Each row joins one PLC address (``%IX0.0``, ``%IW64``,
 ``%QX0.0``, ``%QW64``) or PLC variable (``Main.SP``) to one plant signal through an I/O module
-of :mod:`plclab.io`:
+of :mod:`plclab.io`. The kinds of module, their parameters and faults are specified once, in
+:data:`plclab.io.modules.KINDS` (:data:`MODULES` here; ADR 0068); today they are:
 
 ========  =========  ===================================================================
 module    direction  what it models
@@ -51,6 +52,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plclab.errors import Diagnostic, Location
+from plclab.io.modules import KINDS, Param
 from plclab.lang.addresses import LOCATED_RE
 
 from ._toml import read_toml, row_reporter, row_spans
@@ -122,13 +124,10 @@ def _signal_range(v: Any) -> str:
         raise _Bad(e.message) from None
 
 
-def _choice(*options: str) -> Callable[[Any], str]:
-    def conv(v: Any) -> str:
-        if not isinstance(v, str) or v.lower() not in options:
-            raise _Bad("one of " + ", ".join(repr(o) for o in options))
-        return v.lower()
-
-    return conv
+def _choice(v: Any, options: tuple[str, ...]) -> str:
+    if not isinstance(v, str) or v.lower() not in options:
+        raise _Bad("one of " + ", ".join(repr(o) for o in options))
+    return v.lower()
 
 
 def _bounces(v: Any) -> int | tuple[int, int]:
@@ -154,59 +153,25 @@ def _threshold(v: Any) -> float | tuple[float, float]:
     return _number(v)
 
 
-@dataclass(frozen=True)
-class ModuleSpec:
-    """What a module is and which parameters it takes (name -> (converter, help))."""
-
-    name: str
-    direction: str | None  # "in", "out" or None (direct: from the address)
-    help: str
-    params: dict[str, tuple[Callable[[Any], Any], str]]
-
-
-MODULES: dict[str, ModuleSpec] = {
-    "di": ModuleSpec("di", "in", "digital input: contact bounce and input filter", {
-        "filter_ms": (_ms, "input filter delay, ms (default 3)"),
-        "bounce_ms": (_ms, "contact bounce after each change, ms (default 0)"),
-        "bounces": (_bounces, "extra off/on pairs per bounce: n or [lo, hi] (default [1, 4])"),
-        "threshold": (_threshold, "for a REAL signal: ON at/above it, or [off_max, on_min]"),
-        "seed": (_int, "seed of the bounce generator (mixed with the simulation seed)"),
-        "invert": (_bool, "the PLC bit is the inverse of the contact (default false)"),
-    }),
-    "ai": ModuleSpec("ai", "in", "analog input: transmitter, noise, filter, ADC -> counts", {
-        "lo": (_number, "engineering value at 0 % of the signal (default: the plant signal's "
-                          "range)"),
-        "hi": (_number, "engineering value at 100 % (default: the plant signal's range)"),
-        "signal_range": (_signal_range, "electrical range, e.g. \"4-20mA\" (default), \"0-10V\""),
-        "convention": (_choice("s7", "book", "full", "logo"),
-                       "count convention: s7 (default, 0..27648), book, full, logo"),
-        "bits": (_int, "ADC resolution in bits (convention default)"),
-        "noise": (_nonneg, "standard deviation of Gaussian noise, engineering units"),
-        "tau": (_seconds, "input filter time constant, s (default 0)"),
-        "sample_period": (_seconds, "time between conversions, s (default 0: every scan)"),
-        "seed": (_int, "seed of the noise (mixed with the simulation seed)"),
-        "wire_break_diagnostic": (_bool, "S7 live-zero wire break reads 32767 (default true)"),
-    }),
-    "do": ModuleSpec("do", "out", "digital output: transistor or relay", {
-        "kind": (_choice("transistor", "relay"), "transistor (default) or relay"),
-        "close_ms": (_ms, "delay command -> contact closed, ms (relay default 10)"),
-        "open_ms": (_ms, "delay command -> contact open, ms (relay default 5)"),
-        "invert": (_bool, "the actuator gets the inverse of the output bit (default false)"),
-    }),
-    "ao": ModuleSpec("ao", "out", "analog output: counts -> DAC -> actuator value", {
-        "lo": (_number, "actuator value at 0 % of the signal (default: the plant signal's "
-                          "range)"),
-        "hi": (_number, "actuator value at 100 % (default: the plant signal's range)"),
-        "signal_range": (_signal_range, "electrical range, e.g. \"0-10V\" (default), \"4-20mA\""),
-        "convention": (_choice("s7", "book", "full", "logo"), "count convention (default s7)"),
-        "bits": (_int, "DAC resolution in bits (convention default)"),
-        "clip": (_bool, "clip the value to lo..hi (default true)"),
-    }),
-    "direct": ModuleSpec("direct", None, "no model: the value is copied", {
-        "invert": (_bool, "BOOL signals only: copy the inverse (default false)"),
-    }),
+CONVERTERS: dict[str, Callable[[Any, Param], Any]] = {
+    "number": lambda v, p: _number(v),
+    "nonneg": lambda v, p: _nonneg(v),
+    "int": lambda v, p: _int(v),
+    "bool": lambda v, p: _bool(v),
+    "ms": lambda v, p: _ms(v),
+    "seconds": lambda v, p: _seconds(v),
+    "signal_range": lambda v, p: _signal_range(v),
+    "choice": lambda v, p: _choice(v, p.choices),
+    "bounces": lambda v, p: _bounces(v),
+    "threshold": lambda v, p: _threshold(v),
 }
-"""The I/O modules a wiring row can name."""
+"""How a parameter value of a wiring row is checked and converted, by the ``convert`` key of
+its :class:`plclab.io.modules.Param`: ``conv(value, param)`` -> the value, or ``_Bad`` saying
+what is expected."""
+
+MODULES = KINDS
+"""The I/O modules a wiring row can name: the specification :data:`plclab.io.modules.KINDS`
+(this name is the same dict, so an entry added there is a module here)."""
 
 
 # --------------------------------------------------------------------------- rows
@@ -222,7 +187,7 @@ class WireRow:
     signal : str
         The plant signal.
     module : str
-        ``di``, ``ai``, ``do``, ``ao`` or ``direct``.
+        A module kind of :data:`MODULES` (``di``, ``ai``, ``do``, ``ao``, ``direct``...).
     params : dict
         Module parameters (see :data:`MODULES`), already checked and converted.
     description : str
@@ -255,9 +220,10 @@ class WireRow:
 
     def label(self) -> str:
         """``row 3 (%IX0.0 <- LS1)`` for messages."""
-        arrow = "->" if MODULES.get(self.module, MODULES["direct"]).direction == "out" else "<-"
-        if self.module == "direct" and self.is_address and self.plc[1:2].upper() == "Q":
-            arrow = "->"
+        kind = MODULES.get(self.module)
+        out = kind.direction == "out" if kind is not None and kind.direction else \
+            self.is_address and self.plc[1:2].upper() == "Q"  # direct: the address says
+        arrow = "->" if out else "<-"
         return f"wiring row {self.index} ({self.plc} {arrow} {self.signal})"
 
     def to_dict(self) -> dict[str, Any]:
@@ -316,13 +282,13 @@ def _row_from(obj: Any, index: int, file: str | None, text: str | None,
             bad("PLC4005", key, f"module '{module}' has no parameter '{key}'.{hint} "
                 f"Its parameters: {valid}; every row may have a description")
             continue
-        conv, help_text = spec.params[key]
+        param = spec.params[key]
         try:
-            params[key] = conv(value)
+            params[key] = CONVERTERS[param.convert](value, param)
         except _Bad as e:
-            bad("PLC4006", key, f"{key} must be {e}, not {value!r} ({help_text})")
+            bad("PLC4006", key, f"{key} must be {e}, not {value!r} ({param.text})")
         except Exception as e:  # noqa: BLE001 - PlcError of a duration string
-            bad("PLC4006", key, f"{key}: {getattr(e, 'message', e)} ({help_text})")
+            bad("PLC4006", key, f"{key}: {getattr(e, 'message', e)} ({param.text})")
     if len(diags) > n0:
         return None
     plc = raw["plc"].strip()
