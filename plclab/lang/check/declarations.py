@@ -6,11 +6,11 @@ from __future__ import annotations
 from ...errors import Location
 from .. import ast as A
 from .. import types as T
+from ..addresses import SIZE_BYTES
 from .pass_api import Pass
 from .symbols import EnumSym, Scope, VarSym, close_hint
 
 MAX_IMAGE_BYTES = 65536  # the largest process image a Plc may have (image_size)
-_ADDR_SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
 
 
 def split_address(addr: str) -> tuple[str, list[str]]:
@@ -215,7 +215,7 @@ class Declarations(Pass):
         process image (PLC0127) and remember the largest extent:
         :class:`~plclab.runtime.plc.Plc` compares it with its ``image_size``."""
         byte = int(byte_text) if len(byte_text) <= 9 else MAX_IMAGE_BYTES
-        end = byte + max(1, _ADDR_SIZES[size_ch] // 8)
+        end = byte + SIZE_BYTES[size_ch]
         if end > MAX_IMAGE_BYTES:
             self.err("PLC0127", f"{addr[:30]} lies beyond the largest process image ({MAX_IMAGE_BYTES:,}"
                      " bytes, %..0 to %..65535); use a smaller address", loc)
@@ -227,7 +227,7 @@ class Declarations(Pass):
         if addr.endswith("*"):
             return
         size_ch, parts = split_address(addr)
-        bits = _ADDR_SIZES[size_ch]
+        bits = 1 if size_ch == "X" else 8 * SIZE_BYTES[size_ch]
         t0 = T.resolve(d.ty) if d.ty is not None else T.ANY
         if (size_ch == "X" and (t0.is_aggregate or isinstance(t0, T.StringType))
                 and self.cx.dialect(d.loc).name == "matiec"):
