@@ -485,18 +485,6 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
 
         require_display()
     ss = series(trace, signals, t0, t1) if (vcd or wavedrom or png or csv) else []
-    if png:
-        from .layout import signal_labels
-
-        names = labels if labels is not None else signal_labels(None, trace)
-        seen: set[str] = set()
-        ss_png = []
-        for s in ss:  # one row per wire, named by the student's variable and address
-            label = names.get(s.name, s.name)
-            if label in seen:
-                continue
-            seen.add(label)
-            ss_png.append(s.__class__(label, s.times, s.values, s.kind, s.unit, s.labels))
     if rrd or spawn:
         to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan,
                  cursor=cursor)
@@ -511,12 +499,13 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
 
         write_wavedrom(ss, wavedrom, tick=trace.period, t0=t0, t1=t1)
         done.append(f"WaveDrom: {wavedrom}")
-    if png:
-        from .timing import timing_diagram
+    if png:  # the failure diagram's description and renderers (ADR 0069), every row kept
+        from .failure_trace import trace_diagram, write_diagram
 
         markers = [(e.time, e.kind) for e in chatter_events(trace)]
-        timing_diagram(ss_png[:12], png, t0=t0, t1=t1, markers=markers,
-                       title=str(trace.meta.get("title", "")))
+        write_diagram(trace_diagram(trace, signals, t0, t1, markers,
+                                    str(trace.meta.get("title", "")), labels,
+                                    max_rows=None), png)
         done.append(f"timing diagram: {png}")
     if csv:
         from .exports import to_csv
