@@ -73,7 +73,7 @@ def failure_figure(d: FailureDiagram) -> Any:
     ax.set_ylim(0, total or 1.0)
     ax.set_xlabel(d.xlabel, fontsize=8)
     if d.title:
-        fig.suptitle(d.title, fontsize=10)
+        fig.suptitle(d.title, fontsize=10, y=1 - d.TITLE_Y / h_in, va="top")
     for k, (kind, text) in enumerate(d.header()):
         fig.text(0.5, 1 - d.header_y(k) / h_in, text, fontsize=8,
                  color="black" if kind == "caption" else "tab:orange" if kind == "note"

@@ -238,6 +238,10 @@ class FailureDiagram:
         h_in += 0.18 * len(self.header())
         return Frame(h_in, left, right_in, max(0.2, 1 - (top_in + 0.45) / h_in))
 
+    TITLE_Y = 0.08
+    """Inches from the top to the top of the title (fixed: a tall picture keeps its title clear
+    of the lines under it)."""
+
     def header_y(self, k: int) -> float:
         """Inches from the top to the top of header line ``k``."""
         return (0.32 if self.title else 0.12) + 0.18 * k
@@ -261,12 +265,11 @@ def describe(series: Sequence[Series], t0: float | None = None, t1: float | None
     series = list(series)
     left_out = ""
     if max_rows is not None and len(series) > max_rows:
-        must = [s for s in series if s.name in set(keep)][:max_rows]
-        room = max_rows - len(must)
-        chosen = set(id(s) for s in must) | set(id(s) for s in
-                                                [s for s in series if s not in must][:room])
-        dropped = [s.name for s in series if id(s) not in chosen]
-        series = [s for s in series if id(s) in chosen]
+        must = [i for i, s in enumerate(series) if s.name in set(keep)][:max_rows]
+        chosen = set(must) | set([i for i in range(len(series)) if i not in must]
+                                 [:max_rows - len(must)])
+        dropped = [s.name for i, s in enumerate(series) if i not in chosen]
+        series = [s for i, s in enumerate(series) if i in chosen]
         left_out = tr("{n} more signals not drawn: {names}", n=len(dropped),
                       names=", ".join(dropped))
     ss, heights, lo, hi = rows_of(series, t0, t1)

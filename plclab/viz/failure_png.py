@@ -222,7 +222,7 @@ def failure_png(d: FailureDiagram, path: str | os.PathLike | None = None,
     cv.text(((ax_l + ax_r) / 2, ax_b + tick_len + 3.5 * SCALE + 7 * SCALE * 1.2 + 3.5 * SCALE),
             d.xlabel, 8, BLACK, "mt")
     if d.title:
-        cv.text((cv.w / 2, 0.02 * cv.h), d.title, 10, BLACK, "mt")
+        cv.text((cv.w / 2, d.TITLE_Y * cv.k), d.title, 10, BLACK, "mt")
     for k, (kind, text) in enumerate(d.header()):
         cv.text((cv.w / 2, d.header_y(k) * cv.k), text, 8,
                 BLACK if kind == "caption" else ORANGE if kind == "note" else RANGE, "mt")

@@ -67,9 +67,12 @@ def write_diagram(d: FailureDiagram, path: str | Path, dpi: int = 72) -> None:
 
     path = Path(path)
     if path.suffix.lower() in (".svg", ".pdf"):
+        import matplotlib
+
         from .failure_diagram import failure_figure
 
-        failure_figure(d).savefig(str(path), dpi=dpi)
+        with matplotlib.rc_context({"svg.fonttype": "none"}):  # text stays text: searchable
+            failure_figure(d).savefig(str(path), dpi=dpi)
         return
     from .failure_png import failure_png
 
