@@ -190,5 +190,5 @@ def test_the_title_and_the_lines_under_it_never_overlap(n_rows):
     drawn, _ = _png_texts(d)
     box = dict(drawn)
     top = [box[d.title], box[d.caption], box[d.note], box["starts only on START fails"]]
-    for a, b in zip(top, top[1:]):
+    for a, b in zip(top[:-1], top[1:], strict=True):
         assert a[3] + 2 <= b[1], (a, b)  # each ends 2 px above the next one's top
