@@ -139,8 +139,8 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
 
 def criterion_picture(trace: Any, crit: Any, rows: list[str], analog: Any = None) -> Any:
     """What ``crit`` checks, drawn over the diagram rows ``rows`` (trace columns): the
-    :class:`plclab.viz.failure_diagram.Drawing` every picture of a failure shares."""
-    from plclab.viz.failure_diagram import criterion_drawing
+    :class:`plclab.viz.failure_model.Drawing` every picture of a failure shares."""
+    from plclab.viz.failure_model import criterion_drawing
 
     from .criteria import criterion_limits
 

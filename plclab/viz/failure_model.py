@@ -175,8 +175,9 @@ class Row:
         return [f"{label} {value:g}" for value, label in self.limits]
 
     def range_texts(self) -> list[str]:
-        lo, hi = self.value_range
-        return [f"{lo:.4g}", f"{hi:.4g}"]
+        """The lowest and highest value shown, as drawn beside the row: ``32767``, not
+        ``3.277e+04``."""
+        return [f"{v:.0f}" if 1e4 <= abs(v) < 1e12 else f"{v:.4g}" for v in self.value_range]
 
 
 class Frame(NamedTuple):
@@ -327,7 +328,8 @@ def criterion_drawing(limits: Sequence[Any], row_of: Any, units: Mapping[str, st
     """Turn a criterion's limits (:func:`plclab.grade.criteria.limits_of`) into lines, bands,
     spans and a note. ``row_of(signal)`` names the row a signal is drawn in (None: not drawn);
     ``analog(row)`` says whether that row is drawn as a value (lines and bands go there) --
-    a limit on a row that is not drawn, or on a BOOL, goes into the note."""
+    a limit on a row that is not drawn, or on a BOOL, goes into the note; the raw parameters
+    of a lab's own check (``target = 50, band = 0.5``) do not."""
     from plclab.i18n import tr
 
     th: dict[str, list[tuple[float, str]]] = {}
@@ -343,6 +345,9 @@ def criterion_drawing(limits: Sequence[Any], row_of: Any, units: Mapping[str, st
             words.append(lim.label)
         elif lim.kind == "band" and drawable and lim.value is not None and lim.hi is not None:
             bands.setdefault(row, []).append((lim.value, lim.hi, lim.text(unit)))
+        elif lim.kind == "count" and not lim.signal and lim.value is None:
+            continue  # a lab's own check's parameters by their Python names: the caption
+            # (the criterion's message) says what is checked, in the lab's words
         elif lim.kind in ("level", "target") and drawable and lim.value is not None:
             lst = th.setdefault(row, [])
             num = f"{lim.value:g}"

@@ -27,8 +27,8 @@ def trace_diagram(trace: Any, names: list[str] | None, t0: float | None, t1: flo
     -> ``REJECT %QX0.1``; default :func:`plclab.viz.layout.signal_labels` of the trace);
     ``drawing`` is what the failed criterion checks, ``caption`` its own words, ``keep`` its
     signals (always drawn); ``thresholds`` extra lines; ``max_rows`` None: every row."""
-    from .from_trace import plant_limits, series
     from .layout import signal_labels
+    from .trace_series import plant_limits, series
 
     if labels is None:
         labels = signal_labels(None, trace)

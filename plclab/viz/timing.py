@@ -112,7 +112,7 @@ def _draw(ax, s: Series, lo: float, hi: float) -> None:
         ax.spines[side].set_visible(False)
     times = list(s.times) + [hi]
     if s.kind == "bool":
-        from .failure_diagram import bool_rgb
+        from .failure_model import bool_rgb
 
         rgb = tuple(c / 255 for c in bool_rgb(s.name))  # inputs blue, outputs green
         vals = [1.0 if v else 0.0 for v in s.values]

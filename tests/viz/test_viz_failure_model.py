@@ -192,3 +192,19 @@ def test_the_title_and_the_lines_under_it_never_overlap(n_rows):
     top = [box[d.title], box[d.caption], box[d.note], box["starts only on START fails"]]
     for a, b in zip(top[:-1], top[1:], strict=True):
         assert a[3] + 2 <= b[1], (a, b)  # each ends 2 px above the next one's top
+
+
+def test_a_labs_own_check_is_worded_by_its_message_not_its_python_parameters():
+    """heater-pid's "reaches 50 °C" noted "checks: target = 50, band = 0.5, after = 0, within =
+    600": the band is drawn, the caption says the rest; a built-in count stays in the note."""
+    from plclab.grade.criteria_limits import limits_of
+    from plclab.viz.failure_model import criterion_drawing
+
+    own = criterion_drawing(limits_of("", {"signal": "TEMP", "target": 50.0, "band": 0.5,
+                                           "after": 0.0, "within": 600.0}),
+                            lambda s: s, {"TEMP": "degC"}, lambda r: True)
+    assert own.bands == {"TEMP": [(49.5, 50.5, "50 ± 0.5 degC")]}
+    assert "target =" not in own.note and "within =" not in own.note
+    built_in = criterion_drawing(limits_of("event_count", {"event": "bottle_passed", "max": 3}),
+                                 lambda s: s)
+    assert built_in.note == "checks: at most 3 bottle passed events"
