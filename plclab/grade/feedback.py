@@ -100,6 +100,8 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
     row (``plant counted 84``). Other criteria: ``limits`` unchanged."""
     from dataclasses import replace
 
+    from plclab.i18n import tr
+
     from .criteria_base import window
     from .criteria_limits import Limit
     from .criteria_values import plant_count
@@ -126,14 +128,19 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
             except Exception:  # noqa: BLE001
                 out.append(lim)
                 continue
-            out.append(replace(lim, label=f"{lim.label}: the plant counted {n}, "
-                                          f"{lim.signal} = {seen:g}"))
-            out.append(Limit("level", lim.signal, f"plant counted {n}", float(n)))
+            out.append(replace(lim, label=tr("{what}: the plant counted {n}, {signal} = {seen}",
+                                             what=lim.label, n=n, signal=lim.signal,
+                                             seen=f"{seen:g}")))
+            out.append(Limit("level", lim.signal, tr("plant counted {n}", n=n), float(n)))
         elif check == "no_chatter":
-            out.append(replace(lim, label=f"{lim.label}: {seen:g} in chatter"))
+            out.append(replace(lim, label=tr("{what}: {n} in chatter", what=lim.label,
+                                             n=f"{seen:g}")))
+        elif check == "max_switchings":
+            out.append(replace(lim, label=tr("{what}, switched {n}", what=lim.label,
+                                             n=f"{seen:g}")))
         else:
-            word = "switched" if check == "max_switchings" else "counted"
-            out.append(replace(lim, label=f"{lim.label}, {word} {seen:g}"))
+            out.append(replace(lim, label=tr("{what}, counted {n}", what=lim.label,
+                                             n=f"{seen:g}")))
     return out
 
 

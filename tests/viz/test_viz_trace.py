@@ -75,9 +75,12 @@ def test_sim_command_exports_everything(tmp_path, capsys):
     for label in (">LEVEL [m]<", ">M %QX0.0<", ">LS1 %IX0.0<"):
         assert label in svg
     assert ">PUMP %QX0.0<" not in svg and ">%QX0.0<" not in svg
-    rc = main(["view", str(out["npz"]), "--report", "--vcd", str(tmp_path / "v.vcd")])
+    rc = main(["view", str(out["npz"]), "--report", "--vcd", str(tmp_path / "v.vcd"),
+               "--png", str(tmp_path / "v.svg"), "--signals", "LEVEL,PUMP,LS1,LS2"])
     assert rc == 0
     assert "Relay / output switching" in capsys.readouterr().out
+    seen = (tmp_path / "v.svg").read_text()  # the saved trace keeps the student's names
+    assert ">M %QX0.0<" in seen and ">LS1 %IX0.0<" in seen and ">PUMP %QX0.0<" not in seen
 
 
 def test_vcd_of_a_trace_matches_it(tank_trace, tmp_path):
