@@ -110,7 +110,7 @@ def tick_labels(ticks: Sequence[float]) -> list[str]:
 class _Canvas:
     """Inches and data coordinates to the pixels of the supersampled image."""
 
-    def __init__(self, width_in: float, height_in: float) -> None:
+    def __init__(self, width_in: float, height_in: float, record: bool = False) -> None:
         from PIL import Image, ImageDraw
 
         self.k = DPI * SCALE
@@ -118,7 +118,8 @@ class _Canvas:
         self.h = int(height_in * DPI) * SCALE
         self.img = Image.new("RGB", (self.w, self.h), (255, 255, 255))
         self.draw = ImageDraw.Draw(self.img)
-        self.texts: list[tuple[str, tuple[float, float, float, float]]] = []  # what was drawn
+        self.record = record  # keep each text drawn with its box (for tests and readers)
+        self.texts: list[tuple[str, tuple[float, float, float, float]]] = []
 
     def px(self, points: float) -> int:
         """A line width in points as whole pixels (at least one)."""
@@ -128,7 +129,8 @@ class _Canvas:
              anchor: str) -> None:
         f = font(int(round(size_pt * SCALE)))
         self.draw.text(xy, text, font=f, fill=fill, anchor=anchor)
-        self.texts.append((text, self.draw.textbbox(xy, text, font=f, anchor=anchor)))
+        if self.record:
+            self.texts.append((text, self.draw.textbbox(xy, text, font=f, anchor=anchor)))
 
     def dashed(self, a: tuple[float, float], b: tuple[float, float], fill: Any, width: int,
                on: float, off: float) -> None:
@@ -177,7 +179,7 @@ def failure_png(d: FailureDiagram, path: str | os.PathLike | None = None,
 
     lo, hi, width = d.lo, d.hi, d.width
     h_in, left, right_in, frac = d.frame()
-    cv = _Canvas(width, h_in)
+    cv = _Canvas(width, h_in, record=drawn is not None)
     ax_l = left * cv.w
     ax_r = (1 - right_in / width) * cv.w
     ax_b = cv.h - 0.45 / h_in * cv.h  # pixel y of the axes' bottom (y grows down)
