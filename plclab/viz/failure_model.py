@@ -207,10 +207,19 @@ class FailureDiagram:
     xlabel: str = "time [s]"
     width: float = 9.0  # inches
 
-    def header(self) -> list[tuple[str, str]]:
-        """The lines under the title, top to bottom, as (kind, text)."""
+    def texts_under_title(self) -> list[tuple[str, str]]:
+        """The caption, the note and the rows left out, as (kind, whole text)."""
         return [(k, t) for k, t in (("caption", self.caption), ("note", self.note),
                                     ("left_out", self.left_out)) if t]
+
+    def header(self) -> list[tuple[str, str]]:
+        """The lines under the title, top to bottom, as (kind, text): each text wrapped to
+        the picture's width (an 8-point line holds about 13 characters an inch)."""
+        import textwrap
+
+        chars = max(20, int(self.width * 13))
+        return [(k, line) for k, t in self.texts_under_title()
+                for line in textwrap.wrap(t, chars, break_on_hyphens=False) or [t]]
 
     def items(self) -> list[tuple[str, str]]:
         """Every text the picture shows, as (kind, text): what both renderers must draw."""

@@ -238,8 +238,8 @@ def failure_png(d: FailureDiagram, path: str | os.PathLike | None = None,
     info = PngInfo()  # the title and the lines under it as PNG text too, for readers and tests
     if d.title:
         info.add_text("Title", d.title)
-    if d.header():
-        info.add_text("Description", "\n".join(text for _, text in d.header()))
+    if d.texts_under_title():
+        info.add_text("Description", "\n".join(text for _, text in d.texts_under_title()))
     img.save(buf, format="PNG", compress_level=6, pnginfo=info)
     data = buf.getvalue()
     if path is not None:

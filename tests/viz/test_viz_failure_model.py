@@ -208,3 +208,18 @@ def test_a_labs_own_check_is_worded_by_its_message_not_its_python_parameters():
     built_in = criterion_drawing(limits_of("event_count", {"event": "bottle_passed", "max": 3}),
                                  lambda s: s)
     assert built_in.note == "checks: at most 3 bottle passed events"
+
+
+def test_a_long_note_is_wrapped_inside_the_picture():
+    """drive-homing's note (a condition over six drives, each named with its address) ran off
+    both sides of the picture: every line above the plot now fits the picture's width."""
+    words = " or ".join(f"DRIVE_{k}_FWD %QX0.{k}" for k in range(8))
+    d = describe([Series("A %IX0.0", [0.0, 1.0], [False, True], "bool")], 0.0, 2.0,
+                 title="drive-trip: a fault stops every drive (FAILED)",
+                 note=f"checks: not ({words}) within 0.1 s", caption="every drive must stop")
+    notes = [t for k, t in d.header() if k == "note"]
+    assert len(notes) >= 2 and " ".join(notes) == d.note
+    drawn, img = _png_texts(d)
+    for text, (x0, _, x1, _) in drawn:
+        assert 0 <= x0 and x1 <= img.size[0], text
+    assert missing(d, _mpl_texts(d)) == [] and missing(d, [t for t, _ in drawn]) == []
