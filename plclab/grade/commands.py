@@ -489,10 +489,11 @@ def failure_picture(lab, trace, test, ns: argparse.Namespace) -> str:
     """``lab check --png F`` after a failure: the diagram of the first failing scenario
     around the moment of its first failure, the failed criterion and its limits drawn, as
     ``--out`` draws it; returns the line that says what was drawn."""
+    from plclab.i18n import tr
     from plclab.viz.from_trace import parse_window
     from plclab.viz.layout import signal_labels
 
-    from .feedback import criterion_picture, diagram_names, timing_png
+    from .feedback import criterion_picture, diagram_names, picture_texts, timing_png
 
     crit = next(c for c in lab.criteria if c.name == test.criterion)
     if getattr(ns, "signals", None) and ns.signals != getattr(ns, "_default_signals", None):
@@ -502,11 +503,13 @@ def failure_picture(lab, trace, test, ns: argparse.Namespace) -> str:
     t0, t1 = parse_window(ns.window)
     t0 = 0.0 if t0 is None else t0
     t1 = trace.t_end if t1 is None else t1
-    markers = [(test.t_fail, f"{crit.name} fails")] if test.t_fail is not None else []
-    markers += [(e.time, "PLC fault") for e in trace.events_of("plc_fault") if t0 <= e.time <= t1]
-    timing_png(trace, names, Path(ns.png), t0, t1, markers,
-               f"{test.scenario}: {crit.name} (FAILED)", signal_labels(lab.io, trace),
-               drawing=criterion_picture(trace, crit, names))
+    words = picture_texts(lab, crit, test.scenario)
+    markers = [(test.t_fail, words["marker"])] if test.t_fail is not None else []
+    markers += [(e.time, tr("PLC fault")) for e in trace.events_of("plc_fault")
+                if t0 <= e.time <= t1]
+    timing_png(trace, names, Path(ns.png), t0, t1, markers, words["title"],
+               signal_labels(lab.io, trace), drawing=criterion_picture(trace, crit, names),
+               caption=words["caption"], keep=words["keep"])
     when = f"at t = {test.t_fail:.2f} s" if test.t_fail is not None else "over the run"
     return (f"timing diagram: {ns.png} (scenario '{test.scenario}', criterion "
             f"'{test.criterion}', failed {when})")

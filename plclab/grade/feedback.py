@@ -18,7 +18,6 @@ RRD_SPAN = (40.0, 20.0)
 """The rerun recording covers this much before and after the first failure, seconds."""
 RRD_FPS = 4.0
 """Frames per second of the plant picture in the recording."""
-MAX_SIGNALS = 8
 MAX_DIAGNOSTICS = 20
 MAX_FILES = 20
 
@@ -101,6 +100,8 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
     row (``plant counted 84``). Other criteria: ``limits`` unchanged."""
     from dataclasses import replace
 
+    from plclab.i18n import tr
+
     from .criteria_base import window
     from .criteria_limits import Limit
     from .criteria_values import plant_count
@@ -127,21 +128,26 @@ def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
             except Exception:  # noqa: BLE001
                 out.append(lim)
                 continue
-            out.append(replace(lim, label=f"{lim.label}: the plant counted {n}, "
-                                          f"{lim.signal} = {seen:g}"))
-            out.append(Limit("level", lim.signal, f"plant counted {n}", float(n)))
+            out.append(replace(lim, label=tr("{what}: the plant counted {n}, {signal} = {seen}",
+                                             what=lim.label, n=n, signal=lim.signal,
+                                             seen=f"{seen:g}")))
+            out.append(Limit("level", lim.signal, tr("plant counted {n}", n=n), float(n)))
         elif check == "no_chatter":
-            out.append(replace(lim, label=f"{lim.label}: {seen:g} in chatter"))
+            out.append(replace(lim, label=tr("{what}: {n} in chatter", what=lim.label,
+                                             n=f"{seen:g}")))
+        elif check == "max_switchings":
+            out.append(replace(lim, label=tr("{what}, switched {n}", what=lim.label,
+                                             n=f"{seen:g}")))
         else:
-            word = "switched" if check == "max_switchings" else "counted"
-            out.append(replace(lim, label=f"{lim.label}, {word} {seen:g}"))
+            out.append(replace(lim, label=tr("{what}, counted {n}", what=lim.label,
+                                             n=f"{seen:g}")))
     return out
 
 
 def criterion_picture(trace: Any, crit: Any, rows: list[str], analog: Any = None) -> Any:
     """What ``crit`` checks, drawn over the diagram rows ``rows`` (trace columns): the
-    :class:`plclab.viz.failure_diagram.Drawing` every picture of a failure shares."""
-    from plclab.viz.failure_diagram import criterion_drawing
+    :class:`plclab.viz.failure_model.Drawing` every picture of a failure shares."""
+    from plclab.viz.failure_model import criterion_drawing
 
     from .criteria import criterion_limits
 
@@ -164,21 +170,32 @@ def criterion_picture(trace: Any, crit: Any, rows: list[str], analog: Any = None
 
 
 def diagram_names(trace: Any, lab: Any, crit: Any) -> list[str]:
-    """The signals of a failure diagram: the lab's, the criterion's, the student's --watch."""
+    """The signals of a failure diagram: the lab's, the criterion's, the student's --watch
+    (all of them: a picture with too many rows names those it leaves out and keeps the
+    criterion's own, :func:`plclab.viz.failure_model.describe`)."""
     out: list[str] = []
     watch = list(getattr(lab, "student_watch", []))
     for n in list(lab.diagram_signals) + list(crit.relevant_signals()) + watch:
         if n in trace and trace.resolve(n) not in out:
             out.append(trace.resolve(n))
     if not out:
-        return [r["plant_column"] for r in trace.io][:MAX_SIGNALS]
-    cap = MAX_SIGNALS + len(watch)
-    if len(out) > cap:  # the failed criterion's own signals and --watch are never dropped
-        must = {trace.resolve(n) for n in [*crit.relevant_signals(), *watch] if n in trace}
-        room = max(0, cap - len(must))
-        keep = set(must) | set([n for n in out if n not in must][:room])
-        out = [n for n in out if n in keep]
+        return [r["plant_column"] for r in trace.io]
     return out
+
+
+def picture_texts(lab: Any, crit: Any, scenario: str) -> dict[str, Any]:
+    """The words of a failure picture in the reader's language: its title (scenario and
+    criterion), its caption (the criterion's own message) and the failure line's label;
+    with ``keep``, the criterion's signals (always drawn)."""
+    from plclab.i18n import tr
+    from plclab.i18n_labs import criterion_text, lab_texts
+
+    texts = lab_texts(lab)
+    name = criterion_text(texts, crit.name, "name", crit.name)
+    return {"title": tr("{scenario}: {criterion} (FAILED)", scenario=scenario, criterion=name),
+            "caption": criterion_text(texts, crit.name, "message", crit.message or ""),
+            "marker": tr("{criterion} fails", criterion=name),
+            "keep": list(crit.relevant_signals())}
 
 
 def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Path, run: Any,
@@ -190,7 +207,9 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
         return
     media_dir.mkdir(parents=True, exist_ok=True)
     crits = {c.name: c for c in lab.criteria_for(sc.name)}
-    faults = [(e.time, "PLC fault") for e in trace.events_of("plc_fault")]
+    from plclab.i18n import tr
+
+    faults = [(e.time, tr("PLC fault")) for e in trace.events_of("plc_fault")]
     drawn: dict[tuple[Any, ...], str] = {}
     from plclab.viz.layout import signal_labels
 
@@ -208,12 +227,13 @@ def draw_failures(lab: Any, sc: Any, trace: Any, tests: list[Any], media_dir: Pa
             t.diagram = drawn[key]
             continue
         fname = f"{slug(sc.name)}--{slug(crit.name)}.png"
-        markers = [(t.t_fail, f"{crit.name} fails")] if t.t_fail is not None else []
+        words = picture_texts(lab, crit, sc.name)
+        markers = [(t.t_fail, words["marker"])] if t.t_fail is not None else []
         markers += [m for m in faults if t0 <= m[0] <= t1]
         try:
-            timing_png(trace, names, media_dir / fname, t0, t1, markers,
-                       f"{sc.name}: {crit.name}", labels,
-                       drawing=criterion_picture(trace, crit, names))
+            timing_png(trace, names, media_dir / fname, t0, t1, markers, words["title"],
+                       labels, drawing=criterion_picture(trace, crit, names),
+                       caption=words["caption"], keep=words["keep"])
         except Exception as e:  # noqa: BLE001 - a picture must never cost a grade
             run.notes.append(f"(no diagram for {crit.name}: {type(e).__name__}: {e})")
             continue
@@ -227,49 +247,16 @@ def timing_png(trace: Any, names: list[str], path: Path, t0: float, t1: float,
                markers: list[tuple[float, str]], title: str,
                labels: dict[str, str] | None = None,
                thresholds: dict[str, list[tuple[float, str]]] | None = None,
-               drawing: Any = None) -> None:
-    """A timing diagram of ``names`` over [t0, t1], written atomically. ``labels`` renames
-    columns for the reader (``%QX0.1`` -> ``REJECT %QX0.1``); ``drawing`` is what the
-    failed criterion checks (:func:`criterion_picture`); ``thresholds`` extra lines. A
-    ``.svg`` path is drawn with matplotlib, the same picture."""
-    from plclab.viz.from_trace import plant_limits, series
-    from plclab.viz.timing import failure_png, timing_diagram
+               drawing: Any = None, caption: str = "", keep: list[str] | None = None) -> None:
+    """A timing diagram of ``names`` over [t0, t1], written atomically: the description of
+    :func:`plclab.viz.failure_trace.trace_diagram` (``labels`` rename columns for the reader,
+    ``%QX0.1`` -> ``REJECT %QX0.1``; ``drawing`` is what the failed criterion checks,
+    :func:`criterion_picture`; ``caption`` its words; ``keep`` its signals, never left out;
+    ``thresholds`` extra lines), drawn with Pillow, or matplotlib for a ``.svg`` path."""
+    from plclab.viz.failure_trace import trace_diagram, write_diagram
 
-    ss = series(trace, names, t0, t1)
-    limits: dict[str, list[tuple[float, str]]] = {}
-    bands: dict[str, list[tuple[float, float, str]]] = {}
-    lines = {k: list(v) for k, v in plant_limits(trace).items()}  # switch heights, rims
-    extra_lines = [thresholds or {}] + ([drawing.thresholds] if drawing is not None else [])
-    for more in extra_lines:
-        for k, v in more.items():
-            have = lines.setdefault(k, [])
-            have += [(x, lab) for x, lab in v if all(abs(x - y) > 1e-9 for y, _ in have)]
-    seen: set[str] = set()
-    rows = []
-    for s in ss:  # the plant side and the PLC side of one wire are one row
-        shown = (labels or {}).get(s.name, (labels or {}).get(s.name.upper(), s.name))
-        if shown not in seen:
-            seen.add(shown)
-            rows.append(s)
-    ss = rows
-    for s in ss:
-        shown = (labels or {}).get(s.name, (labels or {}).get(s.name.upper(), s.name))
-        if s.name in lines:
-            limits[shown] = lines[s.name]
-        if drawing is not None and s.name in drawing.bands:
-            bands[shown] = drawing.bands[s.name]
-        s.name = shown
-    extra = {"bands": bands, "spans": drawing.spans if drawing is not None else (),
-             "note": drawing.note if drawing is not None else ""}
-    if Path(path).suffix.lower() == ".svg":
-        timing_diagram(ss, path, t0, t1, title=title, markers=markers, width=9.0,
-                       thresholds=limits, fixed_layout=True, **extra)
-        return
-    data = failure_png(ss, None, t0, t1, title=title, markers=markers, width=9.0,
-                       thresholds=limits, **extra)  # Pillow, not matplotlib: ADR 0033
-    tmp = _atomic_tmp(path)
-    tmp.write_bytes(data)
-    os.replace(tmp, path)
+    write_diagram(trace_diagram(trace, names, t0, t1, markers, title, labels, drawing,
+                                caption, keep, thresholds), path)
 
 
 def rerun_available() -> bool:

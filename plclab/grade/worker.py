@@ -35,7 +35,8 @@ from typing import Any
 
 PRELOAD = ("numpy", "plclab.sim", "plclab.trace", "plclab.grade.engine", "plclab.grade.feedback",
            "plclab.viz.from_trace", "plclab.viz.timing", "plants", "plclab.process", "rerun",
-           "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png", "PIL.Image",
+           "plclab.viz.recording", "plclab.viz.layout", "plclab.viz.failure_png",
+           "plclab.viz.failure_model", "plclab.viz.failure_trace", "plclab.i18n_labs", "PIL.Image",
            "PIL.ImageDraw", "PIL.ImageFont", "PIL.PngImagePlugin", "plclab.grade.protocol",
            "plclab.lang.sfc_outline", "plclab.lang.unparse", "plclab.viz.sfc_lane",
            "plclab.process.alarms", "plclab.process.recipes",

@@ -144,7 +144,8 @@ class Recording:
             "signal_info": {n: {"kind": s.kind, "type": s.type, "unit": s.unit,
                                 "range": list(s.range), "description": s.description}
                             for n, s in sigs.items()},
-            "io": io, "watch": list(self.watch), "scan": self.scan, "dt": self.dt,
+            "io": io, "located": self._located(), "watch": list(self.watch),
+            "scan": self.scan, "dt": self.dt,
             "substeps": self.substeps, "seed": self.seed, "decimate": self.decimate,
             "period": self.scan * self.decimate, "t_end": self.time, "scans": self.k,
             "plc_time0": self.t0_ns / 1e9, "stop_reason": self.stop_reason,
@@ -157,6 +158,16 @@ class Recording:
         }
         wall = {"scan_s": np.asarray(rec.wall, dtype=np.float64) / 1e9, "run_s": self.wall_s}
         return Trace(time, cols, kinds, meta, events, wall, edges)
+
+    def _located(self) -> dict[str, str]:
+        """``{address: the program's variable declared at it}`` (``%QX0.0`` -> ``PUMP``): the
+        pictures name a lane by the student's variable and its address (ADR 0069)."""
+        out: dict[str, str] = {}
+        symbols = getattr(getattr(self.plc, "project", None), "symbols", None)
+        for lv in symbols.located_vars() if symbols is not None else ():
+            if "*" not in lv.address:
+                out.setdefault(lv.address.upper(), lv.decl.spelling or lv.decl.name)
+        return out
 
     def _sfc_lane(self, cols: dict[str, Any], time: Any) -> dict[str, Any]:
         """The charts (``sfc``), why they stand where they are (``sfc_end``) and the

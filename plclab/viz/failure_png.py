@@ -1,11 +1,12 @@
-"""The student's failure diagram drawn straight to a PNG with Pillow (no matplotlib).
+"""The student's failure diagram drawn straight to a PNG with Pillow (no matplotlib): a thin
+renderer of a :class:`plclab.viz.failure_model.FailureDiagram` (ADR 0069).
 
 The grader draws a diagram for every failed criterion of every failing submission, and with
 matplotlib a small diagram cost about 75 ms of CPU (building the artists, laying out and
 rasterising some twenty texts, encoding): the largest part of a failing submission's
 grading after the simulation. This draws the same picture as
-:func:`plclab.viz.failure_diagram.failure_figure` at 72 dpi -- the same geometry (inches from
-that module's layout), rows as bands of one plot, square waves for BOOLs, labelled bus
+:func:`plclab.viz.failure_diagram.failure_figure` at 72 dpi -- the same description and the
+same geometry (:meth:`~plclab.viz.failure_model.FailureDiagram.frame`), rows as bands of one plot, square waves for BOOLs, labelled bus
 segments for small integers, lines for analog values with their range, thresholds dotted and
 labelled, failure markers dashed across all rows with labels that never overlap, the time
 axis with ticks -- in a few milliseconds (ADR 0033).
@@ -19,12 +20,11 @@ from __future__ import annotations
 import functools
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .failure_diagram import PAD, band_scale, bool_rgb, frame, spread
-from .series import Series
+from .failure_model import PAD, FailureDiagram, Row, bool_rgb, spread
 
 DPI = 72
 SCALE = 2
@@ -110,7 +110,7 @@ def tick_labels(ticks: Sequence[float]) -> list[str]:
 class _Canvas:
     """Inches and data coordinates to the pixels of the supersampled image."""
 
-    def __init__(self, width_in: float, height_in: float) -> None:
+    def __init__(self, width_in: float, height_in: float, record: bool = False) -> None:
         from PIL import Image, ImageDraw
 
         self.k = DPI * SCALE
@@ -118,6 +118,8 @@ class _Canvas:
         self.h = int(height_in * DPI) * SCALE
         self.img = Image.new("RGB", (self.w, self.h), (255, 255, 255))
         self.draw = ImageDraw.Draw(self.img)
+        self.record = record  # keep each text drawn with its box (for tests and readers)
+        self.texts: list[tuple[str, tuple[float, float, float, float]]] = []
 
     def px(self, points: float) -> int:
         """A line width in points as whole pixels (at least one)."""
@@ -125,8 +127,10 @@ class _Canvas:
 
     def text(self, xy: tuple[float, float], text: str, size_pt: float, fill: Any,
              anchor: str) -> None:
-        self.draw.text(xy, text, font=font(int(round(size_pt * SCALE))), fill=fill,
-                       anchor=anchor)
+        f = font(int(round(size_pt * SCALE)))
+        self.draw.text(xy, text, font=f, fill=fill, anchor=anchor)
+        if self.record:
+            self.texts.append((text, self.draw.textbbox(xy, text, font=f, anchor=anchor)))
 
     def dashed(self, a: tuple[float, float], b: tuple[float, float], fill: Any, width: int,
                on: float, off: float) -> None:
@@ -166,28 +170,22 @@ def label_box(cv: _Canvas, x: float, y: float, label: str, size_pt: float = 7,
                             anchor=anchor)
 
 
-def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: float,
-                hi: float, heights: Sequence[float], title: str = "",
-                markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
-                thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
-                labels: Sequence[tuple[float, str, int]] = (),
-                bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
-                spans: Sequence[tuple[float | None, float | None, str]] = (),
-                note: str = "") -> bytes:
-    """The PNG of ``series`` (already windowed to [lo, hi]), one band of ``heights[i]``
-    inches per row; arguments as :func:`plclab.viz.failure_diagram.failure_figure`. Writes
-    ``path`` when given; returns the PNG's bytes."""
+def failure_png(d: FailureDiagram, path: str | os.PathLike | None = None,
+                drawn: list[tuple[str, tuple[int, int, int, int]]] | None = None) -> bytes:
+    """The PNG of the description ``d`` (72 dpi). Writes ``path`` when given; returns the
+    PNG's bytes. ``drawn``, when given, receives every text drawn with its pixel box in the
+    PNG (for tests: which items are there, and where). Draws ``d`` and nothing else."""
     import io
 
-    h_in, left, right_in, frac = frame(series, heights, width, title, thresholds, labels,
-                                       note, bands)
-    cv = _Canvas(width, h_in)
+    lo, hi, width = d.lo, d.hi, d.width
+    h_in, left, right_in, frac = d.frame()
+    cv = _Canvas(width, h_in, record=drawn is not None)
     ax_l = left * cv.w
     ax_r = (1 - right_in / width) * cv.w
     ax_b = cv.h - 0.45 / h_in * cv.h  # pixel y of the axes' bottom (y grows down)
     ax_t = ax_b - frac * cv.h
     ax_w, ax_h = ax_r - ax_l, ax_b - ax_t
-    total = float(sum(heights)) or 1.0
+    total = float(sum(r.height for r in d.rows)) or 1.0
     span = (hi - lo) or 1.0
 
     def X(t: Any) -> Any:
@@ -196,26 +194,22 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
     def Y(v: Any) -> Any:  # height in the stacked bands (0 .. total) to pixels
         return ax_b - v / total * ax_h
 
-    for a, b, _text in spans:  # the window the criterion looks at, under everything
+    for a, b, _text in d.spans:  # the window the criterion looks at, under everything
         a, b = max(lo, a if a is not None else lo), min(hi, b if b is not None else hi)
         if b > a:
             cv.draw.rectangle([X(a), ax_t, X(b), ax_b], fill=SPAN)
     top = total
-    for s, h in zip(series, heights, strict=True):
-        base = top - h
-        y0, y1 = base + PAD * h, top - PAD * h
-        limits = list((thresholds or {}).get(s.name, ()))
-        cv.text((ax_l - 0.01 * ax_w, Y((y0 + y1) / 2)),
-                s.name + (f" [{s.unit}]" if s.unit else ""), 8, BLACK, "rm")
-        _row(cv, s, lo, hi, Y(y0), Y(y1), limits, X, ax_l, ax_r, ax_w,
-             list((bands or {}).get(s.name, ())))
+    for r in d.rows:
+        base = top - r.height
+        y0, y1 = base + PAD * r.height, top - PAD * r.height
+        cv.text((ax_l - 0.01 * ax_w, Y((y0 + y1) / 2)), r.caption, 8, BLACK, "rm")
+        _row(cv, r, lo, hi, Y(y0), Y(y1), X, ax_l, ax_r, ax_w)
         cv.draw.line([(ax_l, Y(base)), (ax_r, Y(base))], fill=GRID, width=cv.px(0.6))
         top = base
-    for t, _label in markers:
-        if lo <= t <= hi:
-            x = X(t)
-            cv.dashed((x, ax_t), (x, ax_b), RED, cv.px(0.8), 3 * SCALE, 2 * SCALE)
-    for t, label, level in labels:
+    for t in d.markers:
+        x = X(t)
+        cv.dashed((x, ax_t), (x, ax_b), RED, cv.px(0.8), 3 * SCALE, 2 * SCALE)
+    for t, label, level in d.labels:
         y = ax_b - (1.02 + 0.17 * level / (frac * h_in)) * ax_h
         x, anchor = label_place(cv, X(t), y, label, right=ax_r + 4 * SCALE)
         cv.text((x, y), label, 7, RED, anchor)
@@ -228,20 +222,24 @@ def failure_png(series: Sequence[Series], path: str | os.PathLike | None, lo: fl
         cv.draw.line([(x, ax_b), (x, ax_b + tick_len)], fill=BLACK, width=cv.px(0.8))
         cv.text((x, ax_b + tick_len + 3.5 * SCALE), text, 7, BLACK, "mt")
     cv.text(((ax_l + ax_r) / 2, ax_b + tick_len + 3.5 * SCALE + 7 * SCALE * 1.2 + 3.5 * SCALE),
-            "time [s]", 8, BLACK, "mt")
-    if title:
-        cv.text((cv.w / 2, 0.02 * cv.h), title, 10, BLACK, "mt")
-    if note:
-        cv.text((cv.w / 2, (0.32 if title else 0.12) * cv.k), note, 8, ORANGE, "mt")
+            d.xlabel, 8, BLACK, "mt")
+    if d.title:
+        cv.text((cv.w / 2, d.TITLE_Y * cv.k), d.title, 10, BLACK, "mt")
+    for k, (kind, text) in enumerate(d.header()):
+        cv.text((cv.w / 2, d.header_y(k) * cv.k), text, 8,
+                BLACK if kind == "caption" else ORANGE if kind == "note" else RANGE, "mt")
     img = cv.img.reduce(SCALE)
+    if drawn is not None:
+        drawn += [(text, tuple(int(round(c / SCALE)) for c in box))  # type: ignore[misc]
+                  for text, box in cv.texts]
     buf = io.BytesIO()
     from PIL.PngImagePlugin import PngInfo
 
-    info = PngInfo()  # the title and the note as PNG text too, for readers and tests
-    if title:
-        info.add_text("Title", title)
-    if note:
-        info.add_text("Description", note)
+    info = PngInfo()  # the title and the lines under it as PNG text too, for readers and tests
+    if d.title:
+        info.add_text("Title", d.title)
+    if d.texts_under_title():
+        info.add_text("Description", "\n".join(text for _, text in d.texts_under_title()))
     img.save(buf, format="PNG", compress_level=6, pnginfo=info)
     data = buf.getvalue()
     if path is not None:
@@ -254,12 +252,12 @@ def _fill(rgb: tuple[int, int, int]) -> tuple[int, int, int]:
     return tuple(int(round(255 - 0.15 * (255 - c))) for c in rgb)  # type: ignore[return-value]
 
 
-def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
-         limits: list[tuple[float, str]], X: Any, ax_l: float, ax_r: float,
-         ax_w: float, bands: list[tuple[float, float, str]] | None = None) -> None:
-    """One signal between the pixel heights py0 (its low edge) and py1 (its high edge)."""
+def _row(cv: _Canvas, r: Row, lo: float, hi: float, py0: float, py1: float, X: Any,
+         ax_l: float, ax_r: float, ax_w: float) -> None:
+    """One row between the pixel heights py0 (its low edge) and py1 (its high edge)."""
     import numpy as np
 
+    s = r.series
     d = cv.draw
     times = np.asarray(s.times, dtype=float)
     if s.kind == "bool":
@@ -280,12 +278,12 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
         d.line(step, fill=rgb, width=cv.px(1.2))
     elif s.kind == "real":
 
-        vlo, vhi = band_scale(s, limits, bands or ())
+        vlo, vhi = r.value_range
 
         def vy(v: float) -> float:
             return py0 + (v - vlo) / (vhi - vlo) * (py1 - py0)
 
-        for a, b, label in bands or ():  # under the curve: shaded, dashed edges, one label
+        for a, b, label in r.bands:  # under the curve: shaded, dashed edges, one label
             d.rectangle([ax_l, min(vy(a), vy(b)), ax_r, max(vy(a), vy(b))], fill=BAND)
             for v in (a, b):
                 cv.dashed((ax_l, vy(v)), (ax_r, vy(v)), ORANGE, cv.px(0.9), 4 * SCALE,
@@ -300,15 +298,15 @@ def _row(cv: _Canvas, s: Series, lo: float, hi: float, py0: float, py1: float,
             part = part[ok[part]]
             if len(part) > 1:
                 d.line(np.ascontiguousarray(xy[part]), fill=BLUE, width=cv.px(1.0))
-        for edge, y in ((vlo, py0), (vhi, py1)):
-            cv.text((ax_l - 0.003 * ax_w, y), f"{edge:.4g}", 6, RANGE, "rm")
-        at = spread([vy(value) for value, _ in limits], 8.5 * SCALE)  # labels never overlap
-        for (value, label), ty in zip(limits, at, strict=True):
+        for text, y in zip(r.range_texts(), (py0, py1), strict=True):
+            cv.text((ax_l - 0.003 * ax_w, y), text, 6, RANGE, "rm")
+        at = spread([vy(value) for value, _ in r.limits], 8.5 * SCALE)  # labels never overlap
+        for (value, _label), text, ty in zip(r.limits, r.limit_texts(), at, strict=True):
             y = vy(value)
             lw = 0.9
             cv.dashed((ax_l, y), (ax_r, y), ORANGE, cv.px(lw), 1.0 * lw * SCALE,
                       1.65 * lw * SCALE)
-            cv.text((ax_r + 0.005 * ax_w, ty), f"{label} {value:g}", 7, ORANGE, "lm")
+            cv.text((ax_r + 0.005 * ax_w, ty), text, 7, ORANGE, "lm")
     else:
         ch = s.changes()
         mid, dy = (py0 + py1) / 2, (py1 - py0) / 2

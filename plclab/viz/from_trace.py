@@ -17,29 +17,7 @@ from .chatter import output_stats
 from .layout import Layout, RunInfo, plan, slug
 from .recording import Event, Marker, Recording, write_rrd
 from .series import Series
-
-
-def series(trace, names: list[str] | None = None, t0: float | None = None,
-           t1: float | None = None) -> list[Series]:
-    """The named columns of a trace as step series (default: plant signals, then wired I/O),
-    then the SFC lane of each chart (its active steps), if the program has charts."""
-    if names is None:
-        names = list(trace.signals) + [r["column"] for r in trace.io
-                                       if r.get("column") in trace.columns]
-    units = trace.meta.get("units", {})
-    out = []
-    for name in names:
-        try:
-            col = trace.resolve(name)
-        except PlcError:
-            raise
-        kind = trace.kind(col)
-        kind = {"float": "real"}.get(kind, kind)
-        s = Series(col, trace.time, trace.columns[col], kind, units.get(col, ""))
-        out.append(s.window(t0, t1) if (t0 is not None or t1 is not None) else s)
-    from .sfc_lane import sfc_series  # the active steps of each chart, at the bottom
-
-    return out + sfc_series(trace, t0, t1)
+from .trace_series import plant_limits, plant_marks, plant_of, series  # noqa: F401 - public here too
 
 
 def parse_window(text: str | None) -> tuple[float | None, float | None]:
@@ -90,18 +68,6 @@ def chatter_events(trace, min_toggles: int = CHATTER[0],
             for name, a, b, n in chatter_episodes(trace, min_toggles, window)]
 
 
-def _plant(trace):
-    name = trace.meta.get("plant")
-    if not name:
-        return None
-    try:
-        import plants
-
-        return plants.get_plant(name, **(trace.meta.get("plant_params") or {}))
-    except Exception:  # noqa: BLE001 - a picture is optional
-        return None
-
-
 WARN_KINDS = {"overflow", "dry_run", "plc_fault", "io_fault", "fault_injected",
               "bottle_toppled", "chatter", "spill", "crash", "moved_without_two_hands",
               "curtain_violation", "alarm"}
@@ -119,8 +85,8 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         info = RunInfo(lab=str(trace.meta.get("plant", "")))
     start = t0 if t0 is not None else (float(trace.time[0]) if len(trace.time) else 0.0)
     end = t1 if t1 is not None else trace.t_end
-    plant = _plant(trace)
-    lay = plan(trace, info, names, t0, t1, _limits(trace, plant))
+    plant = plant_of(trace)
+    lay = plan(trace, info, names, t0, t1, plant_marks(trace, plant))
     _criterion_lines(trace, lay)
     rec = Recording(layout=lay)
     first = first_failed(info.verdicts)
@@ -362,45 +328,6 @@ def _t(t: float | None) -> str:
     return f"{t:.2f} s" if t < 60 else f"{int(t // 60)} min {t % 60:.1f} s"
 
 
-def plant_limits(trace) -> dict[str, list[tuple[float, str]]]:
-    """The plant's own marks (switch heights, the rim) per signal as (value, label), for a
-    diagram's lines."""
-    return {k: [(v, name) for name, v in lst] for k, lst in _limits(trace, _plant(trace)).items()}
-
-
-def _limits(trace, plant) -> dict[str, list[tuple[str, float]]]:
-    """Switch heights and vessel rims worth drawing as limits, from the plant's geometry: the
-    marks beside a filled vessel are limits of its level, the end switches of a piston limits
-    of its position."""
-    out: dict[str, list[tuple[str, float]]] = {}
-    if plant is None:
-        return out
-    try:
-        geo = plant.geometry() or {}
-    except Exception:  # noqa: BLE001 - a picture is optional
-        return out
-    shapes = geo.get("shapes", [])
-    fill = geo.get("fill")
-    if fill and fill.get("signal") in trace.columns:
-        sig = fill["signal"]
-        for s in shapes:
-            if s.get("type") == "mark" and s.get("name") in trace.columns:
-                out.setdefault(sig, []).append((s["name"], float(s["y"])))
-        vessel = next((s for s in shapes if s.get("type") == "rect"
-                       and abs(s["x"] - fill["x"]) < 1e-9), None)
-        if vessel is not None:
-            out.setdefault(sig, []).append(("rim", float(vessel["y"] + vessel["h"])))
-    piston = geo.get("piston")
-    if piston and piston.get("signal") in trace.columns:
-        scale = float(piston["scale"])
-        for s in shapes:
-            if s.get("type") == "mark" and s.get("name") in trace.columns and scale:
-                out.setdefault(piston["signal"], []).append((s["name"], float(s["y"]) / scale))
-    for v in out.values():
-        v.sort(key=lambda lv: lv[1])
-    return out
-
-
 def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
                    scan: bool = False, names: list[str] | None = None,
                    limits: Any = None) -> list[Recording]:
@@ -485,18 +412,6 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
 
         require_display()
     ss = series(trace, signals, t0, t1) if (vcd or wavedrom or png or csv) else []
-    if png:
-        from .layout import signal_labels
-
-        names = labels if labels is not None else signal_labels(None, trace)
-        seen: set[str] = set()
-        ss_png = []
-        for s in ss:  # one row per wire, named by the student's variable and address
-            label = names.get(s.name, s.name)
-            if label in seen:
-                continue
-            seen.add(label)
-            ss_png.append(s.__class__(label, s.times, s.values, s.kind, s.unit, s.labels))
     if rrd or spawn:
         to_rerun(trace, rrd, spawn=spawn, names=signals, window=(t0, t1), info=info, scan=scan,
                  cursor=cursor)
@@ -511,12 +426,13 @@ def export(trace, *, rrd: str | None = None, vcd: str | None = None,
 
         write_wavedrom(ss, wavedrom, tick=trace.period, t0=t0, t1=t1)
         done.append(f"WaveDrom: {wavedrom}")
-    if png:
-        from .timing import timing_diagram
+    if png:  # the failure diagram's description and renderers (ADR 0069), every row kept
+        from .failure_trace import trace_diagram, write_diagram
 
         markers = [(e.time, e.kind) for e in chatter_events(trace)]
-        timing_diagram(ss_png[:12], png, t0=t0, t1=t1, markers=markers,
-                       title=str(trace.meta.get("title", "")))
+        write_diagram(trace_diagram(trace, signals, t0, t1, markers,
+                                    str(trace.meta.get("title", "")), labels,
+                                    max_rows=None), png)
         done.append(f"timing diagram: {png}")
     if csv:
         from .exports import to_csv

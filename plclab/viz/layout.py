@@ -427,12 +427,16 @@ def signal_labels(io: Any, trace: Any) -> dict[str, str]:
     the student's variable and its address (``PUMP %QX0.0``), for the PLC side (``%QX0.0``)
     and the plant side of the wiring (``PUMP``, ``LS1``) alike. ``io`` is the lab's I/O
     table (rows with ``name`` and ``address``, or (name, address, type) tuples); None: the
-    wiring's signal names."""
+    wiring's signal names. The names the student's program declares at the addresses
+    (``trace.meta["located"]``, recorded by the simulation) come first."""
     names: dict[str, str] = {}
     for r in io or ():
         name, address = (r[0], r[1]) if isinstance(r, tuple) else (r.name, r.address)
         if address:
             names[str(address).upper()] = f"{name} {address}"
+    meta = getattr(trace, "meta", None) or {}
+    for address, var in (meta.get("located") or {}).items():  # the student's own names
+        names[str(address).upper()] = f"{var} {address}"
     if io is None:  # no I/O table: the wiring's signal names
         for r in getattr(trace, "io", None) or ():
             col, sig = str(r.get("column") or ""), r.get("signal")

@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from .failure_model import ANALOG_VALUES, marker_labels, rows_of  # noqa: F401 - public here too
+from .failure_model import as_analog as _as_analog  # noqa: F401
 from .series import Series
 
 
@@ -31,28 +33,33 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
                    fixed_layout: bool = False,
                    bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
                    spans: Sequence[tuple[float | None, float | None, str]] = (),
-                   note: str = ""):
+                   note: str = "", caption: str = "", keep: Sequence[str] = ()):
     """Draw ``series`` stacked over a shared time axis; save to ``path`` (.png/.svg) if given.
 
     ``markers`` are (time, label) pairs drawn as vertical lines (e.g. "chatter", "fault");
     their labels are merged and stacked so that they never overlap. ``thresholds`` maps a
     series name to (value, label) pairs drawn as dotted horizontal lines (a limit, a switch
     level). Integer series with many values (ADC counts) are drawn as lines, like REALs.
-    ``fixed_layout`` draws every row in one Axes with margins computed from the label lengths
-    (:mod:`plclab.viz.failure_diagram`) instead of one Axes per row and ``tight_layout``:
-    the feedback diagrams drawn for every failure. Returns the matplotlib figure.
+    ``fixed_layout`` draws the failure diagram of :func:`plclab.viz.failure_model.describe`
+    (every row in one Axes, ``bands``, ``spans``, ``note``, ``caption``, at most
+    :data:`~plclab.viz.failure_model.MAX_ROWS` rows with ``keep`` always in and the rest named)
+    instead of one Axes per row and ``tight_layout``: the feedback diagrams drawn for every
+    failure. Returns the matplotlib figure.
     """
     plt = _mpl()
-    series, heights, lo, hi = _rows(series, t0, t1)
-    rows = len(series)
     if fixed_layout:  # the feedback's diagram: one Axes, a fraction of the cost
         from .failure_diagram import failure_figure
+        from .failure_model import describe
 
-        fig = failure_figure(series, lo, hi, heights, title, markers, width, thresholds,
-                             marker_labels(markers, lo, hi), bands, spans, note)
+        fig = failure_figure(describe(series, t0, t1, title, markers, width, thresholds, bands,
+                                      spans, note, caption, keep))
         if path is not None:
             fig.savefig(str(path), dpi=dpi)
         return fig
+    from plclab.i18n import tr
+
+    series, heights, lo, hi = rows_of(series, t0, t1)
+    rows = len(series)
     fig, axes = plt.subplots(rows, 1, sharex=True, figsize=(width, 0.5 + sum(heights)),
                              gridspec_kw={"height_ratios": heights}, squeeze=False)
     for ax, s in zip(axes[:, 0], series, strict=True):
@@ -69,7 +76,7 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     for t, label, level in marker_labels(markers, lo, hi):
         axes[0, 0].annotate(label, (t, 1.02 + 0.28 * level), xycoords=("data", "axes fraction"),
                             fontsize=7, color="tab:red", rotation=0, annotation_clip=False)
-    axes[-1, 0].set_xlabel("time [s]")
+    axes[-1, 0].set_xlabel(tr("time [s]"))
     if title:
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()
@@ -79,76 +86,22 @@ def timing_diagram(series: Sequence[Series], path: str | Path | None = None,
     return fig
 
 
-def _rows(series: Sequence[Series], t0: float | None, t1: float | None
-          ) -> tuple[list[Series], list[float], float, float]:
-    """The rows of a diagram (windowed, many-valued integers as lines), their heights in
-    inches and the time span shown."""
-    rows = [_as_analog(s.window(t0, t1)) for s in series]
-    heights = [0.6 if s.kind in ("bool",) else 0.7 if s.kind != "real" else 1.6 for s in rows]
-    lo = t0 if t0 is not None else min((s.times[0] for s in rows if len(s.times)), default=0)
-    hi = t1 if t1 is not None else max((s.times[-1] for s in rows if len(s.times)), default=1)
-    return rows, heights, lo, hi
-
-
 def failure_png(series: Sequence[Series], path: str | Path | None, t0: float | None = None,
                 t1: float | None = None, title: str = "",
                 markers: Sequence[tuple[float, str]] = (), width: float = 9.0,
                 thresholds: Mapping[str, Sequence[tuple[float, str]]] | None = None,
                 bands: Mapping[str, Sequence[tuple[float, float, str]]] | None = None,
                 spans: Sequence[tuple[float | None, float | None, str]] = (),
-                note: str = "") -> bytes:
+                note: str = "", caption: str = "", keep: Sequence[str] = ()) -> bytes:
     """``timing_diagram(..., fixed_layout=True)`` saved at 72 dpi, drawn with Pillow instead
-    of matplotlib (:mod:`plclab.viz.failure_png`, a tenth of the cost): the feedback's
-    failure diagrams. Writes ``path`` when given; returns the PNG's bytes. ``bands``,
-    ``spans`` and ``note`` draw what a criterion checks (:func:`criterion_drawing`)."""
+    of matplotlib (:mod:`plclab.viz.failure_png`, a tenth of the cost) from the same
+    description (:func:`plclab.viz.failure_model.describe`): the feedback's failure
+    diagrams. Writes ``path`` when given; returns the PNG's bytes."""
+    from .failure_model import describe
     from .failure_png import failure_png as draw
 
-    rows, heights, lo, hi = _rows(series, t0, t1)
-    return draw(rows, path, lo, hi, heights, title, markers, width, thresholds,
-                marker_labels(markers, lo, hi), bands, spans, note)
-
-
-ANALOG_VALUES = 12
-"""An integer series with more distinct values than this is analog (ADC counts): a line."""
-
-
-def _as_analog(s: Series) -> Series:
-    """Integers with many values as a line; a digital series reduced to its changes (the
-    same picture, a fraction of the points to draw)."""
-    if s.kind == "int" and len(set(s.values)) > ANALOG_VALUES:
-        return Series(s.name, s.times, s.values, "real", s.unit, s.labels)
-    if s.kind != "real" and len(s.times) > 2:
-        ch = s.changes()
-        return Series(s.name, [t for t, _ in ch], [v for _, v in ch], s.kind, s.unit,
-                      s.labels)
-    return s
-
-
-def marker_labels(markers: Sequence[tuple[float, str]], lo: float, hi: float,
-                  chars_per_span: float = 110.0) -> list[tuple[float, str, int]]:
-    """The labels of ``markers`` in [lo, hi] as (time, text, row): equal labels close together
-    are merged ("chatter x3"), and a label that would overlap the one before it on the same
-    row goes one row up. A label takes about ``len(text) / chars_per_span`` of the width."""
-    span = max(hi - lo, 1e-9)
-    inside = sorted((t, lab) for t, lab in markers if lo <= t <= hi)
-    merged: list[list] = []  # [time, label, count]
-    for t, lab in inside:
-        same = next((m for m in reversed(merged) if m[1] == lab), None)
-        if same is not None and t - same[0] < 0.05 * span:
-            same[2] += 1
-            continue
-        merged.append([t, lab, 1])
-    out: list[tuple[float, str, int]] = []
-    row_end: list[float] = []  # per row: where its last label ends
-    for t, lab, n in merged:
-        text = lab if n == 1 else f"{lab} x{n}"
-        width = (len(text) + 1) / chars_per_span * span
-        row = next((r for r, end in enumerate(row_end) if t >= end), len(row_end))
-        if row == len(row_end):
-            row_end.append(0.0)
-        row_end[row] = t + width
-        out.append((t, text, row))
-    return out
+    return draw(describe(series, t0, t1, title, markers, width, thresholds, bands, spans, note,
+                         caption, keep), path)
 
 
 def _draw(ax, s: Series, lo: float, hi: float) -> None:
@@ -159,7 +112,7 @@ def _draw(ax, s: Series, lo: float, hi: float) -> None:
         ax.spines[side].set_visible(False)
     times = list(s.times) + [hi]
     if s.kind == "bool":
-        from .failure_diagram import bool_rgb
+        from .failure_model import bool_rgb
 
         rgb = tuple(c / 255 for c in bool_rgb(s.name))  # inputs blue, outputs green
         vals = [1.0 if v else 0.0 for v in s.values]

@@ -1,9 +1,10 @@
-"""The failure diagram: the failed criterion's own signals are never dropped by the cap on the
-number of rows; the one-Axes drawing gives a PNG with one band per signal."""
+"""The failure diagram: no row is dropped silently (the failed criterion's own signals are
+always drawn, the others left out are named on the picture); the one-Axes drawing gives a PNG
+with one band per signal."""
 
 from __future__ import annotations
 
-from plclab.grade.feedback import MAX_SIGNALS, diagram_names, timing_png
+from plclab.grade.feedback import diagram_names, timing_png
 from plclab.grade.lab import load_lab
 
 
@@ -19,13 +20,27 @@ class _AnyTrace:
         return name
 
 
-def test_the_failed_criterions_signal_survives_the_row_cap():
+def test_the_failed_criterions_signal_is_drawn_and_the_rows_left_out_are_named():
+    from plclab.viz.failure_model import describe
+    from plclab.viz.series import Series
+
     lab = load_lab("ventilation-fans")
     crit = next(c for c in lab.criteria if c.name == "fault lamp flashes at 5 Hz")
-    assert len(lab.diagram_signals) >= MAX_SIGNALS  # the cap would cut the lamp off
     names = diagram_names(_AnyTrace(), lab, crit)
-    assert "FAULT_LAMP" in names and len(names) == MAX_SIGNALS
-    assert names == [n for n in lab.diagram_signals if n in names]  # in the lab's order
+    assert names[:len(lab.diagram_signals)] == list(lab.diagram_signals)  # none dropped
+    assert "FAULT_LAMP" in names
+    rows = [Series(n, [0.0, 1.0], [False, True], "bool") for n in names]
+    cap = names.index("FAULT_LAMP")  # a cap that would cut the lamp off if taken in order
+    assert cap >= 2
+    d = describe(rows, 0.0, 1.0, keep=["FAULT_LAMP"], max_rows=cap)
+    drawn = [r.name for r in d.rows]
+    assert len(drawn) == cap and "FAULT_LAMP" in drawn
+    assert drawn == [n for n in names if n in drawn]  # in the lab's order
+    left = [n for n in names if n not in drawn]
+    assert d.left_out.startswith(f"{len(left)} more signals not drawn: ")
+    assert all(n in d.left_out for n in left)
+    assert ("left_out", d.left_out) in d.items()  # on the picture, both renderers
+    assert describe(rows, 0.0, 1.0).left_out == ""  # no cap reached: no line
 
 
 def test_a_failure_diagram_is_a_png_of_the_signals(tmp_path):

@@ -70,11 +70,17 @@ def test_sim_command_exports_everything(tmp_path, capsys):
     for p in out.values():
         assert p.exists() and p.stat().st_size > 0
     svg = out["svg"].read_text()
-    for label in (">LEVEL [m]<", ">PUMP %QX0.0<", ">LS1 %IX0.0<"):  # name and address
+    # the student's variable and its address (the program calls the pump's output M), one
+    # row for the plant side (PUMP) and the PLC side (%QX0.0) of the wire
+    for label in (">LEVEL [m]<", ">M %QX0.0<", ">LS1 %IX0.0<"):
         assert label in svg
-    rc = main(["view", str(out["npz"]), "--report", "--vcd", str(tmp_path / "v.vcd")])
+    assert ">PUMP %QX0.0<" not in svg and ">%QX0.0<" not in svg
+    rc = main(["view", str(out["npz"]), "--report", "--vcd", str(tmp_path / "v.vcd"),
+               "--png", str(tmp_path / "v.svg"), "--signals", "LEVEL,PUMP,LS1,LS2"])
     assert rc == 0
     assert "Relay / output switching" in capsys.readouterr().out
+    seen = (tmp_path / "v.svg").read_text()  # the saved trace keeps the student's names
+    assert ">M %QX0.0<" in seen and ">LS1 %IX0.0<" in seen and ">PUMP %QX0.0<" not in seen
 
 
 def test_vcd_of_a_trace_matches_it(tank_trace, tmp_path):
