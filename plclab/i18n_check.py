@@ -168,3 +168,110 @@ def missing_help(helps: dict[str, str], ui: dict[str, Any], lang: str) -> list[s
 def locale_file(lang: str, name: str) -> Path:
     """``plclab/locale/<lang>/<name>.toml``."""
     return LOCALE_DIR / lang / f"{name}.toml"
+
+
+# ----------------------------------------------------------------------- English left over
+
+ENGLISH_WORDS = frozenset("""
+a after again all also an and any are as at be been before both but by can cannot did do does
+each every for from has have here how if in into is it its just less more must never no not of
+off on once only or other out over same should so some still than that the then there these this
+those to too under until up very was were what when which while who will with within would yet
+you your""".split())
+"""Short English words that are not ST keywords, identifiers or units: a run of Latin words
+with one of them in it is an English sentence (:func:`english_runs`)."""
+
+_CODE_SPAN = re.compile(r"`[^`]*`")
+_TOKEN = re.compile(r"[A-Za-z]+(?:['’-][A-Za-z]+)*|[^\sA-Za-z]")
+_LOWER = re.compile(r"[a-z]+(?:['’-][a-z]+)*")
+
+
+def english_runs(line: str, min_words: int = 3) -> list[str]:
+    """The English phrases left in a line of a translated text: runs of ``min_words`` or more
+    lowercase Latin words (commas and colons may come between them), one of them a common
+    English word, outside `code spans`. Identifiers (``START``, ``%QX0.0``), units, codes
+    and ST in backticks are not runs.
+
+    >>> english_runs("насос включается: `PUMP and not LS2` at t = 3,5 с")
+    []
+    >>> english_runs("ящик 1 закрыт: box 1 was closed after 2 bottle(s)")
+    ['was closed after']
+    """
+    out: list[str] = []
+    run: list[str] = []
+
+    def flush() -> None:
+        if len(run) >= min_words and any(w.lower() in ENGLISH_WORDS for w in run):
+            out.append(" ".join(run))
+
+    for tok in _TOKEN.findall(_CODE_SPAN.sub(" # ", line.replace("\\`", "`"))):
+        if _LOWER.fullmatch(tok):
+            run.append(tok)
+        elif tok in ",:;" and run:
+            continue
+        else:
+            flush()
+            run = []
+    flush()
+    return out
+
+
+def check_messages(path: Path) -> list[str]:
+    """Sample texts of the messages a lab's ``checks.py`` returns (the string of a
+    ``return (passed, message, ...)`` or of ``Verdict(passed, message)``): each f-string with
+    ``1.5`` for a formatted number and ``X`` for any other part. A message built in pieces
+    (``msg += ...``) or only of other parts (``f"{head}: {why}"``) is not found;
+    :func:`english_runs` on a real run finds those."""
+    src = path.read_text(encoding="utf-8")
+    out: list[str] = []
+    for n in ast.walk(ast.parse(src)):
+        cands = []
+        if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple) \
+                and len(n.value.elts) >= 2:
+            cands.append(n.value.elts[1])
+        if isinstance(n, ast.Call) and getattr(n.func, "id", "") == "Verdict" \
+                and len(n.args) >= 2:
+            cands.append(n.args[1])
+        for c in cands:
+            text = _sample(c)
+            if text is not None and re.sub(r"X|[^A-Za-z]", "", text) == "":
+                continue  # made only of parts ("{head}: {why}"): the parts are found
+            if text is not None and text not in out:
+                out.append(text)
+    return out
+
+
+def _sample(node: ast.AST) -> str | None:
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if not isinstance(node, ast.JoinedStr):
+        return None
+    parts = []
+    for v in node.values:
+        if isinstance(v, ast.Constant):
+            parts.append(str(v.value))
+        else:
+            spec = "".join(c.value for c in getattr(v.format_spec, "values", [])
+                           if isinstance(c, ast.Constant))
+            parts.append("1.5" if any(ch in spec for ch in "fg%") else "X")
+    return "".join(parts)
+
+
+def untranslated_check_messages(lab_dir: Path, lang: str) -> list[str]:
+    """The messages of the lab's ``checks.py`` that no template of its ``lab.<lang>.toml``
+    (``messages``) or of ``ui.toml`` turns into ``lang``; each with where to add it."""
+    import tomllib
+
+    from .i18n_labs import translate_nested
+
+    checks = lab_dir / "checks.py"
+    if not checks.is_file():
+        return []
+    path = lab_dir / f"lab.{lang}.toml"
+    texts = tomllib.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    ui = tomllib.loads(locale_file(lang, "ui").read_text(encoding="utf-8"))
+    templates = [*texts.get("messages", []), *ui.get("messages", [])]
+    return [f"labs/{lab_dir.name}/checks.py: {m!r} has no template in labs/{lab_dir.name}/"
+            f'{path.name} (add to messages: {{ en = "...", {lang} = "..." }})'
+            for m in check_messages(checks)
+            if translate_nested(m, templates, lang) is None]

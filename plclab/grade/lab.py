@@ -103,14 +103,20 @@ def get_lab_files(lab: str | os.PathLike, dest: Path, extra: Iterable[str | os.P
     (unless *force*)."""
     import shutil
 
+    from plclab.i18n import SOURCE, language
+
     from .courseware import courseware_root
 
     folder = find_lab(lab, extra)
-    files = [folder / "README.md"] if (folder / "README.md").is_file() else []
+    lang = language()
+    own = [] if lang == SOURCE else [f"README.{lang}.md"]  # the task in the language too
+    files = [folder / n for n in ["README.md", *own] if (folder / n).is_file()]
     files += sorted(p for p in folder.glob("starter.*") if p.suffix.lower() in SOURCE_EXTS)
     for nb in (folder.parent.parent / "notebooks", courseware_root() / "notebooks"):
         if (nb / f"{folder.name}.ipynb").is_file():
             files.append(nb / f"{folder.name}.ipynb")
+            if lang != SOURCE and (nb / f"{folder.name}.{lang}.ipynb").is_file():
+                files.append(nb / f"{folder.name}.{lang}.ipynb")
             break
     there = [dest / f.name for f in files if (dest / f.name).exists()]
     if there and not force:
