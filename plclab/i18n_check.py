@@ -83,15 +83,19 @@ def missing_problems(codes: list[str], problems: dict[str, Any], lang: str,
 
 
 def tr_keys(root: Path = PLCLAB_DIR) -> dict[str, str]:
-    """Every literal template passed to ``tr()`` in plclab's source: template -> file:line."""
+    """Every literal template passed to ``tr()`` (or ``tr_in(lang, ...)``) in plclab's source:
+    template -> file:line."""
     keys: dict[str, str] = {}
     for f in sorted(root.rglob("*.py")):
         tree = ast.parse(f.read_text(encoding="utf-8"))
         for n in ast.walk(tree):
-            if (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "tr"
-                    and n.args and isinstance(n.args[0], ast.Constant)
-                    and isinstance(n.args[0].value, str)):
-                keys.setdefault(n.args[0].value, f"{f.relative_to(root.parent)}:{n.lineno}")
+            if not (isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+                    and n.func.id in ("tr", "tr_in")):
+                continue
+            k = 1 if n.func.id == "tr_in" else 0  # tr_in(lang, "template")
+            if (len(n.args) > k and isinstance(n.args[k], ast.Constant)
+                    and isinstance(n.args[k].value, str)):
+                keys.setdefault(n.args[k].value, f"{f.relative_to(root.parent)}:{n.lineno}")
     return keys
 
 

@@ -25,7 +25,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from .i18n import SOURCE, _pattern, catalogue, fill, language, localize_line
+from .i18n import SOURCE, _pattern, catalogue, fill, language, localize_line, message
 
 TEXT_KEYS = ("name", "message", "hint", "hint_fix", "description")
 
@@ -74,8 +74,10 @@ def detail(text: str, texts: dict[str, Any], lang: str | None = None) -> str:
     lang = lang or language()
     if lang == SOURCE or not text:
         return text
-    templates = [*texts.get("messages", []), *catalogue(lang, "ui").get("messages", [])]
-    got = translate_nested(text, templates, lang, texts.get("phrases", []))
+    ui = catalogue(lang, "ui")
+    templates = [*texts.get("messages", []), *ui.get("messages", [])]
+    phrases = [*texts.get("phrases", []), *ui.get("phrases", [])]
+    got = translate_nested(text, templates, lang, phrases)
     if got is None:
         return text
     for en, entry in texts.get("criteria", {}).items():  # "counts only when 'X' passes"
@@ -87,9 +89,11 @@ def detail(text: str, texts: dict[str, Any], lang: str | None = None) -> str:
 def translate_nested(text: str, templates: list[dict[str, str]], lang: str,
                      phrases: list[dict[str, str]] = (), depth: int = 3) -> str | None:
     """:func:`plclab.i18n.translate_by_templates`, and each captured part that one of
-    ``phrases`` matches is translated too (a check's message that quotes a part made
-    elsewhere: ``"at the end: {what}"`` with ``what = "the tub is not empty"``). Phrases
-    apply only to such parts, never to a whole message; None when no template matches."""
+    ``phrases`` or of ``templates`` matches is translated too (a check's message that quotes
+    a part made elsewhere: ``"at the end: {what}"`` with ``what = "the tub is not empty"``,
+    a plant event's text, a verdict inside a note). Phrases apply only to such parts, never to
+    a whole message; a part ``{fault}`` beside a ``{code}`` is that code's diagnostic
+    (:func:`plclab.i18n.message`). None when no template matches."""
     for t in templates:
         en, target = t.get("en"), t.get(lang)
         if not en or not target:
@@ -98,10 +102,14 @@ def translate_nested(text: str, templates: list[dict[str, str]], lang: str,
         if not m:
             continue
         parts = m.groupdict()
-        if phrases and depth > 0:
+        if depth > 0:
             for k, v in parts.items():
-                if v and not _NUMBER.fullmatch(v):
-                    parts[k] = translate_nested(v, phrases, lang, phrases, depth - 1) or v
+                if k == "fault" and "code" in parts:
+                    parts[k] = message(parts["code"], v, lang)
+                elif v and not _NUMBER.fullmatch(v):
+                    parts[k] = (translate_nested(v, phrases, lang, phrases, depth - 1)
+                                or translate_nested(v, templates, lang, phrases, depth - 1)
+                                or v)
         try:
             return fill(target, parts, lang)
         except (KeyError, ValueError, IndexError):  # a bad translation: the next one
