@@ -88,20 +88,20 @@ def detail(text: str, texts: dict[str, Any], lang: str | None = None) -> str:
 
 def translate_nested(text: str, templates: list[dict[str, str]], lang: str,
                      phrases: list[dict[str, str]] = (), depth: int = 3) -> str | None:
-    """:func:`plclab.i18n.translate_by_templates`, and each captured part that one of
-    ``phrases`` or of ``templates`` matches is translated too (a check's message that quotes
-    a part made elsewhere: ``"at the end: {what}"`` with ``what = "the tub is not empty"``,
-    a plant event's text, a verdict inside a note). Phrases apply only to such parts, never to
-    a whole message; a part ``{fault}`` beside a ``{code}`` is that code's diagnostic
+    """``text`` in ``lang`` by the most specific of ``templates`` that matches all of it (the
+    one with the most literal text: ``"{name} = {v} at {t:time}"`` matches much that a longer
+    template says better), and each captured part that one of ``phrases`` or of
+    ``templates`` matches is translated too (a check's message that quotes a part made
+    elsewhere: ``"at the end: {what}"`` with ``what = "the tub is not empty"``, a plant event's
+    text, a verdict inside a note). Phrases apply only to such parts, never to a whole
+    message; a part ``{fault}`` beside a ``{code}`` is that code's diagnostic
     (:func:`plclab.i18n.message`). None when no template matches."""
+    found = []
     for t in templates:
         en, target = t.get("en"), t.get(lang)
-        if not en or not target:
-            continue
-        m = _pattern(en).fullmatch(text)
-        if not m:
-            continue
-        parts = m.groupdict()
+        if en and target and (m := _pattern(en).fullmatch(text)):
+            found.append((-len(_LITERAL.sub("", en)), len(found), m.groupdict(), target))
+    for _, _, parts, target in sorted(found, key=lambda f: f[:2]):
         if depth > 0:
             for k, v in parts.items():
                 if k == "fault" and "code" in parts:
@@ -117,6 +117,7 @@ def translate_nested(text: str, templates: list[dict[str, str]], lang: str,
     return None
 
 
+_LITERAL = re.compile(r"\{[^{}]*\}")
 _NUMBER = re.compile(r"[-+]?[\d.]+")
 
 
@@ -231,7 +232,8 @@ def criteria_table_markdown(lab: Any, lang: str | None = None) -> str:
                 else criterion_text(texts, c.name, "message", c.message))
         flags = f" ({tr_in(lang, 'critical')})" if c.critical else ""
         each = tr_in(lang, "{points} each", points=f"{c.points:g}")
-        rows.append(f"| {name}{flags} | {scs} | {each} | {_cell(c.summary())} | {_cell(what)} |")
+        rows.append(f"| {name}{flags} | {scs} | {each} | `{_cell(c.summary())}` | "
+                    f"{_cell(what)} |")  # the check is code: its numbers keep their point
     return "\n".join(rows)
 
 

@@ -37,6 +37,7 @@ prose_decimal_points = _course.prose_decimal_points
 
 _LINK = re.compile(r"(?<!!)\[[^\]]*\]\(([^)\s]+)\)")
 _FENCED = re.compile(r"^(`{3,}).*?^\1", re.S | re.M)
+_COMMENT = re.compile(r"<!--.*?-->", re.S)
 
 
 def links(text: str) -> list[str]:
@@ -72,8 +73,10 @@ def readme_differences(en: str, ru: str) -> list[str]:
 
 
 def english_prose(text: str) -> list[str]:
-    """Lines of a Russian text that still hold an English sentence (code blocks left out)."""
-    return [line for line in _FENCED.sub("", text).splitlines() if english_runs(line)]
+    """Lines of a Russian text that still hold an English sentence (code blocks and the
+    markers of the generated tables, HTML comments, left out)."""
+    return [line for line in _COMMENT.sub("", _FENCED.sub("", text)).splitlines()
+            if english_runs(line)]
 
 
 @pytest.mark.parametrize("lab", LABS, ids=lambda p: p.name)
