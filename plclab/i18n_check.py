@@ -107,8 +107,9 @@ def missing_ui(keys: dict[str, str], ui: dict[str, Any], lang: str) -> list[str]
 
 def missing_lab_texts(lab_dir: Path, lang: str) -> list[str]:
     """What the lab in ``lab_dir`` lacks in its ``lab.<lang>.toml``: the title, each criterion's
-    name and, where ``lab.toml`` has them, its message, hint and hint_fix, each scenario's
-    description; and criteria it names that ``lab.toml`` does not have."""
+    name and, where ``lab.toml`` has them, its message, hint, hint_fix and description, each
+    scenario's description, the summary, the goals, the I/O table's descriptions and units;
+    and criteria or I/O rows it names that ``lab.toml`` does not have."""
     import tomllib
 
     spec = tomllib.loads((lab_dir / "lab.toml").read_text(encoding="utf-8-sig"))
@@ -130,10 +131,40 @@ def missing_lab_texts(lab_dir: Path, lang: str) -> list[str]:
         if sc.get("description") and not str(scen.get(name, {}).get("description", "")).strip():
             out.append(f"{lab_dir.name}: scenario {name!r} has no description in {where} (add "
                        f'[scenarios.{_q(name)}] description = "...")')
+    for c in spec.get("criterion", []):  # what lab show and the README's table print
+        got = crits.get(c.get("name", ""))
+        if c.get("description") and not str((got or {}).get("description", "")).strip():
+            out.append(f"{lab_dir.name}: criterion {c.get('name')!r} has no description in "
+                       f'{where} (add [criteria.{_q(c.get("name", ""))}] description = "...")')
+    out += _missing_task_texts(lab_dir.name, spec, texts, where)
     for name in crits:
         if name not in {c.get("name") for c in spec.get("criterion", [])}:
             out.append(f"{lab_dir.name}: {path.name} names criterion {name!r}, which lab.toml "
                        "does not have (renamed? rename it here too)")
+    return out
+
+
+def _missing_task_texts(lab: str, spec: dict[str, Any], texts: dict[str, Any],
+                        where: str) -> list[str]:
+    """The task's texts a lab lacks in a language: ``summary``, ``goals`` (as many as in
+    English) and the description (and unit) of each row of the I/O table."""
+    out = []
+    if spec.get("summary") and not str(texts.get("summary", "")).strip():
+        out.append(f'{lab}: no summary in {where} (add summary = "...")')
+    goals = texts.get("goals")
+    if spec.get("goals") and not (isinstance(goals, list) and len(goals) == len(spec["goals"])):
+        out.append(f"{lab}: goals in {where} are not the {len(spec['goals'])} goals of "
+                   'lab.toml (add goals = ["...", ...])')
+    io = texts.get("io", {})
+    for row in spec.get("io", []):
+        name = row.get("name", "")
+        for key in ("description", "unit"):
+            if row.get(key) and not str(io.get(name, {}).get(key, "")).strip():
+                out.append(f"{lab}: I/O row {name!r} has no {key} in {where} (add "
+                           f'[io.{_q(name)}] {key} = "...")')
+    for name in io:
+        if name not in {row.get("name") for row in spec.get("io", [])}:
+            out.append(f"{lab}: {where} names I/O row {name!r}, which lab.toml does not have")
     return out
 
 

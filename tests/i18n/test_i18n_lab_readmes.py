@@ -104,16 +104,46 @@ def test_the_generated_tables_of_the_russian_task_are_up_to_date(lab):
     assert english_prose(io_table_markdown(spec, "ru")) == []
 
 
-def test_lab_show_in_russian(capsys):
+@pytest.mark.parametrize("lab", LABS, ids=lambda p: p.name)
+def test_lab_show_in_russian(capsys, lab):
+    try:
+        main(["--lang", "ru", "lab", "show", str(lab)])
+    finally:
+        i18n.set_language(None)
+    out = capsys.readouterr().out
+    assert "## Таблица входов и выходов" in out and "Цели работы:" in out
+    assert "README.ru.md" in out
+    left = [line for line in out.splitlines() if english_runs(line)]
+    assert left == [], "English left in lab show:\n" + "\n".join(left)
+
+
+def test_lab_show_takes_the_io_descriptions_from_lab_ru_toml(capsys):
     try:
         main(["--lang", "ru", "lab", "show", "motor-start-stop"])
     finally:
         i18n.set_language(None)
     out = capsys.readouterr().out
-    assert "## Таблица входов и выходов" in out and "| `START` | `%IX0.0` | BOOL |" in out
-    assert "Цели работы:" in out and "README.ru.md" in out
-    assert "кнопка «Пуск»" in out  # the I/O description from lab.ru.toml
-    assert [line for line in out.splitlines() if english_runs(line)] == []
+    assert "| `START` | `%IX0.0` | BOOL |  | кнопка «Пуск»" in out
+
+
+def test_a_lab_without_its_russian_task_texts_is_named(tmp_path):
+    from plclab.i18n_check import missing_lab_texts
+
+    lab = tmp_path / "demo"
+    lab.mkdir()
+    (lab / "lab.toml").write_text(
+        'summary = "a tank"\ngoals = ["one", "two"]\n'
+        '[[io]]\nname = "LS1"\ndescription = "low switch"\n'
+        '[[io]]\nname = "RAW"\nunit = "counts"\ndescription = "level"\n'
+        '[[criterion]]\nname = "fills"\ndescription = "it fills"\n', encoding="utf-8")
+    (lab / "lab.ru.toml").write_text(
+        'title = "Бак"\ngoals = ["одна"]\n[criteria.fills]\nname = "наполняет"\n'
+        '[io.RAW]\ndescription = "уровень"\n[io.OLD]\ndescription = "старый"\n',
+        encoding="utf-8")
+    missing = "\n".join(missing_lab_texts(lab, "ru"))
+    for what in ("'fills' has no description", "no summary", "not the 2 goals",
+                 "'LS1' has no description", "'RAW' has no unit", "I/O row 'OLD'"):
+        assert what in missing, what
 
 
 # ---- the checker catches what it must ----
