@@ -210,6 +210,17 @@ def _pattern(template: str) -> re.Pattern[str]:
     return re.compile("".join(parts), re.DOTALL)
 
 
+def template_parts(template: str, text: str) -> dict[str, str] | None:
+    """The parts of ``text`` by the placeholders of ``template`` when the template matches
+    all of it, else None.
+
+    >>> template_parts("{n} passed", "3 passed"), template_parts("{n} passed", "3 failed")
+    ({'n': '3'}, None)
+    """
+    m = _pattern(template).fullmatch(text)
+    return m.groupdict() if m else None
+
+
 def translate_by_templates(text: str, templates: list[dict[str, str]], lang: str) -> str | None:
     """``text`` matched against the English side of ``templates`` (the first whose ``en``
     matches all of it) and formatted with the ``lang`` side; None when none matches."""

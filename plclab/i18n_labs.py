@@ -25,7 +25,15 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from .i18n import SOURCE, _pattern, catalogue, fill, language, localize_line, message
+from .i18n import (
+    SOURCE,
+    catalogue,
+    fill,
+    language,
+    localize_line,
+    message,
+    template_parts,
+)
 
 TEXT_KEYS = ("name", "message", "hint", "hint_fix", "description")
 
@@ -99,8 +107,8 @@ def translate_nested(text: str, templates: list[dict[str, str]], lang: str,
     found = []
     for t in templates:
         en, target = t.get("en"), t.get(lang)
-        if en and target and (m := _pattern(en).fullmatch(text)):
-            found.append((-len(_LITERAL.sub("", en)), len(found), m.groupdict(), target))
+        if en and target and (parts := template_parts(en, text)) is not None:
+            found.append((-len(_LITERAL.sub("", en)), len(found), parts, target))
     for _, _, parts, target in sorted(found, key=lambda f: f[:2]):
         if depth > 0:
             for k, v in parts.items():
