@@ -160,11 +160,18 @@ def hidden_note(lab: Lab) -> str | None:
     without the hidden scenarios this copy lacks (None when nothing is missing)."""
     if not lab.withheld:
         return None
-    n = lab.withheld
-    return (f"note: {lab.path} is the student copy of {lab.id} that ships with plclab: its "
-            f"{n} hidden scenario{'s are' if n != 1 else ' is'} not in it, so --hidden runs "
-            "the visible ones only. For every scenario use the instructor's lab folder "
-            f"(labs/{lab.id} of the plclab repository, or your own; --labs DIR)")
+    from plclab.i18n import tr
+
+    if lab.withheld == 1:
+        return tr("note: {path} is the student copy of {lab} that ships with plclab: its {n} "
+                  "hidden scenario is not in it, so --hidden runs the visible ones only. For "
+                  "every scenario use the instructor's lab folder (labs/{lab} of the plclab "
+                  "repository, or your own; --labs DIR)", path=lab.path, lab=lab.id, n=1)
+    return tr("note: {path} is the student copy of {lab} that ships with plclab: its {n} "
+              "hidden scenarios are not in it, so --hidden runs the visible ones only. For "
+              "every scenario use the instructor's lab folder (labs/{lab} of the plclab "
+              "repository, or your own; --labs DIR)", path=lab.path, lab=lab.id,
+              n=lab.withheld)
 
 # ---------------------------------------------------------------------------- loading
 
