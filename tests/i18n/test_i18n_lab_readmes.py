@@ -8,6 +8,7 @@ prose and a decimal comma in it. ``plclab --lang ru lab show`` prints the Russia
 
 import importlib.util
 import re
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -89,6 +90,10 @@ def test_the_russian_task_has_the_structure_of_the_english_one(lab):
     assert re.search("[А-Яа-яЁё]", ru)
     assert english_prose(ru) == [], "English left in README.ru.md"
     assert prose_decimal_points(ru) == [], "a decimal point in Russian prose"
+    spec = tomllib.loads((lab / "lab.toml").read_text(encoding="utf-8-sig"))
+    if en.splitlines()[0] == f"# {spec['title']}":  # the title as lab list shows it
+        texts = tomllib.loads((lab / "lab.ru.toml").read_text(encoding="utf-8"))
+        assert ru.splitlines()[0] == f"# {texts['title']}"
 
 
 @pytest.mark.parametrize("lab", LABS, ids=lambda p: p.name)
