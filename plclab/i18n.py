@@ -180,7 +180,12 @@ def fill(template: str, params: dict[str, Any], lang: str | None = None) -> str:
 def tr(template: str, /, **params: Any) -> str:
     """A command-line or feedback text in the current language: ``template`` is the English
     text (with ``{name}`` placeholders), also the key of ``locale/<lang>/ui.toml``."""
-    lang = language()
+    return tr_in(language(), template, **params)
+
+
+def tr_in(lang: str, template: str, /, **params: Any) -> str:
+    """:func:`tr` in ``lang`` rather than the language in use (a README's table in Russian
+    written by an English command line)."""
     if lang != SOURCE:
         got = catalogue(lang, "ui").get(template)
         if isinstance(got, str):

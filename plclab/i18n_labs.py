@@ -33,6 +33,7 @@ from .i18n import (
     localize_line,
     message,
     template_parts,
+    tr_in,
 )
 
 TEXT_KEYS = ("name", "message", "hint", "hint_fix", "description")
@@ -243,14 +244,3 @@ def criteria_table_markdown(lab: Any, lang: str | None = None) -> str:
         rows.append(f"| {name}{flags} | {scs} | {each} | `{_cell(c.summary())}` | "
                     f"{_cell(what)} |")  # the check is code: its numbers keep their point
     return "\n".join(rows)
-
-
-def tr_in(lang: str, template: str, /, **params: Any) -> str:
-    """:func:`plclab.i18n.tr` in ``lang`` rather than the language in use."""
-    got = catalogue(lang, "ui").get(template) if lang != SOURCE else None
-    if isinstance(got, str):
-        try:
-            return fill(got, params, lang) if params else got
-        except (KeyError, ValueError, IndexError):
-            pass
-    return fill(template, params, SOURCE) if params else template
