@@ -1,4 +1,5 @@
-"""Build the lab notebooks: one ``notebooks/<lab-id>.ipynb`` per lab, all of the same shape.
+"""Build the lab notebooks: one ``notebooks/<lab-id>.ipynb`` per lab, all of the same shape,
+and its Russian edition ``notebooks/<lab-id>.ru.ipynb`` for every lab with a ``README.ru.md``.
 
     python notebooks/build.py            # write every notebook
     python notebooks/build.py --check    # exit 1 if a notebook is missing or out of date
@@ -18,7 +19,10 @@ in step with ``lab.toml``), the program cell starts with the lab's starter file.
 7. the quiz of the course chapter that teaches the lab (``plclab.course.quiz.quiz_cell``: the
    answers are a dict in the cell, so the notebook runs headless too).
 
-The notebooks are committed as generated, without outputs. Nothing here runs a simulation.
+The Russian edition takes its Markdown from ``README.ru.md`` and the texts below; its code
+cells are the English ones, but for the language the set-up cell gives the feedback in
+(``plclab.i18n.set_language``). The notebooks are committed as generated, without outputs.
+Nothing here runs a simulation.
 """
 
 from __future__ import annotations
@@ -249,6 +253,136 @@ LABS_CONFIG: dict[str, dict] = {
 }
 
 
+QUESTIONS_RU: dict[str, list[str]] = {
+    "motor-start-stop": [
+        "Почему кнопку «Стоп» подключают размыкающим контактом? Что будет с двигателем, если "
+        "оборвётся провод к STOP?",
+        "Реле перегрузки и так размыкает цепь катушки аппаратно. Почему программа всё равно "
+        "должна отключать K1, когда OVERLOAD равен TRUE?",
+        "На диаграмме RUN следует за K1 с небольшой задержкой. Откуда она берётся?",
+    ],
+    "tank-two-position": [
+        "Между LS1 и LS2 насос продолжает делать то, что делал. Какая часть "
+        "`M := ((NOT LS1) OR M) AND (NOT LS2)` заставляет его помнить?",
+        "Мысленно придвиньте LS2 ближе к LS1: что станет с числом пусков насоса в час?",
+    ],
+    "relay-thermostat": [
+        "Сколько раз в час переключается контактор при H = 2 °C? При H = 0,5 °C?",
+        "Почему температура немного выходит за 48 °C и 52 °C, прежде чем повернуть?",
+    ],
+    "bottle-reject": [
+        "Стоящая бутылка покачивается, проходя мимо датчиков. Что сделала бы ступень "
+        "отбраковки без TON на 30 мс?",
+        "Почему счётчики должны считать фронты, а не циклы, в которых луч перекрыт?",
+    ],
+    "ventilation-fans": [
+        "5 Гц — это пять вспышек в секунду. Какие T_ON и T_OFF это дают, и почему "
+        "T#200ms / T#200ms было бы неверно?",
+        "После двух неисправностей должно ли главное питание возвращаться само, когда один "
+        "вентилятор отремонтирован? Приведите доводы за и против.",
+        "Почему резервный вентилятор после ремонта снова останавливается, а не продолжает "
+        "работать?",
+    ],
+    "pump-station": [
+        "Программа учебника включает насос 1 по WY, не глядя на DAWL. Когда это приводит к "
+        "беде?",
+        "Что будет при времени ступени 10 с? 10 минут?",
+        "Почему пуски насосов разнесены на несколько секунд?",
+    ],
+    "water-boiler": [
+        "Бит-триггер NO_WATER снова FALSE примерно на 130 с, но авария остаётся на панели до "
+        "200 с. В каком она состоянии в промежутке?",
+        "Почему NO_WATER — ошибка (с квитированием), а LEVEL_HIGH — лишь предупреждение?",
+        "У аналоговой аварии TEMP_HIGH есть мёртвая зона и задержка. Что показал бы журнал "
+        "аварий без них, если бы температура колебалась около 75 °C с небольшим шумом?",
+    ],
+    "bottling-recipes": [
+        "Где на диаграмме бутылка успокаивается, и что было бы без этого?",
+        "Запись нектара наливает 0,30 л. При скольких % FILL_LEVEL закрывается клапан?",
+        "Какие значения место в рецепте, а какие — в программе? Подумайте о времени "
+        "успокоения.",
+    ],
+    "heater-pid": [
+        "Поставьте TN := 0.0 (П-регулятор). Насколько ниже уставки остаётся вода в сценарии "
+        "sustained-draw, и как это зависит от KP?",
+        "Вызывайте регулятор каждые 10 с вместо каждой секунды. Что меняется?",
+        "Почему в начале мощность минутами держится на 100 %, и почему от этого температура не "
+        "перерегулирует (защита от интегрального насыщения)?",
+    ],
+    "press-safety": [
+        "В сценарии taped-hand правая рука приходит через 2,5 с после левой. Что делает ваша "
+        "программа, и где в коде эти 0,5 с?",
+        "Почему поршень идёт обратно вверх (а не вниз), когда световая завеса снова "
+        "свободна?",
+        "Что ограничивает точность дозы: время цикла, запаздывание клапана или энкодер?",
+        "Где в вашей программе выполняется регулирование температуры, и выполняется ли оно, "
+        "пока последовательность ждёт световую завесу?",
+    ],
+    "washing-machine": [
+        "Из Fill выходят два перехода. Что решает, какой сработает, когда замкнётся LEVEL_SW, "
+        "и что сделало бы вместо этого параллельное ветвление FROM Fill TO (Boiling, Warming)?",
+        "У переходов прерывания PRIORITY := 0. Что происходит в цикле, в котором дверца "
+        "открывается как раз когда Warming.T доходит до 5 минут, с приоритетом и без него?",
+        "HEATER(N) в Boiling и HEATER(S) в Boiling: нарисуйте оба на временной диаграмме. "
+        "Какому шагу понадобился бы HEATER(R)?",
+    ],
+    "drive-homing": [
+        "Добавьте четвёртый привод (вторую ленту). Какие строки меняются в программе с "
+        "интерфейсом, а какие — в классической из solution/?",
+        "Home() перезапускает тайм-аут команды. Что будет с приводом со сломанным датчиком "
+        "исходной позиции, если последовательность вызывает Home() в каждом цикле?",
+        "У поршня срабатывает защита во время реферирования. Почему должны остановиться и "
+        "лента, и насос, хотя с ними всё в порядке?",
+    ],
+    "pedestrian-crossing": [
+        "Пешеход касается кнопки на 0,3 с, пока у машин идут первые 20 с зелёного. Какой шаг "
+        "запоминает касание, и что потерялось бы без него?",
+        "WAIT_LAMP горит ещё один цикл зелёного для пешеходов. Почему один цикл, и какое "
+        "правило эволюции SFC это определяет?",
+        "В slow-walker PedClear длится дольше 3 с. Прочитайте время этого шага в трассе: "
+        "сколько ждали машины, и что закончило ожидание?",
+    ],
+    "bottle-packing": [
+        "Шестая бутылка останавливается перед X1, когда встаёт конвейер. Почему её не "
+        "считают снова, когда конвейер трогается, а счётчик сброшен?",
+        "TO_GO берётся из CTD, а IN_BOX — из CTU. Какой из двух вы показали бы на панели "
+        "оператора, а какой сравнивали бы с размером ящика?",
+        "Что будет со счётом, если оператор нажмёт STOP, пока бутылка в луче? Попробуйте "
+        "это действием сценария.",
+    ],
+    "level-4-20ma": [
+        "Оборванная петля даёт 32767 ед. АЦП. Какой уровень вычислит программа, доверяющая "
+        "числу, и что сделает её насос?",
+        "Почему сигнал 0-20 мА делает обрыв провода невидимым, а 4-20 мА — нет?",
+        "12-битный модуль даёт 4096 ступеней на 4-20 мА. Сколько миллиметров уровня — одна "
+        "ступень на этом баке высотой 2 м?",
+    ],
+    "scan-timing": [
+        "REACTION_MS показывает около 50 мс. Какие его части приходятся на релейный выход, "
+        "контактор, входной фильтр и цикл?",
+        "Перенесите схему пуска/останова в медленную задачу. Какова теперь самая долгая "
+        "реакция, и почему нажатие в 60 мс может потеряться?",
+        "Быстрая задача на этом виртуальном ПЛК измеряет ровно 10 мс. Что показал бы "
+        "настоящий ПЛК, и что с этим делает превышение времени цикла?",
+    ],
+    "modbus-operator": [
+        "Почему ПЛК записывает 0 обратно в регистр команды? Чего станция не смогла бы узнать "
+        "без этого?",
+        "Станция записывает -200 в регистр хранения 1. Какое число передаётся в кадре "
+        "Modbus, и что видит INT программы?",
+        "Запустите решение командой `plclab serve --plant tank` и управляйте им через "
+        "`plclab.modbus.connect()`. Какой регистр говорит, что ПЛК жив?",
+    ],
+}
+"""The questions of LABS_CONFIG in Russian (the same number, the same order)."""
+
+DEFAULT_QUESTIONS_RU = [
+    "Какой критерий было труднее всего выполнить, и что на временной диаграмме показало "
+    "вам почему?",
+    "Что пошло бы не так на настоящей машине, если бы программа ошибалась на один цикл?",
+]
+
+
 # ---------------------------------------------------------------------------- README
 
 
@@ -307,7 +441,9 @@ from plclab.grade import check, load_lab
 from plclab.grade.commands import failure_picture, first_failure
 from plclab.grade.criteria import criterion_limits
 from plclab.grade.engine import guess_language
-from plclab.grade.feedback import criterion_picture
+from plclab.grade.feedback import criterion_picture, render_feedback
+from plclab.i18n import set_language
+from plclab.i18n_labs import localize_result
 from plclab.sim import run
 from plclab.viz import timing_diagram
 from plclab.viz.from_trace import plant_limits, series
@@ -327,6 +463,7 @@ if (Path.cwd().parent / "labs").is_dir():  # running from the repository's noteb
 
 LAB = {lab_id!r}
 lab = load_lab(LAB)
+set_language({lang!r})  # the language of the feedback below: "en" or "ru"
 
 
 def simulate(program, scenario, duration=None):
@@ -425,7 +562,8 @@ def show_first_failure(result):
 def grade(program):
     """The lab's visible scenarios and criteria on the program: feedback and score."""
     result = check(LAB, program)
-    display(Markdown(result.feedback_markdown))
+    shown, _ = localize_result(result, lab)  # the feedback in the notebook's language
+    display(Markdown(render_feedback(shown)))
     print(f"score: {{result.score:g}}/{{result.max_score:g}}")
     if result.score < result.max_score:
         show_first_failure(result)
@@ -485,79 +623,152 @@ def quiz_chapter(lab_id: str) -> int | None:
     return (data.get("chapters") or [None])[-1]
 
 
-def build_notebook(lab_id: str) -> nbformat.NotebookNode:
-    """The notebook of one lab."""
+LANGUAGES = ("en", "ru")
+"""The editions: English (``<lab>.ipynb``) and Russian (``<lab>.ru.ipynb``)."""
+
+SECTIONS = {
+    "en": {"task": "Your task", "requirements": "Requirements",
+           "source": "Where this comes from", "plant": "The plant", "io": "I/O table",
+           "grading": "Grading"},
+    "ru": {"task": "Ваша задача", "requirements": "Требования", "source": "Откуда это",
+           "plant": "Объект управления", "io": "Таблица входов и выходов", "grading": "Оценка"},
+}
+"""The README headings a notebook takes its sections from, in each language."""
+
+TEXTS = {
+    "en": {
+        "intro": ("*Lab `{lab}` — a plclab notebook.* Write your program in the cell marked "
+                  "**Your program**, run the notebook from the top (Run All), read the timing "
+                  "diagram and the feedback, improve, repeat. The same checks run with "
+                  "`plclab lab check {lab} FILE`; the graded run adds hidden scenarios."),
+        "io": "Declare these addresses in your program (`AT %IX0.0` ...):",
+        "setup": "Set-up",
+        "program": ("## Your program\n\nThe program is a Python string: Structured Text, or a "
+                    "ladder diagram in plclab's text LD. It starts as the lab's starter file."),
+        "run": ("## Run it on the plant\n\nOne scenario of the lab, simulated with the lab's "
+                "wiring (`plclab.sim.run`). The timing diagram shows the signals over time; "
+                "`trace` holds every signal (`trace['NAME']`, `trace.value_at('NAME', t)`)."),
+        "check": ("## Check it\n\nThe lab's visible scenarios and criteria "
+                  "(`plclab.grade.check`), with the feedback a grader gives. The last line is "
+                  "your score."),
+        "rerun": ("## The run in rerun\n\nAn interactive timeline (the view of "
+                  "`plclab lab check {lab} FILE --rrd run.rrd`): after a failed check it opens "
+                  "on the first failing scenario at its first failure, else it shows the run "
+                  "above. Scrub the time, zoom into a moment, watch the plant."),
+        "graded": "What is graded",
+        "questions": "Questions",
+        "quiz": ("## Quiz\n\nThe quiz of chapter {chapter} of the course (`plclab quiz "
+                 "{chapter}` in a terminal). Each answer gets its feedback."),
+    },
+    "ru": {
+        "intro": ("*Работа `{lab}` — блокнот plclab.* Напишите программу в ячейке **Ваша "
+                  "программа**, выполните блокнот сверху донизу (Run All), прочитайте временную "
+                  "диаграмму и отзыв, исправьте, повторите. Те же проверки выполняет "
+                  "`plclab --lang ru lab check {lab} ФАЙЛ`; при оценке добавляются скрытые "
+                  "сценарии."),
+        "io": "Объявите эти адреса в своей программе (`AT %IX0.0` ...):",
+        "setup": "Подготовка",
+        "program": ("## Ваша программа\n\nПрограмма — строка Python: структурированный текст "
+                    "или релейно-контактная схема в текстовом LD plclab. Вначале это файл "
+                    "заготовки работы."),
+        "run": ("## Запустите её на объекте\n\nОдин сценарий работы, смоделированный с "
+                "подключением работы (`plclab.sim.run`). Временная диаграмма показывает "
+                "сигналы во времени; `trace` хранит каждый сигнал (`trace['NAME']`, "
+                "`trace.value_at('NAME', t)`)."),
+        "check": ("## Проверьте её\n\nВидимые сценарии и критерии работы "
+                  "(`plclab.grade.check`) с отзывом, какой даёт проверка. Последняя строка — "
+                  "ваша оценка."),
+        "rerun": ("## Прогон в rerun\n\nИнтерактивная шкала времени (вид "
+                  "`plclab lab check {lab} ФАЙЛ --rrd run.rrd`): после непройденной проверки "
+                  "она открывается на первом непройденном сценарии в момент первой неудачи, "
+                  "иначе показывает прогон выше. Двигайте время, приближайте момент, следите "
+                  "за объектом."),
+        "graded": "Что оценивается",
+        "questions": "Вопросы",
+        "quiz": ("## Тест\n\nТест главы {chapter} курса (`plclab quiz {chapter}` в "
+                 "терминале). На каждый ответ есть отзыв."),
+    },
+}
+"""The notebook's own Markdown in each language."""
+
+
+def notebook_path(lab_id: str, lang: str = "en") -> Path:
+    """``notebooks/<lab>.ipynb``, or ``notebooks/<lab>.<lang>.ipynb`` for another edition."""
+    return HERE / (f"{lab_id}.ipynb" if lang == "en" else f"{lab_id}.{lang}.ipynb")
+
+
+def editions(lab_id: str) -> list[str]:
+    """The languages the lab's notebook is built in: English, and each language the lab has
+    a ``README.<lang>.md`` for."""
+    return [g for g in LANGUAGES if g == "en" or (LABS / lab_id / f"README.{g}.md").is_file()]
+
+
+def questions(lab_id: str, lang: str = "en") -> list[str]:
+    """The questions to think about of a lab's notebook in ``lang``."""
+    english = lab_config(lab_id)["questions"]
+    if lang == "en":
+        return english
+    got = QUESTIONS_RU.get(lab_id, DEFAULT_QUESTIONS_RU if english is DEFAULT_QUESTIONS else [])
+    if len(got) != len(english):
+        raise ValueError(f"{lab_id}: {len(english)} questions in English, {len(got)} in "
+                         f"{lang}: translate them in QUESTIONS_RU")
+    return got
+
+
+def build_notebook(lab_id: str, lang: str = "en") -> nbformat.NotebookNode:
+    """The notebook of one lab in ``lang``."""
     lab_dir = LABS / lab_id
     cfg = lab_config(lab_id)
-    readme = (lab_dir / "README.md").read_text(encoding="utf-8")
+    words, heads = TEXTS[lang], SECTIONS[lang]
+    name = "README.md" if lang == "en" else f"README.{lang}.md"
+    readme = (lab_dir / name).read_text(encoding="utf-8")
     # the README's links to the course are relative to labs/ID/; a notebook sits in notebooks/
     readme = readme.replace("](../../course/", "](../course/")
     title, intro, sec = readme_sections(readme)
     cells = []
-    head = [f"# {title}", "", f"*Lab `{lab_id}` — a plclab notebook.* Write your program in the "
-            "cell marked **Your program**, run the notebook from the top (Run All), read the "
-            "timing diagram and the feedback, improve, repeat. The same checks run with "
-            f"`plclab lab check {lab_id} FILE`; the graded run adds hidden scenarios.", "",
-            intro]
+    head = [f"# {title}", "", words["intro"].format(lab=lab_id), "", intro]
     cells.append(new_markdown_cell("\n".join(head).strip()))
-    if "Your task" in sec:
-        cells.append(new_markdown_cell("## Your task\n\n" + sec["Your task"]))
-    if "Requirements" in sec:  # what the grader checks, as the README states it (issue 31)
-        cells.append(new_markdown_cell("## Requirements\n\n" + sec["Requirements"]))
-    if "Where this comes from" in sec:
-        cells.append(new_markdown_cell("## Where this comes from\n\n"
-                                       + sec["Where this comes from"]))
-    if "The plant" in sec:
-        cells.append(new_markdown_cell("## The plant\n\n" + sec["The plant"]))
-    if "I/O table" in sec:
-        cells.append(new_markdown_cell("## I/O table\n\nDeclare these addresses in your "
-                                       "program (`AT %IX0.0` ...):\n\n"
-                                       + io_table(sec["I/O table"])))
-    cells.append(new_markdown_cell("## Set-up"))
-    cells.append(new_code_cell(SETUP.format(lab_id=lab_id)))
-    cells.append(new_markdown_cell(
-        "## Your program\n\nThe program is a Python string: Structured Text, or a ladder "
-        "diagram in plclab's text LD. It starts as the lab's starter file."))
+    for key in ("task", "requirements", "source", "plant"):  # as the README states them
+        if heads[key] in sec:
+            cells.append(new_markdown_cell(f"## {heads[key]}\n\n" + sec[heads[key]]))
+    if heads["io"] in sec:
+        cells.append(new_markdown_cell(f"## {heads['io']}\n\n{words['io']}\n\n"
+                                       + io_table(sec[heads["io"]])))
+    cells.append(new_markdown_cell(f"## {words['setup']}"))
+    cells.append(new_code_cell(SETUP.format(lab_id=lab_id, lang=lang)))
+    cells.append(new_markdown_cell(words["program"]))
     prog = new_code_cell(program_source(starter_text(lab_dir)))
     prog.metadata["tags"] = [PROGRAM_TAG]
     cells.append(prog)
     dur = cfg["duration"]
     t0, t1 = cfg["window"] if cfg["window"] else (None, None)
-    cells.append(new_markdown_cell(
-        "## Run it on the plant\n\nOne scenario of the lab, simulated with the lab's wiring "
-        "(`plclab.sim.run`). The timing diagram shows the signals over time; "
-        "`trace` holds every signal (`trace['NAME']`, `trace.value_at('NAME', t)`)."))
+    cells.append(new_markdown_cell(words["run"]))
     cells.append(new_code_cell(EXPLORE.format(
         scenario=cfg["scenario"], duration=dur, t0=t0, t1=t1,
         dur_text=f" (the first {dur})" if dur else "",
         title=f"{lab_id}: {cfg['scenario']}")))
-    cells.append(new_markdown_cell(
-        "## Check it\n\nThe lab's visible scenarios and criteria (`plclab.grade.check`), "
-        "with the feedback a grader gives. The last line is your score."))
+    cells.append(new_markdown_cell(words["check"]))
     cells.append(new_code_cell(GRADE))
-    cells.append(new_markdown_cell(
-        "## The run in rerun\n\nAn interactive timeline (the view of "
-        f"`plclab lab check {lab_id} FILE --rrd run.rrd`): after a failed check it opens on "
-        "the first failing scenario at its first failure, else it shows the run above. "
-        "Scrub the time, zoom into a moment, watch the plant."))
+    cells.append(new_markdown_cell(words["rerun"].format(lab=lab_id)))
     cells.append(new_code_cell(RERUN.format(scenario=cfg["scenario"])))
-    if "Grading" in sec:
-        cells.append(new_markdown_cell("## What is graded\n\n" + sec["Grading"]))
-    qs = "\n".join(f"{i}. {q}" for i, q in enumerate(cfg["questions"], 1))
-    cells.append(new_markdown_cell("## Questions\n\n" + qs))
+    if heads["grading"] in sec:
+        cells.append(new_markdown_cell(f"## {words['graded']}\n\n" + sec[heads["grading"]]))
+    qs = "\n".join(f"{i}. {q}" for i, q in enumerate(questions(lab_id, lang), 1))
+    cells.append(new_markdown_cell(f"## {words['questions']}\n\n" + qs))
     chapter = quiz_chapter(lab_id)
     if chapter is not None:
-        cells.append(new_markdown_cell(
-            f"## Quiz\n\nThe quiz of chapter {chapter} of the course "
-            f"(`plclab quiz {chapter}` in a terminal). Each answer gets its feedback."))
+        cells.append(new_markdown_cell(words["quiz"].format(chapter=chapter)))
         cells.append(new_code_cell(QUIZ.format(chapter=chapter)))
     nb = new_notebook(cells=cells)
     nb.metadata["kernelspec"] = {"display_name": "Python 3", "language": "python",
                                  "name": "python3"}
     nb.metadata["language_info"] = {"name": "python"}
     nb.metadata["plclab"] = {"lab": lab_id, "generated_by": "notebooks/build.py"}
+    if lang != "en":
+        nb.metadata["plclab"]["lang"] = lang
+    tag = lab_id if lang == "en" else f"{lab_id}-{lang}"
     for i, c in enumerate(nb.cells):
-        c["id"] = f"{lab_id}-{i:02d}"
+        c["id"] = f"{tag}-{i:02d}"
     return nb
 
 
@@ -596,16 +807,17 @@ def main(argv: list[str] | None = None) -> int:
     ns = ap.parse_args(argv)
     stale = []
     for lab_id in ns.labs or lab_ids():
-        nb = build_notebook(lab_id)
-        nbformat.validate(nb)
-        text = render(nb)
-        path = HERE / f"{lab_id}.ipynb"
-        if ns.check:
-            if not path.is_file() or path.read_text(encoding="utf-8") != text:
-                stale.append(path.name)
-            continue
-        path.write_text(text, encoding="utf-8")
-        print(f"wrote {path.relative_to(ROOT)}")
+        for lang in editions(lab_id):
+            nb = build_notebook(lab_id, lang)
+            nbformat.validate(nb)
+            text = render(nb)
+            path = notebook_path(lab_id, lang)
+            if ns.check:
+                if not path.is_file() or path.read_text(encoding="utf-8") != text:
+                    stale.append(path.name)
+                continue
+            path.write_text(text, encoding="utf-8")
+            print(f"wrote {path.relative_to(ROOT)}")
     if stale:
         print("out of date: " + ", ".join(stale) + " (run: python notebooks/build.py)")
         return 1

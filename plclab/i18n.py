@@ -180,7 +180,12 @@ def fill(template: str, params: dict[str, Any], lang: str | None = None) -> str:
 def tr(template: str, /, **params: Any) -> str:
     """A command-line or feedback text in the current language: ``template`` is the English
     text (with ``{name}`` placeholders), also the key of ``locale/<lang>/ui.toml``."""
-    lang = language()
+    return tr_in(language(), template, **params)
+
+
+def tr_in(lang: str, template: str, /, **params: Any) -> str:
+    """:func:`tr` in ``lang`` rather than the language in use (a README's table in Russian
+    written by an English command line)."""
     if lang != SOURCE:
         got = catalogue(lang, "ui").get(template)
         if isinstance(got, str):
@@ -208,6 +213,17 @@ def _pattern(template: str) -> re.Pattern[str]:
             seen.add(name)
             parts.append(f"(?P<{name}>.*?)")
     return re.compile("".join(parts), re.DOTALL)
+
+
+def template_parts(template: str, text: str) -> dict[str, str] | None:
+    """The parts of ``text`` by the placeholders of ``template`` when the template matches
+    all of it, else None.
+
+    >>> template_parts("{n} passed", "3 passed"), template_parts("{n} passed", "3 failed")
+    ({'n': '3'}, None)
+    """
+    m = _pattern(template).fullmatch(text)
+    return m.groupdict() if m else None
 
 
 def translate_by_templates(text: str, templates: list[dict[str, str]], lang: str) -> str | None:

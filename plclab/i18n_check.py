@@ -83,15 +83,19 @@ def missing_problems(codes: list[str], problems: dict[str, Any], lang: str,
 
 
 def tr_keys(root: Path = PLCLAB_DIR) -> dict[str, str]:
-    """Every literal template passed to ``tr()`` in plclab's source: template -> file:line."""
+    """Every literal template passed to ``tr()`` (or ``tr_in(lang, ...)``) in plclab's source:
+    template -> file:line."""
     keys: dict[str, str] = {}
     for f in sorted(root.rglob("*.py")):
         tree = ast.parse(f.read_text(encoding="utf-8"))
         for n in ast.walk(tree):
-            if (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "tr"
-                    and n.args and isinstance(n.args[0], ast.Constant)
-                    and isinstance(n.args[0].value, str)):
-                keys.setdefault(n.args[0].value, f"{f.relative_to(root.parent)}:{n.lineno}")
+            if not (isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+                    and n.func.id in ("tr", "tr_in")):
+                continue
+            k = 1 if n.func.id == "tr_in" else 0  # tr_in(lang, "template")
+            if (len(n.args) > k and isinstance(n.args[k], ast.Constant)
+                    and isinstance(n.args[k].value, str)):
+                keys.setdefault(n.args[k].value, f"{f.relative_to(root.parent)}:{n.lineno}")
     return keys
 
 
@@ -103,8 +107,9 @@ def missing_ui(keys: dict[str, str], ui: dict[str, Any], lang: str) -> list[str]
 
 def missing_lab_texts(lab_dir: Path, lang: str) -> list[str]:
     """What the lab in ``lab_dir`` lacks in its ``lab.<lang>.toml``: the title, each criterion's
-    name and, where ``lab.toml`` has them, its message, hint and hint_fix, each scenario's
-    description; and criteria it names that ``lab.toml`` does not have."""
+    name and, where ``lab.toml`` has them, its message, hint, hint_fix and description, each
+    scenario's description, the summary, the goals, the I/O table's descriptions and units;
+    and criteria or I/O rows it names that ``lab.toml`` does not have."""
     import tomllib
 
     spec = tomllib.loads((lab_dir / "lab.toml").read_text(encoding="utf-8-sig"))
@@ -126,10 +131,40 @@ def missing_lab_texts(lab_dir: Path, lang: str) -> list[str]:
         if sc.get("description") and not str(scen.get(name, {}).get("description", "")).strip():
             out.append(f"{lab_dir.name}: scenario {name!r} has no description in {where} (add "
                        f'[scenarios.{_q(name)}] description = "...")')
+    for c in spec.get("criterion", []):  # what lab show and the README's table print
+        got = crits.get(c.get("name", ""))
+        if c.get("description") and not str((got or {}).get("description", "")).strip():
+            out.append(f"{lab_dir.name}: criterion {c.get('name')!r} has no description in "
+                       f'{where} (add [criteria.{_q(c.get("name", ""))}] description = "...")')
+    out += _missing_task_texts(lab_dir.name, spec, texts, where)
     for name in crits:
         if name not in {c.get("name") for c in spec.get("criterion", [])}:
             out.append(f"{lab_dir.name}: {path.name} names criterion {name!r}, which lab.toml "
                        "does not have (renamed? rename it here too)")
+    return out
+
+
+def _missing_task_texts(lab: str, spec: dict[str, Any], texts: dict[str, Any],
+                        where: str) -> list[str]:
+    """The task's texts a lab lacks in a language: ``summary``, ``goals`` (as many as in
+    English) and the description (and unit) of each row of the I/O table."""
+    out = []
+    if spec.get("summary") and not str(texts.get("summary", "")).strip():
+        out.append(f'{lab}: no summary in {where} (add summary = "...")')
+    goals = texts.get("goals")
+    if spec.get("goals") and not (isinstance(goals, list) and len(goals) == len(spec["goals"])):
+        out.append(f"{lab}: goals in {where} are not the {len(spec['goals'])} goals of "
+                   'lab.toml (add goals = ["...", ...])')
+    io = texts.get("io", {})
+    for row in spec.get("io", []):
+        name = row.get("name", "")
+        for key in ("description", "unit"):
+            if row.get(key) and not str(io.get(name, {}).get(key, "")).strip():
+                out.append(f"{lab}: I/O row {name!r} has no {key} in {where} (add "
+                           f'[io.{_q(name)}] {key} = "...")')
+    for name in io:
+        if name not in {row.get("name") for row in spec.get("io", [])}:
+            out.append(f"{lab}: {where} names I/O row {name!r}, which lab.toml does not have")
     return out
 
 
@@ -168,3 +203,110 @@ def missing_help(helps: dict[str, str], ui: dict[str, Any], lang: str) -> list[s
 def locale_file(lang: str, name: str) -> Path:
     """``plclab/locale/<lang>/<name>.toml``."""
     return LOCALE_DIR / lang / f"{name}.toml"
+
+
+# ----------------------------------------------------------------------- English left over
+
+ENGLISH_WORDS = frozenset("""
+a after again all also an and any are as at be been before both but by can cannot did do does
+each every for from has have here how if in into is it its just less more must never no not of
+off on once only or other out over same should so some still than that the then there these this
+those to too under until up very was were what when which while who will with within would yet
+you your""".split())
+"""Short English words that are not ST keywords, identifiers or units: a run of Latin words
+with one of them in it is an English sentence (:func:`english_runs`)."""
+
+_CODE_SPAN = re.compile(r"`[^`]*`")
+_TOKEN = re.compile(r"[A-Za-z]+(?:['’-][A-Za-z]+)*|[^\sA-Za-z]")
+_LOWER = re.compile(r"[a-z]+(?:['’-][a-z]+)*")
+
+
+def english_runs(line: str, min_words: int = 3) -> list[str]:
+    """The English phrases left in a line of a translated text: runs of ``min_words`` or more
+    lowercase Latin words (commas and colons may come between them), one of them a common
+    English word, outside `code spans`. Identifiers (``START``, ``%QX0.0``), units, codes
+    and ST in backticks are not runs.
+
+    >>> english_runs("насос включается: `PUMP and not LS2` at t = 3,5 с")
+    []
+    >>> english_runs("ящик 1 закрыт: box 1 was closed after 2 bottle(s)")
+    ['was closed after']
+    """
+    out: list[str] = []
+    run: list[str] = []
+
+    def flush() -> None:
+        if len(run) >= min_words and any(w.lower() in ENGLISH_WORDS for w in run):
+            out.append(" ".join(run))
+
+    for tok in _TOKEN.findall(_CODE_SPAN.sub(" # ", line.replace("\\`", "`"))):
+        if _LOWER.fullmatch(tok):
+            run.append(tok)
+        elif tok in ",:;" and run:
+            continue
+        else:
+            flush()
+            run = []
+    flush()
+    return out
+
+
+def check_messages(path: Path) -> list[str]:
+    """Sample texts of the messages a lab's ``checks.py`` returns (the string of a
+    ``return (passed, message, ...)`` or of ``Verdict(passed, message)``): each f-string with
+    ``1.5`` for a formatted number and ``X`` for any other part. A message built in pieces
+    (``msg += ...``) or only of other parts (``f"{head}: {why}"``) is not found;
+    :func:`english_runs` on a real run finds those."""
+    src = path.read_text(encoding="utf-8")
+    out: list[str] = []
+    for n in ast.walk(ast.parse(src)):
+        cands = []
+        if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple) \
+                and len(n.value.elts) >= 2:
+            cands.append(n.value.elts[1])
+        if isinstance(n, ast.Call) and getattr(n.func, "id", "") == "Verdict" \
+                and len(n.args) >= 2:
+            cands.append(n.args[1])
+        for c in cands:
+            text = _sample(c)
+            if text is not None and re.sub(r"X|[^A-Za-z]", "", text) == "":
+                continue  # made only of parts ("{head}: {why}"): the parts are found
+            if text is not None and text not in out:
+                out.append(text)
+    return out
+
+
+def _sample(node: ast.AST) -> str | None:
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if not isinstance(node, ast.JoinedStr):
+        return None
+    parts = []
+    for v in node.values:
+        if isinstance(v, ast.Constant):
+            parts.append(str(v.value))
+        else:
+            spec = "".join(c.value for c in getattr(v.format_spec, "values", [])
+                           if isinstance(c, ast.Constant))
+            parts.append("1.5" if any(ch in spec for ch in "fg%") else "X")
+    return "".join(parts)
+
+
+def untranslated_check_messages(lab_dir: Path, lang: str) -> list[str]:
+    """The messages of the lab's ``checks.py`` that no template of its ``lab.<lang>.toml``
+    (``messages``) or of ``ui.toml`` turns into ``lang``; each with where to add it."""
+    import tomllib
+
+    from .i18n_labs import translate_nested
+
+    checks = lab_dir / "checks.py"
+    if not checks.is_file():
+        return []
+    path = lab_dir / f"lab.{lang}.toml"
+    texts = tomllib.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    ui = tomllib.loads(locale_file(lang, "ui").read_text(encoding="utf-8"))
+    templates = [*texts.get("messages", []), *ui.get("messages", [])]
+    return [f"labs/{lab_dir.name}/checks.py: {m!r} has no template in labs/{lab_dir.name}/"
+            f'{path.name} (add to messages: {{ en = "...", {lang} = "..." }})'
+            for m in check_messages(checks)
+            if translate_nested(m, templates, lang) is None]

@@ -288,61 +288,98 @@ def lab_list(ns: argparse.Namespace) -> int:
 
 
 def show_text(lab) -> str:
-    """What ``plclab lab show`` prints: the task summary and the I/O table."""
+    """What ``plclab lab show`` prints: the task summary and the I/O table, in the language
+    chosen (``lab.<lang>.toml``, ADR 0063; English where a text is missing)."""
+    from plclab.i18n import tr
+    from plclab.i18n_labs import (
+        criterion_text,
+        io_table_markdown,
+        lab_text,
+        lab_texts,
+        scenario_text,
+    )
     from plclab.sim import format_duration
 
-    lines = [f"# {lab.title}", ""]
+    texts = lab_texts(lab)
+    lines = [f"# {lab_text(texts, 'title', lab.title)}", ""]
     if lab.summary:
-        lines += [lab.summary, ""]
+        lines += [lab_text(texts, "summary", lab.summary), ""]
     if lab.goals:
-        lines += ["Learning goals:", ""] + [f"- {g}" for g in lab.goals] + [""]
-    lines += [f"Plant: `{lab.plant}` (`plclab plants {lab.plant}`); scan {lab.scan}; "
-              f"languages: {', '.join(lab.languages)}; time limit {lab.time_limit:g} s.", ""]
-    lines += ["## I/O table", "", lab.io_table_markdown(), ""]
-    lines += ["## Scenarios", ""]
+        lines += [tr("Learning goals:"), ""]
+        lines += [f"- {g}" for g in lab_text(texts, "goals", lab.goals)] + [""]
+    lines += [tr("Plant: `{plant}` (`plclab plants {plant}`); scan {scan}; languages: "
+                 "{languages}; time limit {limit} s.", plant=lab.plant, scan=lab.scan,
+                 languages=", ".join(lab.languages), limit=f"{lab.time_limit:g}"), ""]
+    lines += [f"## {tr('I/O table')}", "", io_table_markdown(lab), ""]
+    lines += [f"## {tr('Scenarios')}", ""]
     for s in lab.scenarios:
-        pts = sum(c.points for c in lab.criteria_for(s.name))
+        pts = f"{sum(c.points for c in lab.criteria_for(s.name)):g}"
         if s.visible:
-            lines.append(f"- `{s.name}` ({format_duration(s.duration)}, {pts:g} points): "
-                         f"{s.description}")
+            lines.append(tr("- `{name}` ({duration}, {points} points): {description}",
+                            name=s.name, duration=format_duration(s.duration), points=pts,
+                            description=scenario_text(texts, s.name, s.description)))
         else:
-            lines.append(f"- `{s.name}` (hidden, {pts:g} points)")
-    lines += ["", "## Criteria", ""]
+            lines.append(tr("- `{name}` (hidden, {points} points)", name=s.name, points=pts))
+    lines += ["", f"## {tr('Criteria')}", ""]
     for c in lab.criteria:
         vis = [s for s in c.scenarios if lab.scenario(s).visible]
-        where = ", ".join(vis) if vis else "hidden scenarios"
-        desc = f": {c.description}" if c.description else ""
-        lines.append(f"- {c.name} ({c.points:g} points each, in {where}){desc}")
-    lines += ["", f"Total: {lab.max_score:g} points. Check your program with "
-              f"`plclab lab check {lab.id} FILE...`."]
+        where = ", ".join(vis) if vis else tr("hidden scenarios")
+        desc = criterion_text(texts, c.name, "description", c.description)
+        lines.append(tr("- {name} ({points} points each, in {where})", points=f"{c.points:g}",
+                        name=criterion_text(texts, c.name, "name", c.name), where=where)
+                     + (f": {desc}" if desc else ""))
+    lines += ["", tr("Total: {points} points. Check your program with "
+                     "`plclab lab check {lab} FILE...`.", points=f"{lab.max_score:g}",
+                     lab=lab.id)]
     return "\n".join(lines)
 
 
-def lab_show(ns: argparse.Namespace) -> int:
+def update_readmes(lab) -> list[str]:
+    """Rewrite the generated blocks (the I/O table, the criteria table) of the lab's
+    ``README.md`` and of each ``README.<lang>.md`` from ``lab.toml`` and ``lab.<lang>.toml``;
+    the lines to print."""
+    from plclab.i18n import LANGUAGES, SOURCE
+    from plclab.i18n_labs import criteria_table_markdown, io_table_markdown, tr_in
+
     from .gradescope import write_atomic
+
+    out = []
+    for lang in LANGUAGES:
+        path = lab.path / ("README.md" if lang == SOURCE else f"README.{lang}.md")
+        if lang != SOURCE and not path.is_file():
+            continue
+        text = path.read_text(encoding="utf-8") if path.is_file() else f"# {lab.title}\n"
+        io = io_table_markdown(lab, lang)
+        if readme_table(text) is not None:
+            text = replace_block(text, README_START, README_END, io)
+        else:
+            text = (text.rstrip() + f"\n\n## {tr_in(lang, 'I/O table')}\n\n"
+                    f"{README_START}\n{io}\n{README_END}\n")
+        done = "I/O table"
+        if readme_table(text, CRITERIA_START, CRITERIA_END) is not None:
+            text = replace_block(text, CRITERIA_START, CRITERIA_END,
+                                  criteria_table_markdown(lab, lang))
+            done += " and criteria table"
+        write_atomic(path, text)
+        out.append(f"{path}: {done} updated")
+    return out
+
+
+def lab_show(ns: argparse.Namespace) -> int:
+    from plclab.i18n import tr
+    from plclab.i18n_labs import readme_path
+
     from .lab import load_lab
 
     lab = load_lab(ns.lab, ns.labs)
     if ns.update_readme:
-        path = lab.path / "README.md"
-        text = path.read_text(encoding="utf-8") if path.is_file() else f"# {lab.title}\n"
-        block = f"{README_START}\n{lab.io_table_markdown()}\n{README_END}"
-        if readme_table(text) is not None:
-            text = replace_block(text, README_START, README_END, lab.io_table_markdown())
-        else:
-            text = text.rstrip() + "\n\n## I/O table\n\n" + block + "\n"
-        done = "I/O table"
-        if readme_table(text, CRITERIA_START, CRITERIA_END) is not None:
-            text = replace_block(text, CRITERIA_START, CRITERIA_END,
-                                  lab.criteria_table_markdown())
-            done += " and criteria table"
-        write_atomic(path, text)
-        print(f"{path}: {done} updated")
+        for line in update_readmes(lab):
+            print(line)
         return 0
     print(show_text(lab))
-    readme = lab.path / "README.md"
+    readme = readme_path(lab.path)
     if readme.is_file():
-        print(f"\nThe task: {readme}")
+        print("\n" + tr("The task: {path}", path=readme))
     return 0
 
 

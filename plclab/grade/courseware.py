@@ -26,7 +26,7 @@ INSTRUCTOR_DIRS = ("instructor",)
 """Folders of the course that are the instructor's (``course/instructor``: worked solutions of
 the exercises): never shipped, never copied to students."""
 
-STUDENT_FILES = ("README.md", "lab.toml", "checks.py", "alarms.toml", "recipes.toml")
+STUDENT_FILES = ("README.md", "README.ru.md", "lab.toml", "checks.py", "alarms.toml", "recipes.toml")
 """Files of a lab folder that ship (with ``starter.*``)."""
 COURSEWARE = ("labs", "examples", "notebooks", "course")
 """The folders of the courseware root."""
@@ -135,11 +135,17 @@ def student_texts(text: str, criteria: set[str], scenarios: set[str]) -> str:
     data = tomllib.loads(text)
     out = ["# the student copy: the texts of the criteria and scenarios shown to students"]
     for key, value in data.items():
-        if isinstance(value, str):
+        if isinstance(value, str) or (isinstance(value, list)
+                                      and all(isinstance(v, str) for v in value)):
             out.append(f"{_key(key)} = {json.dumps(value, ensure_ascii=False)}")
-    for table, keep in (("criteria", criteria), ("scenarios", scenarios)):
+        elif isinstance(value, list) and all(isinstance(v, dict) for v in value):
+            out.append(f"{_key(key)} = [")  # the templates of checks.py's messages
+            out += ["  { " + ", ".join(f"{_key(k)} = {json.dumps(x, ensure_ascii=False)}"
+                                       for k, x in v.items()) + " }," for v in value]
+            out.append("]")
+    for table, keep in (("criteria", criteria), ("scenarios", scenarios), ("io", None)):
         for name, entry in data.get(table, {}).items():
-            if name not in keep or not isinstance(entry, dict):
+            if (keep is not None and name not in keep) or not isinstance(entry, dict):
                 continue
             out += ["", f"[{table}.{json.dumps(name, ensure_ascii=False)}]"]
             out += [f"{_key(k)} = {json.dumps(v, ensure_ascii=False)}" for k, v in entry.items()

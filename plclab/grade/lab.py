@@ -103,14 +103,20 @@ def get_lab_files(lab: str | os.PathLike, dest: Path, extra: Iterable[str | os.P
     (unless *force*)."""
     import shutil
 
+    from plclab.i18n import SOURCE, language
+
     from .courseware import courseware_root
 
     folder = find_lab(lab, extra)
-    files = [folder / "README.md"] if (folder / "README.md").is_file() else []
+    lang = language()
+    own = [] if lang == SOURCE else [f"README.{lang}.md"]  # the task in the language too
+    files = [folder / n for n in ["README.md", *own] if (folder / n).is_file()]
     files += sorted(p for p in folder.glob("starter.*") if p.suffix.lower() in SOURCE_EXTS)
     for nb in (folder.parent.parent / "notebooks", courseware_root() / "notebooks"):
         if (nb / f"{folder.name}.ipynb").is_file():
             files.append(nb / f"{folder.name}.ipynb")
+            if lang != SOURCE and (nb / f"{folder.name}.{lang}.ipynb").is_file():
+                files.append(nb / f"{folder.name}.{lang}.ipynb")
             break
     there = [dest / f.name for f in files if (dest / f.name).exists()]
     if there and not force:
@@ -154,11 +160,18 @@ def hidden_note(lab: Lab) -> str | None:
     without the hidden scenarios this copy lacks (None when nothing is missing)."""
     if not lab.withheld:
         return None
-    n = lab.withheld
-    return (f"note: {lab.path} is the student copy of {lab.id} that ships with plclab: its "
-            f"{n} hidden scenario{'s are' if n != 1 else ' is'} not in it, so --hidden runs "
-            "the visible ones only. For every scenario use the instructor's lab folder "
-            f"(labs/{lab.id} of the plclab repository, or your own; --labs DIR)")
+    from plclab.i18n import tr
+
+    if lab.withheld == 1:
+        return tr("note: {path} is the student copy of {lab} that ships with plclab: its {n} "
+                  "hidden scenario is not in it, so --hidden runs the visible ones only. For "
+                  "every scenario use the instructor's lab folder (labs/{lab} of the plclab "
+                  "repository, or your own; --labs DIR)", path=lab.path, lab=lab.id, n=1)
+    return tr("note: {path} is the student copy of {lab} that ships with plclab: its {n} "
+              "hidden scenarios are not in it, so --hidden runs the visible ones only. For "
+              "every scenario use the instructor's lab folder (labs/{lab} of the plclab "
+              "repository, or your own; --labs DIR)", path=lab.path, lab=lab.id,
+              n=lab.withheld)
 
 # ---------------------------------------------------------------------------- loading
 

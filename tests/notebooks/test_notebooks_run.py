@@ -1,7 +1,9 @@
-"""Every lab notebook runs top to bottom headless (nbclient) with the lab's reference solution
-in its program cell: no error, nothing written to stderr (nbgrader zeroes such a cell), the
-timing diagram shown, and a full score. Also: the committed notebooks are what
-``notebooks/build.py`` generates.
+"""Every lab notebook, English and Russian (``<lab>.ru.ipynb``), runs top to bottom headless
+(nbclient) with the lab's reference solution in its program cell: no error, nothing written to
+stderr (nbgrader zeroes such a cell), the timing diagram shown, and a full score. Also: the
+committed notebooks are what ``notebooks/build.py`` generates, and a Russian notebook is the
+English one with its Markdown in Russian: the same code cells (but for the language of the
+feedback), the same program cell.
 
 Needs nbclient, nbformat and ipykernel (skipped with a message when they are missing).
 """
@@ -36,6 +38,8 @@ def _build_module():
 
 BUILD = _build_module()
 LAB_IDS = BUILD.lab_ids()
+EDITIONS = [(lab_id, lang) for lab_id in LAB_IDS for lang in BUILD.editions(lab_id)]
+"""(lab, language) of every notebook: the English one and its Russian edition."""
 SCORE = re.compile(r"score: ([\d.]+)/([\d.]+)")
 
 
@@ -67,12 +71,14 @@ def test_every_lab_has_a_notebook():
     assert set(labs) <= set(LAB_IDS), f"labs without a notebook: {set(labs) - set(LAB_IDS)}"
     for lab_id in LAB_IDS:
         assert (NB_DIR / f"{lab_id}.ipynb").is_file(), "run: python notebooks/build.py"
+        if (LABS / lab_id / "README.ru.md").is_file():
+            assert (NB_DIR / f"{lab_id}.ru.ipynb").is_file(), "run: python notebooks/build.py"
 
 
-@pytest.mark.parametrize("lab_id", LAB_IDS)
-def test_notebook_is_up_to_date(lab_id):
-    text = BUILD.render(BUILD.build_notebook(lab_id))
-    have = (NB_DIR / f"{lab_id}.ipynb").read_text(encoding="utf-8")
+@pytest.mark.parametrize("lab_id, lang", EDITIONS, ids=lambda x: x)
+def test_notebook_is_up_to_date(lab_id, lang):
+    text = BUILD.render(BUILD.build_notebook(lab_id, lang))
+    have = BUILD.notebook_path(lab_id, lang).read_text(encoding="utf-8")
     assert have == text, "run: python notebooks/build.py"
     nb = nbformat.reads(have, as_version=4)
     nbformat.validate(nb)
@@ -82,10 +88,31 @@ def test_notebook_is_up_to_date(lab_id):
         "committed without outputs"
 
 
-def _execute(lab_id, program=None):
+@pytest.mark.parametrize("lab_id", [e[0] for e in EDITIONS if e[1] == "ru"])
+def test_the_russian_notebook_is_the_english_one_in_russian(lab_id):
+    en = nbformat.read(NB_DIR / f"{lab_id}.ipynb", as_version=4)
+    ru = nbformat.read(NB_DIR / f"{lab_id}.ru.ipynb", as_version=4)
+    assert [c.cell_type for c in en.cells] == [c.cell_type for c in ru.cells]
+    for a, b in zip(en.cells, ru.cells, strict=True):
+        if a.cell_type == "code":  # the same code; the set-up chooses the language
+            assert a.source.replace("set_language('en')", "set_language('ru')") == b.source
+        else:
+            assert re.search("[А-Яа-яЁё]", b.source), f"not in Russian: {b.source[:80]!r}"
+    questions = ru.cells[-3 if BUILD.quiz_chapter(lab_id) else -1].source
+    assert len(re.findall(r"^\d+\. ", questions, re.M)) == len(BUILD.lab_config(lab_id)[
+        "questions"])
+
+
+def test_a_russian_notebook_needs_every_question_in_russian(monkeypatch):
+    monkeypatch.setitem(BUILD.QUESTIONS_RU, "tank-two-position", ["только один вопрос"])
+    with pytest.raises(ValueError, match="2 questions in English, 1 in ru"):
+        BUILD.build_notebook("tank-two-position", "ru")
+
+
+def _execute(lab_id, program=None, lang="en"):
     """Run a notebook (with ``program`` in its program cell): (notebook, wall seconds)."""
     kernel = _kernel_name()
-    nb = nbformat.read(NB_DIR / f"{lab_id}.ipynb", as_version=4)
+    nb = nbformat.read(BUILD.notebook_path(lab_id, lang), as_version=4)
     if program is not None:
         cell = next(c for c in nb.cells if BUILD.PROGRAM_TAG in c.metadata.get("tags", []))
         cell.source = BUILD.program_source(program)
@@ -112,9 +139,9 @@ def _outputs(nb):
     return stderr, errors, texts, images
 
 
-@pytest.mark.parametrize("lab_id", LAB_IDS)
-def test_notebook_runs_with_the_solution(lab_id):
-    nb, wall = _execute(lab_id, _solution(lab_id, _starter_ext(lab_id)))
+@pytest.mark.parametrize("lab_id, lang", EDITIONS, ids=lambda x: x)
+def test_notebook_runs_with_the_solution(lab_id, lang):
+    nb, wall = _execute(lab_id, _solution(lab_id, _starter_ext(lab_id)), lang)
     stderr, errors, texts, images = _outputs(nb)
     print(f"{lab_id}: {wall:.1f} s")
     assert not errors, errors
@@ -127,15 +154,18 @@ def test_notebook_runs_with_the_solution(lab_id):
     assert wall < 60, f"{lab_id}: the notebook took {wall:.1f} s"
 
 
-@pytest.mark.parametrize("lab_id", LAB_IDS)
-def test_notebook_runs_as_committed(lab_id):
-    """A student's first Run All, with the starter: no error, no stderr, a low score."""
-    nb, _ = _execute(lab_id)
+@pytest.mark.parametrize("lab_id, lang", EDITIONS, ids=lambda x: x)
+def test_notebook_runs_as_committed(lab_id, lang):
+    """A student's first Run All, with the starter: no error, no stderr, a low score; in the
+    Russian notebook the feedback is Russian."""
+    nb, _ = _execute(lab_id, lang=lang)
     stderr, errors, texts, _ = _outputs(nb)
     assert not errors, errors
     assert not stderr, f"output on stderr: {stderr}"
     got, full = (float(x) for x in SCORE.findall("\n".join(texts))[-1])
     assert got <= 0.25 * full
+    if lang == "ru":
+        assert "Баллы:" in "\n".join(texts)
 
 
 def test_a_broken_program_is_reported_not_raised():
