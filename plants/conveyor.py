@@ -54,6 +54,10 @@ At the end of the belt a bottle is classified: ``good`` (standing and at least 9
 
 Events: ``bottle_released``, ``bottle_toppled``, ``bottle_rejected``, ``bottle_binned``,
 ``spill``.
+
+This module is the line (belt, eyes, cylinder, nozzle, feeder); a bottle and the reading of its
+pose are in :mod:`plants.conveyor_bottle`, the snapshot's layout and the geometry a viewer draws
+in :mod:`plants.conveyor_record`.
 """
 
 from __future__ import annotations
