@@ -54,6 +54,10 @@ At the end of the belt a bottle is classified: ``good`` (standing and at least 9
 
 Events: ``bottle_released``, ``bottle_toppled``, ``bottle_rejected``, ``bottle_binned``,
 ``spill``.
+
+This module is the line (belt, eyes, cylinder, nozzle, feeder); a bottle and the reading of its
+pose are in :mod:`plants.conveyor_bottle`, the snapshot's layout and the geometry a viewer draws
+in :mod:`plants.conveyor_record`.
 """
 
 from __future__ import annotations
@@ -62,121 +66,19 @@ import math
 from typing import Any
 
 from .base import Plant, PlantError, bool_signal, real_signal
+from .conveyor_bottle import (
+    COS_FALLEN,
+    COS_UPRIGHT,
+    Bottle,
+    PoseReader,
+    find_pose_getters,
+    pose_getters,
+)
+from .conveyor_record import SnapshotLayout, line_geometry
 
 __all__ = ["Conveyor"]
 
-NAN = float("nan")
-COS_FALLEN = 0.5  # |cos(angle)| below this: fallen (tilted more than 60 degrees)
-COS_UPRIGHT = 0.95  # |cos(angle)| above this: upright enough to be filled
 KNOCK_LEAD = 0.5  # m: knocks happen at least this far before the eyes (a fall takes ~0.3 m)
-
-# pymunk's C getters of a body's position and angle (what Body.position and Body.angle call),
-# found when the first conveyor is built; None when this pymunk does not have them
-_POSE: tuple[Any, Any] | None = None
-
-
-def _find_pose_getters() -> None:
-    global _POSE
-    try:
-        from pymunk._chipmunk_cffi import lib
-    except ImportError:  # pragma: no cover - another pymunk: use its properties
-        return
-    get_pos = getattr(lib, "cpBodyGetPosition", None)
-    get_angle = getattr(lib, "cpBodyGetAngle", None)
-    if get_pos is not None and get_angle is not None:
-        _POSE = (get_pos, get_angle)
-
-
-def _batch_reader(pymunk: Any) -> tuple[Any, Any, Any] | None:
-    """(buffer, fields, get_space_bodies) of pymunk's batch API (pymunk 6.6+), else None."""
-    try:
-        from pymunk import batch
-    except ImportError:  # pragma: no cover - an older pymunk: one call a bottle
-        return None
-    fields = batch.BodyFields.BODY_ID | batch.BodyFields.POSITION | batch.BodyFields.ANGLE
-    return batch.Buffer(), fields, batch.get_space_bodies
-
-
-class _Bottle:
-    __slots__ = (
-        "angle",
-        "body",
-        "cb",
-        "cos",
-        "fallen",
-        "fill",
-        "hh",
-        "hw",
-        "id",
-        "knock_x",
-        "knocked",
-        "passed",
-        "shape",
-        "sin",
-        "slot",
-        "ta",
-        "x",
-        "y",
-    )
-
-    def __init__(self, bid: int, slot: int, body: Any, shape: Any, hw: float, hh: float) -> None:
-        self.id = bid
-        self.hw = hw
-        self.hh = hh
-        self.slot = slot
-        self.body = body
-        self.cb = getattr(body, "_body", None) if _POSE is not None else None
-        self.shape = shape
-        self.fill = 0.0
-        self.fallen = False
-        self.knock_x: float | None = None
-        self.knocked = False
-        self.passed = False
-        self.x = self.y = self.angle = 0.0
-        self.ta = 0.0  # the angle of cos and sin (worked out when first needed: trig)
-        self.cos = 1.0
-        self.sin = 0.0
-
-    def sync(self) -> None:
-        cb = self.cb
-        if cb is not None:  # pymunk's own getters without its properties (issue 19)
-            v = _POSE[0](cb)
-            self.x = v.x
-            self.y = v.y
-            a = _POSE[1](cb)
-        else:
-            body = self.body
-            self.x, self.y = body.position
-            a = body.angle
-        if a != self.angle:
-            self.angle = a
-
-    def trig(self) -> None:
-        """Bring ``cos`` and ``sin`` up to the angle (only bottles near a sensor, a plate or
-        the feeder need them, and a tilt test only beyond 1 rad: issue 19)."""
-        a = self.angle
-        if a != self.ta:
-            self.ta = a
-            self.cos = math.cos(a)
-            self.sin = math.sin(a)
-
-    def contains(self, px: float, py: float) -> bool:
-        """Is the point inside the bottle's rotated rectangle (a beam broken)?"""
-        self.trig()
-        dx = px - self.x
-        dy = py - self.y
-        c = self.cos
-        s = self.sin
-        lx = dx * c + dy * s
-        ly = -dx * s + dy * c
-        hw = self.hw
-        hh = self.hh
-        return -hw <= lx <= hw and -hh <= ly <= hh
-
-    def half_x(self, hw: float, hh: float) -> float:
-        """Half extent of the bottle along the belt."""
-        self.trig()
-        return hw * abs(self.cos) + hh * abs(self.sin)
 
 
 class Conveyor(Plant):
@@ -324,12 +226,7 @@ class Conveyor(Plant):
         self.max_dt = float(max_dt)
         self._hw = self.bottle_width / 2.0
         self._hh = self.bottle_height / 2.0
-        self._snap_template: dict[str, float] | None = None  # see snapshot()
-        self._snap_row: tuple[Any, ...] | None = None  # see snapshot_row()
-        self._slot_keys = [
-            (f"bottle{i}.id", f"bottle{i}.x", f"bottle{i}.y", f"bottle{i}.angle")
-            for i in range(self.max_bottles)
-        ]
+        self._layout = SnapshotLayout(self.max_bottles)  # the keys of snapshot()
         super().__init__(
             [
                 bool_signal("START", "panel", "start button, NO: TRUE while pressed"),
@@ -357,8 +254,7 @@ class Conveyor(Plant):
         import pymunk  # lazy: only this plant needs it
 
         self._pm = pymunk
-        if _POSE is None:
-            _find_pose_getters()
+        find_pose_getters()
         space = pymunk.Space()
         space.gravity = (0.0, -9.81)
         space.iterations = 10
@@ -370,13 +266,10 @@ class Conveyor(Plant):
         space.add(belt, wall)
         self._space = space
         self._belt = belt
-        self._batch = _batch_reader(pymunk)  # one read of every body's pose a scan
-        self._batch_key: tuple[list[int], int] | None = None
-        self._batch_idx: list[int] = []
-        self._bottles_changed = 0  # counts releases and removals (the batch's index)
+        self._poses = PoseReader(pymunk)  # one read of every body's pose a scan
         self.v_belt = 0.0
         self.cyl = 0.0
-        self._bottles: list[_Bottle] = []
+        self._bottles: list[Bottle] = []
         self._free = list(range(self.max_bottles - 1, -1, -1))  # pop() gives the lowest
         self._next_id = 0
         self._pitch = self.feed_pitch if self.feed_pitch is not None else math.inf
@@ -397,7 +290,7 @@ class Conveyor(Plant):
         }
         self.spilled_volume = 0.0
         self.filled_volume = 0.0
-        self._under: _Bottle | None = None
+        self._under: Bottle | None = None
 
     def _faults_changed(self) -> None:
         f = self._faults
@@ -436,7 +329,7 @@ class Conveyor(Plant):
         shape.friction = self.friction
         shape.elasticity = 0.0
         self._space.add(body, shape)
-        b = _Bottle(self._next_id, slot, body, shape, self._hw, self._hh)
+        b = Bottle(self._next_id, slot, body, shape, self._hw, self._hh)
         self._next_id += 1
         b.fallen = fallen
         if not fallen and self.rng.random() < self.knock_rate:
@@ -444,7 +337,7 @@ class Conveyor(Plant):
             b.knock_x = self.rng.uniform(xx + 0.1, max(xx + 0.1, self.x_eye - KNOCK_LEAD))
         b.sync()
         self._bottles.append(b)
-        self._bottles_changed += 1
+        self._poses.changed += 1
         self.counts["released"] += 1
         self._emit(
             "bottle_released",
@@ -502,7 +395,7 @@ class Conveyor(Plant):
             self.cyl = e
         # bottles
         hw, hh = self._hw, self._hh
-        removed: list[_Bottle] = []
+        removed: list[Bottle] = []
         sweep = self.cyl >= 0.5
         half_plate = self.plate_width / 2.0
         # loop invariants (nothing in the loop moves the eyes, the plate or the belt's end)
@@ -511,8 +404,8 @@ class Conveyor(Plant):
         x_reject = self.x_reject
         end = self.belt_length
         gone = end + 1.0
-        get_pos, get_angle = _POSE if _POSE is not None else (None, None)
-        poses = self._read_poses()
+        get_pos, get_angle = pose_getters() or (None, None)
+        poses = self._poses.read(self._space, self._bottles)
         if poses is not None:  # every pose from one batched read (pymunk.batch)
             fl, idx = poses
             for b, i in zip(self._bottles, idx, strict=True):
@@ -614,30 +507,13 @@ class Conveyor(Plant):
                         pitch *= 1.0 + self.feed_jitter * (2.0 * self.rng.random() - 1.0)
                     self._pitch = pitch
 
-    def _read_poses(self) -> tuple[list[float], list[int]] | None:
-        """(x, y, angle of every body in the space's order, where each bottle's start) from
-        one call of pymunk's batch API instead of two C calls a bottle; None without it."""
-        batch = self._batch
-        if batch is None:
-            return None
-        buf, fields, get = batch
-        buf.clear()
-        get(self._space, fields, buf)
-        ids = memoryview(buf.int_buf()).cast("Q").tolist()
-        key = (ids, self._bottles_changed)
-        if key != self._batch_key:  # a body came or went: where each bottle is now
-            self._batch_key = key
-            where = {bid: 3 * j for j, bid in enumerate(ids)}
-            self._batch_idx = [where[b.body.id] for b in self._bottles]
-        return memoryview(buf.float_buf()).cast("d").tolist(), self._batch_idx
-
-    def _knock(self, b: _Bottle) -> None:
+    def _knock(self, b: Bottle) -> None:
         b.knocked = True
         b.knock_x = None
         direction = 1.0 if self.rng.random() < 0.5 else -1.0
         b.body.apply_impulse_at_local_point((0.12 * direction, 0.0), (0.0, self._hh))
 
-    def _bottle_under_nozzle(self) -> _Bottle | None:
+    def _bottle_under_nozzle(self) -> Bottle | None:
         tol = self.nozzle_tolerance
         xf = self.x_fill
         for b in self._bottles:
@@ -654,7 +530,7 @@ class Conveyor(Plant):
                 return False
         return True
 
-    def _reject(self, b: _Bottle) -> None:
+    def _reject(self, b: Bottle) -> None:
         c = self.counts
         c["rejected"] += 1
         c["fallen_rejected" if b.fallen else "standing_rejected"] += 1
@@ -667,7 +543,7 @@ class Conveyor(Plant):
             fill=b.fill,
         )
 
-    def _bin(self, b: _Bottle) -> None:
+    def _bin(self, b: Bottle) -> None:
         c = self.counts
         c["binned"] += 1
         if b.fallen:
@@ -686,10 +562,10 @@ class Conveyor(Plant):
             fallen=b.fallen,
         )
 
-    def _remove(self, b: _Bottle) -> None:
+    def _remove(self, b: Bottle) -> None:
         self._space.remove(b.body, b.shape)
         self._bottles.remove(b)
-        self._bottles_changed += 1
+        self._poses.changed += 1
         self._free.append(b.slot)
         self._free.sort(reverse=True)
 
@@ -725,112 +601,23 @@ class Conveyor(Plant):
         io["BELT_SPEED"] = self.v_belt
 
     # ------------------------------------------------------------------ records
+    def _line(self) -> tuple[float, ...]:
+        """The values of :data:`~plants.conveyor_record.LINE_KEYS`, in that order."""
+        return (self.spilled_volume, self.filled_volume, self.v_belt, self.cyl,
+                float(len(self._bottles)))
+
     def snapshot(self) -> dict[str, float]:
         """Counters, belt and cylinder state and every slot's bottle id/x/y/angle (NaN = free)."""
-        tmpl = self._snap_template
-        if tmpl is None or len(tmpl) != len(self.counts) + 5 + 4 * len(self._slot_keys):
-            # the keys in their order, every slot free: one copy a scan instead of a loop
-            tmpl = {k: 0.0 for k in self.counts}
-            for k in ("spilled_volume", "filled_volume", "belt_speed", "cylinder", "on_belt"):
-                tmpl[k] = 0.0
-            for slot_keys in self._slot_keys:
-                for k in slot_keys:
-                    tmpl[k] = NAN
-            self._snap_template = tmpl
-        out = tmpl.copy()
-        for k, v in self.counts.items():
-            out[k] = float(v)
-        out["spilled_volume"] = self.spilled_volume
-        out["filled_volume"] = self.filled_volume
-        out["belt_speed"] = self.v_belt
-        out["cylinder"] = self.cyl
-        out["on_belt"] = float(len(self._bottles))
-        keys = self._slot_keys
-        for b in self._bottles:
-            k_id, k_x, k_y, k_a = keys[b.slot]
-            out[k_id] = float(b.id)
-            out[k_x] = b.x
-            out[k_y] = b.y
-            out[k_a] = b.angle
-        return out
+        return self._layout.snapshot(self.counts, self._line(), self._bottles)
 
     def snapshot_row(self) -> list[float]:
         """:meth:`snapshot`'s values in its keys' order, built without a dict: what the
         simulation records every scan (``snapshot_keys()`` gives the keys once)."""
-        lay = self._snap_row
-        if lay is None:
-            keys = list(self.snapshot())
-            pos = {k: i for i, k in enumerate(keys)}
-            tmpl = [NAN if k.startswith("bottle") else 0.0 for k in keys]
-            lay = self._snap_row = (tmpl, [pos[k] for k in self.counts], pos["spilled_volume"],
-                                    [pos[k[0]] for k in self._slot_keys])
-        tmpl, count_pos, first, slot_pos = lay
-        out = tmpl.copy()
-        for i, v in zip(count_pos, self.counts.values(), strict=True):
-            out[i] = float(v)
-        out[first] = self.spilled_volume
-        out[first + 1] = self.filled_volume
-        out[first + 2] = self.v_belt
-        out[first + 3] = self.cyl
-        out[first + 4] = float(len(self._bottles))
-        for b in self._bottles:
-            i = slot_pos[b.slot]
-            out[i] = float(b.id)
-            out[i + 1] = b.x
-            out[i + 2] = b.y
-            out[i + 3] = b.angle
-        return out
+        return self._layout.row(self.counts, self._line(), self._bottles)
 
     def snapshot_keys(self) -> list[str]:
         """The keys of :meth:`snapshot`, in the order of :meth:`snapshot_row`."""
         return list(self.snapshot())
 
     def geometry(self) -> dict[str, Any]:
-        return {
-            "shapes": [
-                {
-                    "type": "line",
-                    "name": "belt",
-                    "x0": 0.0,
-                    "y0": 0.0,
-                    "x1": self.belt_length,
-                    "y1": 0.0,
-                },
-                {"type": "mark", "name": "X1", "x": self.x_eye, "y": self.eye_x1_height},
-                {"type": "mark", "name": "X2", "x": self.x_eye, "y": self.eye_x2_height},
-                {
-                    "type": "rect",
-                    "name": "reject_plate",
-                    "x": self.x_reject - self.plate_width / 2,
-                    "y": 0.0,
-                    "w": self.plate_width,
-                    "h": self.bottle_height,
-                },
-                {
-                    "type": "mark",
-                    "name": "nozzle",
-                    "x": self.x_fill,
-                    "y": self.bottle_height + 0.05,
-                },
-                {
-                    "type": "mark",
-                    "name": "FILL_EYE",
-                    "x": self.x_fill + self.fill_eye_offset,
-                    "y": min(0.5 * self.bottle_height, 0.1),
-                },
-                {
-                    "type": "rect",
-                    "name": "bin",
-                    "x": self.belt_length,
-                    "y": -0.5,
-                    "w": 0.5,
-                    "h": 0.4,
-                },
-            ],
-            "bottle": {
-                "w": self.bottle_width,
-                "h": self.bottle_height,
-                "slots": self.max_bottles,
-                "prefix": "bottle",
-            },
-        }
+        return line_geometry(self)

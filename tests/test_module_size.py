@@ -14,14 +14,8 @@ ROOT = Path(__file__).resolve().parent.parent
 FOLDERS = ("plclab", "plants")
 LIMIT = 700
 
-EXCEPTIONS: dict[str, str] = {
-    # the plant and its pymunk bodies, contact handlers and snapshot in one class: split with
-    # the trace-on-change work of issue 35 (its snapshot is recorded per scan)
-    "plants/conveyor.py": "split pending: one class; goes with the conveyor's recording change",
-    # the namespace of generated code: HELPERS is built from its private globals, so a split
-    # must rename every helper the code generator emits; it goes with the codegen split
-    "plclab/runtime/rt.py": "split pending: goes with the codegen split (generated names)",
-}
+# none left (issue 37): a module listed here needs a reason, and the list only shrinks
+EXCEPTIONS: dict[str, str] = {}
 
 
 def line_counts(root: Path = ROOT, folders: tuple[str, ...] = FOLDERS) -> dict[str, int]:

@@ -7,7 +7,7 @@ class is defined, each inherited method it does not override (``P_D.m_X = P_B.m_
 ``obj.m_X(...)`` then dispatches on the instance's class, which is what a call through an
 interface or ``THIS^`` needs. ``SUPER^.M()`` is the static call ``P_BASE.m_M(self, ...)``.
 An interface variable holds the instance itself (a Python reference) or None; a call through
-None is the runtime fault PLC9110 (:func:`plclab.runtime.rt._iref`).
+None is the runtime fault PLC9110 (:func:`plclab.runtime.rt_objects._iref`).
 
 Only upper-cased ST identifiers reach the generated code; a method is ``m_`` + its upper-cased
 name, in a namespace no variable can enter (a variable is always all upper case).

@@ -27,7 +27,8 @@ INSTRUCTOR_DIRS = ("instructor",)
 the exercises): never shipped, never copied to students."""
 
 STUDENT_FILES = ("README.md", "README.ru.md", "lab.toml", "checks.py", "alarms.toml", "recipes.toml")
-"""Files of a lab folder that ship (with ``starter.*``)."""
+"""Files of a lab folder that ship (with ``starter.*`` and ``*_scenario.toml``, a scenario to
+run with ``plclab sim --scenario``)."""
 COURSEWARE = ("labs", "examples", "notebooks", "course")
 """The folders of the courseware root."""
 
@@ -166,7 +167,8 @@ def copy_student_lab(src: Path, dest: Path) -> Path:
         if f.name == "lab.toml":
             text = f.read_text(encoding="utf-8-sig")
             (dest / f.name).write_text(student_lab_toml(text), encoding="utf-8")
-        elif f.name in STUDENT_FILES or f.name.startswith("starter."):
+        elif (f.name in STUDENT_FILES or f.name.startswith("starter.")
+              or f.name.endswith("_scenario.toml")):
             shutil.copyfile(f, dest / f.name)
     for f in sorted(src.glob("lab.*.toml")):  # a language's texts: the student part (ADR 0063)
         data = student_lab_data(tomllib.loads((src / "lab.toml").read_text(encoding="utf-8-sig")))
@@ -178,7 +180,7 @@ def copy_student_lab(src: Path, dest: Path) -> Path:
 
 def copy_courseware(root: Path, dest: Path) -> list[Path]:
     """Write the student copy of the courseware under *root* to *dest*: ``labs/`` (each lab
-    by :func:`copy_student_lab`, the wiring tables as they are), ``examples/``, ``course/``
+    by :func:`copy_student_lab`, another folder of ``labs/`` as it is), ``examples/``, ``course/``
     (as it is: a quiz's keys are its feedback) and the notebooks.
     Returns the files written."""
     if dest.exists():
@@ -187,7 +189,7 @@ def copy_courseware(root: Path, dest: Path) -> list[Path]:
     for sub in sorted(labs.iterdir()) if labs.is_dir() else []:
         if (sub / "lab.toml").is_file():
             copy_student_lab(sub, dest / "labs" / sub.name)
-        elif sub.is_dir() and sub.name not in PRIVATE_DIRS:  # labs/wiring
+        elif sub.is_dir() and sub.name not in PRIVATE_DIRS:  # shared files of a course
             shutil.copytree(sub, dest / "labs" / sub.name,
                             ignore=shutil.ignore_patterns("__pycache__", ".*"))
     for folder in ("examples", "course"):  # the course: chapters, examples, figure specs, quizzes

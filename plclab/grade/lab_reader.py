@@ -318,14 +318,14 @@ class LabReader(CriteriaSections):
                 if not p.is_file():
                     raise self.err("PLC5001", f"wiring = \"{w}\": no such file ({p}); give a "
                                    "path relative to the lab folder, e.g. "
-                                   "\"../wiring/tank.toml\", or inline rows", key="wiring")
+                                   "\"wiring.toml\", or inline rows", key="wiring")
                 wiring = load_wiring(p)
                 src = str(p)
             elif isinstance(w, list):
                 wiring = Wiring.from_rows(w, plant, source=str(self.path))
                 src = "inline"
             else:
-                raise self.err("PLC5004", "wiring is a file (wiring = \"../wiring/tank.toml\") "
+                raise self.err("PLC5004", "wiring is a file (wiring = \"wiring.toml\") "
                                "or a list of rows (wiring = [ { plc = \"%IX0.0\", signal = "
                                "\"LS1\", module = \"di\" }, ... ])", key="wiring")
         except PlcError as e:

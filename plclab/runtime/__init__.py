@@ -5,8 +5,10 @@ The top layer of the PLC core (``docs/adr/0013-layers-and-lazy-cli.md``): it imp
 :mod:`plclab.io.scaling` and the standard library, never the simulator, the viewers, the grader,
 the Modbus server or the CLI. :class:`Plc` (:mod:`~plclab.runtime.plc`) holds the process image,
 tasks, forcing, retain and the watchdog; :mod:`~plclab.runtime.rt` is the namespace generated code
-runs in; :mod:`~plclab.runtime.stdfb` and :mod:`~plclab.runtime.ctrlfb` are the native standard
-and control function blocks that :mod:`~plclab.runtime.natives` registers.
+runs in (its helpers in ``rt_faults``, ``rt_arith``, ``rt_strings``, ``rt_objects`` and
+``rt_flow``, one module per concept); :mod:`~plclab.runtime.stdfb` and
+:mod:`~plclab.runtime.ctrlfb` are the native standard and control function blocks that
+:mod:`~plclab.runtime.natives` registers.
 
 Importing this package is cheap: :class:`Plc` is imported on first use.
 """

@@ -187,7 +187,7 @@ def cmd_plants(ns: argparse.Namespace) -> int:
             for e, d in p.events.items():
                 print(f"  {e:<24} {d}")
             if name in DEFAULTS:
-                print(f"default wiring (labs/wiring/{name}.toml):")
+                print(f"default wiring (plclab/sim/wirings/{name}.toml):")
                 for line in default_wiring(name).table().splitlines():
                     print(f"  {line}")
             print(f"max_dt: {p.max_dt:g} s")

@@ -21,7 +21,7 @@ from plclab.errors import Diagnostic, PlcError
 
 LANGUAGE_SUFFIX = {"st": ".st", "il": ".il", "ld": ".ld"}
 
-# The boolean rows of the labs' wirings (labs/wiring/tank.toml, labs/wiring/motor.toml): the
+# The boolean rows of the default wirings (plclab/sim/wirings/tank.toml and motor.toml): the
 # playground wires the PLC's addresses to the plant's signals directly (no input filter, no relay
 # delay), or by name when the program declares a variable called like the signal.
 WIRING: dict[str, list[tuple[str, str, str]]] = {

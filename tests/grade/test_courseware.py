@@ -49,6 +49,14 @@ def test_the_student_copy_of_every_lab_loads_without_its_private_part(student_co
             assert c.scenarios == [s for s in orig.scenarios if full.scenario(s).visible]
 
 
+def test_the_student_copy_has_the_scenario_files_of_the_labs(student_copy):
+    files = sorted(ROOT.glob("labs/*/*_scenario.toml"))  # to run with plclab sim --scenario
+    assert len(files) >= 3
+    for f in files:
+        assert (student_copy / "labs" / f.parent.name / f.name).read_bytes() == f.read_bytes()
+    assert not (student_copy / "labs" / "wiring").exists()  # the tables are package data now
+
+
 def test_the_student_copy_scores_the_visible_scenarios_like_the_full_lab(student_copy):
     src = ROOT / "labs" / "tank-two-position"
     for program in [src / "mistakes" / "never_stops.st", src / "solution" / "tank.st"]:
@@ -122,6 +130,8 @@ def test_a_wheel_in_a_fresh_venv_has_the_labs(tmp_path):
     names = zipfile.ZipFile(wheel).namelist()
     assert "plclab/courseware/labs/tank-two-position/lab.toml" in names
     assert "plclab/courseware/examples/tank_level.st" in names
+    assert "plclab/sim/wirings/tank_vfd.toml" in names  # the wiring tables are package data
+    assert "plclab/courseware/labs/tank-two-position/tank_demand_scenario.toml" in names
     assert "plclab/courseware/course/01-what-is-a-plc/quiz.toml" in names  # the course ships
     assert not [n for n in names if any(f"/{d}/" in n for d in PRIVATE_DIRS)]
 

@@ -55,7 +55,7 @@ def test_the_zip_carries_setup_the_wheel_and_the_hidden_lab(bundle):
     with zipfile.ZipFile(bundle) as z:
         names = set(z.namelist())
         toml = z.read("labs/motor-start-stop/lab.toml").decode("utf-8")
-    assert {"setup.sh", "run_autograder", "labs/wiring/motor.toml"} <= names
+    assert {"setup.sh", "run_autograder", "labs/motor-start-stop/lab.toml"} <= names
     assert any(n.startswith("wheels/plclab-") and n.endswith(".whl") for n in names)
     assert HIDDEN and all(f'name = "{h}"' in toml for h in HIDDEN)
     assert not any("/solution/" in n for n in names)
@@ -86,6 +86,24 @@ def test_a_missing_submission_folder_is_PLC5058(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("PLCLAB_AUTOGRADER_ROOT", str(tmp_path))
     assert ag_main([str(LAB.path)]) == 1
     assert "PLC5058" in capsys.readouterr().err
+
+
+def test_a_wiring_file_beside_the_lab_travels_with_it_and_one_further_away_is_PLC5056(tmp_path):
+    from plclab.errors import PlcError
+    from plclab.grade.bundle import lab_files
+
+    lab = tmp_path / "labs" / "x"
+    (tmp_path / "labs" / "shared").mkdir(parents=True)
+    lab.mkdir()
+    (tmp_path / "labs" / "shared" / "w.toml").write_text('plant = "tank"\n', encoding="utf-8")
+    (lab / "solution").mkdir()
+    (lab / "solution" / "x.st").write_text("", encoding="utf-8")
+    (lab / "lab.toml").write_text('wiring = "../shared/w.toml"\n', encoding="utf-8")
+    assert [name for _, name in lab_files(lab)] == ["labs/x/lab.toml", "labs/shared/w.toml"]
+    (lab / "lab.toml").write_text('wiring = "../../w.toml"\n', encoding="utf-8")
+    with pytest.raises(PlcError) as e:
+        lab_files(lab)
+    assert e.value.code == "PLC5056"
 
 
 def test_a_bundle_name_without_zip_is_PLC5056(tmp_path, capsys):

@@ -282,14 +282,11 @@ def test_every_entry_of_an_lms_zip_gets_a_row(tmp_path):
 @pytest.fixture
 def student_labs(tmp_path):
     """A labs folder as a pip install carries it: the student copy of motor-start-stop, made
-    as the build makes it, beside the shared wiring tables."""
-    import shutil
-
+    as the build makes it."""
     from plclab.grade.courseware import copy_student_lab
 
     labs = tmp_path / "pip-labs"
     copy_student_lab(LAB.path, labs / LAB.id)
-    shutil.copytree(LAB.path.parent / "wiring", labs / "wiring")
     return labs
 
 

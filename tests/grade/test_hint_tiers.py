@@ -51,7 +51,6 @@ def test_the_grader_shows_the_concept_only():
 def test_a_fix_without_a_concept_is_a_lab_error(tmp_path):
     lab = tmp_path / "lab"
     shutil.copytree(MOTOR.path, lab)
-    shutil.copytree(MOTOR.path.parent / "wiring", tmp_path / "wiring")
     toml = lab / "lab.toml"
     text = toml.read_text(encoding="utf-8")
     toml.write_text(text.replace(f'hint = "{SEAL_IN.hint}"\n', "", 1), encoding="utf-8")

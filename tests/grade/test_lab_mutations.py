@@ -25,9 +25,9 @@ import pytest
 from plclab.errors import PlcError
 from plclab.grade.lab import ScenarioSpec, list_labs, load_lab, repo_labs_dir, stub_program
 from plclab.problems import PROBLEMS
+from plclab.sim.wirings import FOLDER
 
 LABS = sorted(p for p in list_labs() if p.parent == repo_labs_dir())
-WIRING_DIR = repo_labs_dir() / "wiring"
 FULL = bool(os.environ.get("PLCLAB_FULL_MUTATIONS"))
 DELETE = object()
 UNKNOWN = "zz_unknown_key"
@@ -141,9 +141,7 @@ def run_first_scenario(lab) -> None:
 
 @pytest.fixture(scope="module")
 def workdir(tmp_path_factory):
-    root = tmp_path_factory.mktemp("labs")
-    shutil.copytree(WIRING_DIR, root / "wiring")
-    return root
+    return tmp_path_factory.mktemp("labs")
 
 
 @pytest.mark.parametrize("lab_dir", LABS, ids=[p.name for p in LABS])
@@ -167,8 +165,8 @@ def test_every_mutated_lab_toml_value_is_a_plc_error_or_works(lab_dir, workdir):
 
 
 PROG = "PROGRAM P VAR x : BOOL; END_VAR x := NOT x; END_PROGRAM"
-WIRING_FILES = sorted(p for p in WIRING_DIR.glob("*.toml") if "scenario" not in p.name)
-SCENARIO_FILES = sorted(WIRING_DIR.glob("*scenario*.toml"))
+WIRING_FILES = sorted(FOLDER.glob("*.toml"))  # the wiring tables (plclab/sim/wirings)
+SCENARIO_FILES = sorted(repo_labs_dir().glob("*/*_scenario.toml"))  # a lab's scenario files
 
 
 @pytest.mark.parametrize("file", WIRING_FILES + SCENARIO_FILES,

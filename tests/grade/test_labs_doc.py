@@ -28,7 +28,6 @@ def test_a_new_lab_appears_in_the_table(tmp_path):
     import shutil
 
     shutil.copytree(ROOT / "labs" / "tank-two-position", tmp_path / "tank-copy")
-    shutil.copytree(ROOT / "labs" / "wiring", tmp_path / "wiring")
     table = labs_table(tmp_path)
     assert table.count("\n| `") == 1 and "| `tank-copy` |" in table
     with pytest.raises(ValueError):

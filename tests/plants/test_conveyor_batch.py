@@ -8,16 +8,16 @@ import pytest
 
 pytest.importorskip("pymunk")
 
-import plants.conveyor as conveyor  # noqa: E402
+import plants.conveyor_bottle as conveyor_bottle  # noqa: E402
 from plants import Conveyor  # noqa: E402
 
 
 def _record(batched: bool, monkeypatch) -> list:
     if not batched:
-        monkeypatch.setattr(conveyor, "_batch_reader", lambda pm: None)
+        monkeypatch.setattr(conveyor_bottle, "batch_reader", lambda pm: None)
     c = Conveyor(belt_length=6.0, feed_pitch=0.3, knock_rate=0.3, max_bottles=40)
     c.reset(seed=3)
-    assert (c._batch is not None) == batched
+    assert (c._poses.batch is not None) == batched
     rows = []
     for k in range(1500):
         c["CONVEYOR"] = k > 20
@@ -45,7 +45,7 @@ def test_a_wrong_index_is_caught(monkeypatch) -> None:
     c["CONVEYOR"] = True
     for _ in range(300):
         c.step(0.01)
-    fl, idx = c._read_poses()
+    fl, idx = c._poses.read(c._space, c._bottles)
     assert len(idx) == len(c._bottles) >= 2
     xs = [fl[i] for i in idx]
     assert xs == [b.x for b in c._bottles] and xs[0] != xs[1]

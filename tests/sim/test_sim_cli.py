@@ -48,7 +48,7 @@ def test_sim_with_scenario_wiring_and_options(prog, tmp_path, capsys):
                   '[[action]]\nat = "60s"\nset = "VALVE"\nvalue = 20\n')
     rc = main(["sim", "tank", str(prog), "--scenario", str(sc), "--seed", "7", "--scan",
                "T#20ms", "--param", "area=2.0", "--events", "--until", "t > 90",
-               "--decimate", "5", "--wiring", "labs/wiring/tank_vfd.toml"])
+               "--decimate", "5", "--wiring", "plclab/sim/wirings/tank_vfd.toml"])
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "seed 7" in out and "scans of 20ms" in out and "until 't > 90'" in out

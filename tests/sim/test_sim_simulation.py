@@ -22,7 +22,7 @@ M := ((NOT LS1) OR M) AND (NOT LS2);
 n := n + 1;
 END_PROGRAM"""
 
-VFD = Path(__file__).resolve().parents[2] / "labs" / "wiring" / "tank_vfd.toml"
+VFD = Path(__file__).resolve().parents[2] / "plclab" / "sim" / "wirings" / "tank_vfd.toml"
 
 
 def sim_tank(**kw):

@@ -9,9 +9,9 @@ import pytest
 import plclab
 from plclab.errors import PlcError
 from plclab.sim import Simulation, Wiring, default_wiring, load_scenario, load_wiring, run
-from plclab.sim.wirings import DEFAULTS
+from plclab.sim.wirings import DEFAULTS, FOLDER
 
-LABS = Path(__file__).resolve().parents[2] / "labs" / "wiring"
+LABS = Path(__file__).resolve().parents[2] / "labs"
 
 TANK = """PROGRAM Main
 VAR
@@ -64,7 +64,7 @@ def test_python_rows_and_toml_are_the_same_table(tmp_path):
 @pytest.mark.parametrize("plant", sorted(DEFAULTS))
 def test_default_wiring_matches_its_toml_and_binds(plant):
     w = default_wiring(plant)
-    toml = load_wiring(LABS / f"{plant}.toml")
+    toml = load_wiring(FOLDER / f"{plant}.toml")
     assert toml.to_rows() == w.to_rows()
     assert toml.plant == plant
     assert all(r.description for r in w)
@@ -72,15 +72,16 @@ def test_default_wiring_matches_its_toml_and_binds(plant):
     assert len(sim.transfer.channels) == len(w)
 
 
-def test_example_wirings_and_scenarios_in_labs_load():
+def test_the_wiring_tables_and_the_labs_scenario_files_load():
     trivial = "PROGRAM P VAR x : INT; END_VAR x := 1; END_PROGRAM"
-    scenarios = sorted(LABS.glob("*_scenario.toml"))
+    scenarios = sorted(LABS.glob("*/*_scenario.toml"))  # beside the lab they belong to
     assert len(scenarios) >= 3
-    for f in sorted(LABS.glob("*.toml")):
-        if f in scenarios:
-            tr = run(trivial, scenario=f, duration="2s")
-            assert tr.meta["plant"] == load_scenario(f).plant
-            continue
+    for f in scenarios:
+        tr = run(trivial, scenario=f, duration="2s")
+        assert tr.meta["plant"] == load_scenario(f).plant
+    tables = sorted(FOLDER.glob("*.toml"))
+    assert {f.stem for f in tables} > set(DEFAULTS)  # a default for each plant, and variants
+    for f in tables:
         w = load_wiring(f)
         Simulation(plclab.loads(trivial), w.plant, w)
 

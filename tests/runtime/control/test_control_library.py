@@ -10,11 +10,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import plclab
+from plclab.compile.real32 import f32 as _f32
 from plclab.lang import ast as A
 from plclab.lang import types as T
 from plclab.project import check_sources
 from plclab.runtime import ctrlfb, natives
-from plclab.runtime.rt import _f32
 from plclab.testing import run_test_sources
 
 ST_CALLS = """

@@ -1,4 +1,5 @@
-"""Default wiring tables, one per plant (also in ``labs/wiring/<plant>.toml``).
+"""Default wiring tables, one per plant, here and as TOML files beside this module
+(``plclab/sim/wirings/<plant>.toml``, :data:`FOLDER`: the tables to copy and edit for a lab).
 
 The layout follows an S7-1200 with a signal board: digital inputs from ``%IX0.0``, digital
 outputs from ``%QX0.0``, analog inputs from ``%IW64`` and analog outputs from ``%QW64`` (2 bytes
@@ -8,8 +9,8 @@ each). Digital inputs have the 3 ms input filter of a general-purpose input (the
 4-20 mA transmitters over the signal's range in S7 counts (0..27648).
 
 Signals that a typical program does not write are left unwired so that they keep the plant's
-default (the tank's ``PUMP_SPEED`` stays at 100 %); ``labs/wiring/tank_vfd.toml`` shows how to
-wire it to an analog output.
+default (the tank's ``PUMP_SPEED`` stays at 100 %); ``plclab/sim/wirings/tank_vfd.toml`` shows
+how to wire it to an analog output.
 
 >>> w = default_wiring("tank")
 >>> [(r.plc, r.signal, r.module) for r in w][:3]
@@ -19,10 +20,17 @@ wire it to an analog output.
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from typing import Any
 
-from .errors import did_you_mean, sim_error
-from .wiring import Wiring
+from ..errors import did_you_mean, sim_error
+from ..wiring import Wiring
+
+__all__ = ["DEFAULTS", "FOLDER", "as_wiring", "default_wiring"]
+
+FOLDER = Path(__file__).resolve().parent
+"""The wiring tables as TOML files: ``<plant>.toml`` (the same rows as :data:`DEFAULTS`) and
+variants (``tank_vfd.toml``); package data, so an installed plclab has them too."""
 
 _FILTER = 3.0
 _BUTTON = {"filter_ms": _FILTER, "bounce_ms": 2.0}
@@ -197,7 +205,7 @@ DEFAULTS: dict[str, tuple[str, list[dict[str, Any]]]] = {
 
 
 def default_wiring(plant_name: str) -> Wiring:
-    """The default wiring table of a plant (the same as ``labs/wiring/<plant>.toml``).
+    """The default wiring table of a plant (the same as ``plclab/sim/wirings/<plant>.toml``).
 
     Raises
     ------
