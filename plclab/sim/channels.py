@@ -161,7 +161,7 @@ def bind(wiring: Wiring, plant: Any, plc: Any, seed: int = 0) -> Transfer:
     if wiring.plant and wiring.plant != plant.name:
         raise sim_error("PLC4008", f"this wiring is for the plant '{wiring.plant}', but the "
                         f"simulation runs '{plant.name}'; use a wiring file made for "
-                        f"'{plant.name}' (labs/wiring/{plant.name}.toml) or none for the default",
+                        f"'{plant.name}' (plclab/sim/wirings/{plant.name}.toml) or none for the default",
                         wiring.source)
     channels: list[Channel] = []
     in_bits: dict[tuple[int, int], WireRow] = {}

@@ -16,7 +16,7 @@ direct    either     no model: the value is copied (the direction follows the ad
                      for a variable, the signal's kind)
 ========  =========  ===================================================================
 
-In TOML (``labs/wiring/tank.toml``)::
+In TOML (``plclab/sim/wirings/tank.toml``)::
 
     plant = "tank"
     description = "two level switches, the pump contactor and a level transmitter"
