@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from plclab.errors import PlcError
+from plclab.i18n import tr
 
 from .criteria_base import condition, condition_names, fmt_t, fmt_v
 
@@ -127,13 +128,21 @@ def _condition_limits(check_name: str, text: str) -> list[Limit]:
         highs = [v for o, v in ops if o in ("<", "<=")]
         if check_name in ("always", "always_after") and lows and highs and max(lows) < min(highs):
             lo, hi = max(lows), min(highs)
-            out.append(Limit("band", name, f"{verb} {lo:g}..{hi:g}".strip(), lo, hi))
+            out.append(Limit("band", name, _verbed(verb, tr("{lo:num}..{hi:num}", lo=lo, hi=hi)),
+                             lo, hi))
             ops = [(o, v) for o, v in ops if v not in (lo, hi)]
         for o, v in ops:
             if any(lim.value == v and lim.signal == name for lim in out):
                 continue
-            out.append(Limit("level", name, f"{verb} {o} {v:g}".strip(), v))
+            out.append(Limit("level", name, _verbed(verb, tr("{op} {v:num}", op=o, v=v)), v))
     return out
+
+
+def _verbed(verb: str, what: str) -> str:
+    """``never >= 1.75``: a comparison with the check's verb, in the language in use."""
+    worded = {"never": tr("never {what}", what=what), "stay": tr("stay {what}", what=what),
+              "reach": tr("reach {what}", what=what), "then": tr("then {what}", what=what)}
+    return worded.get(verb, what)
 
 
 def _window(p: Mapping[str, Any]) -> Limit | None:
@@ -143,9 +152,10 @@ def _window(p: Mapping[str, Any]) -> Limit | None:
     b = p.get("to")
     if a is None and b is None:
         return None
-    span = " ".join(w for w in (f"from {fmt_t(float(a))}" if a is not None else "",
-                                f"to {fmt_t(float(b))}" if b is not None else "") if w)
-    return Limit("window", "", f"checked {span}", t0=None if a is None else float(a),
+    span = " ".join(w for w in (tr("from {t:time}", t=fmt_t(float(a))) if a is not None else "",
+                                tr("to {t:time}", t=fmt_t(float(b))) if b is not None else "")
+                    if w)
+    return Limit("window", "", tr("checked {span}", span=span), t0=None if a is None else float(a),
                  t1=None if b is None else float(b))
 
 
@@ -167,11 +177,14 @@ def limits_of(check_name: str, params: Mapping[str, Any]) -> list[Limit]:
     out: list[Limit] = []
     sig = str(p.get("signal") or "")
     if check_name in ("never", "always", "always_after", "eventually"):
-        word = {"never": "never", "eventually": "at least once"}.get(check_name, "always")
-        out.append(Limit("rule", "", f"{word}: {p.get('condition')}"))
+        rule = {"never": tr("never: {condition}", condition=p.get("condition")),
+                "eventually": tr("at least once: {condition}", condition=p.get("condition"))}
+        out.append(Limit("rule", "", rule.get(check_name) or
+                         tr("always: {condition}", condition=p.get("condition"))))
         out += _condition_limits(check_name, str(p.get("condition", "")))
     elif check_name == "implies":
-        out.append(Limit("rule", "", f"whenever {p.get('if')}: {p.get('then')}"))
+        out.append(Limit("rule", "", tr("whenever {cond}: {then}", cond=p.get("if"),
+                                        then=p.get("then"))))
         out += _condition_limits("implies", str(p.get("then", "")))
         out += [lim for lim in _condition_limits("", str(p.get("if", "")))
                 if not any(o.signal == lim.signal and o.value == lim.value for o in out)]
@@ -179,72 +192,85 @@ def limits_of(check_name: str, params: Mapping[str, Any]) -> list[Limit]:
         out += _condition_limits("", str(p.get("trigger", "")))
         if check_name == "within":
             out += _condition_limits("", str(p.get("response", "")))
-        what = f"alarm {p.get('alarm')}" if check_name == "alarm_within" else \
-            f"{p.get('response')}"
+        what = tr("alarm {alarm}", alarm=p.get("alarm")) if check_name == "alarm_within" \
+            else f"{p.get('response')}"
         names = condition_names(str(p.get("response"))) if check_name == "within" else []
-        out.append(Limit("time", names[0] if names else "", f"{what} within "
-                         f"{float(p['time']):g} s of {p.get('trigger')}", float(p["time"])))
+        out.append(Limit("time", names[0] if names else "",
+                         tr("{what} within {s:num} s of {trigger}", what=what,
+                            s=float(p["time"]), trigger=p.get("trigger")), float(p["time"])))
     elif check_name == "ack_before_restart":
         names = condition_names(str(p.get("restart", "")))
-        out.append(Limit("time", names[0] if names else "", f"{p.get('restart')} off "
-                         f"{float(p.get('time') or 1.0):g} s after alarm {p.get('alarm')} "
-                         "until acknowledged", float(p.get("time") or 1.0)))
+        out.append(Limit("time", names[0] if names else "",
+                         tr("{restart} off {s:num} s after alarm {alarm} until acknowledged",
+                            restart=p.get("restart"), s=float(p.get("time") or 1.0),
+                            alarm=p.get("alarm")), float(p.get("time") or 1.0)))
     elif check_name == "in_band":
         lo, hi = _num(p, "lo"), _num(p, "hi")
         frac = _num(p, "min_fraction")
-        extra = f" ({frac * 100:g} % of the time)" if frac is not None and frac < 1 else ""
-        out.append(Limit("band", sig, f"band {lo:g}..{hi:g}{extra}", lo, hi))
+        label = tr("band {lo:num}..{hi:num}", lo=lo, hi=hi)
+        if frac is not None and frac < 1:
+            label += " " + tr("({pct:num} % of the time)", pct=frac * 100)
+        out.append(Limit("band", sig, label, lo, hi))
     elif check_name == "settles":
         target, band = float(p["target"]), float(p["band"])
-        out.append(Limit("target", sig, f"set point {target:g}", target))
-        out.append(Limit("band", sig, f"{target:g} ± {band:g}", target - band, target + band))
+        out.append(Limit("target", sig, tr("set point {v:num}", v=target), target))
+        out.append(Limit("band", sig, tr("{v:num} ± {band:num}", v=target, band=band),
+                         target - band, target + band))
         step = float(p.get("after") or 0.0)
         if p.get("from") is not None:
             step = max(step, float(p["from"]))
         ok = step + float(p["within"])
         to = _num(p, "to")
-        out.append(Limit("window", sig, f"in the band from {fmt_t(ok)}", t0=ok, t1=to))
+        out.append(Limit("window", sig, tr("in the band from {t:time}", t=fmt_t(ok)), t0=ok,
+                         t1=to))
         return out
     elif check_name == "value":
-        at = "at the end" if p.get("at") is None else f"at {fmt_t(float(p['at']))}"
+        at = tr("at the end") if p.get("at") is None else \
+            tr("at {t:time}", t=fmt_t(float(p["at"])))
         for key, word in (("equals", "="), ("min", ">="), ("max", "<=")):
             v = _num(p, key)
             if v is not None:
-                out.append(Limit("level", sig, f"{word} {v:g} {at}", v,
+                out.append(Limit("level", sig, tr("{op} {v:num} {at}", op=word, v=v, at=at), v,
                                  t0=None if p.get("at") is None else float(p["at"])))
     elif check_name == "max_switchings":
         if p.get("max") is not None:
-            out.append(Limit("count", sig, f"at most {int(p['max'])} switchings",
+            out.append(Limit("count", sig, tr("at most {n} switchings", n=int(p["max"])),
                              float(p["max"])))
         else:
-            out.append(Limit("rate", sig, f"at most {float(p['per_hour']):g} switchings per "
-                             "hour", float(p["per_hour"])))
+            out.append(Limit("rate", sig, tr("at most {n:num} switchings per hour",
+                                             n=float(p["per_hour"])), float(p["per_hour"])))
     elif check_name == "no_chatter":
         k, w = int(p.get("min_toggles") or 4), float(p.get("window") or 1.0)
-        out.append(Limit("count", sig, f"fewer than {k} switchings in {w:g} s", float(k)))
+        out.append(Limit("count", sig, tr("fewer than {n} switchings in {s:num} s", n=k, s=w),
+                         float(k)))
     elif check_name == "min_dwell":
         for key in ("on", "off"):
             if p.get(key) is not None:
-                out.append(Limit("time", sig, f"{key.upper()} at least {float(p[key]):g} s",
-                                 float(p[key])))
+                out.append(Limit("time", sig, tr("{state} at least {s:num} s", state=key.upper(),
+                                                 s=float(p[key])), float(p[key])))
     elif check_name == "max_on":
-        out.append(Limit("time", sig, f"ON at most {float(p['max']):g} s", float(p["max"])))
+        out.append(Limit("time", sig, tr("ON at most {s:num} s", s=float(p["max"])),
+                         float(p["max"])))
     elif check_name == "blink_frequency":
         tol = float(p.get("tol") if p.get("tol") is not None else 0.1)
-        out.append(Limit("rate", sig, f"flashes at {float(p['hz']):g} Hz ± {tol * 100:g} %",
-                         float(p["hz"])))
+        out.append(Limit("rate", sig, tr("flashes at {hz:num} Hz ± {pct:num} %",
+                                         hz=float(p["hz"]), pct=tol * 100), float(p["hz"])))
     elif check_name in ("event_count", "counter", "event_data"):
         what = str(p.get("event", "")).replace("_", " ")
         if check_name == "counter":
-            out.append(Limit("count", sig, f"= number of {what} events"))
+            out.append(Limit("count", sig, tr("= number of {what} events", what=what)))
         elif check_name == "event_data":
-            out.append(Limit("band", "", f"{p.get('field')} of each {what} within "
-                             f"{fmt_v(_num(p, 'lo'))}..{fmt_v(_num(p, 'hi'))}",
+            out.append(Limit("band", "", tr("{field} of each {what} within {lo:num}..{hi:num}",
+                                            field=p.get("field"), what=what,
+                                            lo=fmt_v(_num(p, "lo")), hi=fmt_v(_num(p, "hi"))),
                              _num(p, "lo"), _num(p, "hi")))
         else:
-            parts = [f"{w} {int(p[k])}" for k, w in (("equals", "exactly"), ("min", "at least"),
-                                                     ("max", "at most")) if p.get(k) is not None]
-            out.append(Limit("count", "", f"{' and '.join(parts)} {what} events",
+            parts = [word for k, word in (
+                ("equals", tr("exactly {n}", n=p.get("equals"))),
+                ("min", tr("at least {n}", n=p.get("min"))),
+                ("max", tr("at most {n}", n=p.get("max")))) if p.get(k) is not None]
+            out.append(Limit("count", "", tr("{counts} {what} events",
+                                             counts=tr(" and ").join(parts), what=what),
                              _num(p, "equals") if p.get("equals") is not None
                              else _num(p, "max") if p.get("max") is not None else _num(p, "min")))
     else:  # a lab's own Python check: its numeric parameters, as they are named
@@ -256,12 +282,12 @@ def limits_of(check_name: str, params: Mapping[str, Any]) -> list[Limit]:
             target = float(num["target"])
             if "band" in num:  # "60 ± 0.5" says the set point too: one label, not two
                 band = float(num["band"])
-                out.append(Limit("band", sig, f"{target:g} ± {band:g}", target - band,
-                                 target + band))
+                out.append(Limit("band", sig, tr("{v:num} ± {band:num}", v=target, band=band),
+                                 target - band, target + band))
             else:
-                out.append(Limit("target", sig, f"set point {target:g}", target))
+                out.append(Limit("target", sig, tr("set point {v:num}", v=target), target))
         elif sig and "level" in num:
-            out.append(Limit("level", sig, f"level {float(num['level']):g}",
+            out.append(Limit("level", sig, tr("level {v:num}", v=float(num["level"])),
                              float(num["level"])))
         if nums:
             out.append(Limit("count", "", ", ".join(f"{k} = {v:g}" for k, v in nums)))
