@@ -126,6 +126,8 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
     first = first_failed(info.verdicts)
     if first is not None and first.time is not None:  # the moment every view shows
         rec.focus = first.time
+    if first is not None:  # its lane above the I/O lanes, its line in every plot
+        rec.failed, rec.checks = first, _checks_text(first.limits, trace)
 
     def inside(t: float) -> bool:
         return start - 1e-9 <= t <= end + 1e-9

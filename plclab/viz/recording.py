@@ -6,7 +6,10 @@ Layout of a recording (see :mod:`plclab.viz.layout` for what is chosen, ADR 0014
   labelled dashed lines under ``/plots/<unit>/limits/<name>``; chatter, faults and failed
   criteria as red crosses under ``/plots/<unit>/markers/<what>``;
 * ``/digital/<NN>_<name>``: one state lane per program input/output in the lab's order (ON/off),
-  ``/digital/<NN>_<name>/<what>`` a red segment where that signal chattered or failed;
+  ``/digital/<NN>_<name>_<what>`` a red segment where that signal chattered or failed;
+* ``/digital/00_first_failure``: the lane above them all, after a failure: what the first
+  failed criterion checks over the span it looks at (teal, "checks ...") and a red mark at
+  the failure; ``/plots/<unit>/failed_at`` a red vertical line at that moment in every plot;
 * ``/summary``: Markdown, most important first (faults, failed criteria with their time,
   chatter, passed criteria, relay operation counts);
 * ``/events``: the timed warnings and verdicts; ``/details/relays`` every relay operation
@@ -47,6 +50,10 @@ MARK_COLORS = {"fails": (230, 40, 40), "chatter": (255, 140, 0), "plc fault": (2
                "fault injected": (120, 120, 255)}
 """One colour per marker kind (red: a failed criterion); other warnings are yellow."""
 WARN_MARK = (230, 200, 0)
+CHECKED = (0, 120, 130)
+"""The span the first failed criterion looks at, in the lane above the I/O lanes."""
+FAILED_LANE = "/digital/00_first_failure"
+"""Sorts above every I/O lane (``01_...``): visible without scrolling the lanes' pane."""
 DASHES = 48
 """A limit line is drawn as this many dashes across the run."""
 
@@ -89,6 +96,8 @@ class Recording:
     frame_times: Sequence[float] = ()
     view_span: tuple[float, float] | None = None  # time range at open (default: the run's)
     focus: float | None = None  # the moment of the first failure: the time selection at open
+    failed: Any = None  # the first failed criterion (a layout.Verdict): its lane and line
+    checks: str = ""  # what that criterion checks, in words with units
 
     @property
     def title(self) -> str:
@@ -101,6 +110,61 @@ class Recording:
         if not ts:
             return 0.0, 1.0
         return float(min(t[0] for t in ts)), float(max(t[-1] for t in ts))
+
+
+def checked_span(rec: Recording) -> tuple[float, float]:
+    """The span the first failed criterion looks at: its window (``settles`` from the
+    step plus its time), the allowed time before a timed failure (``within 5.5 s``, ``ON at
+    most 300 s``), else the whole run."""
+    a, b = rec.span()
+    v = rec.failed
+    for lim in v.limits:
+        if lim.kind == "window" and (lim.t0 is not None or lim.t1 is not None):
+            lo = a if lim.t0 is None else max(a, float(lim.t0))
+            hi = b if lim.t1 is None else min(b, float(lim.t1))
+            if hi > lo:
+                return lo, hi
+    if v.time is not None:
+        for lim in v.limits:
+            if lim.kind == "time" and lim.value is not None and lim.value > 0:
+                return max(a, v.time - float(lim.value)), v.time
+    return a, b
+
+
+def failure_states(rec: Recording) -> tuple[list[float], list[str]]:
+    """The changes of the first-failure lane: ``w`` over the checked span, ``f`` (1 % of the
+    run wide) at the failure, ``0`` elsewhere."""
+    a, b = rec.span()
+    w0, w1 = checked_span(rec)
+    t = rec.failed.time
+    width = max(0.01 * (b - a), 1e-3)
+    cuts = sorted({w0, w1, *(() if t is None else (t, t + width))})
+
+    def at(x: float) -> str:
+        if t is not None and t <= x < t + width:
+            return "f"
+        return "w" if w0 <= x < w1 else "0"
+
+    times, states = [], []
+    for x in cuts:
+        st = at(x)
+        if not states or states[-1] != st:
+            times.append(x)
+            states.append(st)
+    return times, states
+
+
+def failure_line(p: Any, t: float) -> tuple[list[float], list[float]]:
+    """A vertical line at ``t`` across plot ``p`` (its range, limits included): two points one
+    nanosecond apart, then a gap."""
+    from .layout import span_of
+
+    lo, hi = p.y_range or span_of(p)
+    vals = [lim.value for lim in p.limits]
+    lo, hi = min([lo, *vals]), max([hi, *vals])
+    if hi <= lo:
+        lo, hi = lo - 0.5, hi + 0.5
+    return [t, t + 1e-9, t + 2e-9], [lo, hi, float("nan")]
 
 
 def mark_color(kind: str) -> tuple[int, int, int]:
@@ -140,9 +204,11 @@ def blueprint(rec: Recording) -> Any:
     left: list[Any] = []
     shares: list[float] = []
     marks = len({m.lane + m.kind for m in rec.markers if m.lane})  # a marker lane each
-    lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
+    marks += rec.failed is not None  # the first failure's lane
+    has_lanes = bool(lay.lanes) or rec.failed is not None
+    lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if has_lanes else 0.0
     plot_px = max(MIN_PLOT_PX, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
-    if lay.plots and lay.lanes:  # plots keep their 200 px; the lanes scroll in the rest
+    if lay.plots and has_lanes:  # plots keep their 200 px; the lanes scroll in the rest
         lanes_px = max(MIN_LANES_PX, min(lanes_px, SCREEN_PX - plot_px * len(lay.plots)))
     for p in lay.plots:
         kw: dict[str, Any] = {}
@@ -153,7 +219,7 @@ def blueprint(rec: Recording) -> Any:
                                        plot_legend=rrb.PlotLegend(visible=False),
                                        axis_x=whole, **kw))
         shares.append(plot_px)
-    if lay.lanes:
+    if has_lanes:
         left.append(rrb.StateTimelineView(origin="/digital", name="digital I/O, in the lab's "
                                           "order (ON = coloured)", time_view=whole))
         shares.append(lanes_px)
@@ -239,6 +305,7 @@ class RrdWriter:
         elif stream is None and path is not None:
             self.stream.save(str(path))
         self.stream.send_recording_name(info.title())
+        self._failure_drawn = False
         props = {k: v for k, v in (("lab", info.lab), ("scenario", info.scenario),
                                    ("file", info.student_file)) if v}
         if info.score is not None:
@@ -357,7 +424,38 @@ class RrdWriter:
                           list(rec.scan_durations_us)[start:], start)
         self.rows = n
         self._events(rec)
+        self._first_failure(rec)
         self._plant_frames(rec)
+
+    def _first_failure(self, rec: Recording) -> None:
+        """The lane above the I/O lanes (the span the failed criterion checks, the failure
+        in red) and a red vertical line at the failure in every plot."""
+        if rec.failed is None or self._failure_drawn:
+            return
+        self._failure_drawn = True
+        rr, st, v = self.rr, self.stream, rec.failed
+        when = f" at {v.time:.2f} s" if v.time is not None else " over the run"
+        checks = f"checks {rec.checks} " if rec.checks else ""
+        st.log(FAILED_LANE, rr.StateConfiguration(
+            values=["w", "f", "0"],
+            labels=[f"{checks}({v.name})", f"FAILED {v.name}{when}", ""],
+            colors=[CHECKED, MARK, (0, 0, 0, 0)], visible=[True, True, False]), static=True)
+        times, states = failure_states(rec)
+        rr.send_columns(FAILED_LANE, indexes=[rr.TimeColumn("sim_time", duration=times)],
+                        columns=rr.StateChange.columns(state=states), recording=st)
+        if v.time is None:
+            return
+        for p in rec.layout.plots:
+            if not p.lines:
+                continue
+            entity = f"/plots/{p.key}/failed_at"
+            # MinMax: the two points share a pixel column, averaged they would be a dot
+            st.log(entity, rr.SeriesLines(names=f"FAILED {v.name}{when}", colors=[MARK],
+                                          widths=[1.5], aggregation_policy="MinMax"),
+                   static=True)
+            ts, vs = failure_line(p, v.time)
+            rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=ts)],
+                            columns=rr.Scalars.columns(scalars=vs), recording=st)
 
     def _events(self, rec: Recording) -> None:
         rr, st = self.rr, self.stream
