@@ -1,7 +1,7 @@
 """What a student sees after a failed check, for every lab and each of its mistakes.
 
     python -m plclab.grade.lab_pictures --out /tmp/pics [--labs a,b] [--first] [--no-viewer]
-                                        [--hidden]
+                                        [--hidden] [--sheets]
 
 For each mistake (``labs/*/mistakes/*``; ``--first``: the first of each lab) it runs, as a
 student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenarios) and keeps:
@@ -16,6 +16,19 @@ student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenari
 
 ``--hidden``: a mistake that passes every visible scenario is checked again with the
 instructor's ``lab check --hidden`` (hidden scenarios too), so that its failure is drawn.
+
+``--sheets``: contact sheets (``sheets/LAB-N.png``, four viewer screenshots to a page, each
+under its lab, mistake and what the viewer opened) so that all 151 can be looked at;
+``--sheets-only DIR`` makes them again from a folder this script filled.
+
+How the viewer is run headless (checked with rerun-sdk 0.41 on Debian 12): Xvfb at
+1600x1000x24 and Mesa's software Vulkan (lavapipe, ``apt-get install xvfb
+mesa-vulkan-drivers``), no other setting needed; ``WGPU_BACKEND=gl`` / ``--renderer gl``
+fails (the GL backend lacks the R32Float format the viewer needs). An X grab of the
+screen (``import -window root``, ``xwd``) comes back black: the viewer presents through
+Vulkan, which Xvfb does not composite, so the picture is taken by the viewer itself,
+``rerun.experimental.ViewerClient.save_screenshot``, once its recording is loaded and
+it has drawn for ``--wait`` seconds.
 
 Not run by the test suite (minutes per lab). ``docs/figures/rerun/`` holds a chosen few.
 """
@@ -89,6 +102,46 @@ def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
         return f"opened {act.store_id.split(':')[-1]}, cursor at {when}"
 
 
+SHEET_TILE = (800, 500)  # half the viewer's 1600x1000: four to a 1600x1000 page
+
+
+def contact_sheets(folder: Path, per_sheet: int = 4) -> list[Path]:
+    """``folder/sheets/LAB-N.png``: the viewer screenshots of ``folder`` four to a page (two
+    by two, each half size), captioned with the line of ``index.tsv`` that describes it."""
+    from PIL import Image, ImageDraw
+
+    captions = {}
+    index = folder / "index.tsv"
+    if index.exists():
+        for line in index.read_text(encoding="utf-8").splitlines():
+            f = line.split("\t")
+            if len(f) >= 6:
+                tag = f"{f[0]}--{Path(f[1]).stem.replace('_', '-')}"
+                captions[tag] = f"{f[0]} {f[1]} {f[2]}: {f[5]}"
+    by_lab: dict[str, list[Path]] = {}
+    for png in sorted(folder.glob("*--viewer.png")):
+        by_lab.setdefault(png.name.split("--")[0], []).append(png)
+    out_dir = folder / "sheets"
+    out_dir.mkdir(exist_ok=True)
+    made = []
+    w, h = SHEET_TILE
+    cap = 18  # caption band above each tile
+    for lab, pngs in by_lab.items():
+        for n in range(0, len(pngs), per_sheet):
+            sheet = Image.new("RGB", (2 * w, 2 * (h + cap)), "white")
+            draw = ImageDraw.Draw(sheet)
+            for i, png in enumerate(pngs[n:n + per_sheet]):
+                x, y = (i % 2) * w, (i // 2) * (h + cap)
+                tag = png.name[: -len("--viewer.png")]
+                draw.text((x + 4, y + 3), captions.get(tag, tag)[:130], fill="black")
+                with Image.open(png) as im:
+                    sheet.paste(im.convert("RGB").resize(SHEET_TILE, Image.LANCZOS), (x, y + cap))
+            path = out_dir / f"{lab}-{n // per_sheet + 1}.png"
+            sheet.save(path, optimize=True)
+            made.append(path)
+    return made
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", required=True)
@@ -99,8 +152,16 @@ def main(argv: list[str] | None = None) -> int:
                     help="a mistake that passes the visible scenarios: check it again with "
                     "the hidden ones (the instructor's view)")
     ap.add_argument("--wait", type=float, default=10.0, help="seconds to let the viewer draw")
+    ap.add_argument("--sheets", action="store_true",
+                    help="also contact sheets of the viewer screenshots (OUT/sheets/)")
+    ap.add_argument("--sheets-only", action="store_true",
+                    help="only make the contact sheets of what OUT already holds")
     ns = ap.parse_args(argv)
     out = Path(ns.out)
+    if ns.sheets_only:
+        for path in contact_sheets(out):
+            print(path)
+        return 0
     out.mkdir(parents=True, exist_ok=True)
     index = out / "index.tsv"
     with display(not ns.no_viewer) as env, \
@@ -131,6 +192,9 @@ def main(argv: list[str] | None = None) -> int:
             with index.open("a", encoding="utf-8") as f:
                 f.write(line + "\n")
             print(line, flush=True)
+    if ns.sheets and not ns.no_viewer:
+        for path in contact_sheets(out):
+            print(path)
     return 0
 
 
