@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import argparse
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -164,6 +165,9 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     out.mkdir(parents=True, exist_ok=True)
     index = out / "index.tsv"
+    # stopped (kill PID): leave through the context managers, so that the Xvfb and the
+    # viewer it started stop too (a background job ignores Ctrl-C's SIGINT)
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     with display(not ns.no_viewer) as env, \
             tempfile.TemporaryDirectory(prefix="plclab-pics-") as tmp:
         for lab, program in mistakes(ns.labs.split(",") if ns.labs else None, ns.first):

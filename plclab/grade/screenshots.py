@@ -51,10 +51,10 @@ def record(lab_id: str, program: Path, path: Path) -> tuple[float, str]:
     lab = load_lab(lab_id)
     src, _ = read_submission(str(program))
     res = grade_sources(lab, src, student="", keep_traces=True)
-    from .criteria import criterion_limits
+    from .feedback import run_limits
 
     recs = lab_recordings(lab, res, program.name,  # the criteria's limits drawn, as lab check
-                          limits={c.name: criterion_limits(c) for c in lab.criteria})
+                          limits=run_limits(lab))
     first = recs[0]  # a failing scenario if there is one
     # rerun 0.41's viewer opens only one recording of a file through its catalog (the
     # default); the shot shows the first scenario, so write that one

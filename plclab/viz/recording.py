@@ -52,6 +52,9 @@ MARK_COLORS = {"fails": (230, 40, 40), "chatter": (255, 140, 0), "plc fault": (2
 WARN_MARK = (230, 200, 0)
 CHECKED = (0, 120, 130)
 """The span the first failed criterion looks at, in the lane above the I/O lanes."""
+END_MARGIN = 0.02
+"""After a failure the view reaches this share of the run past its end (a counter checked at
+the end is marked at the last moment)."""
 FAILED_LANE = "/digital/00_first_failure"
 """Sorts above every I/O lane (``01_...``): visible without scrolling the lanes' pane."""
 DASHES = 48
@@ -195,9 +198,13 @@ def lane_name(lane: Any) -> str:
 def blueprint(rec: Recording) -> Any:
     """The default view: plots and lanes on the left, plant, summary and events on the right."""
     import rerun.blueprint as rrb
+    import rerun.blueprint.archetypes as rrba
+    import rerun.blueprint.components as rrbc
 
     lay = rec.layout
     span = rec.view_span or rec.span()
+    if rec.failed is not None:  # a failure at the end of the run: its mark stays in view
+        span = (span[0], span[1] + END_MARGIN * (span[1] - span[0]))
     whole = rrb.TimeAxis(view_range=rrb.TimeRange(
         start=rrb.TimeRangeBoundary.absolute(seconds=span[0]),
         end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range
@@ -242,7 +249,14 @@ def blueprint(rec: Recording) -> Any:
         rshares.append(3.0)
     right.append(rrb.TextDocumentView(origin="/summary", name="summary: most important first"))
     rshares.append(2.0)
-    right.append(rrb.TextLogView(origin="/events", name="events"))
+    # the warnings and failures only (the steps of the scenario are INFO): a failure at the
+    # end of a long run is not fifty rows down; the entity path column says nothing here
+    right.append(rrb.TextLogView(
+        origin="/events", name="warnings and failures (all events: the view's level filter)",
+        rows=rrba.TextLogRows(filter_by_log_level=["WARN", "ERROR"]),
+        columns=rrba.TextLogColumns(text_log_columns=[
+            rrbc.TextLogColumn(kind=k, visible=k != "EntityPath")
+            for k in ("EntityPath", "LogLevel", "Body")])))
     rshares.append(1.5)
     cols: list[Any] = []
     if left:
@@ -435,10 +449,9 @@ class RrdWriter:
         self._failure_drawn = True
         rr, st, v = self.rr, self.stream, rec.failed
         when = f" at {v.time:.2f} s" if v.time is not None else " over the run"
-        checks = f"checks {rec.checks} " if rec.checks else ""
+        checks = f"checks {rec.checks} ({v.name})" if rec.checks else f"checked by {v.name}"
         st.log(FAILED_LANE, rr.StateConfiguration(
-            values=["w", "f", "0"],
-            labels=[f"{checks}({v.name})", f"FAILED {v.name}{when}", ""],
+            values=["w", "f", "0"], labels=[checks, f"FAILED {v.name}{when}", ""],
             colors=[CHECKED, MARK, (0, 0, 0, 0)], visible=[True, True, False]), static=True)
         times, states = failure_states(rec)
         rr.send_columns(FAILED_LANE, indexes=[rr.TimeColumn("sim_time", duration=times)],
