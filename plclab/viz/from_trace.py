@@ -346,26 +346,26 @@ def first_failed(verdicts):
 
 def _checks_text(limits, trace, lay: Layout | None = None) -> str:
     """What a criterion checks, in words with units (the same description the diagrams
-    draw); with ``lay``, a signal the criterion names by address (``%MW0``) is named as
-    the view shows it (``GOOD``)."""
+    draw); with ``lay``, an address the criterion names (``%MW0``, also inside a rule,
+    ``%MW4 + %MW0 == 6``) is named as the lab's I/O table and the view name it (``GOOD``)."""
     parts = []
     units = trace.meta.get("units", {}) or {}
     names: dict[str, str] = {}
+    if lay is not None:
+        names = {addr: name for name, addr, _ in lay.info.io if addr.startswith("%")}
     for lim in limits:
         try:
             col = trace.resolve(lim.signal) if lim.signal and lim.signal in trace else ""
         except PlcError:
             col = ""
-        if lay is not None and lim.signal.startswith("%"):
+        if lay is not None and lim.signal.startswith("%") and lim.signal not in names:
             shown = _shown_name(lay, col) or _shown_name(lay, lim.signal)
             if shown:
                 names[lim.signal] = shown
         who = f"{lim.signal} " if lim.signal and lim.kind not in ("window", "time") else ""
         parts.append(f"{who}{lim.text(units.get(col, ''))}")
     text = "; ".join(dict.fromkeys(parts))
-    for addr, name in names.items():
-        text = re.sub(re.escape(addr) + r"(?![\w.])", name, text)
-    return text
+    return re.sub(r"%[A-Za-z]+\d+(?:\.\d+)?", lambda m: names.get(m.group(0), m.group(0)), text)
 
 
 def _shown_name(lay: Layout, key: str) -> str:

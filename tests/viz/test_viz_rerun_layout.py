@@ -284,3 +284,25 @@ def test_checked_span_is_the_window_the_time_or_the_run():
     assert checked_span(rec) == (0.0, 100.0)
     rec.failed = Verdict("over the run", False, None, limits=[])
     assert failure_states(rec) == ([0.0, 100.0], ["w", "0"])  # no mark without a time
+
+
+def test_checks_name_addresses_as_the_lab_does():
+    """What a failed criterion checks says the lab's names, also inside a rule; an address
+    the lab does not name stays as it is, and a longer address is not cut by a shorter."""
+    from plclab.grade.criteria_limits import Limit as CLimit
+    from plclab.viz.from_trace import _checks_text
+    from plclab.viz.layout import Layout, RunInfo
+
+    class Tr:
+        meta: dict = {}
+
+        def __contains__(self, name):
+            return False
+
+    lay = Layout(info=RunInfo(io=[("TO_GO", "%MW4", "INT"), ("IN_BOX", "%MW0", "INT")]))
+    lims = [CLimit("rule", "", "always: %MW4 + %MW0 == 6 and %MW40 < 3"),
+            CLimit("count", "%MW0", "= number of bottle events")]
+    text = _checks_text(lims, Tr(), lay)
+    assert text == ("always: TO_GO + IN_BOX == 6 and %MW40 < 3; "
+                    "IN_BOX = number of bottle events")
+    assert "%MW4 +" in _checks_text(lims, Tr())  # without a layout: as the criterion says
