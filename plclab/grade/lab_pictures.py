@@ -19,14 +19,15 @@ instructor's ``lab check --hidden`` (hidden scenarios too), so that its failure 
 
 ``--sheets``: contact sheets (``sheets/LAB-N.png``, four viewer screenshots to a page, each
 under its lab, mistake and what the viewer opened) so that all 151 can be looked at;
-``--sheets-only DIR`` makes them again from a folder this script filled.
+``--sheets-only`` makes them again from the ``--out`` folder a run filled.
 
 How the viewer is run headless (checked with rerun-sdk 0.41 on Debian 12): Xvfb at
 1600x1000x24 and Mesa's software Vulkan (lavapipe, ``apt-get install xvfb
 mesa-vulkan-drivers``), no other setting needed; ``WGPU_BACKEND=gl`` / ``--renderer gl``
-fails (the GL backend lacks the R32Float format the viewer needs). An X grab of the
-screen (``import -window root``, ``xwd``) comes back black: the viewer presents through
-Vulkan, which Xvfb does not composite, so the picture is taken by the viewer itself,
+exits at once ("Adapter does not support drawing to texture format R32Float"). An X grab
+of the screen (``import -window root``, ``xwd``, Pillow's ``ImageGrab``) comes back all
+black: the viewer presents through Vulkan, which Xvfb does not composite, so the picture
+is taken by the viewer itself,
 ``rerun.experimental.ViewerClient.save_screenshot``, once its recording is loaded and
 it has drawn for ``--wait`` seconds.
 
