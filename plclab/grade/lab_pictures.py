@@ -11,8 +11,9 @@ student would, ``plclab lab check LAB MISTAKE --png P --rrd R`` (visible scenari
   cursor moved: under Xvfb at 1600x1000, saved with ``ViewerClient.save_screenshot``);
 - a line in ``index.tsv``: lab, mistake, its score, the scenario and criterion ``--png`` drew,
   the limits of that criterion the picture draws (``criterion_limits``), what the viewer opened
-  (its recording, where its time cursor stood), and ``hidden`` when it was drawn from a hidden
-  scenario.
+  (its recording, where its time cursor stood), ``hidden`` when it was drawn from a hidden
+  scenario, and what the recording holds to mark the failure (:func:`recorded`: the plots
+  crossed by the failure line, the criterion's dashed limits, the first-failure lane's words).
 
 ``--hidden``: a mistake that passes every visible scenario is checked again with the
 instructor's ``lab check --hidden`` (hidden scenarios too), so that its failure is drawn.
@@ -77,6 +78,39 @@ def drawn_limits(lab: str, criterion: str) -> str:
     crit = next((c for c in load_lab(lab).criteria if c.name == criterion), None)
     lims = criterion_limits(crit) if crit is not None else []
     return "; ".join(f"{lim.kind}: {lim.label}" for lim in lims) or "-"
+
+
+def recorded(rrd: Path, criterion: str) -> str:
+    """What the main recording ``rrd`` holds to mark the failure of ``criterion`` (read back
+    with rerun's reader): the plots crossed by a failure line, the dashed limits of that
+    criterion, and the first-failure lane's words (``checks ...`` or ``checked by ...``)."""
+    from rerun.chunk import RrdReader
+
+    from plclab.viz.layout import slug
+    from plclab.viz.recording import FAILED_LANE
+
+    reader = RrdReader(rrd)
+    stores = reader.recordings()
+    if not stores:
+        return "empty recording"
+    plots, lines, lims, words = set(), set(), set(), ""
+    for chunk in reader.stream(store=stores[0]):
+        path = str(chunk.entity_path)
+        if path.startswith("/plots/") and "/limits/" not in path and "/markers/" not in path:
+            plots.add(path.split("/")[2])
+        if path.endswith("/failed_at"):
+            lines.add(path.split("/")[2])
+        if "/limits/" in path and criterion and \
+                path.split("/limits/")[1].split("_", 1)[-1].startswith(slug(criterion)):
+            lims.add(path)
+        if path == FAILED_LANE and not words:
+            batch = chunk.to_record_batch()
+            for name in batch.schema.names:
+                if name.endswith("StateConfiguration:labels"):
+                    vals = [v for row in batch.column(name).to_pylist() for v in (row or [])]
+                    words = vals[0] if vals else ""
+    return (f"failure line in {len(lines)}/{len(plots)} plots; {len(lims)} dashed limits of "
+            f"the criterion; lane: {words or 'none'}")
 
 
 def default_view(rrd: Path, png: Path, env: dict[str, str], wait: float) -> str:
@@ -189,11 +223,13 @@ def main(argv: list[str] | None = None) -> int:
             lims = drawn_limits(lab, crit.group(1)) if crit else "-"
             drew = m.group(1) if m else ("passed the visible scenarios (no failure to draw)"
                                          if full else "no failure picture")
-            seen = "-"
+            seen, marks = "-", "-"
+            if rrd.exists():
+                marks = recorded(rrd, crit.group(1) if crit else "")
             if not ns.no_viewer and rrd.exists():
                 seen = default_view(rrd, out / f"{tag}--viewer.png", env, ns.wait)
             line = "\t".join([lab, program.name, "/".join(score[-1]) if score else "?", drew,
-                              lims, seen, hidden])
+                              lims, seen, hidden, marks])
             with index.open("a", encoding="utf-8") as f:
                 f.write(line + "\n")
             print(line, flush=True)
