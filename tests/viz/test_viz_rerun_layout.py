@@ -265,8 +265,9 @@ def test_checked_span_is_the_window_the_time_or_the_run():
     timed failure, the whole run for a count; and the failure's mark inside it."""
     from plclab.grade.criteria_limits import Limit as CLimit
     from plclab.viz.layout import Lane, Layout, Verdict
-    from plclab.viz.recording import Recording, checked_span, failure_states
+    from plclab.viz.recording import Recording
     from plclab.viz.series import Series
+    from plclab.viz.view import checked_span, failure_states
 
     lane = Lane("PUMP", Series("PUMP", [0.0, 100.0], [0, 1], "bool", ""), "out", "%QX0.0")
     rec = Recording(layout=Layout(lanes=[lane]))
