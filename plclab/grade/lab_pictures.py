@@ -188,6 +188,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="a mistake that passes the visible scenarios: check it again with "
                     "the hidden ones (the instructor's view)")
     ap.add_argument("--wait", type=float, default=10.0, help="seconds to let the viewer draw")
+    ap.add_argument("--resume", action="store_true",
+                    help="skip the mistakes OUT/index.tsv already has (a run stopped midway)")
     ap.add_argument("--sheets", action="store_true",
                     help="also contact sheets of the viewer screenshots (OUT/sheets/)")
     ap.add_argument("--sheets-only", action="store_true",
@@ -205,7 +207,13 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     with display(not ns.no_viewer) as env, \
             tempfile.TemporaryDirectory(prefix="plclab-pics-") as tmp:
+        done = set()
+        if ns.resume and index.exists():
+            done = {tuple(line.split("\t")[:2])
+                    for line in index.read_text(encoding="utf-8").splitlines()}
         for lab, program in mistakes(ns.labs.split(",") if ns.labs else None, ns.first):
+            if (lab, program.name) in done:
+                continue
             tag = f"{lab}--{program.stem.replace('_', '-')}"
             png, rrd = out / f"{tag}.png", Path(tmp) / f"{tag}.rrd"
             text = check(lab, program, png, rrd)
