@@ -129,6 +129,9 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
         rec.focus = first.time
     if first is not None:  # its lane above the I/O lanes, its line in every plot
         rec.failed, rec.checks = first, _checks_text(first.limits, trace, lay)
+        faults = [e.time for e in trace.events if e.kind == "plc_fault" and start <= e.time]
+        if first.time is None and faults:  # failed over the run: the PLC stopped here
+            rec.focus = min(faults)
 
     def inside(t: float) -> bool:
         return start - 1e-9 <= t <= end + 1e-9

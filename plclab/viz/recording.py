@@ -36,7 +36,7 @@ from typing import Any
 from ..errors import PlcError
 from .layout import Layout, slug
 from .plant_view import Picture, Shape
-from .view import CHECKED, FAILED_LANE, blueprint, failure_line, failure_states
+from .view import CHECKED, FAILED_LANE, blueprint, failure_line, failure_states, failure_time
 
 MARK = (230, 40, 40)
 OFF_LANE = (45, 45, 45)
@@ -279,7 +279,10 @@ class RrdWriter:
             return
         self._failure_drawn = True
         rr, st, v = self.rr, self.stream, rec.failed
+        t = failure_time(rec)
         when = f" at {v.time:.2f} s" if v.time is not None else " over the run"
+        if v.time is None and t is not None:
+            when += f" (PLC fault at {t:.2f} s)"
         checks = f"checks {rec.checks} ({v.name})" if rec.checks else f"checked by {v.name}"
         st.log(FAILED_LANE, rr.StateConfiguration(
             values=["w", "f", "0"], labels=[checks, f"FAILED {v.name}{when}", ""],
@@ -287,7 +290,7 @@ class RrdWriter:
         times, states = failure_states(rec)
         rr.send_columns(FAILED_LANE, indexes=[rr.TimeColumn("sim_time", duration=times)],
                         columns=rr.StateChange.columns(state=states), recording=st)
-        if v.time is None:
+        if t is None:
             return
         for p in rec.layout.plots:
             if not p.lines:
@@ -297,7 +300,7 @@ class RrdWriter:
             st.log(entity, rr.SeriesLines(names=f"FAILED {v.name}{when}", colors=[MARK],
                                           widths=[1.5], aggregation_policy="MinMax"),
                    static=True)
-            ts, vs = failure_line(p, v.time)
+            ts, vs = failure_line(p, t)
             rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=ts)],
                             columns=rr.Scalars.columns(scalars=vs), recording=st)
 

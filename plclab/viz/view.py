@@ -44,12 +44,18 @@ def checked_span(rec: Any) -> tuple[float, float]:
     return a, b
 
 
+def failure_time(rec: Any) -> float | None:
+    """Where the first failure is marked: its criterion's time, else (a failure over the
+    run) the moment every view shows, the first PLC fault (``rec.focus``), else None."""
+    return rec.failed.time if rec.failed.time is not None else rec.focus
+
+
 def failure_states(rec: Any) -> tuple[list[float], list[str]]:
     """The changes of the first-failure lane: ``w`` over the checked span, ``f`` (1 % of the
     run wide) at the failure, ``0`` elsewhere."""
     a, b = rec.span()
     w0, w1 = checked_span(rec)
-    t = rec.failed.time
+    t = failure_time(rec)
     width = max(0.01 * (b - a), 1e-3)
     cuts = sorted({w0, w1, *(() if t is None else (t, t + width))})
 
@@ -129,6 +135,8 @@ def blueprint(rec: Any) -> Any:
             at = rrb.TimeRangeBoundary.absolute(seconds=rec.focus)
             kw["time_ranges"] = rrb.VisibleTimeRange("sim_time", start=at, end=at)
             name = f"plant at the first failure, t = {rec.focus:.2f} s"
+            if rec.failed is not None and rec.failed.time is None:  # failed over the run
+                name = f"plant when the PLC stopped, t = {rec.focus:.2f} s"
         right.append(rrb.Spatial2DView(origin="/plant", name=name, visual_bounds=(
             rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0))), **kw))
         rshares.append(3.0)

@@ -285,6 +285,9 @@ def test_checked_span_is_the_window_the_time_or_the_run():
     assert checked_span(rec) == (0.0, 100.0)
     rec.failed = Verdict("over the run", False, None, limits=[])
     assert failure_states(rec) == ([0.0, 100.0], ["w", "0"])  # no mark without a time
+    rec.focus = 1.22  # ... unless the PLC stopped (a watchdog fault): marked there
+    times, states = failure_states(rec)
+    assert times == pytest.approx([0.0, 1.22, 2.22, 100.0]) and states == ["w", "f", "w", "0"]
 
 
 def test_checks_name_addresses_as_the_lab_does():
