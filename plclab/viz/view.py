@@ -44,6 +44,18 @@ def checked_span(rec: Any) -> tuple[float, float]:
     return a, b
 
 
+def view_span(rec: Any) -> tuple[float, float]:
+    """The time span the plots and lanes show at open: the run's, after a failure reaching
+    ``END_MARGIN`` past its end, and as far before its start when the failure is in its
+    first ``END_MARGIN`` (a failure at t = 0.02 s is not hidden under the axis)."""
+    a, b = rec.view_span or rec.span()
+    if rec.failed is None:
+        return a, b
+    m = END_MARGIN * (b - a)
+    t = failure_time(rec)
+    return (a - m if t is not None and t < a + m else a), b + m
+
+
 def failure_time(rec: Any) -> float | None:
     """Where the first failure is marked: its criterion's time, else (a failure over the
     run) the moment every view shows, the first PLC fault (``rec.focus``), else None."""
@@ -93,9 +105,7 @@ def blueprint(rec: Any) -> Any:
     import rerun.blueprint.components as rrbc
 
     lay = rec.layout
-    span = rec.view_span or rec.span()
-    if rec.failed is not None:  # a failure at the end of the run: its mark stays in view
-        span = (span[0], span[1] + END_MARGIN * (span[1] - span[0]))
+    span = view_span(rec)
     whole = rrb.TimeAxis(view_range=rrb.TimeRange(
         start=rrb.TimeRangeBoundary.absolute(seconds=span[0]),
         end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range

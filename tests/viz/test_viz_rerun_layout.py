@@ -310,3 +310,19 @@ def test_checks_name_addresses_as_the_lab_does():
     assert text == ("always: TO_GO + IN_BOX == 6 and %MW40 < 3; "
                     "IN_BOX = number of bottle events")
     assert "%MW4 +" in _checks_text(lims, Tr())  # without a layout: as the criterion says
+
+
+def test_view_keeps_a_failure_at_either_end_inside():
+    """A failure at the first or last moment of the run is not drawn on the plot's edge."""
+    from plclab.viz.layout import Lane, Layout, Verdict
+    from plclab.viz.recording import Recording
+    from plclab.viz.series import Series
+    from plclab.viz.view import view_span
+
+    lane = Lane("PUMP", Series("PUMP", [0.0, 100.0], [0, 1], "bool", ""), "out", "%QX0.0")
+    rec = Recording(layout=Layout(lanes=[lane]))
+    assert view_span(rec) == (0.0, 100.0)  # passed: the run as it is
+    rec.failed = Verdict("counts", False, 100.0)
+    assert view_span(rec) == (0.0, 102.0)
+    rec.failed = Verdict("chatter", False, 0.02)
+    assert view_span(rec) == (-2.0, 102.0)
