@@ -148,6 +148,10 @@ class RrdWriter:
         if stream is None and spawn:
             self.stream.spawn()
         elif stream is None and path is not None:
+            folder = Path(path).resolve().parent
+            if not folder.is_dir():  # rerun's own error is a RuntimeError with a traceback
+                raise PlcError("PLC3014", f"cannot write {path}: the folder {folder} does not "
+                               "exist; create it or give a path in an existing folder")
             self.stream.save(str(path))
         self.stream.send_recording_name(info.title())
         self._failure_drawn = False

@@ -326,3 +326,13 @@ def test_view_keeps_a_failure_at_either_end_inside():
     assert view_span(rec) == (0.0, 102.0)
     rec.failed = Verdict("chatter", False, 0.02)
     assert view_span(rec) == (-2.0, 102.0)
+
+
+def test_recording_into_a_missing_folder_is_a_plc_error(recs, tmp_path):
+    from plclab.errors import PlcError
+    from plclab.viz.recording import write_rrd
+
+    with pytest.raises(PlcError) as e:
+        write_rrd(recs[0], tmp_path / "no" / "such" / "run.rrd")
+    assert e.value.code == "PLC3014" and "does not exist" in str(e.value)
+    assert not (tmp_path / "no").exists()
