@@ -117,7 +117,10 @@ def blueprint(rec: Any) -> Any:
     lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if has_lanes else 0.0
     plot_px = max(MIN_PLOT_PX, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
     if lay.plots and has_lanes:  # plots keep their 200 px; the lanes scroll in the rest
-        lanes_px = max(MIN_LANES_PX, min(lanes_px, SCREEN_PX - plot_px * len(lay.plots)))
+        # (a pane of one or two lanes, heater-pid's first-failure lane alone, keeps its size:
+        # the rest of the column goes to the plots, not to black)
+        lanes_px = max(min(MIN_LANES_PX, lanes_px),
+                       min(lanes_px, SCREEN_PX - plot_px * len(lay.plots)))
     for p in lay.plots:
         kw: dict[str, Any] = {}
         if p.y_range is not None:

@@ -336,3 +336,27 @@ def test_recording_into_a_missing_folder_is_a_plc_error(recs, tmp_path):
         write_rrd(recs[0], tmp_path / "no" / "such" / "run.rrd")
     assert e.value.code == "PLC3014" and "does not exist" in str(e.value)
     assert not (tmp_path / "no").exists()
+
+
+def test_a_lone_failure_lane_leaves_the_column_to_the_plots():
+    """heater-pid has no BOOL I/O: its lanes' pane holds the first-failure lane alone and
+    keeps that size (not 170 px of black); with many lanes the pane takes what is left."""
+    from plclab.viz.layout import Lane, Layout, Line, Plot, Verdict
+    from plclab.viz.recording import Recording
+    from plclab.viz.series import Series
+    from plclab.viz.view import LANE_PX, MIN_LANES_PX, MIN_PLOT_PX, blueprint
+
+    def left_shares(lanes: int) -> list[float]:
+        s = Series("T", [0.0, 10.0], [1.0, 2.0], "real", "degC")
+        plots = [Plot(k, k, [Line("T", s, (0, 0, 255))]) for k in ("degC", "%")]
+        ls = [Lane(f"B{k}", Series(f"B{k}", [0.0, 10.0], [0, 1], "bool", ""), "in", "")
+              for k in range(lanes)]
+        rec = Recording(layout=Layout(plots=plots, lanes=ls))
+        rec.failed = Verdict("heats up", False, 5.0)
+        return blueprint(rec).root_container.contents[0].row_shares
+
+    alone = left_shares(0)
+    assert alone[-1] == LANE_PX + 56.0 < MIN_LANES_PX  # one lane, its own height
+    assert min(alone[:-1]) > 400  # the plots get the rest
+    many = left_shares(30)
+    assert many[-1] >= MIN_LANES_PX and min(many[:-1]) >= MIN_PLOT_PX
