@@ -462,11 +462,11 @@ def lab_check(ns: argparse.Namespace) -> int:
             if ns.rrd and not ns.spawn:  # one file per scenario, the first failure first
                 from plclab.viz.from_trace import write_lab_rrd
 
-                from .criteria import criterion_limits
+                from .feedback import run_limits
 
-                print(write_lab_rrd(lab, again, ns.rrd,
+                print(write_lab_rrd(lab, again, ns.rrd,  # with the counts of each run
                                     ", ".join(Path(f).name for f in ns.files), ns,
-                                    limits={c.name: criterion_limits(c) for c in lab.criteria}))
+                                    limits=run_limits(lab)))
                 ns.rrd = None
             for line in run_exports(again.traces[name], ns):
                 print(line)

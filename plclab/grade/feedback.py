@@ -93,6 +93,21 @@ def thresholds_of(crit: Any) -> dict[str, list[tuple[float, str]]]:
 _COUNTING = ("event_count", "counter", "max_switchings", "no_chatter")
 
 
+def run_limits(lab: Any) -> Any:
+    """What each criterion of ``lab`` checks on one run, for the rerun recordings of ``lab
+    check --rrd``: ``f(criterion, trace)``, its :func:`criterion_limits` with the run's
+    counts (:func:`counted_limits`: a counter's plant count as a dashed line on its row)."""
+    from .criteria import criterion_limits
+
+    crits = {c.name: c for c in lab.criteria}
+
+    def limits(name: str, trace: Any) -> list[Any]:
+        crit = crits.get(name)
+        return [] if crit is None else counted_limits(trace, crit, criterion_limits(crit))
+
+    return limits
+
+
 def counted_limits(trace: Any, crit: Any, limits: list[Any]) -> list[Any]:
     """``limits`` with what the run counted beside what the criterion expects, for the
     criteria that count (events, switchings, a program's counter): ``exactly 90 bottle passed

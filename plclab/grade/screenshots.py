@@ -51,10 +51,10 @@ def record(lab_id: str, program: Path, path: Path) -> tuple[float, str]:
     lab = load_lab(lab_id)
     src, _ = read_submission(str(program))
     res = grade_sources(lab, src, student="", keep_traces=True)
-    from .criteria import criterion_limits
+    from .feedback import run_limits
 
     recs = lab_recordings(lab, res, program.name,  # the criteria's limits drawn, as lab check
-                          limits={c.name: criterion_limits(c) for c in lab.criteria})
+                          limits=run_limits(lab))
     first = recs[0]  # a failing scenario if there is one
     # rerun 0.41's viewer opens only one recording of a file through its catalog (the
     # default); the shot shows the first scenario, so write that one
@@ -86,8 +86,11 @@ def viewer(rrd: Path, env: dict[str, str], timeout: float = 120.0):
     from rerun.experimental import ViewerClient
 
     port = free_port()
+    # ``python -m rerun_cli`` starts the viewer binary as its child: a session of its own, so
+    # that stopping it stops the viewer too (terminating only the wrapper left the viewer
+    # drawing on, one more software renderer per shot)
     proc = subprocess.Popen([sys.executable, "-m", "rerun_cli", str(rrd), "--port", str(port),
-                             "--window-size", "1600x1000"],
+                             "--window-size", "1600x1000"], start_new_session=True,
                             env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         client, state = None, None
@@ -103,11 +106,21 @@ def viewer(rrd: Path, env: dict[str, str], timeout: float = 120.0):
             time.sleep(1.0)
         yield client, state
     finally:
-        proc.terminate()
+        stop_group(proc)
+
+
+def stop_group(proc: subprocess.Popen) -> None:
+    """Stop a process started with ``start_new_session`` and every process of its group."""
+    import signal
+
+    for sig, wait in ((signal.SIGTERM, 10), (signal.SIGKILL, 5)):
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, sig)
         try:
-            proc.wait(10)
+            proc.wait(wait)
+            return
         except subprocess.TimeoutExpired:
-            proc.kill()
+            continue
 
 
 @contextlib.contextmanager

@@ -9,6 +9,7 @@ For example::
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -92,6 +93,11 @@ def recording(trace, names: list[str] | None = None, t0: float | None = None,
     first = first_failed(info.verdicts)
     if first is not None and first.time is not None:  # the moment every view shows
         rec.focus = first.time
+    if first is not None:  # its lane above the I/O lanes, its line in every plot
+        rec.failed, rec.checks = first, _checks_text(first.limits, trace, lay)
+        faults = [e.time for e in trace.events if e.kind == "plc_fault" and start <= e.time]
+        if first.time is None and faults:  # failed over the run: the PLC stopped here
+            rec.focus = min(faults)
 
     def inside(t: float) -> bool:
         return start - 1e-9 <= t <= end + 1e-9
@@ -264,7 +270,7 @@ def _summary(lay: Layout, rec: Recording, chat: list[Event], counts, trace) -> s
     for v in failed:
         when = f"at {_t(v.time)}" if v.time is not None else "over the run"
         lines.append(f"- **FAILED {when}: {v.name}**: {v.detail}")
-        checks = _checks_text(v.limits, trace)
+        checks = _checks_text(v.limits, trace, lay)
         if checks:
             lines.append(f"  - checks: {checks}")
     for e in chat:
@@ -307,19 +313,39 @@ def first_failed(verdicts):
     return min(failed, key=lambda v: (v.time is None, v.time or 0.0))
 
 
-def _checks_text(limits, trace) -> str:
+def _checks_text(limits, trace, lay: Layout | None = None) -> str:
     """What a criterion checks, in words with units (the same description the diagrams
-    draw)."""
+    draw); with ``lay``, an address the criterion names (``%MW0``, also inside a rule,
+    ``%MW4 + %MW0 == 6``) is named as the lab's I/O table and the view name it (``GOOD``)."""
     parts = []
     units = trace.meta.get("units", {}) or {}
+    names: dict[str, str] = {}
+    if lay is not None:
+        names = {addr: name for name, addr, _ in lay.info.io if addr.startswith("%")}
     for lim in limits:
         try:
             col = trace.resolve(lim.signal) if lim.signal and lim.signal in trace else ""
         except PlcError:
             col = ""
+        if lay is not None and lim.signal.startswith("%") and lim.signal not in names:
+            shown = _shown_name(lay, col) or _shown_name(lay, lim.signal)
+            if shown:
+                names[lim.signal] = shown
         who = f"{lim.signal} " if lim.signal and lim.kind not in ("window", "time") else ""
         parts.append(f"{who}{lim.text(units.get(col, ''))}")
-    return "; ".join(dict.fromkeys(parts))
+    text = "; ".join(dict.fromkeys(parts))
+    return re.sub(r"%[A-Za-z]+\d+(?:\.\d+)?", lambda m: names.get(m.group(0), m.group(0)), text)
+
+
+def _shown_name(lay: Layout, key: str) -> str:
+    """The name a lane or plot line shows for a signal or column, '' when none does."""
+    if not key:
+        return ""
+    lane = lay.lane_of(key)
+    if lane is not None:
+        return lane.label
+    hit = lay.plot_of(key)
+    return hit[1].label if hit is not None else ""
 
 
 def _t(t: float | None) -> str:
@@ -334,12 +360,16 @@ def lab_recordings(lab, result, student_file: str = "", fps: float = 10.0,
     """One recording per scenario of a graded run, named by lab, scenario, file and score,
     each with its own layout and time span; scenarios with a failed criterion first, in
     the lab's order (the first is the one every picture opens on). ``limits`` maps a
-    criterion to what it checks (drawn on its signals)."""
+    criterion to what it checks (drawn on its signals), or is ``f(criterion, trace)`` for
+    limits that depend on the run (a counter's plant count)."""
     from .layout import run_info
 
     recs = []  # each its own layout: a signal flat in this scenario tells nothing here
     for name, trace in result.traces.items():
-        info = run_info(lab, result, name, student_file, limits)
+        lims = limits
+        if callable(limits):
+            lims = {c.name: limits(c.name, trace) for c in lab.criteria}
+        info = run_info(lab, result, name, student_file, lims)
         recs.append(recording(trace, names, fps=fps, info=info, scan=scan))
     recs.sort(key=lambda r: first_failed(r.layout.info.verdicts) is None)
     return recs

@@ -6,7 +6,10 @@ Layout of a recording (see :mod:`plclab.viz.layout` for what is chosen, ADR 0014
   labelled dashed lines under ``/plots/<unit>/limits/<name>``; chatter, faults and failed
   criteria as red crosses under ``/plots/<unit>/markers/<what>``;
 * ``/digital/<NN>_<name>``: one state lane per program input/output in the lab's order (ON/off),
-  ``/digital/<NN>_<name>/<what>`` a red segment where that signal chattered or failed;
+  ``/digital/<NN>_<name>_<what>`` a red segment where that signal chattered or failed;
+* ``/digital/00_first_failure``: the lane above them all, after a failure: what the first
+  failed criterion checks over the span it looks at (teal, "checks ...") and a red mark at
+  the failure; ``/plots/<unit>/failed_at`` a red vertical line at that moment in every plot;
 * ``/summary``: Markdown, most important first (faults, failed criteria with their time,
   chatter, passed criteria, relay operation counts);
 * ``/events``: the timed warnings and verdicts; ``/details/relays`` every relay operation
@@ -16,6 +19,7 @@ Layout of a recording (see :mod:`plclab.viz.layout` for what is chosen, ADR 0014
 * time lines ``sim_time`` (seconds) and ``scan`` (scan number).
 
 Signals are logged column-wise with ``rr.send_columns``, so a whole run is written at once.
+The default view (the blueprint) and the geometry of the failure's marks: :mod:`plclab.viz.view`.
 """
 
 from __future__ import annotations
@@ -32,17 +36,10 @@ from typing import Any
 from ..errors import PlcError
 from .layout import Layout, slug
 from .plant_view import Picture, Shape
+from .view import CHECKED, FAILED_LANE, blueprint, failure_line, failure_states, failure_time
 
 MARK = (230, 40, 40)
 OFF_LANE = (45, 45, 45)
-SCREEN_PX = 930.0
-"""Height of the left column on a 1000-pixel screen: lanes get their height, plots the rest."""
-LANE_PX = 34.0
-"""Height of one state lane in the viewer."""
-MIN_PLOT_PX = 200.0
-"""A plot is never squashed below this height, whatever the number of lanes."""
-MIN_LANES_PX = 170.0
-"""The lanes' pane is at least this high (it scrolls when the lanes need more)."""
 MARK_COLORS = {"fails": (230, 40, 40), "chatter": (255, 140, 0), "plc fault": (200, 0, 200),
                "fault injected": (120, 120, 255)}
 """One colour per marker kind (red: a failed criterion); other warnings are yellow."""
@@ -89,6 +86,8 @@ class Recording:
     frame_times: Sequence[float] = ()
     view_span: tuple[float, float] | None = None  # time range at open (default: the run's)
     focus: float | None = None  # the moment of the first failure: the time selection at open
+    failed: Any = None  # the first failed criterion (a layout.Verdict): its lane and line
+    checks: str = ""  # what that criterion checks, in words with units
 
     @property
     def title(self) -> str:
@@ -101,6 +100,7 @@ class Recording:
         if not ts:
             return 0.0, 1.0
         return float(min(t[0] for t in ts)), float(max(t[-1] for t in ts))
+
 
 
 def mark_color(kind: str) -> tuple[int, int, int]:
@@ -128,95 +128,6 @@ def lane_name(lane: Any) -> str:
     return f"{lane.label} {addr}".strip()
 
 
-def blueprint(rec: Recording) -> Any:
-    """The default view: plots and lanes on the left, plant, summary and events on the right."""
-    import rerun.blueprint as rrb
-
-    lay = rec.layout
-    span = rec.view_span or rec.span()
-    whole = rrb.TimeAxis(view_range=rrb.TimeRange(
-        start=rrb.TimeRangeBoundary.absolute(seconds=span[0]),
-        end=rrb.TimeRangeBoundary.absolute(seconds=span[1])))  # linked axes ignore view_range
-    left: list[Any] = []
-    shares: list[float] = []
-    marks = len({m.lane + m.kind for m in rec.markers if m.lane})  # a marker lane each
-    lanes_px = LANE_PX * (len(lay.lanes) + marks) + 56.0 if lay.lanes else 0.0
-    plot_px = max(MIN_PLOT_PX, (SCREEN_PX - lanes_px) / max(len(lay.plots), 1))
-    if lay.plots and lay.lanes:  # plots keep their 200 px; the lanes scroll in the rest
-        lanes_px = max(MIN_LANES_PX, min(lanes_px, SCREEN_PX - plot_px * len(lay.plots)))
-    for p in lay.plots:
-        kw: dict[str, Any] = {}
-        if p.y_range is not None:
-            kw["axis_y"] = rrb.ScalarAxis(range=p.y_range)
-        # no legend over the data: the lines and the dashed limits are named in the title
-        left.append(rrb.TimeSeriesView(origin=f"/plots/{p.key}", name=plot_title(p),
-                                       plot_legend=rrb.PlotLegend(visible=False),
-                                       axis_x=whole, **kw))
-        shares.append(plot_px)
-    if lay.lanes:
-        left.append(rrb.StateTimelineView(origin="/digital", name="digital I/O, in the lab's "
-                                          "order (ON = coloured)", time_view=whole))
-        shares.append(lanes_px)
-    if len(rec.scan_durations_us):
-        left.append(rrb.TimeSeriesView(origin="/scan", name="scan duration [us]",
-                                       axis_x=whole))
-        shares.append(140.0)
-    right: list[Any] = []
-    rshares: list[float] = []
-    if rec.picture is not None:
-        x0, y0, x1, y1 = rec.picture.bounds
-        kw = {}
-        name = "plant"
-        if rec.focus is not None:  # the plant at the failure, wherever the cursor is
-            at = rrb.TimeRangeBoundary.absolute(seconds=rec.focus)
-            kw["time_ranges"] = rrb.VisibleTimeRange("sim_time", start=at, end=at)
-            name = f"plant at the first failure, t = {rec.focus:.2f} s"
-        right.append(rrb.Spatial2DView(origin="/plant", name=name, visual_bounds=(
-            rrb.VisualBounds2D(x_range=(x0, x1), y_range=(-y1, -y0))), **kw))
-        rshares.append(3.0)
-    right.append(rrb.TextDocumentView(origin="/summary", name="summary: most important first"))
-    rshares.append(2.0)
-    right.append(rrb.TextLogView(origin="/events", name="events"))
-    rshares.append(1.5)
-    cols: list[Any] = []
-    if left:
-        cols.append(rrb.Vertical(*left, row_shares=shares))
-    cols.append(rrb.Vertical(*right, row_shares=rshares))
-    return rrb.Blueprint(
-        rrb.Horizontal(*cols, column_shares=[3, 2] if left else None),
-        rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"),
-        rrb.TimePanel(state="collapsed", timeline="sim_time", play_state="paused",
-                      **_selection(rec)))
-
-
-def _selection(rec: Recording) -> dict[str, Any]:
-    """At open, after a failure: the moments before and just after the first failure
-    selected on the time line (rerun 0.41's blueprint has no initial time cursor: a playing
-    loop over the selection would start from the cursor at 0, so the plant view shows the
-    failure's moment by its own visible time range instead)."""
-    if rec.focus is None:
-        return {}
-    import rerun.blueprint as rrb
-
-    a, b = rec.span()
-    w = max((b - a) * 0.02, 1.0)
-    return {"time_selection": rrb.components.AbsoluteTimeRange(
-        min=_ns(max(a, rec.focus - w)), max=_ns(min(b, rec.focus + w / 2)))}
-
-
-def _ns(seconds: float) -> int:
-    return int(round(seconds * 1e9))
-
-
-def plot_title(p: Any) -> str:
-    """A plot's title names its lines and its dashed limits (the legend is hidden, so that
-    it covers no data): ``LEVEL [m] · dashed: LS1 0.5, LS2 1.5, rim 2``."""
-    if not p.limits:
-        return p.title
-    lims = ", ".join(f"{lim.label} {lim.value:g}" for lim in
-                     sorted(p.limits, key=lambda x: x.value))
-    return f"{p.title} · dashed: {lims}"
-
 
 class RrdWriter:
     """A rerun stream for one run: the layout is fixed by the first :class:`Recording`, then
@@ -237,8 +148,13 @@ class RrdWriter:
         if stream is None and spawn:
             self.stream.spawn()
         elif stream is None and path is not None:
+            folder = Path(path).resolve().parent
+            if not folder.is_dir():  # rerun's own error is a RuntimeError with a traceback
+                raise PlcError("PLC3014", f"cannot write {path}: the folder {folder} does not "
+                               "exist; create it or give a path in an existing folder")
             self.stream.save(str(path))
         self.stream.send_recording_name(info.title())
+        self._failure_drawn = False
         props = {k: v for k, v in (("lab", info.lab), ("scenario", info.scenario),
                                    ("file", info.student_file)) if v}
         if info.score is not None:
@@ -357,7 +273,40 @@ class RrdWriter:
                           list(rec.scan_durations_us)[start:], start)
         self.rows = n
         self._events(rec)
+        self._first_failure(rec)
         self._plant_frames(rec)
+
+    def _first_failure(self, rec: Recording) -> None:
+        """The lane above the I/O lanes (the span the failed criterion checks, the failure
+        in red) and a red vertical line at the failure in every plot."""
+        if rec.failed is None or self._failure_drawn:
+            return
+        self._failure_drawn = True
+        rr, st, v = self.rr, self.stream, rec.failed
+        t = failure_time(rec)
+        when = f" at {v.time:.2f} s" if v.time is not None else " over the run"
+        if v.time is None and t is not None:
+            when += f" (PLC fault at {t:.2f} s)"
+        checks = f"checks {rec.checks} ({v.name})" if rec.checks else f"checked by {v.name}"
+        st.log(FAILED_LANE, rr.StateConfiguration(
+            values=["w", "f", "0"], labels=[checks, f"FAILED {v.name}{when}", ""],
+            colors=[CHECKED, MARK, (0, 0, 0, 0)], visible=[True, True, False]), static=True)
+        times, states = failure_states(rec)
+        rr.send_columns(FAILED_LANE, indexes=[rr.TimeColumn("sim_time", duration=times)],
+                        columns=rr.StateChange.columns(state=states), recording=st)
+        if t is None:
+            return
+        for p in rec.layout.plots:
+            if not p.lines:
+                continue
+            entity = f"/plots/{p.key}/failed_at"
+            # MinMax: the two points share a pixel column, averaged they would be a dot
+            st.log(entity, rr.SeriesLines(names=f"FAILED {v.name}{when}", colors=[MARK],
+                                          widths=[1.5], aggregation_policy="MinMax"),
+                   static=True)
+            ts, vs = failure_line(p, t)
+            rr.send_columns(entity, indexes=[rr.TimeColumn("sim_time", duration=ts)],
+                            columns=rr.Scalars.columns(scalars=vs), recording=st)
 
     def _events(self, rec: Recording) -> None:
         rr, st = self.rr, self.stream

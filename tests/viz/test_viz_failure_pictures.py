@@ -273,7 +273,7 @@ def test_rerun_plot_has_the_failed_criterions_limit_and_the_failure_selected(tmp
     from plclab.trace import Trace
     from plclab.viz.from_trace import recording
     from plclab.viz.layout import RunInfo, Verdict
-    from plclab.viz.recording import blueprint, plot_title
+    from plclab.viz.view import blueprint, plot_title
 
     t = np.arange(0.0, 60.0, 0.1)
     trace = Trace(t, {"TEMP": 45 + t / 5}, {"TEMP": "float"},

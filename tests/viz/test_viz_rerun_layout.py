@@ -4,6 +4,7 @@
 import pytest
 
 import plclab.sim as sim
+from plclab.viz.recording import lane_entity
 
 rr = pytest.importorskip("rerun")
 
@@ -226,3 +227,136 @@ def test_scenarios_failing_first_each_with_its_own_layout_and_application(recs):
     assert len(apps) == len(recs)  # the viewer keeps a blueprint per application
     spans = {r.span() for r in recs}
     assert all(a == 0.0 for a, _ in spans)
+
+
+def test_first_failure_lane_and_line_read_back(tank_lab, graded, tmp_path):
+    """The first failed criterion: a lane above the I/O lanes (what it checks, teal, then
+    red at the failure) and a red vertical line at the failure time in every plot."""
+    from plclab.grade.criteria import criterion_limits
+    from plclab.viz.from_trace import lab_recordings
+    from plclab.viz.recording import FAILED_LANE, write_rrd
+
+    rec = lab_recordings(tank_lab, graded, "follows_ls1.st", fps=2.0, limits={
+        c.name: criterion_limits(c) for c in tank_lab.criteria})[0]  # as lab check --rrd
+    v = rec.failed
+    assert v is not None and not v.passed and v.time is not None
+    assert v.time == min(x.time for x in rec.layout.info.verdicts
+                         if not x.passed and x.time is not None)  # the first failure
+    path = write_rrd(rec, tmp_path / "first.rrd")
+    rid = rec.layout.info.recording_id()
+    labels = str(_columns(path, rid, FAILED_LANE, "StateConfiguration:labels"))
+    assert f"FAILED {v.name} at {v.time:.2f} s" in labels
+    assert "checks PUMP fewer than 4 switchings in 20 s" in labels  # the criterion's words
+    states = [x for row in _columns(path, rid, FAILED_LANE, "StateChange:state")
+              for x in (row or [])]
+    assert states[:2] == ["w", "f"]  # the checked span, then the failure
+    assert FAILED_LANE < min(lane_entity(k, ln.label)  # sorts above every lane
+                             for k, ln in enumerate(rec.layout.lanes))
+    for p in rec.layout.plots:
+        vals = [x for row in _columns(path, rid, f"/plots/{p.key}/failed_at", "Scalars:scalars")
+                for x in (row or [])]
+        lo, hi = min(x for x in vals if x == x), max(x for x in vals if x == x)
+        assert hi > lo  # a vertical line, not a dot
+        assert all(lo <= lim.value <= hi for lim in p.limits)  # across the limits too
+
+
+def test_checked_span_is_the_window_the_time_or_the_run():
+    """What the first-failure lane spans: a settling window, the allowed time before a
+    timed failure, the whole run for a count; and the failure's mark inside it."""
+    from plclab.grade.criteria_limits import Limit as CLimit
+    from plclab.viz.layout import Lane, Layout, Verdict
+    from plclab.viz.recording import Recording
+    from plclab.viz.series import Series
+    from plclab.viz.view import checked_span, failure_states
+
+    lane = Lane("PUMP", Series("PUMP", [0.0, 100.0], [0, 1], "bool", ""), "out", "%QX0.0")
+    rec = Recording(layout=Layout(lanes=[lane]))
+    rec.failed = Verdict("settles", False, 70.0,
+                         limits=[CLimit("window", "T", "in the band from 60 s", t0=60.0)])
+    assert checked_span(rec) == (60.0, 100.0)
+    times, states = failure_states(rec)
+    assert list(zip(times, states, strict=True)) == [(60.0, "w"), (70.0, "f"), (71.0, "w"), (100.0, "0")]
+    rec.failed = Verdict("served", False, 45.5,
+                         limits=[CLimit("time", "G", "G within 5.5 s of R", 5.5)])
+    assert checked_span(rec) == (40.0, 45.5)
+    assert failure_states(rec)[1] == ["w", "f", "0"]
+    rec.failed = Verdict("no chatter", False, 18.5,
+                         limits=[CLimit("count", "PUMP", "fewer than 4 switchings", 4.0)])
+    assert checked_span(rec) == (0.0, 100.0)
+    rec.failed = Verdict("over the run", False, None, limits=[])
+    assert failure_states(rec) == ([0.0, 100.0], ["w", "0"])  # no mark without a time
+    rec.focus = 1.22  # ... unless the PLC stopped (a watchdog fault): marked there
+    times, states = failure_states(rec)
+    assert times == pytest.approx([0.0, 1.22, 2.22, 100.0]) and states == ["w", "f", "w", "0"]
+
+
+def test_checks_name_addresses_as_the_lab_does():
+    """What a failed criterion checks says the lab's names, also inside a rule; an address
+    the lab does not name stays as it is, and a longer address is not cut by a shorter."""
+    from plclab.grade.criteria_limits import Limit as CLimit
+    from plclab.viz.from_trace import _checks_text
+    from plclab.viz.layout import Layout, RunInfo
+
+    class Tr:
+        meta: dict = {}
+
+        def __contains__(self, name):
+            return False
+
+    lay = Layout(info=RunInfo(io=[("TO_GO", "%MW4", "INT"), ("IN_BOX", "%MW0", "INT")]))
+    lims = [CLimit("rule", "", "always: %MW4 + %MW0 == 6 and %MW40 < 3"),
+            CLimit("count", "%MW0", "= number of bottle events")]
+    text = _checks_text(lims, Tr(), lay)
+    assert text == ("always: TO_GO + IN_BOX == 6 and %MW40 < 3; "
+                    "IN_BOX = number of bottle events")
+    assert "%MW4 +" in _checks_text(lims, Tr())  # without a layout: as the criterion says
+
+
+def test_view_keeps_a_failure_at_either_end_inside():
+    """A failure at the first or last moment of the run is not drawn on the plot's edge."""
+    from plclab.viz.layout import Lane, Layout, Verdict
+    from plclab.viz.recording import Recording
+    from plclab.viz.series import Series
+    from plclab.viz.view import view_span
+
+    lane = Lane("PUMP", Series("PUMP", [0.0, 100.0], [0, 1], "bool", ""), "out", "%QX0.0")
+    rec = Recording(layout=Layout(lanes=[lane]))
+    assert view_span(rec) == (0.0, 100.0)  # passed: the run as it is
+    rec.failed = Verdict("counts", False, 100.0)
+    assert view_span(rec) == (0.0, 102.0)
+    rec.failed = Verdict("chatter", False, 0.02)
+    assert view_span(rec) == (-2.0, 102.0)
+
+
+def test_recording_into_a_missing_folder_is_a_plc_error(recs, tmp_path):
+    from plclab.errors import PlcError
+    from plclab.viz.recording import write_rrd
+
+    with pytest.raises(PlcError) as e:
+        write_rrd(recs[0], tmp_path / "no" / "such" / "run.rrd")
+    assert e.value.code == "PLC3014" and "does not exist" in str(e.value)
+    assert not (tmp_path / "no").exists()
+
+
+def test_a_lone_failure_lane_leaves_the_column_to_the_plots():
+    """heater-pid has no BOOL I/O: its lanes' pane holds the first-failure lane alone and
+    keeps that size (not 170 px of black); with many lanes the pane takes what is left."""
+    from plclab.viz.layout import Lane, Layout, Line, Plot, Verdict
+    from plclab.viz.recording import Recording
+    from plclab.viz.series import Series
+    from plclab.viz.view import LANE_PX, MIN_LANES_PX, MIN_PLOT_PX, blueprint
+
+    def left_shares(lanes: int) -> list[float]:
+        s = Series("T", [0.0, 10.0], [1.0, 2.0], "real", "degC")
+        plots = [Plot(k, k, [Line("T", s, (0, 0, 255))]) for k in ("degC", "%")]
+        ls = [Lane(f"B{k}", Series(f"B{k}", [0.0, 10.0], [0, 1], "bool", ""), "in", "")
+              for k in range(lanes)]
+        rec = Recording(layout=Layout(plots=plots, lanes=ls))
+        rec.failed = Verdict("heats up", False, 5.0)
+        return blueprint(rec).root_container.contents[0].row_shares
+
+    alone = left_shares(0)
+    assert alone[-1] == LANE_PX + 56.0 < MIN_LANES_PX  # one lane, its own height
+    assert min(alone[:-1]) > 400  # the plots get the rest
+    many = left_shares(30)
+    assert many[-1] >= MIN_LANES_PX and min(many[:-1]) >= MIN_PLOT_PX
