@@ -85,8 +85,7 @@ def check_out(out: Path) -> Path:
     return out
 
 
-def mkdocs_config(docs: Path, out: Path, nav: list[Any], lang: str = SOURCE,
-                  overrides: Path | None = None) -> dict[str, Any]:
+def mkdocs_config(docs: Path, out: Path, nav: list[Any], lang: str = SOURCE) -> dict[str, Any]:
     """mkdocs.yml as data: material theme without web fonts (the site works offline) in the
     edition's language, the search (lunr, in the page) stemming the edition's languages, the
     language switch to the same page of every edition, pages not in the nav listed as such."""
@@ -101,7 +100,7 @@ def mkdocs_config(docs: Path, out: Path, nav: list[Any], lang: str = SOURCE,
         "site_description": description,
         "docs_dir": str(docs), "site_dir": str(out), "use_directory_urls": True,
         "theme": {"name": "material", "font": False, "language": lang,
-                  "custom_dir": str(overrides or SITE_SOURCES / "overrides"),
+                  "custom_dir": str(SITE_SOURCES / "overrides"),
                   "features": ["navigation.sections", "navigation.top", "search.highlight"],
                   "palette": {"primary": "indigo"}},
         # alternate: true makes the header show the switch (site/overrides/partials/
@@ -158,19 +157,18 @@ def _generate(docs: Path, playground: bool, figures: bool, notebooks: bool, lang
     if playground and lang == SOURCE:
         core_zip(pg / "plclab-core.zip")
         copy_pyodide(docs / "pyodide")
-    untranslated = {tr("Notebooks"): pages.notebook_pages(docs, execute=notebooks),
-                    tr("Reference"): pages.reference_pages(docs),
-                    tr("Decisions"): pages.adr_pages(docs)}
+    notebook_nav = pages.notebook_pages(docs, execute=notebooks and lang == SOURCE)
+    if notebooks and english is not None:  # run once: the English pages with their outputs
+        shutil.copytree(english / "notebooks", docs / "notebooks", dirs_exist_ok=True)
+    reference_nav, adr_nav = pages.reference_pages(docs), pages.adr_pages(docs)
     if lang != SOURCE:
         for folder in ("notebooks", "reference", "adr"):
             for md in (docs / folder).rglob("*.md"):
                 md.write_text(pages.english_only(md.read_text("utf-8")), "utf-8")
     nav = [{tr("Home"): "index.md"}, {tr("Course"): course_nav},
            {tr("Playground"): "playground/index.md"}, {tr("Labs"): lab_nav},
-           {tr("Notebooks"): untranslated[tr("Notebooks")]},
-           {tr("Diagnostic codes"): pages.problem_pages(docs)},
-           {tr("Reference"): untranslated[tr("Reference")]},
-           {tr("Decisions"): untranslated[tr("Decisions")]}]
+           {tr("Notebooks"): notebook_nav}, {tr("Diagnostic codes"): pages.problem_pages(docs)},
+           {tr("Reference"): reference_nav}, {tr("Decisions"): adr_nav}]
     return nav, problems
 
 

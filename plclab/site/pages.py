@@ -168,22 +168,23 @@ def _glossary_translated(page: str) -> str:
     return "\n".join(out) + "\n"
 
 
-_QUIZ_KEYS: dict[tuple[str, str], str] = {}
-"""(chapter, item id) -> the answer as the page shows it, recomputed once for both editions."""
+_QUIZ_KEYS: dict[str, str] = {}
+"""An item's fields but its texts (the same in every edition, ADR 0066) -> the answer as the
+page shows it: each key is recomputed once for both editions."""
+_QUIZ_TEXTS = ("question", "choices", "explain", "unit")
 
 
-def _quiz_key(ch: Any, d: dict[str, Any]) -> str:
+def _quiz_key(d: dict[str, Any]) -> str:
     from plclab.course.quiz import evaluate_output, numeric_key
 
-    key = (ch.slug, str(d.get("id")))
+    key = json.dumps({k: v for k, v in d.items() if k not in _QUIZ_TEXTS}, sort_keys=True,
+                     default=str)
     if key not in _QUIZ_KEYS:
         if d["kind"] == "numeric":
             v = numeric_key(d)
             _QUIZ_KEYS[key] = str(int(v)) if v.is_integer() and abs(v) < 1e15 else f"{v:.6g}"
-        elif d["kind"] == "output":
-            _QUIZ_KEYS[key] = evaluate_output(d).strip()
         else:
-            _QUIZ_KEYS[key] = ""
+            _QUIZ_KEYS[key] = evaluate_output(d).strip()
     return _QUIZ_KEYS[key]
 
 
@@ -215,7 +216,7 @@ def quiz_page(ch: Any) -> tuple[str, int] | None:
             k = int(d["answer"])
             answer = f"{k}. {_md_cell(choices[k - 1])}"
         elif d["kind"] in ("numeric", "output"):
-            value = _quiz_key(ch, d)
+            value = _quiz_key(d)
             answer = f"`{value}`" if d["kind"] == "output" else decimal(value)
             if d.get("unit"):
                 answer += f" {d['unit']}"
