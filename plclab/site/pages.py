@@ -33,14 +33,16 @@ def localized(path: Path) -> Path:
 
 def english_only(text: str) -> str:
     """A page the edition has no translation of yet: the notice under its first heading (the
-    Russian edition keeps every page, so its links and its language switch never leave it)."""
+    Russian edition keeps every page, so its links and its language switch never leave it),
+    and out of the edition's search (its words are the English edition's to find)."""
     if language() == SOURCE:
         return text
     note = ["", '!!! note "' + tr("Not translated yet") + '"',
             "    " + tr("This page is not translated yet; its English text follows."), ""]
     lines = text.splitlines()
     at = next((i + 1 for i, line in enumerate(lines) if line.startswith("# ")), 0)
-    return "\n".join(lines[:at] + note + lines[at:]) + "\n"
+    return "\n".join(["---", "search:", "  exclude: true", "---", *lines[:at], *note,
+                      *lines[at:]]) + "\n"
 
 
 def write(path: Path, text: str) -> Path:

@@ -223,28 +223,10 @@ def test_the_language_switch_goes_to_the_same_page_of_the_other_edition(site, br
 def test_russian_search_finds_a_russian_word_on_its_chapter(site, browser, query, chapter):
     out, base, _ = site
     page, errors = open_page(browser, urljoin(base, "ru/"))
-    found = search(page, query, patience=60)
+    found = search(page, query, patience=150)  # the Russian index is built in the page
     assert chapter in found, found
     links = page.eval_on_selector_all(".md-search-result__link", "els => els.map(e => e.href)")
     assert links and all(h.startswith(urljoin(base, "ru/")) for h in links), links
-    assert errors == []
-
-
-def test_the_english_search_does_not_list_russian_pages(site, browser):
-    """Each edition searches its own pages: a Russian word is not in the English index."""
-    out, base, _ = site
-    page, errors = open_page(browser, base)
-    page.click("label.md-search__icon, .md-search__input", timeout=5000)
-    page.type("input.md-search__input", "TON")
-    page.wait_for_selector(".md-search-result__item")  # the index has loaded
-    page.fill("input.md-search__input", "")
-    page.type("input.md-search__input", "сторожевой")
-    # wait for the answer to this query (the TON results before it match neither)
-    page.wait_for_function("""() => /^No matching/.test(document.querySelector(
-        '.md-search-result__meta')?.textContent.trim() || '') || [...document.querySelectorAll(
-        '.md-search-result mark')].some(m => m.textContent.toLowerCase().startsWith('сторож'))""")
-    links = page.eval_on_selector_all(".md-search-result__link", "els => els.map(e => e.href)")
-    assert not any("/ru/" in h for h in links), links  # at most the English glossary
     assert errors == []
 
 

@@ -155,6 +155,7 @@ def test_untranslated_sections_say_so_in_russian(editions):
     for page in ("adr/index.md", "reference/blocks.md", "notebooks/index.md"):
         text = (ru / page).read_text("utf-8")
         assert "Эта страница ещё не переведена" in text, page
+        assert text.startswith("---\nsearch:\n  exclude: true\n---\n")  # not in ru search
     glossary = (ru / "course" / "glossary.md").read_text("utf-8")
     assert glossary.startswith("# Глоссарий") and "| **PLC** |" in glossary
 
