@@ -208,9 +208,10 @@ def quiz_page(ch: Any) -> tuple[str, int] | None:
                     n=ch.number), ""]
     for n, d in enumerate(found, 1):
         lines += [f"**{n}.** " + " ".join(d["question"].split()), ""]
+        lang = Path(str(d.get("filename", "quiz.st"))).suffix[1:] or "st"  # st, il, ld
         for name in ("program", "starter"):
             if d.get(name):
-                lines += ["```st", str(d[name]).strip("\n"), "```", ""]
+                lines += [f"```{lang}", str(d[name]).strip("\n"), "```", ""]
         choices = [str(c) for c in d.get("choices", [])]
         lines += [f"{i}. {_md_cell(c)}" for i, c in enumerate(choices, 1)]
         answer = ""

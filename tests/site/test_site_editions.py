@@ -104,6 +104,10 @@ def test_quizzes_in_both_languages_with_the_same_answers(editions):
             if key(a):
                 assert key(b) and key(a).group(1).replace(".", ",") == key(b).group(1), slug
         assert "](quiz.md)" in (ru / "course" / slug / "index.md").read_text("utf-8")
+    # a program is shown in its own language (quiz.ld is ladder text, not ST)
+    ladder = (en / "course" / "06-ladder" / "quiz.md").read_text("utf-8")
+    assert "```ld\n" in ladder and "```il\n" in (en / "course" / "08-instruction-list" /
+                                                 "quiz.md").read_text("utf-8")
     page = (ru / "course" / "10-timers-counters" / "quiz.md").read_text("utf-8")
     assert page.startswith("# Тест: Таймеры") and '??? question "Ответ"' in page
     assert "Почему TON — функциональный блок" in page
