@@ -4,8 +4,10 @@ same Session in CPython; and, with the program in a Web Worker (issue 39), how l
 own thread is ever blocked while a 200,000-iteration loop runs (the longest gap of a 10 ms
 timer in the page) and how long Stop takes to answer (the goals: 100 ms and 200 ms).
 
-Run ``python benchmarks/site_bench.py [--site DIR] [--repeat N] [--seconds S]``. Without
-``--site`` the site is built first (into a temporary folder). Each load is a fresh browser
+Run ``python benchmarks/site_bench.py [--site DIR] [--repeat N] [--seconds S] [--edition ru]``.
+Without ``--site`` the site is built first (into a temporary folder) and the build's time is
+printed; ``--build-only`` stops there (the build time of both editions, ADR 0071), and
+``--edition ru`` measures the Russian edition's playground (the same Python, its own texts). Each load is a fresh browser
 context (an empty cache: what a first visit costs); the table prints the median and the range.
 Needs Debian's Chromium at /usr/bin/chromium and Playwright.
 """
@@ -56,7 +58,8 @@ def responsiveness(page) -> tuple[float, float]:
     return page.evaluate("window.__gap"), stop_ms
 
 
-def browser_numbers(base: str, repeat: int, seconds: float) -> tuple[list[float], list[float]]:
+def browser_numbers(base: str, repeat: int, seconds: float,
+                    edition: str = "") -> tuple[list[float], list[float]]:
     from playwright.sync_api import sync_playwright
 
     loads, rates = [], []
@@ -66,7 +69,7 @@ def browser_numbers(base: str, repeat: int, seconds: float) -> tuple[list[float]
             ctx = browser.new_context()
             page = ctx.new_page()
             t0 = time.perf_counter()
-            page.goto(base + "playground/")
+            page.goto(base + edition + "playground/")
             page.wait_for_function("document.getElementById('pg-status').dataset.state=='ready'",
                                    timeout=180000)
             loads.append(time.perf_counter() - t0)
@@ -85,21 +88,30 @@ def main() -> None:
     ap.add_argument("--site", type=Path, help="a site built by plclab site build")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--seconds", type=float, default=600.0, help="virtual time per run")
+    ap.add_argument("--edition", choices=["en", "ru"], default="en",
+                    help="whose playground page to load (default en)")
+    ap.add_argument("--build-only", action="store_true", help="build the site, print its time")
     ns = ap.parse_args()
     site = ns.site
     if site is None:
         site = Path(tempfile.mkdtemp(prefix="plclab-site-bench-")) / "site"
         t = time.perf_counter()
-        build(site)
-        print(f"site built in {time.perf_counter() - t:.1f} s")
+        rep = build(site)
+        print(f"site built in {time.perf_counter() - t:.1f} s: {rep.pages} pages, "
+              f"{sum(1 for _ in site.rglob('index.html'))} HTML pages "
+              f"({sum(1 for _ in (site / 'ru').rglob('index.html'))} of them Russian)")
+    if ns.build_only:
+        return
     server, base = serve_in_thread(site)
     try:
-        loads, rates = browser_numbers(base, ns.repeat, ns.seconds)
+        loads, rates = browser_numbers(base, ns.repeat, ns.seconds,
+                                       "" if ns.edition == "en" else f"{ns.edition}/")
     finally:
         server.shutdown()
     native = cpython_scans_per_second(ns.seconds)
     med = statistics.median(rates)
-    print(f"\nplayground, {ns.repeat} cold loads, tank program on the tank plant, 20 ms scans")
+    print(f"\nplayground ({ns.edition}), {ns.repeat} cold loads, tank program on the tank plant, "
+          "20 ms scans")
     print(f"{'':34}{'median':>12}{'min':>12}{'max':>12}")
     print(f"{'load: page -> ready (s)':34}{statistics.median(loads):12.2f}{min(loads):12.2f}"
           f"{max(loads):12.2f}")

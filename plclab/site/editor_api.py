@@ -98,6 +98,7 @@ def word_end(text: str, line: int, col: int) -> int:
 def lint(text: str, language: str = "st") -> list[dict[str, Any]]:
     """What ``plclab check`` reports (the language server's diagnostics), each with the range
     the editor underlines: ``line``, ``col``, ``end`` (the column after it; 0 = no place)."""
+    from plclab.i18n import message
     from plclab.lsp.documents import location_in
 
     a = _analysis(text, language)
@@ -105,8 +106,8 @@ def lint(text: str, language: str = "st") -> list[dict[str, Any]]:
     for d in a.diagnostics:
         loc = location_in(d, a.filename)
         line, col = (loc.line, max(loc.col, 1)) if loc is not None and loc.line > 0 else (0, 0)
-        out.append({"code": d.code, "message": d.message, "severity": d.severity,
-                    "line": line, "col": col if line else 0,
+        out.append({"code": d.code, "message": message(d.code, d.message),
+                    "severity": d.severity, "line": line, "col": col if line else 0,
                     "end": word_end(text, line, col) if line else 0})
     out.sort(key=lambda d: (d["severity"] != "error", d["line"], d["col"]))
     return out

@@ -218,6 +218,7 @@ def check_lab(text: str, language: str, lab: dict[str, Any]) -> dict[str, Any]:
     """Compile the program, run every visible scenario of ``lab`` (from :func:`lab_json_from_dict`)
     and judge its criteria. Returns diagnostics, one result per (scenario, criterion) and the
     points earned out of the points judged."""
+    from plclab.i18n import message
     from plclab.project import loads
 
     try:
@@ -226,15 +227,15 @@ def check_lab(text: str, language: str, lab: dict[str, Any]) -> dict[str, Any]:
     except PlcError as e:
         diags = list(getattr(e, "diagnostics", None) or [])
         return {"diagnostics": [diagnostic_dict(d) for d in diags] or
-                [{"code": e.code, "message": e.message, "severity": "error", "line": 0,
-                  "col": 0}], "results": [], "points": 0, "of": 0}
+                [{"code": e.code, "message": message(e.code, e.message), "severity": "error",
+                  "line": 0, "col": 0}], "results": [], "points": 0, "of": 0}
     results: list[dict[str, Any]] = []
     for scen in lab["scenarios"]:
         try:
             rows = run_scenario(plc, lab, scen)
         except PlcError as e:
             results.append({"scenario": scen["name"], "criterion": "runs", "passed": False,
-                            "why": f"{e.code}: {e.message}", "points": 0})
+                            "why": f"{e.code}: {message(e.code, e.message)}", "points": 0})
             continue
         passed: dict[str, bool] = {}
         for c in lab["criteria"]:
@@ -242,7 +243,8 @@ def check_lab(text: str, language: str, lab: dict[str, Any]) -> dict[str, Any]:
             if scen["name"] not in names:
                 continue
             if c["check"] not in CHECKS:
-                results.append({"scenario": scen["name"], "criterion": c["name"], "passed": None,
+                results.append({"scenario": scen["name"], "criterion": c.get("label", c["name"]),
+                                "passed": None,
                                 "why": f"a {c['check']} check runs only in `plclab lab check`",
                                 "points": c.get("points", 1)})
                 continue
@@ -252,7 +254,8 @@ def check_lab(text: str, language: str, lab: dict[str, Any]) -> dict[str, Any]:
             else:
                 ok, why = judge(c["check"], c, rows)
             passed[c["name"]] = ok
-            results.append({"scenario": scen["name"], "criterion": c["name"], "passed": ok,
+            results.append({"scenario": scen["name"], "criterion": c.get("label", c["name"]),
+                            "passed": ok,
                             "why": why if ok else f"{c.get('message', why)} ({why})",
                             "points": c.get("points", 1)})
     judged = [r for r in results if r["passed"] is not None]

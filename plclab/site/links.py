@@ -10,6 +10,8 @@ Each page knows the repository file it came from (:data:`SOURCES` is filled by
 'course/09-structured-text/index.md'
 >>> site_page("labs/tank-two-position/")
 'labs/tank-two-position/index.md'
+>>> site_page("labs/tank-two-position/README.ru.md"), site_page("course/02-scan-cycle/chapter.ru.md")
+('labs/tank-two-position/index.md', 'course/02-scan-cycle/index.md')
 >>> site_page("plclab/cli.py") is None
 True
 """
@@ -40,10 +42,11 @@ def site_page(target: str) -> str | None:
     does not publish it."""
     t = target.rstrip("/")
     rules = [
-        (r"course/([\w-]+)/chapter\.md", r"course/\1/index.md"),
-        (r"course(?:/README\.md)?", "course/index.md"),
-        (r"labs/([\w-]+)(?:/README\.md)?", r"labs/\1/index.md"),
-        (r"labs(?:/README\.md)?", "labs/index.md"),
+        # a translated file (chapter.ru.md) is its edition's page of the same name
+        (r"course/([\w-]+)/chapter(?:\.[a-z]{2})?\.md", r"course/\1/index.md"),
+        (r"course(?:/README(?:\.[a-z]{2})?\.md)?", "course/index.md"),
+        (r"labs/([\w-]+)(?:/README(?:\.[a-z]{2})?\.md)?", r"labs/\1/index.md"),
+        (r"labs(?:/README(?:\.[a-z]{2})?\.md)?", "labs/index.md"),
         (r"notebooks/([\w-]+)\.ipynb", r"notebooks/\1.md"),
         (r"notebooks(?:/README\.md)?", "notebooks/index.md"),
         (r"docs/blocks\.md", "reference/blocks.md"),

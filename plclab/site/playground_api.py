@@ -71,10 +71,21 @@ def make_plant(name: str, params: dict[str, Any] | None = None) -> Any:
     raise PlcError("PLC3044", f"the playground has no plant {name!r}; choose tank or motor")
 
 
+def set_language(lang: str) -> None:
+    """The page's language (``en``, ``ru``): plclab's messages in the worker speak it (the
+    worker calls this once, from the ``lang`` of the page; ADR 0071)."""
+    from plclab.i18n import set_language as choose
+
+    choose(lang)
+
+
 def diagnostic_dict(d: Diagnostic) -> dict[str, Any]:
-    """A diagnostic as the page shows it: code, message, severity, line and column."""
+    """A diagnostic as the page shows it: code, message (in the page's language: the
+    problem catalogue's), severity, line and column."""
+    from plclab.i18n import message
+
     loc = d.location
-    return {"code": d.code, "message": d.message, "severity": d.severity,
+    return {"code": d.code, "message": message(d.code, d.message), "severity": d.severity,
             "line": loc.line if loc else 0, "col": loc.col if loc else 0}
 
 

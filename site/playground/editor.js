@@ -7,6 +7,8 @@
 window.PlcEditor = function (opts) {
   const ta = opts.textarea, layer = opts.layer, gutter = opts.gutter, tip = opts.tip;
   const info = opts.info, list = opts.list;
+  // the page's texts in its language (playground.js's t); English when none is given
+  const t = opts.t || ((s, p) => s.replace(/\{(\w+)\}/g, (all, k) => (p && k in p ? p[k] : all)));
   const st = { spans: [], marks: [], asking: false, again: false, hoverTimer: 0, caretTimer: 0,
                items: [], active: 0, from: 0, tipHold: false, hideTimer: 0, seq: 0 };
   const esc = (s) => String(s).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;",
@@ -158,7 +160,7 @@ window.PlcEditor = function (opts) {
       const p = caret(), text = ta.value;
       const parts = await describe(p, true);
       if (ta.value !== text) return;
-      info.innerHTML = parts.length ? `<span class="pg-info-where">line ${p.line}:${p.col}</span> ` +
+      info.innerHTML = parts.length ? `<span class="pg-info-where">${esc(t("line {line}:{col}", { line: p.line, col: p.col }))}</span> ` +
         parts.join(" · ") : "";
     }, 350);
   }

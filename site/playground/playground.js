@@ -4,6 +4,21 @@
 // Step and Stop always work, and a call that takes too long is ended by the page (ADR 0028).
 "use strict";
 (function () {
+  // The page's language: the English edition has no ui.js; another edition's ui.js (made by
+  // plclab site build from plclab/locale/<lang>/ui.toml) sets window.PLCLAB_UI to its language
+  // and the texts of every t(text) below. The worker gets the language too, so that plclab's
+  // messages come from the problem catalogue of that language (ADR 0071).
+  const UI = window.PLCLAB_UI || { lang: "en", texts: {} };
+  const LANG = UI.lang;
+  function t(text, params) {
+    return (UI.texts[text] || text).replace(/\{(\w+)\}/g, (all, k) =>
+      (params && k in params ? String(params[k]) : all));
+  }
+  // a number in prose: a decimal comma where the language writes one (never in ST)
+  const num = (x, digits) => (LANG === "ru" ? x.toFixed(digits).replace(".", ",") : x.toFixed(digits));
+  // the scripts, the worker and Python are the English edition's (one copy for every edition)
+  const SCRIPTS = new URL(".", document.currentScript.src);
+  const SEVERITY = { error: t("error"), warning: t("warning") };
   const $ = (id) => document.getElementById(id);
   const el = {
     lang: $("pg-lang"), plant: $("pg-plant"), lab: $("pg-lab"), code: $("pg-code"),
@@ -27,7 +42,7 @@
 
   // ------------------------------------------------------------------ the worker
   function startWorker() {
-    const w = new Worker("worker.js");
+    const w = new Worker(new URL("worker.js", SCRIPTS));
     state.worker = w;
     state.pending = new Map();
     w.onmessage = (e) => {
@@ -40,8 +55,8 @@
       state.pending.delete(m.id);
       if (m.type === "failed") p.reject(new Error(m.error)); else p.resolve(m);
     };
-    w.onerror = (e) => { setStatus("failed", "The playground's worker failed: " + e.message); };
-    return call("init").then((m) => { state.example = m.example; return m; });
+    w.onerror = (e) => { setStatus("failed", t("The playground's worker failed: {error}", { error: e.message })); };
+    return call("init", { lang: LANG }).then((m) => { state.example = m.example; return m; });
   }
   function call(type, data) {
     const id = state.nextId++;
@@ -62,9 +77,9 @@
   setInterval(() => {  // the wall-clock budget, separate from the PLC's own watchdog
     const budget = state.busy && BUDGET_MS[state.busy.type];
     if (budget && performance.now() - state.lastHeard > budget) {
-      restart(`Stopped: one call of the program took more than ${budget / 1000} s of real ` +
-        "time (loops that are long for a browser). This is the page's limit, not the PLC's " +
-        "watchdog (PLC2003 counts the PLC's own, virtual, time). Python restarts.");
+      restart(t("Stopped: one call of the program took more than {seconds} s of real time " +
+        "(loops that are long for a browser). This is the page's limit, not the PLC's watchdog " +
+        "(PLC2003 counts the PLC's own, virtual, time). Python restarts.", { seconds: budget / 1000 }));
     }
   }, 250);
   function restart(message) {
@@ -74,7 +89,7 @@
     setStatus("stopped", message);
     const wasReady = ready;
     ready = startWorker().then(() => {
-      if (el.status.dataset.state === "stopped") el.status.textContent += " Ready again.";
+      if (el.status.dataset.state === "stopped") el.status.textContent += t(" Ready again.");
       buttons();
     });
     return wasReady;
@@ -86,10 +101,10 @@
     const answered = await Promise.race([busy.promise.then(() => true, () => true),
       new Promise((r) => setTimeout(() => r(false), STOP_GRACE_MS))]);
     if (!answered) {
-      restart(`Stopped at t = ${state.t.toFixed(2)} s. Python was inside one long scan, so it ` +
-        "restarts (a few seconds).");
+      restart(t("Stopped at t = {t} s. Python was inside one long scan, so it restarts (a few " +
+        "seconds).", { t: num(state.t, 2) }));
     } else {
-      setStatus("stopped", `Stopped at t = ${state.t.toFixed(2)} s after ${state.scans} scans.`);
+      setStatus("stopped", t("Stopped at t = {t} s after {scans} scans.", { t: num(state.t, 2), scans: state.scans }));
     }
   }
 
@@ -97,7 +112,7 @@
   const problemHref = (code) => `../problems/${encodeURIComponent(code)}/`;
   const editor = window.PlcEditor({
     textarea: el.code, layer: el.layer, gutter: el.gutter, tip: el.tip, info: el.info,
-    list: el.complete, problemHref, language: () => el.lang.value,
+    list: el.complete, problemHref, language: () => el.lang.value, t,
     ask: (type, data) => (state.example ? call(type, data) : Promise.reject(new Error("loading"))),
   });
   function renumber() { editor.refresh(); }
@@ -165,8 +180,9 @@
       li.className = "pg-" + d.severity;
       li.dataset.code = d.code;
       li.dataset.line = d.line;
-      const where = d.line ? `line ${d.line}${d.col ? ":" + d.col : ""}: ` : "";
-      li.innerHTML = `${escapeHtml(where)}${escapeHtml(d.severity)} ` +
+      const where = !d.line ? "" : d.col ? t("line {line}:{col}: ", { line: d.line, col: d.col })
+        : t("line {line}: ", { line: d.line });
+      li.innerHTML = `${escapeHtml(where)}${escapeHtml(SEVERITY[d.severity] || d.severity)} ` +
         `<a href="${problemHref(d.code)}">${escapeHtml(d.code)}</a>: ` +
         withCode(d.message);
       li.tabIndex = 0;
@@ -210,7 +226,7 @@
     if (!names.length) {
       g.fillStyle = "#c3ccd8"; g.font = "14px sans-serif";
       g.fillText(el.plant.value === "none" && state.compiled
-        ? "Tick a variable's trend box below to draw it here." : "", 16, h / 2);
+        ? t("Tick a variable's trend box below to draw it here.") : "", 16, h / 2);
       return;
     }
     const left = Math.min(130, Math.max(70, w * 0.18)), lane = (h - 24) / Math.max(names.length, 1);
@@ -239,8 +255,8 @@
       g.stroke();
     });
     g.fillStyle = "#c3ccd8";
-    g.fillText(`${t0.toFixed(0)} s`, left, h - 6);
-    g.fillText(`${t1.toFixed(1)} s`, w - 60, h - 6);
+    g.fillText(t("{t} s", { t: num(t0, 0) }), left, h - 6);
+    g.fillText(t("{t} s", { t: num(t1, 1) }), w - 60, h - 6);
   }
   function switchings(name) {
     let n = 0;
@@ -255,8 +271,9 @@
     const out = el.plant.value === "tank" ? "PUMP" : "K1";
     const last = state.rows[state.rows.length - 1];
     if (!(out in last)) return;
-    el.summary.textContent = `t = ${last.t.toFixed(1)} s, ${state.scans} scans: ` +
-      `${out} switched ${switchings(out)} times, now ${last[out] ? "ON" : "OFF"}.`;
+    el.summary.textContent = t("t = {t} s, {scans} scans: {signal} switched {n} times, now {state}.",
+      { t: num(last.t, 1), scans: state.scans, signal: out, n: switchings(out),
+        state: last[out] ? t("ON") : t("OFF") });
     el.summary.dataset.switchings = switchings(out);
   }
   function addRows(rows) {
@@ -269,12 +286,12 @@
   }
   function onClock(m) {
     state.t = m.t;
-    clock(m.behind ? " (the program runs slower than the clock)" : "");
+    clock(m.behind ? t(" (the program runs slower than the clock)") : "");
   }
   function clock(note) {
     const live = state.busy && state.busy.type === "live";
-    el.clock.textContent = `t = ${state.t.toFixed(2)} s` +
-      (live ? `, live at ${el.speed.value}x` : "") + (note || "");
+    el.clock.textContent = t("t = {t} s", { t: num(state.t, 2) }) +
+      (live ? t(", live at {speed}x", { speed: el.speed.value }) : "") + (note || "");
   }
 
   // ------------------------------------------------------------------ watch panel
@@ -294,29 +311,29 @@
     el.watch.innerHTML = "";
     if (!list.length) return;
     const head = document.createElement("tr");
-    head.innerHTML = "<th>variable</th><th>type</th><th>value</th><th>new value</th>" +
-      "<th></th><th>trend</th>";
+    head.innerHTML = [t("variable"), t("type"), t("value"), t("new value"), "", t("trend")].map(
+      (h) => `<th>${escapeHtml(h)}</th>`).join("");
     el.watch.appendChild(head);
     for (const w of list) {
       const tr = document.createElement("tr");
       tr.dataset.path = w.path;
       tr.innerHTML = `<td>${escapeHtml(w.path)}</td><td>${escapeHtml(w.type)}</td>` +
         "<td class=\"pg-value\"></td><td><input class=\"pg-new\" size=\"8\" " +
-        `aria-label="new value of ${escapeHtml(w.path)}"></td><td></td><td></td>`;
+        `aria-label="${escapeHtml(t("new value of {path}", { path: w.path }))}"></td><td></td><td></td>`;
       const input = tr.querySelector(".pg-new");
       const cells = tr.querySelectorAll("td");
       const write = document.createElement("button");
-      write.textContent = "Write"; write.className = "md-button pg-small";
+      write.textContent = t("Write"); write.className = "md-button pg-small";
       write.onclick = () => writeVar(w.path, input.value, "write");
       const force = document.createElement("button");
-      force.textContent = "Force"; force.className = "md-button pg-small";
+      force.textContent = t("Force"); force.className = "md-button pg-small";
       force.onclick = () => (tr.classList.contains("pg-forced")
         ? unforceVar(w.path) : writeVar(w.path, input.value, "force"));
       cells[4].append(write, force);
       if (w.trendable) {
         const box = document.createElement("input");
         box.type = "checkbox"; box.checked = state.trend.includes(w.path);
-        box.setAttribute("aria-label", `draw ${w.path} in the diagram`);
+        box.setAttribute("aria-label", t("draw {path} in the diagram", { path: w.path }));
         box.onchange = () => setTrend(w.path, box.checked);
         cells[5].appendChild(box);
       }
@@ -345,8 +362,8 @@
     for (const b of [el.compile, el.run60, el.live, el.check, el.tests, el.step]) b.disabled = !up || busy;
     el.pause.disabled = !busy || !["run", "live"].includes(state.busy && state.busy.type);
     el.stop.disabled = !busy;
-    el.live.textContent = "Run live";
-    el.pause.textContent = state.paused ? "Resume" : "Pause";
+    el.live.textContent = t("Run live");
+    el.pause.textContent = state.paused ? t("Resume") : t("Pause");
   }
   async function compile() {
     if (state.busy) await stop();
@@ -360,9 +377,10 @@
     state.watch = []; showWatch(m.watch);
     showDiagnostics(m.diagnostics);
     draw(); summarise(); clock();
-    const where = el.plant.value === "none" ? "it runs without a plant" : `the ${el.plant.value} is at t = 0`;
-    setStatus(m.ok ? "compiled" : "error", m.ok ? `Compiled in ${m.ms.toFixed(0)} ms; ${where}.`
-      : "The program does not compile: see the messages below (click one to go to its line).");
+    const where = el.plant.value === "none" ? t("it runs without a plant")
+      : t("the {plant} is at t = 0", { plant: el.plant.value });
+    setStatus(m.ok ? "compiled" : "error", m.ok ? t("Compiled in {ms} ms; {where}.", { ms: num(m.ms, 0), where })
+      : t("The program does not compile: see the messages below (click one to go to its line)."));
     return m.ok;
   }
   function endOfRun(m, seconds, ms) {
@@ -370,12 +388,13 @@
     showDiagnostics(m.diagnostics); summarise(); clock();
     const fault = m.ok ? "" : faultText(m.diagnostics);
     if (fault) {
-      setStatus("fault", `Stopped at t = ${m.t.toFixed(2)} s (${m.scans} scans) by a run-time ` +
-        `fault: ${fault}`);
+      setStatus("fault", t("Stopped at t = {t} s ({scans} scans) by a run-time fault: {fault}",
+        { t: num(m.t, 2), scans: m.scans, fault }));
     } else if (m.stopped) {
-      setStatus("stopped", `Stopped at t = ${m.t.toFixed(2)} s after ${m.scans} scans.`);
+      setStatus("stopped", t("Stopped at t = {t} s after {scans} scans.", { t: num(m.t, 2), scans: m.scans }));
     } else {
-      setStatus("ran", `Ran ${seconds} s of virtual time (${m.scans} scans) in ${ms.toFixed(0)} ms.`);
+      setStatus("ran", t("Ran {seconds} s of virtual time ({scans} scans) in {ms} ms.",
+        { seconds: LANG === "ru" ? String(seconds).replace(".", ",") : seconds, scans: m.scans, ms: num(ms, 0) }));
     }
   }
   async function run(seconds) {
@@ -400,15 +419,15 @@
     if (m.row) addRows([m.row]);
     state.t = m.t; state.scans = m.scans; showWatch(m.watch); draw(); summarise(); clock();
     if (!m.ok) showDiagnostics(m.diagnostics);  // the run-time fault, at its line
-    setStatus(m.ok ? "stepped" : "fault", m.ok ? `One scan: t = ${m.t.toFixed(2)} s.`
-      : `Stopped by a run-time fault: ${faultText(m.diagnostics)}`);
+    setStatus(m.ok ? "stepped" : "fault", m.ok ? t("One scan: t = {t} s.", { t: num(m.t, 2) })
+      : t("Stopped by a run-time fault: {fault}", { fault: faultText(m.diagnostics) }));
   }
   async function pause() {
     state.paused = !state.paused;
     await call(state.paused ? "pause" : "resume");
     buttons();
     setStatus(state.paused ? "paused" : "running", state.paused
-      ? `Paused at t = ${state.t.toFixed(2)} s.` : "Running.");
+      ? t("Paused at t = {t} s.", { t: num(state.t, 2) }) : t("Running."));
   }
   el.compile.onclick = compile;
   el.run60.onclick = () => run(60);
@@ -420,8 +439,8 @@
   el.share.onclick = async () => {
     const url = shareLink();
     history.replaceState(null, "", url);
-    try { await navigator.clipboard.writeText(url); setStatus(el.status.dataset.state, "The link to this program is copied (and in the address bar)."); }
-    catch (e) { setStatus(el.status.dataset.state, "The link to this program is in the address bar."); }
+    try { await navigator.clipboard.writeText(url); setStatus(el.status.dataset.state, t("The link to this program is copied (and in the address bar).")); }
+    catch (e) { setStatus(el.status.dataset.state, t("The link to this program is in the address bar.")); }
   };
 
   function motorButtons() {
@@ -430,7 +449,7 @@
     for (const [name, pressed] of MOTOR_BUTTONS) {
       const b = document.createElement("button");
       b.className = "md-button"; b.textContent = name;
-      b.title = `hold to press ${name} (mouse, touch, Space or Enter)`;
+      b.title = t("hold to press {name} (mouse, touch, Space or Enter)", { name });
       const down = () => call("press", { signal: name, value: pressed });
       const up = () => call("release", { signal: name });
       b.addEventListener("pointerdown", down); b.addEventListener("pointerup", up);
@@ -449,16 +468,17 @@
   // ------------------------------------------------------------------ lab check and tests
   async function checkLab() {
     const lab = state.labs[el.lab.value];
-    if (!lab) { setStatus("ready", "Choose a lab first."); return null; }
+    if (!lab) { setStatus("ready", t("Choose a lab first.")); return null; }
     if (state.busy) await stop();
     state.rows = []; draw(); el.summary.textContent = ""; el.testOut.textContent = "";
-    setStatus("checking", `Checking against ${lab.title}...`);
+    setStatus("checking", t("Checking against {title}...", { title: lab.title }));
     state.compiledAt = state.edits;
     let res;
     try { res = await busyCall("check", { code: el.code.value, lang: el.lang.value, lab }, "check"); }
     catch (e) { return null; }
     showDiagnostics(res.diagnostics);
-    el.results.innerHTML = "<tr><th>scenario</th><th>criterion</th><th>result</th><th>points</th></tr>";
+    el.results.innerHTML = "<tr>" + [t("scenario"), t("criterion"), t("result"), t("points")].map(
+      (h) => `<th>${escapeHtml(h)}</th>`).join("") + "</tr>";
     for (const r of res.results) {
       const tr = document.createElement("tr");
       tr.className = r.passed === null ? "pg-skip" : r.passed ? "pg-pass" : "pg-fail";
@@ -466,8 +486,9 @@
         `<td>${withCode(r.why)}</td><td>${r.passed ? r.points : 0}</td>`;
       el.results.appendChild(tr);
     }
-    setStatus("checked", `${lab.title}: ${res.points} of ${res.of} points in the visible ` +
-      `scenarios (${(res.ms / 1000).toFixed(1)} s). The grader's hidden scenarios may find more.`);
+    setStatus("checked", t("{title}: {points} of {of} points in the visible scenarios ({seconds} s). " +
+      "The grader's hidden scenarios may find more.", { title: lab.title, points: res.points,
+        of: res.of, seconds: num(res.ms / 1000, 1) }));
     return res;
   }
   async function runTests() {
@@ -481,7 +502,8 @@
     el.testOut.textContent = res.summary ? res.lines.concat([res.summary]).join("\n") : "";
     el.testOut.dataset.failed = res.failed;
     setStatus(res.summary ? "tested" : "error", res.summary
-      ? `TEST blocks: ${res.summary}.` : "The program does not compile: see the messages below.");
+      ? t("TEST blocks: {summary}.", { summary: res.summary })
+      : t("The program does not compile: see the messages below."));
     return res;
   }
   el.check.onclick = checkLab;
@@ -527,7 +549,7 @@
       const seen = asked.expect.filter((c) => codes.includes(c));
       if (seen.length) {
         setStatus(el.status.dataset.state, el.status.textContent +
-          ` This example makes the mistake ${seen.join(", ")} on purpose.`);
+          t(" This example makes the mistake {codes} on purpose.", { codes: seen.join(", ") }));
       }
     }
     const detail = { shown, plant: el.plant.value, codes, expect: asked.expect,
@@ -549,7 +571,7 @@
   async function start() {
     const t0 = performance.now();
     const asked = fromHash();
-    const labs = fetch("labs.json").then((r) => r.json());
+    const labs = fetch("labs.json").then((r) => r.json());  // the edition's (its language)
     ready = startWorker();
     state.labs = await labs;
     for (const [id, lab] of Object.entries(state.labs)) {
@@ -565,15 +587,15 @@
     buttons();
     if (asked.code) await openExample(asked);
     if (!["fault", "error", "tested"].includes(el.status.dataset.state)) {
-      setStatus("ready", `Ready: Python and plclab loaded in ${(state.loadMs / 1000).toFixed(1)} s.`);
+      setStatus("ready", t("Ready: Python and plclab loaded in {seconds} s.", { seconds: num(state.loadMs / 1000, 1) }));
     }
   }
   const started = start().catch((e) => {
-    setStatus("failed", "The playground could not start: " + e);
+    setStatus("failed", t("The playground could not start: {error}", { error: String(e) }));
     throw e;
   });
   window.addEventListener("resize", draw);
   // for the browser tests and the benchmark
   window.plclabPlayground = { ready: started, state, compile, run, checkLab, runTests, stop,
-                              stepOnce, shareLink, call, editor };
+                              stepOnce, shareLink, call, editor, lang: LANG };
 })();

@@ -27,6 +27,7 @@ async function init(msg) {
   api = py.pyimport("plclab.site.playground_api");
   labApi = py.pyimport("plclab.site.lab_check");
   editorApi = py.pyimport("plclab.site.editor_api");
+  api.set_language(msg.lang || "en");  // plclab's messages in the page's language
   reply(msg.id, "ready", { example: api.TANK_EXAMPLE, loadMs: performance.now() - t0 });
 }
 

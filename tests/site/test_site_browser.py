@@ -88,12 +88,16 @@ def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(
     page.on("console", lambda m: errors.append(f"{page.url}: {m.text}")
             if m.type == "error" else None)
     page.on("pageerror", lambda e: errors.append(f"{page.url}: {e}"))
+    langs = set()
     for rel in paths:
-        if rel.startswith("playground/"):
+        if rel.startswith(("playground/", "ru/playground/")):
             continue  # loads Python: its own test below
         url = urljoin(base, rel[: -len("index.html")])
         resp = page.goto(url)
         assert resp.status == 200, url
+        lang = page.get_attribute("html", "lang")  # each edition's pages speak its language
+        assert lang == ("ru" if rel.startswith("ru/") else "en"), url
+        langs.add(lang)
         for href in page.eval_on_selector_all("a[href]", "els => els.map(e => e.href)"):
             u = urlparse(href)
             if u.netloc == urlparse(base).netloc:
@@ -101,7 +105,7 @@ def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(
         for src in page.eval_on_selector_all("img[src]", "els => els.map(e => e.src)"):
             seen_links.add(src)
     page.close()
-    assert errors == []
+    assert errors == [] and langs == {"en", "ru"}
     broken = []
     for link in sorted(seen_links):
         target = out / urlparse(link).path.lstrip("/")
@@ -110,10 +114,11 @@ def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(
     assert broken == []
 
 
-def search(page, query):
-    """Type ``query`` into the site's search and return the result list's text."""
+def search(page, query, patience=15):
+    """Type ``query`` into the site's search and return the result list's text (``patience``
+    tries of 2 s for the index to load: the Russian one, with its stemmer, takes longer)."""
     page.click("label.md-search__icon, .md-search__input", timeout=5000)
-    for _ in range(15):  # the search index loads in a web worker: type again until it answers
+    for _ in range(patience):  # the search index loads in a web worker: type until it answers
         page.fill("input.md-search__input", "")
         page.type("input.md-search__input", query)
         try:
@@ -179,6 +184,124 @@ def test_playground_runs_the_tank_for_60_s_and_shows_the_pump_switching(site, br
     assert int(page.get_attribute("#pg-summary", "data-switchings")) >= 2
     assert "now OFF" in summary  # switched on at the start, off at LS2
     page.screenshot(path=str(shots / "playground.png"), full_page=True)
+    assert errors == []
+
+
+def test_the_language_switch_goes_to_the_same_page_of_the_other_edition(site, browser):
+    """English -> Russian -> English by the header's switch, on a chapter, a quiz, a lab, a
+    code's page and the playground: each time the same page in the other language, and every
+    link of a Russian page but the switch's stays in the Russian edition."""
+    out, base, _ = site
+    for path in ("course/12-control/", "course/12-control/quiz/", "labs/tank-two-position/",
+                 "problems/PLC0113/", "playground/"):
+        page, errors = open_page(browser, urljoin(base, path))
+        assert page.get_attribute("html", "lang") == "en"
+        for lang, url in (("ru", urljoin(base, "ru/" + path)), ("en", urljoin(base, path))):
+            page.hover(".md-header__option .md-select")
+            page.click(f"a.plclab-edition[hreflang={lang}]")
+            page.wait_for_url(url)  # only the click changes the address
+            page.wait_for_load_state("load")
+            assert page.get_attribute("html", "lang") == lang
+            title = page.inner_text("h1")
+            assert bool(re.search("[А-Яа-яЁё]", title)) is (lang == "ru") or \
+                path.startswith("problems/") and lang == "en", (url, title)
+            if lang == "ru":
+                hrefs = page.eval_on_selector_all(
+                    "a[href]:not(.plclab-edition)", "els => els.map(e => e.href)")
+                here = [h for h in hrefs if urlparse(h).netloc == urlparse(base).netloc]
+                assert here and all(h.startswith(urljoin(base, "ru/")) for h in here), \
+                    [h for h in here if not h.startswith(urljoin(base, "ru/"))]
+        page.close()
+        assert errors == [] or path == "playground/", errors  # the playground is left loading
+
+
+@pytest.mark.parametrize("query,chapter", [
+    ("гистерезис", "Двухпозиционное регулирование и ПИД"),
+    ("гистерезиса", "Двухпозиционное регулирование и ПИД"),  # another case: stemming
+    ("сторожевой", "Рабочий цикл ПЛК"),
+])
+def test_russian_search_finds_a_russian_word_on_its_chapter(site, browser, query, chapter):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "ru/"))
+    found = search(page, query, patience=150)  # the Russian index is built in the page
+    assert chapter in found, found
+    links = page.eval_on_selector_all(".md-search-result__link", "els => els.map(e => e.href)")
+    assert links and all(h.startswith(urljoin(base, "ru/")) for h in links), links
+    assert errors == []
+
+
+def test_russian_playground_runs_the_tank_for_60_s_and_speaks_russian(site, browser, shots):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "ru/playground/"))
+    wait_state(page, "ready")
+    assert page.inner_text("#pg-status").startswith("Готово: Python и plclab загружены за ")
+    assert page.inner_text("#pg-run60") == "Пуск на 60 с"
+    assert page.evaluate("window.plclabPlayground.lang") == "ru"
+    page.click("#pg-run60")
+    wait_state(page, "ran")
+    status = page.inner_text("#pg-status")
+    assert re.fullmatch(r"Выполнено 60 с виртуального времени \(циклов: 3000\) за \d+ мс\.",
+                        status), status
+    summary = page.inner_text("#pg-summary")
+    assert summary.startswith("t = 60,0 с, циклов: 3000; PUMP переключался раз: "), summary
+    assert summary.endswith("сейчас ВЫКЛ.")
+    assert int(page.get_attribute("#pg-summary", "data-switchings")) >= 2
+    assert page.inner_text("#pg-clock") == "t = 60,00 с"
+    page.screenshot(path=str(shots / "ru-playground-run.png"), full_page=True)
+    assert errors == []
+
+
+RU_ERRORS = {  # a syntax error, an undeclared name, a type mismatch
+    "PLC0010": "PROGRAM P\nVAR x : INT; END_VAR\nx := 1 +;\nEND_PROGRAM\n",
+    "PLC0100": "PROGRAM P\nVAR x : INT; END_VAR\nx := y + 1;\nEND_PROGRAM\n",
+    "PLC0118": "PROGRAM P\nVAR x : INT; b : BOOL; END_VAR\nx := b;\nEND_PROGRAM\n",
+}
+
+
+@pytest.mark.parametrize("code", list(RU_ERRORS))
+def test_russian_playground_shows_a_compile_error_in_russian_with_its_code(site, browser, code):
+    """The worker's diagnostics come from the Russian problem catalogue: the message the page
+    shows is the one plclab gives with --lang ru, with its code and line."""
+    from plclab.site import playground_api
+    from plclab.site.build import speaking
+
+    program = RU_ERRORS[code]
+    with speaking("ru"):
+        want = playground_api.check(program)
+    assert want and want[0]["code"] == code, want  # the program makes the mistake named
+    english = playground_api.check(program)[0]["message"]
+    assert want[0]["message"] != english and re.search("[а-я]", want[0]["message"])
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "ru/playground/"))
+    wait_state(page, "ready")
+    page.fill("#pg-code", program)
+    page.click("#pg-compile")
+    wait_state(page, "error")
+    assert page.inner_text("#pg-status").startswith("Программа не компилируется")
+    first = page.locator("#pg-diagnostics li").first
+    assert first.get_attribute("data-code") == code
+    assert first.get_attribute("data-line") == str(want[0]["line"])
+    text = first.inner_text()
+    assert text.startswith(f"строка {want[0]['line']}") and f"ошибка {code}: " in text, text
+    assert " ".join(want[0]["message"].replace("`", "").split()) in " ".join(text.split())
+    assert first.locator("a").get_attribute("href") == f"../problems/{code}/"  # ru/problems
+    assert errors == []
+
+
+def test_russian_lab_page_opens_the_russian_playground_and_checks_in_russian(site, browser):
+    out, base, _ = site
+    page, errors = open_page(browser, urljoin(base, "ru/labs/tank-two-position/"))
+    page.click("a.try-it")
+    page.wait_for_url(re.compile(re.escape(urljoin(base, "ru/playground/")) + "#"))
+    wait_state(page, "ready")
+    assert page.input_value("#pg-lab") == "tank-two-position"
+    assert page.inner_text("#pg-lab option:checked").startswith("Бак:")
+    page.click("#pg-check")
+    wait_state(page, "checked")
+    assert re.search(r"\d+ из \d+ баллов в открытых сценариях", page.inner_text("#pg-status"))
+    head = page.locator("#pg-results tr").first.inner_text()
+    assert "критерий" in head and "сценарий" in head
+    assert "насос включается ниже LS1" in page.inner_text("#pg-results")
     assert errors == []
 
 
@@ -414,7 +537,10 @@ def test_motor_buttons_answer_the_keyboard(site, browser):
 # ------------------------------------------------------------------ accessibility (issue 39)
 
 PAGES = {"home": "", "chapter": "course/10-timers-counters/", "lab": "labs/tank-two-position/",
-         "playground": "playground/"}
+         "playground": "playground/",
+         "ru-home": "ru/", "ru-chapter": "ru/course/10-timers-counters/",
+         "ru-quiz": "ru/course/10-timers-counters/quiz/", "ru-lab": "ru/labs/tank-two-position/",
+         "ru-playground": "ru/playground/"}
 WIDTHS = (1280, 390)
 WCAG_AA = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]
 
@@ -466,10 +592,12 @@ def test_axe_finds_no_wcag_aa_violation(site, browser, axe, shots, name, width):
     screenshot of each goes to the screenshots folder."""
     out, base, _ = site
     page, errors = open_at(browser, urljoin(base, PAGES[name]), width)
-    if name == "playground":
+    assert page.get_attribute("html", "lang") == ("ru" if name.startswith("ru-") else "en")
+    if name.endswith("playground"):
         wait_state(page, "ready")
     assert axe_violations(page, axe) == []
-    page.screenshot(path=str(shots / f"{name}-{width}.png"), full_page=name != "chapter")
+    page.screenshot(path=str(shots / f"{name}-{width}.png"),
+                    full_page=not name.endswith(("chapter", "quiz")))
     assert errors == []
 
 
