@@ -226,17 +226,30 @@ def template_parts(template: str, text: str) -> dict[str, str] | None:
     return m.groupdict() if m else None
 
 
-def translate_by_templates(text: str, templates: list[dict[str, str]], lang: str) -> str | None:
+def translate_by_templates(text: str, templates: list[dict[str, str]], lang: str,
+                           phrases: list[dict[str, str]] = ()) -> str | None:
     """``text`` matched against the English side of ``templates`` (the first whose ``en``
-    matches all of it) and formatted with the ``lang`` side; None when none matches."""
+    matches all of it) and formatted with the ``lang`` side; None when none matches. A
+    captured part that one of ``phrases`` matches whole is translated too (the parser's
+    ``expected {what}`` with ``what = "an expression"``).
+
+    >>> translate_by_templates("expected an expression, found ';'",
+    ...     [{"en": "expected {what}, found {found}", "ru": "ожидалось {what}, а найдено {found}"}],
+    ...     "ru", [{"en": "an expression", "ru": "выражение"}])
+    "ожидалось выражение, а найдено ';'"
+    """
     for t in templates:
         en, target = t.get("en"), t.get(lang)
         if not en or not target:
             continue
         m = _pattern(en).fullmatch(text)
         if m:
+            parts = m.groupdict()
+            if phrases:
+                parts = {k: (translate_by_templates(v, phrases, lang) or v) if v else v
+                         for k, v in parts.items()}
             try:
-                return fill(target, m.groupdict(), lang)
+                return fill(target, parts, lang)
             except (KeyError, ValueError, IndexError):  # a bad translation: the next one
                 continue
     return None
@@ -264,9 +277,11 @@ def message(code: str, text: str, lang: str | None = None) -> str:
     if lang == SOURCE:
         return text
     entry = catalogue(lang, "problems").get(code, {})
-    got = translate_by_templates(text, entry.get("messages", []), lang)
+    phrases = catalogue(lang, "ui").get("diagnostic_phrases", [])
+    got = translate_by_templates(text, entry.get("messages", []), lang, phrases)
     if got is None:
-        got = translate_by_templates(text, catalogue(lang, "ui").get("messages", []), lang)
+        got = translate_by_templates(text, catalogue(lang, "ui").get("messages", []), lang,
+                                     phrases)
     if got is not None:
         return got
     title = entry.get("title")
