@@ -12,13 +12,6 @@ from plclab.i18n_check import english_runs
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@pytest.fixture
-def russian():
-    i18n.set_language("ru")
-    yield
-    i18n.set_language(None)
-
-
 def diagnostics(src: str) -> list[str]:
     import plclab
 
@@ -39,12 +32,8 @@ def test_what_the_parser_expected_is_russian(russian, src):
     assert got and all(not english_runs(m, min_words=2) for m in got), got
 
 
-def test_without_the_phrase_the_english_words_would_show(russian, monkeypatch):
-    ui = dict(i18n.catalogue("ru", "ui"))
-    ui["diagnostic_phrases"] = []
-    real = i18n.catalogue
-    monkeypatch.setattr(i18n, "catalogue", lambda lang, name: ui if name == "ui" else
-                        real(lang, name))
+def test_without_the_phrase_the_english_words_would_show(russian, ru_ui):
+    ru_ui({"diagnostic_phrases": []})
     got = diagnostics("PROGRAM P\nVAR x : INT; END_VAR\nx := ;\nEND_PROGRAM\n")
     assert any(english_runs(m, min_words=2) for m in got), got
 
