@@ -126,7 +126,16 @@ def search(page, query, patience=15):
             break
         except Exception:  # noqa: BLE001 - playwright's TimeoutError: not ready yet
             continue
-    return page.inner_text(".md-search-result__list")
+    # Each keystroke is a query of its own, answered in turn by the worker: the first results
+    # may be a prefix's ("гистерезис" for "гистерезиса"). The answer to the whole query is the
+    # list once it stops changing.
+    text, seen = None, page.inner_text(".md-search-result__list")
+    for _ in range(60):
+        if seen == text:
+            break
+        page.wait_for_timeout(2000)
+        text, seen = seen, page.inner_text(".md-search-result__list")
+    return seen
 
 
 def test_search_finds_ton(site, browser):
