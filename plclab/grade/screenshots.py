@@ -65,13 +65,6 @@ def record(lab_id: str, program: Path, path: Path) -> tuple[float, str]:
     return t, first.layout.info.recording_id()
 
 
-def free_display() -> int:
-    for n in range(99, 140):
-        if not Path(f"/tmp/.X11-unix/X{n}").exists() and not Path(f"/tmp/.X{n}-lock").exists():
-            return n
-    raise SystemExit("no free X display number")
-
-
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -132,17 +125,46 @@ def display(needed: bool = True):
     if needed and (not os.environ.get("DISPLAY") or os.environ.get("PLCLAB_XVFB")):
         if shutil.which("Xvfb") is None:
             raise SystemExit("no display and no Xvfb: apt-get install xvfb mesa-vulkan-drivers")
-        n = free_display()
-        xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x1000x24"],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        xvfb, n = start_xvfb()
         env["DISPLAY"] = f":{n}"
-        time.sleep(1.0)
     try:
         yield env
     finally:
         if xvfb is not None:
             xvfb.terminate()
             xvfb.wait(10)
+
+
+def start_xvfb(timeout: float = 30.0) -> tuple[subprocess.Popen, int]:
+    """An Xvfb at 1600x1000 on a display number it picks itself (``-displayfd``), and that
+    number once it listens: two shooters started at once never race for one display."""
+    import select
+
+    r, w = os.pipe()
+    try:
+        proc = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1600x1000x24"],
+                                pass_fds=(w,), stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL)
+        os.close(w)
+        w = -1
+        text = b""
+        deadline = time.monotonic() + timeout
+        while not text.endswith(b"\n") and time.monotonic() < deadline:
+            ready, _, _ = select.select([r], [], [], max(0.0, deadline - time.monotonic()))
+            chunk = os.read(r, 16) if ready else b""
+            if not chunk:
+                break
+            text += chunk
+    finally:
+        os.close(r)
+        if w >= 0:
+            os.close(w)
+    if not text.strip().isdigit():
+        proc.kill()
+        proc.wait(5)
+        raise SystemExit("Xvfb did not start: it gave no display number within "
+                         f"{timeout:.0f} s")
+    return proc, int(text)
 
 
 def park_pointer(env: dict[str, str]) -> None:

@@ -111,3 +111,20 @@ def test_viewer_default_view_of_a_mistake_marks_the_failure(tmp_path, monkeypatc
     x_expect = PLOT[0] + (t_fail / span) * (PLOT[2] - PLOT[0])
     assert min(abs(x - x_expect) for x in lines) < 60
     assert teal_pixels(im, LEFT) > 2000  # the lane of what the failed criterion checks
+
+
+def test_two_screens_started_at_once_get_two_displays():
+    """Xvfb picks its own display number (``-displayfd``): shooters started together (two
+    graders, two test runs) never race for one display."""
+    if shutil.which("Xvfb") is None:
+        pytest.skip("no Xvfb (apt-get install xvfb)")
+    from plclab.grade.screenshots import start_xvfb
+
+    (a, n), (b, m) = start_xvfb(), start_xvfb()
+    try:
+        assert n != m
+        assert a.poll() is None and b.poll() is None  # both listen
+    finally:
+        for p in (a, b):
+            p.terminate()
+            p.wait(10)
