@@ -17,6 +17,9 @@ The rules the reference follows:
   exact value, TIME widens to LTIME as nanoseconds; a REAL expression widened to LREAL is the
   REAL value first (rounded to single, as ``REAL_TO_LREAL`` of it: ADR 0038, decision 4);
 * REAL -> integer rounds half away from zero, TRUNC toward zero, NaN/inf is PLC2006;
+* a bare ``TRUNC`` returns DINT in codesys and s7; in iec and matiec it is ANY_INT typed by its
+  context (IEC 61131-3 2nd ed., Table 22; ADR 0052), so there an expression holding one is
+  never the narrower operand of an implicit widening, whose type it would take instead;
 * bit strings: SHL/SHR shift in zeros (a count >= the width gives 0), ROL/ROR rotate modulo the
   width, a negative count is PLC2020;
 * math functions follow IEEE 754 / C99 Annex F (SQRT(-1) = NaN, LN(0) = -inf, SIN(inf) = NaN);
@@ -326,6 +329,8 @@ class Gen:
         # MATIEC counts seconds when it converts between TIME and a number (ADR 0029): those
         # pairs are left out there rather than guessed at
         self.time_numbers = dialect != "matiec"
+        # iec and matiec type a bare TRUNC by its context (ADR 0052): see operand()
+        self.trunc_by_context = dialect in ("iec", "matiec")
         self.pool: dict[str, list[tuple[str, Any]]] = {}
         for t in ALL:
             self.pool[t] = [(f"g_{t.lower()}_{i}", self.value(t)) for i in range(3)]
@@ -378,7 +383,8 @@ class Gen:
         if narrower and self.rng.random() < 0.2:
             s = self.rng.choice(narrower)
             x = self.expr(s, d)
-            return Node(x.text, t, lambda: widened(x.ev(), s, t))
+            if not (self.trunc_by_context and "TRUNC(" in x.text):  # else TRUNC would be a t
+                return Node(x.text, t, lambda: widened(x.ev(), s, t))
         return self.expr(t, d)
 
     def operands(self, t: str, d: int, k: int) -> list[Node]:
