@@ -148,6 +148,8 @@ def test_the_page_in_headless_chromium(served, tmp_path):
         browser = pw.chromium.launch(executable_path=CHROMIUM, headless=True,
                                      args=["--no-sandbox"])
         page = browser.new_page(viewport={"width": 1200, "height": 800})
+        page.set_default_timeout(300_000)  # waits end when the page answers; a loaded
+        page.set_default_navigation_timeout(300_000)  # machine must not fail them
         page.goto(url)
         page.wait_for_selector("#alarm-FULL")
         assert page.inner_text("#title").startswith("Hydro-accumulator tank")

@@ -11,6 +11,13 @@ import pytest
 
 CHROMIUM = "/usr/bin/chromium"
 
+PATIENCE_MS = 600_000
+"""How long a wait for something the page will do (Pyodide loaded, a run ended, the search
+index built) may take before it is a failure: reached only when the page is broken, so it is
+generous. On a loaded 2-core machine (three suites at once, load 17) loading Pyodide and
+building the Russian search index each took minutes. A test's own measure of speed (the page
+not frozen, the clock's pace) compares with what the same page does under the same load."""
+
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
@@ -48,6 +55,23 @@ def browser(site):
         b.close()
 
 
+@pytest.fixture(autouse=True)
+def close_pages(browser):
+    """Every page a test opened is closed after it: a playground left running or a search
+    index still building would take the machine from the tests that follow."""
+    yield
+    for context in browser.contexts:
+        context.close()
+
+
+def new_page(browser, **options):
+    """A page whose waits (navigation, clicks, selectors) last up to PATIENCE_MS."""
+    page = browser.new_page(**options)
+    page.set_default_timeout(PATIENCE_MS)
+    page.set_default_navigation_timeout(PATIENCE_MS)
+    return page
+
+
 @pytest.fixture(scope="module")
 def shots(tmp_path_factory):
     d = tmp_path_factory.mktemp("site-screenshots")
@@ -58,7 +82,7 @@ def shots(tmp_path_factory):
 def open_page(browser, url, width=1280):
     """A page at ``url`` (``width`` px wide) and the console errors and failed requests it
     produced."""
-    page = browser.new_page(viewport={"width": width, "height": 900})
+    page = new_page(browser, viewport={"width": width, "height": 900})
     errors: list[str] = []
     page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
     page.on("pageerror", lambda e: errors.append(str(e)))
@@ -83,7 +107,7 @@ def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(
     paths = all_pages(out)
     assert len(paths) > 150  # chapters, labs, one page per code, plants, ADRs
     seen_links: set[str] = set()
-    page = browser.new_page()
+    page = new_page(browser)
     errors: list[str] = []
     page.on("console", lambda m: errors.append(f"{page.url}: {m.text}")
             if m.type == "error" else None)
@@ -114,28 +138,19 @@ def test_every_page_loads_without_console_errors_and_no_internal_link_is_broken(
     assert broken == []
 
 
-def search(page, query, patience=15):
-    """Type ``query`` into the site's search and return the result list's text (``patience``
-    tries of 2 s for the index to load: the Russian one, with its stemmer, takes longer)."""
-    page.click("label.md-search__icon, .md-search__input", timeout=5000)
-    for _ in range(patience):  # the search index loads in a web worker: type until it answers
-        page.fill("input.md-search__input", "")
-        page.type("input.md-search__input", query)
-        try:
-            page.wait_for_selector(".md-search-result__item", timeout=2000)
-            break
-        except Exception:  # noqa: BLE001 - playwright's TimeoutError: not ready yet
-            continue
-    # Each keystroke is a query of its own, answered in turn by the worker: the first results
-    # may be a prefix's ("гистерезис" for "гистерезиса"). The answer to the whole query is the
-    # list once it stops changing.
-    text, seen = None, page.inner_text(".md-search-result__list")
-    for _ in range(60):
-        if seen == text:
-            break
-        page.wait_for_timeout(2000)
-        text, seen = seen, page.inner_text(".md-search-result__list")
-    return seen
+def search(page, query):
+    """Put ``query`` into the site's search and return the result list's text.
+
+    The whole query is one value with one ``keyup``: the search (mkdocs-material) asks its
+    web worker for the value on a keyup and again when the index is ready, so the first list
+    shown is the answer to the whole query, however long the index takes to build (the
+    Russian one, with its stemmer, takes minutes on a loaded machine). Typing it key by key
+    made each prefix a query of its own, answered in turn."""
+    page.click("label.md-search__icon, .md-search__input")
+    page.fill("input.md-search__input", query)
+    page.press("input.md-search__input", "End")
+    page.wait_for_selector(".md-search-result__item")
+    return page.inner_text(".md-search-result__list")
 
 
 def test_search_finds_ton(site, browser):
@@ -174,7 +189,7 @@ def test_home_chapter_and_lab_pages(site, browser, shots):
     assert errors == errors2 == errors3 == []
 
 
-def wait_state(page, state, timeout=120000):
+def wait_state(page, state, timeout=PATIENCE_MS):
     page.wait_for_function(
         f"['{state}', 'failed'].includes(document.getElementById('pg-status')?.dataset.state)",
         timeout=timeout)
@@ -232,7 +247,7 @@ def test_the_language_switch_goes_to_the_same_page_of_the_other_edition(site, br
 def test_russian_search_finds_a_russian_word_on_its_chapter(site, browser, query, chapter):
     out, base, _ = site
     page, errors = open_page(browser, urljoin(base, "ru/"))
-    found = search(page, query, patience=150)  # the Russian index is built in the page
+    found = search(page, query)
     assert chapter in found, found
     links = page.eval_on_selector_all(".md-search-result__link", "els => els.map(e => e.href)")
     assert links and all(h.startswith(urljoin(base, "ru/")) for h in links), links
@@ -413,23 +428,33 @@ def test_a_long_legal_loop_never_freezes_the_page_and_stop_answers(site, browser
     """The program runs in a worker: a 200,000-iteration loop per scan keeps the page's own
     thread free, and Stop ends the run at once, even inside one long scan (the worker is
     replaced). The figures the issue asks for (100 ms, 200 ms) are measured by
-    benchmarks/site_bench.py; this test bounds them loosely (a loaded CI machine)."""
+    benchmarks/site_bench.py. Here the page is measured against the scan itself, so that a
+    loaded machine, which slows both, cannot fail it: a loop on the page's thread would
+    freeze the page for a whole scan, and a Stop that waited for the scan's end would take
+    the rest of one."""
     out, base, _ = site
     page, errors = open_page(browser, urljoin(base, "playground/"))
     wait_state(page, "ready")
     page.fill("#pg-code", LONG_LOOP)
-    heartbeat(page)
     page.click("#pg-run60")
-    page.wait_for_function("window.plclabPlayground.state.scans > 2", timeout=120000)
-    page.wait_for_timeout(1500)
-    stopped_in = page.evaluate("""async () => { const t = performance.now();
-        await window.plclabPlayground.stop(); return performance.now() - t; }""")
+    page.wait_for_function("window.plclabPlayground.state.scans > 2")
+    heartbeat(page)
+    scan_ms = page.evaluate("""async () => {  // the mean time of three scans, as the page sees it
+        const s = window.plclabPlayground.state, k = s.scans, t = performance.now();
+        while (s.scans < k + 3) await new Promise((r) => setTimeout(r, 5));
+        return (performance.now() - t) / (s.scans - k); }""")
     gap = page.evaluate("window.__gap")
+    stopped_in = page.evaluate("""async () => {  // Stop just after a scan began
+        const s = window.plclabPlayground.state, k = s.scans;
+        while (s.scans === k) await new Promise((r) => setTimeout(r, 5));
+        const t = performance.now();
+        await window.plclabPlayground.stop(); return performance.now() - t; }""")
     assert page.get_attribute("#pg-status", "data-state") == "stopped"
-    assert stopped_in < 2000 and gap < 1000, (stopped_in, gap)
+    assert gap < max(1000, scan_ms / 2), (gap, scan_ms)
+    assert stopped_in < max(2000, scan_ms / 2), (stopped_in, scan_ms)
     assert "Stopped at t = " in page.inner_text("#pg-status")
     assert page.is_disabled("#pg-stop")
-    page.wait_for_function("!document.getElementById('pg-run60').disabled", timeout=120000)
+    page.wait_for_function("!document.getElementById('pg-run60').disabled")
     assert errors == []
 
 
@@ -443,13 +468,14 @@ def test_step_pause_and_live_at_the_clocks_pace(site, browser):
         # After the first step the state already reads "stepped": wait for the scan count,
         # which only the worker's answer to this click moves, then for the state.
         page.click("#pg-step")
-        page.wait_for_function(f"window.plclabPlayground.state.scans >= {n}", timeout=120000)
+        page.wait_for_function(f"window.plclabPlayground.state.scans >= {n}", timeout=PATIENCE_MS)
         wait_state(page, "stepped")
         assert page.evaluate("window.plclabPlayground.state.scans") == n
     page.click("#pg-live")
-    page.wait_for_function("window.plclabPlayground.state.t > 0.5", timeout=60000)
+    page.wait_for_function("window.plclabPlayground.state.t > 0.5", timeout=PATIENCE_MS)
     t0 = page.evaluate("[window.plclabPlayground.state.t, performance.now()]")
-    page.wait_for_timeout(1500)
+    page.wait_for_timeout(1000)  # then until the run has moved on: a loaded machine is slower
+    page.wait_for_function(f"window.plclabPlayground.state.t > {t0[0]} + 0.5")
     t1 = page.evaluate("[window.plclabPlayground.state.t, performance.now()]")
     virtual, wall = t1[0] - t0[0], (t1[1] - t0[1]) / 1000
     assert 0 < virtual <= wall * 1.0 + 0.6, (virtual, wall)  # 1x: never ahead of the clock
@@ -511,7 +537,7 @@ def test_try_it_opens_what_the_example_needs_and_share_links_round_trip(site, br
             "m := (a + b) / 2.0;\nEND_PROGRAM\n"
     page.evaluate(f"location.hash = {link(plain).split('#')[1]!r}")
     page.wait_for_function("document.querySelector(\"#pg-watch tr[data-path='Avg.m']\") !== null",
-                           timeout=60000)
+                           timeout=PATIENCE_MS)
     assert page.input_value("#pg-plant") == "none"
     assert page.locator("#pg-diagnostics li").count() == 0
     assert page.locator("#pg-watch tr[data-path='Avg.m'] .pg-value").inner_text() == "3.0"
@@ -734,7 +760,7 @@ def test_the_editor_colours_an_example_as_its_chapter_does(site, browser):
             page, e2 = open_page(browser, urljoin(ch.url, href))
             errors += e2
             page.wait_for_function("document.querySelector('#pg-layer .k') !== null",
-                                   timeout=120000)
+                                   timeout=PATIENCE_MS)
             ours = coloured(layer_pieces(page))
             assert len(ours) > 10 and ours == course, (chapter, lang)
             checked.add(lang)
@@ -749,14 +775,14 @@ def test_diagnostics_are_underlined_in_place_with_a_linked_code_and_a_hover(site
     wait_state(page, "ready")
     page.fill("#pg-code", "PROGRAM P\nVAR x : INT; END_VAR\nx := speed + 1;\nEND_PROGRAM\n")
     mark = page.locator("#pg-layer .pg-mark-error")
-    mark.wait_for(timeout=60000)
+    mark.wait_for(timeout=PATIENCE_MS)
     assert mark.inner_text() == "speed"
     assert page.locator("#pg-gutter .pg-bad").inner_text() == "3"
     code = page.locator("#pg-diagnostics li").first.get_attribute("data-code")
     box = mark.bounding_box()
     page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
     tip = page.locator("#pg-tip")
-    tip.wait_for(state="visible", timeout=30000)
+    tip.wait_for(state="visible", timeout=PATIENCE_MS)
     assert code in tip.inner_text() and "speed" in tip.inner_text()
     href = tip.locator("a").first.get_attribute("href")
     assert href.endswith(f"/problems/{code}/")
@@ -777,17 +803,17 @@ def test_hover_and_the_info_line_show_declarations_and_standard_signatures(site,
     caret_before(page, "lay(")
     page.keyboard.press("ArrowRight")
     page.wait_for_function("document.getElementById('pg-info').textContent.includes('TON')",
-                           timeout=60000)
+                           timeout=PATIENCE_MS)
     assert "delay : TON" in page.inner_text("#pg-info")
     caret_before(page, "IMIT(")
     page.keyboard.press("ArrowRight")
     page.wait_for_function("document.getElementById('pg-info').textContent.includes('LIMIT')",
-                           timeout=60000)
+                           timeout=PATIENCE_MS)
     # the mouse: hover over `n` on line 7
     piece = page.locator("#pg-layer span", has_text=re.compile(r"^n$")).nth(1)
     box = piece.bounding_box()
     page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
-    page.wait_for_function("!document.getElementById('pg-tip').hidden", timeout=30000)
+    page.wait_for_function("!document.getElementById('pg-tip').hidden", timeout=PATIENCE_MS)
     assert "n : INT" in page.inner_text("#pg-tip")
     assert errors == []
 
@@ -838,7 +864,7 @@ KNOWN_WARNINGS = {
 def try_links(browser, base, out):
     """Every try-it link of the course and the labs: (page, href)."""
     found = []
-    page = browser.new_page()
+    page = new_page(browser)
     for html_file in sorted((out / "course").glob("*/index.html")) + \
             sorted((out / "labs").glob("*/index.html")):
         rel = html_file.relative_to(out).as_posix()[: -len("index.html")]
@@ -857,18 +883,18 @@ def test_every_try_it_example_shows_its_plant_watch_or_tests_without_an_unasked_
     out, base, _ = site
     links = try_links(browser, base, out)
     assert len(links) > 60
-    page = browser.new_page(viewport={"width": 1280, "height": 900})
+    page = new_page(browser, viewport={"width": 1280, "height": 900})
     errors: list[str] = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.add_init_script("window.__shown = []; window.addEventListener('pg-example', "
                          "e => window.__shown.push(e.detail));")
     page.goto(links[0][1])
-    page.wait_for_function("window.__shown.length === 1", timeout=120000)
+    page.wait_for_function("window.__shown.length === 1", timeout=PATIENCE_MS)
     problems, known_seen = [], set()
     for n, (where, href) in enumerate(links):
         if n:
             page.evaluate("h => { location.hash = h; }", href.split("#", 1)[1])
-            page.wait_for_function(f"window.__shown.length === {n + 1}", timeout=120000)
+            page.wait_for_function(f"window.__shown.length === {n + 1}", timeout=PATIENCE_MS)
         d = page.evaluate("window.__shown[window.__shown.length - 1]")
         expect = set(d["expect"])
         codes = set(d["codes"])
