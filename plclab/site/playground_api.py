@@ -126,6 +126,7 @@ class Session:
         self.plc: Any = None
         self.time = 0.0
         self.scans = 0
+        self._owed = 0.0  # scans asked for and not yet run (advance's slices)
         self.forced: dict[str, Any] = {}
         try:
             self.plc = loads(text, "playground" + LANGUAGE_SUFFIX.get(language, ".st"),
@@ -206,12 +207,16 @@ class Session:
     def advance(self, seconds: float, every: float | None = None) -> list[dict[str, Any]]:
         """Run scans for ``seconds`` of virtual time; return a sample each ``every`` s
         (default: each scan), on the session's own clock: a run advanced in slices (the page's
-        worker) samples at the same moments as one call. A run-time fault stops the session
-        and becomes a diagnostic."""
+        worker) samples at the same moments as one call. Slices of any length, which the
+        worker sizes by the wall clock, add up to the same number of scans as one call: the
+        part of a scan a slice leaves over is carried to the next, so the machine's speed never
+        changes a run. A run-time fault stops the session and becomes a diagnostic."""
         if self.plc is None:
             return []
         out: list[dict[str, Any]] = []
-        n = max(1, round(seconds / self.scan_s))
+        wanted = seconds / self.scan_s + self._owed
+        n = max(0, round(wanted))
+        self._owed = wanted - n
         step = max(1, round((every or self.scan_s) / self.scan_s))
         for _ in range(n):
             try:

@@ -145,3 +145,23 @@ def test_a_run_in_slices_samples_at_the_same_moments_as_one_call():
     assert sliced.scans == whole.scans == 3000
     assert [r["t"] for r in got] == [r["t"] for r in rows]
     assert got[-1]["t"] == 60.0 and got == rows
+
+
+def test_slices_sized_by_the_wall_clock_add_up_to_the_run():
+    """The worker sizes its slices by how fast the machine is (any float, and a last sliver
+    left by float subtraction): a 60 s run is still 3000 scans, sampled as one call samples it.
+    Rounding each slice on its own ran 3001 scans on a loaded machine."""
+    import random
+
+    whole = api.Session(api.TANK_EXAMPLE, "st", "tank")
+    rows = whole.advance(60.0, 0.1)
+    for seed in range(3):
+        rng = random.Random(seed)
+        sliced = api.Session(api.TANK_EXAMPLE, "st", "tank")
+        got, left = [], 60.0
+        while left > 1e-9:  # as advanceSliced in site/playground/worker.js
+            chunk = min(left, rng.uniform(0.02, 0.5))
+            got += sliced.advance(chunk, 0.1)
+            left -= chunk
+        assert sliced.scans == 3000, seed
+        assert got == rows
