@@ -189,10 +189,9 @@ def test_home_chapter_and_lab_pages(site, browser, shots):
     assert errors == errors2 == errors3 == []
 
 
-def wait_state(page, state, timeout=PATIENCE_MS):
+def wait_state(page, state):
     page.wait_for_function(
-        f"['{state}', 'failed'].includes(document.getElementById('pg-status')?.dataset.state)",
-        timeout=timeout)
+        f"['{state}', 'failed'].includes(document.getElementById('pg-status')?.dataset.state)")
     assert page.get_attribute("#pg-status", "data-state") == state, page.inner_text("#pg-status")
 
 
@@ -468,11 +467,11 @@ def test_step_pause_and_live_at_the_clocks_pace(site, browser):
         # After the first step the state already reads "stepped": wait for the scan count,
         # which only the worker's answer to this click moves, then for the state.
         page.click("#pg-step")
-        page.wait_for_function(f"window.plclabPlayground.state.scans >= {n}", timeout=PATIENCE_MS)
+        page.wait_for_function(f"window.plclabPlayground.state.scans >= {n}")
         wait_state(page, "stepped")
         assert page.evaluate("window.plclabPlayground.state.scans") == n
     page.click("#pg-live")
-    page.wait_for_function("window.plclabPlayground.state.t > 0.5", timeout=PATIENCE_MS)
+    page.wait_for_function("window.plclabPlayground.state.t > 0.5")
     t0 = page.evaluate("[window.plclabPlayground.state.t, performance.now()]")
     page.wait_for_timeout(1000)  # then until the run has moved on: a loaded machine is slower
     page.wait_for_function(f"window.plclabPlayground.state.t > {t0[0]} + 0.5")
@@ -536,8 +535,7 @@ def test_try_it_opens_what_the_example_needs_and_share_links_round_trip(site, br
     plain = "PROGRAM Avg\nVAR a : REAL := 2.0; b : REAL := 4.0; m : REAL; END_VAR\n" \
             "m := (a + b) / 2.0;\nEND_PROGRAM\n"
     page.evaluate(f"location.hash = {link(plain).split('#')[1]!r}")
-    page.wait_for_function("document.querySelector(\"#pg-watch tr[data-path='Avg.m']\") !== null",
-                           timeout=PATIENCE_MS)
+    page.wait_for_function("document.querySelector(\"#pg-watch tr[data-path='Avg.m']\") !== null")
     assert page.input_value("#pg-plant") == "none"
     assert page.locator("#pg-diagnostics li").count() == 0
     assert page.locator("#pg-watch tr[data-path='Avg.m'] .pg-value").inner_text() == "3.0"
@@ -759,8 +757,7 @@ def test_the_editor_colours_an_example_as_its_chapter_does(site, browser):
                 .map(s => [s.className, s.textContent])"""))
             page, e2 = open_page(browser, urljoin(ch.url, href))
             errors += e2
-            page.wait_for_function("document.querySelector('#pg-layer .k') !== null",
-                                   timeout=PATIENCE_MS)
+            page.wait_for_function("document.querySelector('#pg-layer .k') !== null")
             ours = coloured(layer_pieces(page))
             assert len(ours) > 10 and ours == course, (chapter, lang)
             checked.add(lang)
@@ -775,14 +772,14 @@ def test_diagnostics_are_underlined_in_place_with_a_linked_code_and_a_hover(site
     wait_state(page, "ready")
     page.fill("#pg-code", "PROGRAM P\nVAR x : INT; END_VAR\nx := speed + 1;\nEND_PROGRAM\n")
     mark = page.locator("#pg-layer .pg-mark-error")
-    mark.wait_for(timeout=PATIENCE_MS)
+    mark.wait_for()
     assert mark.inner_text() == "speed"
     assert page.locator("#pg-gutter .pg-bad").inner_text() == "3"
     code = page.locator("#pg-diagnostics li").first.get_attribute("data-code")
     box = mark.bounding_box()
     page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
     tip = page.locator("#pg-tip")
-    tip.wait_for(state="visible", timeout=PATIENCE_MS)
+    tip.wait_for(state="visible")
     assert code in tip.inner_text() and "speed" in tip.inner_text()
     href = tip.locator("a").first.get_attribute("href")
     assert href.endswith(f"/problems/{code}/")
@@ -802,18 +799,16 @@ def test_hover_and_the_info_line_show_declarations_and_standard_signatures(site,
     # the keyboard: the caret on `delay` (line 6), then on LIMIT (line 7)
     caret_before(page, "lay(")
     page.keyboard.press("ArrowRight")
-    page.wait_for_function("document.getElementById('pg-info').textContent.includes('TON')",
-                           timeout=PATIENCE_MS)
+    page.wait_for_function("document.getElementById('pg-info').textContent.includes('TON')")
     assert "delay : TON" in page.inner_text("#pg-info")
     caret_before(page, "IMIT(")
     page.keyboard.press("ArrowRight")
-    page.wait_for_function("document.getElementById('pg-info').textContent.includes('LIMIT')",
-                           timeout=PATIENCE_MS)
+    page.wait_for_function("document.getElementById('pg-info').textContent.includes('LIMIT')")
     # the mouse: hover over `n` on line 7
     piece = page.locator("#pg-layer span", has_text=re.compile(r"^n$")).nth(1)
     box = piece.bounding_box()
     page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
-    page.wait_for_function("!document.getElementById('pg-tip').hidden", timeout=PATIENCE_MS)
+    page.wait_for_function("!document.getElementById('pg-tip').hidden")
     assert "n : INT" in page.inner_text("#pg-tip")
     assert errors == []
 
@@ -889,12 +884,12 @@ def test_every_try_it_example_shows_its_plant_watch_or_tests_without_an_unasked_
     page.add_init_script("window.__shown = []; window.addEventListener('pg-example', "
                          "e => window.__shown.push(e.detail));")
     page.goto(links[0][1])
-    page.wait_for_function("window.__shown.length === 1", timeout=PATIENCE_MS)
+    page.wait_for_function("window.__shown.length === 1")
     problems, known_seen = [], set()
     for n, (where, href) in enumerate(links):
         if n:
             page.evaluate("h => { location.hash = h; }", href.split("#", 1)[1])
-            page.wait_for_function(f"window.__shown.length === {n + 1}", timeout=PATIENCE_MS)
+            page.wait_for_function(f"window.__shown.length === {n + 1}")
         d = page.evaluate("window.__shown[window.__shown.length - 1]")
         expect = set(d["expect"])
         codes = set(d["codes"])
