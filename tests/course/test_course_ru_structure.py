@@ -6,8 +6,8 @@ English file: the same code blocks (byte-identical code, the same fence info), t
 figures (image paths in order), the same headings (count and levels); for quizzes the same
 items in the same order with the same kind, answer key, choices count and every non-text
 field (programs, steps, tolerances) identical. A change made to one edition and not the other
-fails here. Chapters without a Russian file are listed by ``test_ru_coverage_report`` (never
-failing: the lead decides when the edition must be complete).
+fails here. The edition is whole: every chapter has both Russian files
+(``test_every_chapter_has_its_russian_edition``).
 """
 from __future__ import annotations
 
@@ -157,13 +157,13 @@ def test_decimal_check_catches_a_point_and_spares_code() -> None:
     assert prose_decimal_points("IEC 61131-3, версия 3.0") == ["3.0"]
 
 
-def test_ru_coverage_report(capsys) -> None:
-    """Lists the chapters without a Russian file; informative, never failing."""
-    missing = [c.name for c in CHAPTERS if not (c / "chapter.ru.md").exists()]
-    with capsys.disabled():
-        print(f"\nRussian edition: {len(CHAPTERS) - len(missing)}/{len(CHAPTERS)} chapters; "
-              f"missing: {', '.join(missing) or 'none'}")
-    assert len(missing) <= len(CHAPTERS)
+def test_every_chapter_has_its_russian_edition() -> None:
+    """The Russian edition is whole (issue 38): a chapter added in English only fails here."""
+    missing = [c.name for c in CHAPTERS
+               if not ((c / "chapter.ru.md").exists() and (c / "quiz.ru.toml").exists())]
+    assert len(CHAPTERS) >= 17
+    assert not missing, ("chapters without chapter.ru.md and quiz.ru.toml (write them, "
+                         "ADR 0066): " + ", ".join(missing))
 
 
 # ---- the checker catches what it must (wrong inputs) ----
