@@ -213,10 +213,20 @@ class Session:
         changes a run. A run-time fault stops the session and becomes a diagnostic."""
         if self.plc is None:
             return []
-        out: list[dict[str, Any]] = []
         wanted = seconds / self.scan_s + self._owed
         n = max(0, round(wanted))
         self._owed = wanted - n
+        return self._scans(n, every)
+
+    def step(self) -> None:
+        """Exactly one scan (the page's Step), whatever part of a scan a run left over."""
+        if self.plc is not None:
+            self._scans(1, None)
+
+    def _scans(self, n: int, every: float | None) -> list[dict[str, Any]]:
+        """``n`` scans, sampled each ``every`` s of the session's clock (default: each scan);
+        a run-time fault stops the session and becomes a diagnostic."""
+        out: list[dict[str, Any]] = []
         step = max(1, round((every or self.scan_s) / self.scan_s))
         for _ in range(n):
             try:

@@ -98,7 +98,7 @@ async function live(msg) {
 }
 
 function step(msg) {
-  if (session && session.ok) session.advance(0.02, 0.02);
+  if (session && session.ok) session.step();
   reply(msg.id, "stepped", Object.assign(status(), {
     row: session ? toJs(session.sample()) : null, watch: session ? toJs(session.watch()) : [] }));
 }

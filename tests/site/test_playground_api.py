@@ -165,3 +165,17 @@ def test_slices_sized_by_the_wall_clock_add_up_to_the_run():
             left -= chunk
         assert sliced.scans == 3000, seed
         assert got == rows
+
+
+def test_a_step_is_one_scan_whatever_a_run_left_over():
+    """Step runs exactly one scan, also after a run that left half a scan over either way
+    (0.03 s and 0.01 s at 20 ms): through ``advance`` it ran 0 and 2 scans."""
+    for seconds in (0.03, 0.01, 0.025, 0.0):
+        s = api.Session(api.TANK_EXAMPLE, "st", "tank")
+        s.advance(seconds, 0.1)
+        before, t = s.scans, s.time
+        s.step()
+        assert s.scans == before + 1, seconds
+        assert abs(s.time - t - 0.02) < 1e-12
+    s.plc = None  # a session stopped by a fault: Step does nothing
+    s.step()
